@@ -1,0 +1,56 @@
+/* Status codes and error reporting shared by every module of the library.
+ *
+ * The library never prints, exits or aborts. Every fallible call returns a status (0 success,
+ * > 0 information or a recoverable condition, < 0 an error) and, on error, writes a message into
+ * the bg_error record of the object concerned. A caller who wants messages as they happen installs
+ * a handler; by default there is none and the last message is kept for bg_error_message(). */
+#ifndef BG_STATUS_H
+#define BG_STATUS_H
+
+#include <stdarg.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum bg_status_code {
+    BG_OK = 0,
+    BG_RECOVERABLE = 1,        /* a callback asked for a retry with a smaller step */
+    BG_ERR_MEMORY = -1,        /* allocation failed */
+    BG_ERR_ARGUMENT = -2,      /* an argument is out of range or inconsistent */
+    BG_ERR_SINGULAR = -3,      /* a matrix is (numerically or structurally) singular */
+    BG_ERR_NOT_POSDEF = -4,    /* a matrix expected positive definite is not */
+    BG_ERR_LIBRARY = -5,       /* SuiteSparse or LAPACK reported a failure */
+    BG_ERR_CALLBACK = -6,      /* a user callback returned a fatal status */
+    BG_ERR_IO = -7,            /* a file could not be written or read */
+    BG_ERR_PATTERN = -8,       /* a matrix does not have the pattern it was declared with */
+    BG_ERR_NONFINITE = -9      /* NaN or Inf where a finite number is needed */
+};
+
+/* Name of a status code, e.g. "BG_ERR_SINGULAR"; "unknown status" for others. */
+const char *bg_status_name(int status);
+
+/* Called with the status, the function that failed and the message. */
+typedef void (*bg_error_handler)(void *user, int status, const char *where, const char *message);
+
+#define BG_MESSAGE_SIZE 512
+
+typedef struct bg_error {
+    bg_error_handler handler; /* NULL: keep the message only */
+    void *user;
+    int status;               /* status of the last error, BG_OK if none */
+    char message[BG_MESSAGE_SIZE];
+} bg_error;
+
+/* Record an error (format as printf), call the handler if any; returns status. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+int bg_error_raise(bg_error *e, int status, const char *where, const char *fmt, ...);
+int bg_error_vraise(bg_error *e, int status, const char *where, const char *fmt, va_list ap);
+void bg_error_clear(bg_error *e);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
