@@ -1,0 +1,1516 @@
+/* Modified BDF for semi-explicit index-2 DAEs F(t, y, y') = 0.
+ *
+ * Method. Variable-order, variable-step BDF in fixed-leading-coefficient form with the history
+ * kept as modified divided differences phi[0..k+1], as in DASSL and IDA (Brenan, Campbell and
+ * Petzold 1996, sec. 5.2-5.3; the step/order rules follow IDA's published algorithm: order raised
+ * and step doubled in the initial phase, then orders k-1, k, k+1 compared by their scaled error
+ * estimates; the step kept unless the estimate asks for a ratio >= 2 or <= 1, ratios bounded to
+ * [0.5, 0.9] on decrease and 2 on increase). The corrector is a modified Newton iteration on
+ *     G(y) = F(t_n, y, y_pred' + cj (y - y_pred)) = 0,  cj = alpha_s / h,
+ * with the iteration matrix M = dF/dy + cj dF/dy' kept across steps while cj stays within
+ * [0.6, 1.67] of the value it was factored with (corrections rescaled by 2/(1 + cj/cj_f)),
+ * refreshed after a convergence failure, and refactored by KLU with the symbolic analysis reused.
+ *
+ * Index 2 (Brenan et al. sec. 3.3; Hairer and Wanner, Solving ODEs II, sec. VII.3): BDF applied to
+ * an index-2 system converges with order k in the differential and index-1 variables, but the
+ * local error estimate of an index-2 variable lambda does not tend to zero with h in the usual
+ * way: its error is O(h^k) only after division by h. Two policies are offered:
+ *   DAE_I2_EXCLUDE: lambda's weight in the error norm is 0 (IDA's "suppress algebraic" applied
+ *     to the index-2 variables only; index-1 algebraic variables stay in the test);
+ *   DAE_I2_SCALE_H: lambda's weight is multiplied by |h| (the estimate of h*lambda, which has the
+ *     units of an impulse and the order of the differential variables).
+ * The Newton convergence norm always uses the h-scaled weight for index-2 variables, so that the
+ * iteration is neither stopped early nor asked for digits lambda cannot have.
+ * Conditioning: the unscaled M has rows of size cj ~ 1/h (rows containing y') and rows of size 1
+ * (constraints) and its condition grows like h^-2. We factor R M C instead, with R = h/alpha on
+ * rows that contain y' and 1 elsewhere, C = cj on index-2 columns and 1 elsewhere; every block is
+ * then O(1). The solution is mapped back by delta = C z.
+ * Consistent initial values: rows of F that depend on differential variables only (the
+ * constraints) are replaced by their total time derivative dF_i/dt + sum_j dF_i/dy_j y_j', which
+ * together with the other rows determines y' of the differential variables and both kinds of
+ * algebraic variables; before that, differential variables that violate the constraints are
+ * moved by the minimum-norm Gauss-Newton correction -A^T (A A^T)^-1 F_C (CHOLMOD).
+ * Drift: with position constraints g(y) given, the maximum |g| after each step is recorded and,
+ * if asked, y is projected back by the same minimum-norm correction.
+ * Breakpoints: steps are clipped to land exactly on each breakpoint, where the method restarts at
+ * order 1 from consistent values (the left value of y, the right value of y').
+ * Roots of event functions are located on the interpolant by the Illinois variant of regula
+ * falsi. */
+#include "bg_dae.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bg_fdjac.h"
+
+#define MAXORD 5
+#define NPHI (MAXORD + 2)
+#define MAX_NEF 10   /* error-test failures in one step */
+#define MAX_NCF 10   /* Newton failures in one step */
+#define EPS_NEWT 0.33
+#define RATE_MAX 0.9
+#define CJ_LOW 0.6
+#define CJ_HIGH (1.0 / 0.6)
+
+struct dae_solver {
+    int n;
+    dae_problem p;
+    dae_options o;
+    int *kind;
+    char **names;
+    double *atol;     /* n */
+    double *bkpt;     /* sorted breakpoints */
+    int nbkpt;
+    /* Jacobians and the Newton matrix */
+    sp_csc *Jy, *Jyp;
+    sp_union *U;
+    sp_fdjac *fdy, *fdyp;
+    ls_solver *ls;
+    int *rowdiff;      /* row i contains y' */
+    int *rowcons;      /* row i depends on differential variables only: a constraint */
+    int ncons_rows;
+    double cjf;        /* cj the factored matrix was built with */
+    int jac_current;   /* Jacobian evaluated at this step's predictor */
+    int need_setup;
+    double ss;         /* Newton rate factor */
+    /* consistent initialisation */
+    sp_csc *K;         /* (y'_D, y_A) Jacobian */
+    int *kslot_yp, *kslot_y; /* entry p of Jyp / Jy -> slot in K, -1 if not used */
+    ls_solver *kls;
+    sp_csc *A;         /* constraint rows x differential columns of Jy (projection at init) */
+    int *aslot;        /* entry p of Jy -> slot in A, -1 */
+    aat_solver *aat_init;
+    /* drift and projection */
+    sp_csc *G;
+    aat_solver *aat_proj;
+    double *gv, *gw;
+    /* BDF state */
+    double tn, hh, hused, cj, cjold;
+    int kk, kused, knew, phase, ns, nst_local, first;
+    double psi[MAXORD + 1], alpha[MAXORD + 1], beta[MAXORD + 1], sigma[MAXORD + 1],
+        gamma[MAXORD + 1];
+    double alphas, alpha0, ck;
+    double *phi[NPHI];
+    double *ewt, *werr, *wnewt;
+    double *y, *yp, *ypred, *yppred, *ee, *delta, *res, *tmp, *tmp2, *typ;
+    double err_k, err_km1;
+    /* roots */
+    double *glo, *ghi, *gmid;
+    double tlo;
+    int *rfound;
+    int root_pending;
+    double troot;
+    int ibk;           /* next breakpoint index */
+    int initialized;
+    /* FD context */
+    double fd_t;
+    const double *fd_y, *fd_yp;
+    dae_stats st;
+    bg_error err;
+};
+
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static const char *vname(const dae_solver *s, int i, char *buf, size_t sz)
+{
+    if (i < 0) return "(none)";
+    if (s->names && s->names[i]) return s->names[i];
+    snprintf(buf, sz, "y[%d]", i);
+    return buf;
+}
+
+void dae_options_default(dae_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->rtol = 1e-6;
+    o->atol = 1e-8;
+    o->max_order = 5;
+    o->max_steps = 100000;
+    o->index2 = DAE_I2_EXCLUDE;
+    o->linsol = LS_KLU;
+    o->max_newton = 4;
+}
+
+const char *dae_return_name(int code)
+{
+    switch (code) {
+    case DAE_SUCCESS: return "DAE_SUCCESS";
+    case DAE_TSTOP_RETURN: return "DAE_TSTOP_RETURN";
+    case DAE_ROOT_RETURN: return "DAE_ROOT_RETURN";
+    case DAE_TOO_MUCH_WORK: return "DAE_TOO_MUCH_WORK";
+    case DAE_TOO_MUCH_ACC: return "DAE_TOO_MUCH_ACC";
+    case DAE_ERR_FAIL: return "DAE_ERR_FAIL";
+    case DAE_CONV_FAIL: return "DAE_CONV_FAIL";
+    case DAE_LSETUP_FAIL: return "DAE_LSETUP_FAIL";
+    case DAE_RES_FAIL: return "DAE_RES_FAIL";
+    case DAE_CALLBACK_FAIL: return "DAE_CALLBACK_FAIL";
+    case DAE_INIT_FAIL: return "DAE_INIT_FAIL";
+    case DAE_STEP_TOO_SMALL: return "DAE_STEP_TOO_SMALL";
+    default: return bg_status_name(code);
+    }
+}
+
+/* ---------------------------------------------------------------- callbacks ---- */
+
+static int is_finite_vec(const double *v, int n, int *bad)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i])) {
+            *bad = i;
+            return 0;
+        }
+    return 1;
+}
+
+/* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. */
+static int call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd)
+{
+    double t0 = seconds();
+    int r = s->p.res(s->p.user, t, y, yp, F);
+    s->st.t_res += seconds() - t0;
+    if (fd)
+        s->st.res_evals_fd++;
+    else
+        s->st.res_evals++;
+    if (r < 0) return r;
+    if (r > 0) return r;
+    int bad;
+    if (!is_finite_vec(F, s->n, &bad)) return BG_RECOVERABLE;
+    return 0;
+}
+
+static int fd_res_y(void *u, const double *x, double *f)
+{
+    dae_solver *s = u;
+    return call_res(s, s->fd_t, x, s->fd_yp, f, 1);
+}
+
+static int fd_res_yp(void *u, const double *x, double *f)
+{
+    dae_solver *s = u;
+    return call_res(s, s->fd_t, s->fd_y, x, f, 1);
+}
+
+/* Jy, Jyp at (t, y, yp); F = F(t, y, yp) must be given (used by finite differences). */
+static int eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F)
+{
+    double t0 = seconds();
+    int r;
+    s->st.jac_evals++;
+    if (s->p.jac) {
+        r = s->p.jac(s->p.user, t, y, yp, s->Jy, s->Jyp);
+    } else {
+        s->fd_t = t;
+        s->fd_y = y;
+        s->fd_yp = yp;
+        for (int j = 0; j < s->n; j++) s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol);
+        r = sp_fdjac_eval(s->fdy, fd_res_y, s, y, F, s->typ, s->Jy);
+        if (r == 0) {
+            double hs = fabs(s->hh) > 0 ? fabs(s->hh) : 1.0;
+            for (int j = 0; j < s->n; j++) s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol * hs);
+            r = sp_fdjac_eval(s->fdyp, fd_res_yp, s, yp, F, s->typ, s->Jyp);
+        }
+    }
+    s->st.t_jac += seconds() - t0;
+    if (r == 0) {
+        int bad;
+        if (!is_finite_vec(s->Jy->val, s->Jy->nnz, &bad) ||
+            !is_finite_vec(s->Jyp->val, s->Jyp->nnz, &bad))
+            r = BG_RECOVERABLE;
+    }
+    return r;
+}
+
+/* ------------------------------------------------------------------- norms ---- */
+
+static void set_weights(dae_solver *s, const double *y)
+{
+    double h = fabs(s->hh);
+    for (int i = 0; i < s->n; i++) {
+        double w = 1.0 / (s->o.rtol * fabs(y[i]) + s->atol[i]);
+        s->ewt[i] = w;
+        if (s->kind[i] == DAE_ALG2) {
+            s->werr[i] = s->o.index2 == DAE_I2_EXCLUDE ? 0.0 : w * h;
+            s->wnewt[i] = w * h;
+        } else {
+            s->werr[i] = w;
+            s->wnewt[i] = w;
+        }
+    }
+}
+
+static double wrms(const dae_solver *s, const double *v, const double *w)
+{
+    double sum = 0.0;
+    for (int i = 0; i < s->n; i++) {
+        double a = v[i] * w[i];
+        sum += a * a;
+    }
+    return sqrt(sum / (s->n > 0 ? s->n : 1));
+}
+
+/* --------------------------------------------------------------- creation ---- */
+
+static sp_csc *dense_pattern(int n)
+{
+    sp_builder *b = sp_builder_create(n, n, n * n);
+    if (!b) return NULL;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) sp_builder_add(b, i, j, 0.0);
+    sp_csc *P = sp_builder_finish(b, NULL);
+    sp_builder_free(&b);
+    return P;
+}
+
+void dae_free(dae_solver **sp)
+{
+    if (!sp || !*sp) return;
+    dae_solver *s = *sp;
+    free(s->kind);
+    if (s->names) {
+        for (int i = 0; i < s->n; i++) free(s->names[i]);
+        free(s->names);
+    }
+    free(s->atol);
+    free(s->bkpt);
+    sp_csc_free(&s->Jy);
+    sp_csc_free(&s->Jyp);
+    sp_union_free(&s->U);
+    sp_fdjac_free(&s->fdy);
+    sp_fdjac_free(&s->fdyp);
+    ls_free(&s->ls);
+    free(s->rowdiff);
+    free(s->rowcons);
+    sp_csc_free(&s->K);
+    free(s->kslot_yp);
+    free(s->kslot_y);
+    ls_free(&s->kls);
+    sp_csc_free(&s->A);
+    free(s->aslot);
+    aat_free(&s->aat_init);
+    sp_csc_free(&s->G);
+    aat_free(&s->aat_proj);
+    free(s->gv);
+    free(s->gw);
+    for (int j = 0; j < NPHI; j++) free(s->phi[j]);
+    free(s->ewt);
+    free(s->werr);
+    free(s->wnewt);
+    free(s->y);
+    free(s->yp);
+    free(s->ypred);
+    free(s->yppred);
+    free(s->ee);
+    free(s->delta);
+    free(s->res);
+    free(s->tmp);
+    free(s->tmp2);
+    free(s->typ);
+    free(s->glo);
+    free(s->ghi);
+    free(s->gmid);
+    free(s->rfound);
+    free(s);
+    *sp = NULL;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Pattern of the consistent-initialisation Jacobian K: column j is y'_j (differential) or y_j
+ * (algebraic); non-constraint rows take dF/dy' or dF/dy, constraint rows take dF/dy of the
+ * differential columns (the derivative of the constraint). Also the constraint block A. */
+static int build_init_patterns(dae_solver *s)
+{
+    int n = s->n;
+    sp_builder *b = sp_builder_create(n, n, s->Jy->nnz + s->Jyp->nnz);
+    sp_builder *ba = sp_builder_create(s->ncons_rows, n, s->Jy->nnz);
+    int *sy = malloc(((size_t)s->Jy->nnz + 1) * sizeof *sy);
+    int *syp = malloc(((size_t)s->Jyp->nnz + 1) * sizeof *syp);
+    int *sa = malloc(((size_t)s->Jy->nnz + 1) * sizeof *sa);
+    int ok = b && ba && sy && syp && sa;
+    s->kslot_y = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->kslot_y);
+    s->kslot_yp = malloc(((size_t)s->Jyp->nnz + 1) * sizeof *s->kslot_yp);
+    s->aslot = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->aslot);
+    ok = ok && s->kslot_y && s->kslot_yp && s->aslot;
+    /* constraint rows are renumbered 0..ncons_rows-1 for A */
+    int *crow = malloc(((size_t)n + 1) * sizeof *crow);
+    ok = ok && crow;
+    if (ok) {
+        int c = 0;
+        for (int i = 0; i < n; i++) crow[i] = s->rowcons[i] ? c++ : -1;
+        for (int j = 0; j < n && ok; j++) {
+            int diff = s->kind[j] == DAE_DIFF;
+            for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++) {
+                int i = s->Jyp->rowind[p];
+                syp[p] = (diff && !s->rowcons[i]) ? sp_builder_add(b, i, j, 0.0) : -1;
+            }
+            for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
+                int i = s->Jy->rowind[p];
+                if (s->rowcons[i])
+                    sy[p] = diff ? sp_builder_add(b, i, j, 0.0) : -1;
+                else
+                    sy[p] = diff ? -1 : sp_builder_add(b, i, j, 0.0);
+                sa[p] = (s->rowcons[i] && diff) ? sp_builder_add(ba, crow[i], j, 0.0) : -1;
+            }
+        }
+    }
+    int *slot = ok ? malloc(((size_t)sp_builder_count(b) + 1) * sizeof *slot) : NULL;
+    if (slot && (s->K = sp_builder_finish(b, slot)) != NULL) {
+        for (int p = 0; p < s->Jy->nnz; p++) s->kslot_y[p] = sy[p] >= 0 ? slot[sy[p]] : -1;
+        for (int p = 0; p < s->Jyp->nnz; p++) s->kslot_yp[p] = syp[p] >= 0 ? slot[syp[p]] : -1;
+        if (s->ncons_rows > 0) {
+            int *aslot = malloc(((size_t)sp_builder_count(ba) + 1) * sizeof *aslot);
+            sp_csc *Afull = aslot ? sp_builder_finish(ba, aslot) : NULL;
+            if (Afull) {
+                s->A = Afull;
+                for (int p = 0; p < s->Jy->nnz; p++) s->aslot[p] = sa[p] >= 0 ? aslot[sa[p]] : -1;
+            }
+            free(aslot);
+            ok = s->A != NULL;
+        }
+    }
+    free(slot);
+    ok = ok && s->K;
+    sp_builder_free(&b);
+    sp_builder_free(&ba);
+    free(sy);
+    free(syp);
+    free(sa);
+    free(crow);
+    return ok;
+}
+
+dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err)
+{
+    const char *w = "dae_create";
+    dae_options def;
+    if (!o) {
+        dae_options_default(&def);
+        o = &def;
+    }
+    if (!p || p->n < 1 || !p->res) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "problem needs n >= 1 and a residual function");
+        return NULL;
+    }
+    int n = p->n;
+    if (!(o->rtol >= 0) || (!o->atol_vec && !(o->atol >= 0)) || (o->rtol == 0 && o->atol == 0 && !o->atol_vec)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "tolerances must be >= 0 and not both zero (rtol %g, atol %g)", o->rtol,
+                       o->atol);
+        return NULL;
+    }
+    if (o->max_order < 1 || o->max_order > MAXORD) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "max_order must be 1..5 (got %d)", o->max_order);
+        return NULL;
+    }
+    if (o->projection && (!p->cons || p->ncons < 1 || !p->cons_pattern)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "projection needs position constraints (cons, ncons, cons_pattern)");
+        return NULL;
+    }
+    if (o->fixed_step && !(o->h_init > 0)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "fixed_step needs h_init > 0");
+        return NULL;
+    }
+    if (p->jac && (!p->jac_y_pattern) != (!p->jac_yp_pattern)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "give both Jacobian patterns or neither");
+        return NULL;
+    }
+    dae_solver *s = calloc(1, sizeof *s);
+    if (!s) goto nomem;
+    s->n = n;
+    s->p = *p;
+    s->o = *o;
+    s->o.atol_vec = NULL;
+    s->o.breakpoints = NULL;
+    if (s->o.max_newton < 1) s->o.max_newton = 4;
+    if (s->o.max_steps < 1) s->o.max_steps = 100000;
+    s->kind = malloc((size_t)n * sizeof *s->kind);
+    s->atol = malloc((size_t)n * sizeof *s->atol);
+    if (!s->kind || !s->atol) goto nomem;
+    for (int i = 0; i < n; i++) {
+        s->kind[i] = p->kind ? p->kind[i] : DAE_DIFF;
+        if (s->kind[i] < DAE_DIFF || s->kind[i] > DAE_ALG2) {
+            bg_error_raise(err, BG_ERR_ARGUMENT, w, "kind[%d] = %d is not a dae_var_kind", i,
+                           s->kind[i]);
+            dae_free(&s);
+            return NULL;
+        }
+        s->atol[i] = o->atol_vec ? o->atol_vec[i] : o->atol;
+        if (!(s->atol[i] >= 0) || (s->atol[i] == 0 && o->rtol == 0)) {
+            bg_error_raise(err, BG_ERR_ARGUMENT, w, "atol[%d] = %g: must be >= 0 (and > 0 if rtol = 0)",
+                           i, s->atol[i]);
+            dae_free(&s);
+            return NULL;
+        }
+    }
+    if (p->names) {
+        s->names = calloc((size_t)n, sizeof *s->names);
+        if (!s->names) goto nomem;
+        for (int i = 0; i < n; i++)
+            if (p->names[i] && !(s->names[i] = strdup(p->names[i]))) goto nomem;
+    }
+    if (o->nbreakpoints > 0 && o->breakpoints) {
+        s->bkpt = malloc((size_t)o->nbreakpoints * sizeof *s->bkpt);
+        if (!s->bkpt) goto nomem;
+        memcpy(s->bkpt, o->breakpoints, (size_t)o->nbreakpoints * sizeof *s->bkpt);
+        qsort(s->bkpt, (size_t)o->nbreakpoints, sizeof *s->bkpt, cmp_double);
+        s->nbkpt = o->nbreakpoints;
+    }
+    /* Jacobian patterns */
+    s->Jy = p->jac_y_pattern ? sp_csc_copy(p->jac_y_pattern) : dense_pattern(n);
+    s->Jyp = p->jac_yp_pattern ? sp_csc_copy(p->jac_yp_pattern) : dense_pattern(n);
+    if (!s->Jy || !s->Jyp) goto nomem;
+    if (s->Jy->nrow != n || s->Jy->ncol != n || s->Jyp->nrow != n || s->Jyp->ncol != n ||
+        sp_csc_check(s->Jy, &s->err) || sp_csc_check(s->Jyp, &s->err)) {
+        bg_error_raise(err, BG_ERR_PATTERN, w, "Jacobian patterns must be valid %d x %d: %s", n, n,
+                       s->err.message);
+        dae_free(&s);
+        return NULL;
+    }
+    sp_csc_zero(s->Jy);
+    sp_csc_zero(s->Jyp);
+    s->U = sp_union_create(s->Jy, s->Jyp);
+    if (!s->U) goto nomem;
+    if (!p->jac) {
+        s->fdy = sp_fdjac_create(s->Jy);
+        s->fdyp = sp_fdjac_create(s->Jyp);
+        if (!s->fdy || !s->fdyp) goto nomem;
+    }
+    s->ls = ls_create(o->linsol, s->U->M, err);
+    if (!s->ls) {
+        dae_free(&s);
+        return NULL;
+    }
+    /* row classes */
+    s->rowdiff = calloc((size_t)n, sizeof *s->rowdiff);
+    s->rowcons = calloc((size_t)n, sizeof *s->rowcons);
+    if (!s->rowdiff || !s->rowcons) goto nomem;
+    for (int p2 = 0; p2 < s->Jyp->nnz; p2++) s->rowdiff[s->Jyp->rowind[p2]] = 1;
+    {
+        int *touch_alg = calloc((size_t)n, sizeof *touch_alg);
+        int *touch = calloc((size_t)n, sizeof *touch);
+        if (!touch_alg || !touch) {
+            free(touch_alg);
+            free(touch);
+            goto nomem;
+        }
+        for (int j = 0; j < n; j++)
+            for (int q = s->Jy->colptr[j]; q < s->Jy->colptr[j + 1]; q++) {
+                touch[s->Jy->rowind[q]] = 1;
+                if (s->kind[j] != DAE_DIFF) touch_alg[s->Jy->rowind[q]] = 1;
+            }
+        for (int i = 0; i < n; i++) {
+            s->rowcons[i] = !s->rowdiff[i] && touch[i] && !touch_alg[i];
+            s->ncons_rows += s->rowcons[i];
+        }
+        free(touch_alg);
+        free(touch);
+    }
+    if (!build_init_patterns(s)) goto nomem;
+    s->kls = ls_create(o->linsol, s->K, err);
+    if (!s->kls) {
+        dae_free(&s);
+        return NULL;
+    }
+    if (s->A) {
+        s->aat_init = aat_create(s->A, err);
+        if (!s->aat_init) {
+            dae_free(&s);
+            return NULL;
+        }
+    }
+    if (p->cons && p->ncons > 0) {
+        if (!p->cons_pattern || p->cons_pattern->nrow != p->ncons || p->cons_pattern->ncol != n) {
+            bg_error_raise(err, BG_ERR_PATTERN, w, "cons_pattern must be %d x %d", p->ncons, n);
+            dae_free(&s);
+            return NULL;
+        }
+        s->G = sp_csc_copy(p->cons_pattern);
+        s->gv = malloc((size_t)p->ncons * sizeof *s->gv);
+        s->gw = malloc((size_t)p->ncons * sizeof *s->gw);
+        if (!s->G || !s->gv || !s->gw) goto nomem;
+        s->aat_proj = aat_create(s->G, err);
+        if (!s->aat_proj) {
+            dae_free(&s);
+            return NULL;
+        }
+    }
+    for (int j = 0; j < NPHI; j++)
+        if (!(s->phi[j] = calloc((size_t)n, sizeof(double)))) goto nomem;
+    double **vecs[] = {&s->ewt, &s->werr, &s->wnewt, &s->y, &s->yp, &s->ypred, &s->yppred,
+                       &s->ee, &s->delta, &s->res, &s->tmp, &s->tmp2, &s->typ};
+    for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
+        if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
+    if (p->nroots > 0) {
+        if (!p->roots) {
+            bg_error_raise(err, BG_ERR_ARGUMENT, w, "nroots = %d but no root function",
+                           p->nroots);
+            dae_free(&s);
+            return NULL;
+        }
+        s->glo = calloc((size_t)p->nroots, sizeof(double));
+        s->ghi = calloc((size_t)p->nroots, sizeof(double));
+        s->gmid = calloc((size_t)p->nroots, sizeof(double));
+        s->rfound = calloc((size_t)p->nroots, sizeof(int));
+        if (!s->glo || !s->ghi || !s->gmid || !s->rfound) goto nomem;
+    }
+    return s;
+nomem:
+    dae_free(&s);
+    bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory (n = %d)", n);
+    return NULL;
+}
+
+bg_error *dae_get_error(dae_solver *s) { return &s->err; }
+double dae_current_time(const dae_solver *s) { return s->tn; }
+const dae_stats *dae_get_stats(const dae_solver *s) { return &s->st; }
+
+static void sync_stats(dae_solver *s)
+{
+    const ls_stats *a = ls_get_stats(s->ls), *b = ls_get_stats(s->kls);
+    s->st.factor_symbolic = a->symbolic + b->symbolic;
+    s->st.factor_full = a->factor + b->factor;
+    s->st.factor_refactor = a->refactor + b->refactor;
+}
+
+/* ----------------------------------------------------------- initial values ---- */
+
+int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
+{
+    if (!s || !y0) return BG_ERR_ARGUMENT;
+    if (!isfinite(t0))
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_init", "t0 = %g is not finite", t0);
+    char nb[32];
+    for (int i = 0; i < s->n; i++)
+        if (!isfinite(y0[i]) || (yp0 && !isfinite(yp0[i])))
+            return bg_error_raise(&s->err, BG_ERR_NONFINITE, "dae_init",
+                                  "initial value of %s is not finite", vname(s, i, nb, sizeof nb));
+    memset(&s->st, 0, sizeof s->st);
+    s->st.h_min_used = INFINITY;
+    memcpy(s->phi[0], y0, (size_t)s->n * sizeof *y0);
+    if (yp0)
+        memcpy(s->phi[1], yp0, (size_t)s->n * sizeof *yp0);
+    else
+        memset(s->phi[1], 0, (size_t)s->n * sizeof *yp0);
+    s->tn = t0;
+    s->first = 1;
+    s->hh = 0;
+    s->hused = 0;
+    s->kused = 0;
+    s->kk = 1;
+    s->ibk = 0;
+    while (s->ibk < s->nbkpt && s->bkpt[s->ibk] <= t0) s->ibk++;
+    s->root_pending = 0;
+    s->tlo = t0;
+    s->need_setup = 1;
+    s->initialized = 1;
+    bg_error_clear(&s->err);
+    if (s->p.nroots > 0) {
+        int r = s->p.roots(s->p.user, t0, y0, s->phi[1], s->glo);
+        if (r < 0)
+            return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_init",
+                                  "root function returned %d at t = %g", r, t0);
+    }
+    return BG_OK;
+}
+
+int dae_reinit(dae_solver *s, double t, const double *y, const double *yp)
+{
+    dae_stats keep = s->st;
+    int r = dae_init(s, t, y, yp);
+    if (r == BG_OK) s->st = keep;
+    return r;
+}
+
+/* Scaled residual: max_i |F_i| / (1 + sum_j |Jy_ij y_j| + |Jyp_ij yp_j|). Needs Jy, Jyp. */
+static double scaled_residual(dae_solver *s, const double *F, const double *y, const double *yp)
+{
+    double *den = s->tmp2;
+    for (int i = 0; i < s->n; i++) den[i] = 1.0;
+    for (int j = 0; j < s->n; j++) {
+        for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
+            den[s->Jy->rowind[p]] += fabs(s->Jy->val[p] * y[j]);
+        for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++)
+            den[s->Jyp->rowind[p]] += fabs(s->Jyp->val[p] * yp[j]);
+    }
+    double m = 0;
+    for (int i = 0; i < s->n; i++) m = fmax(m, fabs(F[i]) / den[i]);
+    return m;
+}
+
+static int init_fail(dae_solver *s, int code, const char *fmt, const char *what, double v)
+{
+    return bg_error_raise(&s->err, code, "dae_consistent_init", fmt, what, v);
+}
+
+/* Moves the differential variables onto the constraint rows F_C(t, y) = 0. */
+static int project_init(dae_solver *s, double t, double *y, double *yp)
+{
+    double *F = s->res;
+    for (int it = 0; it < 20; it++) {
+        int r = call_res(s, t, y, yp, F, 0);
+        if (r != 0) return r;
+        double fcmax = 0, ymax = 1;
+        for (int i = 0; i < s->n; i++)
+            if (s->rowcons[i]) fcmax = fmax(fcmax, fabs(F[i]));
+        for (int i = 0; i < s->n; i++) ymax = fmax(ymax, fabs(y[i]));
+        if (fcmax <= 1e-14 * ymax) return 0;
+        if ((r = eval_jac(s, t, y, yp, F)) != 0) return r;
+        sp_csc_zero(s->A);
+        for (int p = 0; p < s->Jy->nnz; p++)
+            if (s->aslot[p] >= 0) s->A->val[s->aslot[p]] = s->Jy->val[p];
+        r = aat_factor(s->aat_init, s->A, 0.0);
+        if (r != BG_OK)
+            return bg_error_raise(&s->err, DAE_INIT_FAIL, "dae_consistent_init",
+                                  "constraint rows are dependent: %s",
+                                  aat_get_error(s->aat_init)->message);
+        double *fc = s->tmp, *w = s->delta;
+        int c = 0;
+        for (int i = 0; i < s->n; i++)
+            if (s->rowcons[i]) fc[c++] = F[i];
+        aat_solve(s->aat_init, fc, w);
+        sp_matvec_t(s->A, -1.0, w, 0.0, s->tmp2); /* -A^T w: correction of every column */
+        for (int j = 0; j < s->n; j++)
+            if (s->kind[j] == DAE_DIFF) y[j] += s->tmp2[j];
+    }
+    return bg_error_raise(&s->err, DAE_INIT_FAIL, "dae_consistent_init",
+                          "position projection did not converge in 20 iterations");
+}
+
+int dae_consistent_init(dae_solver *s)
+{
+    const char *w = "dae_consistent_init";
+    if (!s || !s->initialized)
+        return s ? bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first")
+                 : BG_ERR_ARGUMENT;
+    int n = s->n, r;
+    double t = s->tn;
+    double *y = s->y, *yp = s->yp, *F = s->res, *u = s->ee;
+    char nb[32];
+    memcpy(y, s->phi[0], (size_t)n * sizeof *y);
+    memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
+    for (int j = 0; j < n; j++)
+        if (s->kind[j] == DAE_ALG2) yp[j] = 0.0;
+    s->hh = 0;
+    set_weights(s, y);
+    if (s->ncons_rows > 0 && (r = project_init(s, t, y, yp)) != 0) {
+        if (r == DAE_INIT_FAIL) return r;
+        return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
+                         "%s failed during the projection at t = %g", "residual", t);
+    }
+    double dt = cbrt(DBL_EPSILON) * fmax(1.0, fabs(t));
+    double unorm = 0;
+    for (int it = 0; it < 25; it++) {
+        if ((r = call_res(s, t, y, yp, F, 0)) != 0)
+            return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
+                             "%s failed at t = %g", "residual", t);
+        if ((r = eval_jac(s, t, y, yp, F)) != 0)
+            return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
+                             "%s failed at t = %g", "Jacobian", t);
+        /* constraint rows: d/dt F_i = dF_i/dt + sum_j dF_i/dy_j y'_j */
+        if (s->ncons_rows > 0) {
+            double *fp = s->tmp, *fm = s->delta;
+            if ((r = call_res(s, t + dt, y, yp, fp, 0)) != 0 ||
+                (r = call_res(s, t - dt, y, yp, fm, 0)) != 0)
+                return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
+                                 "%s failed near t = %g", "residual", t);
+            for (int i = 0; i < n; i++)
+                if (s->rowcons[i]) F[i] = (fp[i] - fm[i]) / (2 * dt);
+            for (int j = 0; j < n; j++)
+                if (s->kind[j] == DAE_DIFF)
+                    for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
+                        if (s->rowcons[s->Jy->rowind[p]]) F[s->Jy->rowind[p]] += s->Jy->val[p] * yp[j];
+        }
+        sp_csc_zero(s->K);
+        for (int p = 0; p < s->Jy->nnz; p++)
+            if (s->kslot_y[p] >= 0) s->K->val[s->kslot_y[p]] = s->Jy->val[p];
+        for (int p = 0; p < s->Jyp->nnz; p++)
+            if (s->kslot_yp[p] >= 0) s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
+        double t0 = seconds();
+        r = ls_factor(s->kls, s->K);
+        if (r == BG_OK) {
+            memcpy(u, F, (size_t)n * sizeof *u);
+            r = ls_solve(s->kls, u, 1);
+        }
+        s->st.t_linalg += seconds() - t0;
+        if (r != BG_OK) {
+            int c = ls_singular_col(s->kls);
+            return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                                  "the system for y' and the algebraic variables is singular at "
+                                  "t = %g: no equation determines %s%s (%s)",
+                                  t, c >= 0 && s->kind[c] == DAE_DIFF ? "the derivative of " : "",
+                                  vname(s, c, nb, sizeof nb), ls_get_error(s->kls)->message);
+        }
+        unorm = 0;
+        for (int j = 0; j < n; j++) {
+            double sc;
+            if (s->kind[j] == DAE_DIFF) {
+                yp[j] -= u[j];
+                sc = 1.0 / (s->o.rtol * fabs(yp[j]) + s->atol[j]);
+            } else {
+                y[j] -= u[j];
+                sc = 1.0 / (s->o.rtol * fabs(y[j]) + s->atol[j]);
+            }
+            unorm = fmax(unorm, fabs(u[j]) * sc);
+        }
+        if (unorm <= 1e-8) break;
+    }
+    if ((r = call_res(s, t, y, yp, F, 0)) != 0)
+        return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL, "%s failed at t = %g",
+                         "residual", t);
+    s->st.init_residual = scaled_residual(s, F, y, yp);
+    sync_stats(s);
+    memcpy(s->phi[0], y, (size_t)n * sizeof *y);
+    memcpy(s->phi[1], yp, (size_t)n * sizeof *yp);
+    s->need_setup = 1;
+    if (unorm > 1e-8 || s->st.init_residual > 1e-8)
+        return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                              "Newton iteration for consistent values did not converge at t = %g "
+                              "(scaled residual %.3g)",
+                              t, s->st.init_residual);
+    return BG_OK;
+}
+
+int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y)
+{
+    if (!s || !Y || k < 1 || k > MAXORD || !(h > 0))
+        return s ? bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_set_history",
+                                  "needs 1 <= k <= 5 and h > 0 (k = %d, h = %g)", k, h)
+                 : BG_ERR_ARGUMENT;
+    int n = s->n;
+    int r = dae_init(s, t0, Y, NULL);
+    if (r != BG_OK) return r;
+    /* at constant step the modified divided differences are backward differences:
+     * phi_j = nabla^j y_n */
+    for (int j = 0; j <= k; j++) {
+        for (int i = 0; i < n; i++) {
+            double d = 0, c = 1; /* sum_m (-1)^m C(j,m) y_{n-m} */
+            for (int m = 0; m <= j; m++) {
+                d += c * Y[(size_t)m * n + i];
+                c = -c * (double)(j - m) / (double)(m + 1);
+            }
+            s->phi[j][i] = d;
+        }
+    }
+    for (int j = 0; j <= MAXORD; j++) s->psi[j] = (j + 1) * h;
+    s->hh = h;
+    s->hused = h;
+    s->kk = k;
+    s->kused = k;
+    s->ns = k + 1;
+    s->phase = 1;
+    s->first = 0;
+    s->o.h_init = h;
+    s->o.max_order = k;
+    return BG_OK;
+}
+
+/* ------------------------------------------------------------ BDF machinery ---- */
+
+static void set_coeffs(dae_solver *s)
+{
+    int k = s->kk;
+    if (s->hh != s->hused || k != s->kused) s->ns = 0;
+    s->ns = s->ns + 1 < s->kused + 2 ? s->ns + 1 : s->kused + 2;
+    if (k + 1 >= s->ns) {
+        double temp1 = s->hh;
+        s->beta[0] = 1;
+        s->alpha[0] = 1;
+        s->gamma[0] = 0;
+        s->sigma[0] = 1;
+        for (int i = 1; i <= k; i++) {
+            double temp2 = s->psi[i - 1];
+            s->psi[i - 1] = temp1;
+            s->beta[i] = s->beta[i - 1] * s->psi[i - 1] / temp2;
+            temp1 = temp2 + s->hh;
+            s->alpha[i] = s->hh / temp1;
+            s->sigma[i] = i * s->sigma[i - 1] * s->alpha[i];
+            s->gamma[i] = s->gamma[i - 1] + s->alpha[i - 1] / s->hh;
+        }
+        s->psi[k] = temp1;
+    }
+    s->alphas = 0;
+    s->alpha0 = 0;
+    for (int i = 0; i < k; i++) {
+        s->alphas -= 1.0 / (i + 1);
+        s->alpha0 -= s->alpha[i];
+    }
+    s->cjold = s->cj;
+    s->cj = -s->alphas / s->hh;
+    s->ck = fabs(s->alpha[k] + s->alphas - s->alpha0);
+    s->ck = fmax(s->ck, s->alpha[k]);
+    for (int j = s->ns; j <= k; j++)
+        for (int i = 0; i < s->n; i++) s->phi[j][i] *= s->beta[j];
+}
+
+static void restore(dae_solver *s)
+{
+    for (int j = 1; j <= s->kk; j++) s->psi[j - 1] = s->psi[j] - s->hh;
+    for (int j = s->ns; j <= s->kk; j++)
+        for (int i = 0; i < s->n; i++) s->phi[j][i] /= s->beta[j];
+}
+
+static void predict(dae_solver *s)
+{
+    int n = s->n;
+    memcpy(s->ypred, s->phi[0], (size_t)n * sizeof(double));
+    memset(s->yppred, 0, (size_t)n * sizeof(double));
+    for (int j = 1; j <= s->kk; j++)
+        for (int i = 0; i < n; i++) {
+            s->ypred[i] += s->phi[j][i];
+            s->yppred[i] += s->gamma[j] * s->phi[j][i];
+        }
+}
+
+/* Jacobian, scaled Newton matrix, factorization. */
+static int setup(dae_solver *s, double t, const double *F)
+{
+    int r = eval_jac(s, t, s->y, s->yp, F);
+    if (r != 0) return r;
+    double t0 = seconds();
+    double cj = s->cj;
+    sp_union_combine(s->U, s->Jy, 1.0, s->Jyp, cj);
+    sp_csc *M = s->U->M;
+    for (int j = 0; j < s->n; j++) {
+        double cs = s->kind[j] == DAE_ALG2 ? cj : 1.0;
+        for (int p = M->colptr[j]; p < M->colptr[j + 1]; p++)
+            M->val[p] *= cs * (s->rowdiff[M->rowind[p]] ? 1.0 / cj : 1.0);
+    }
+    r = ls_factor(s->ls, M);
+    s->st.t_linalg += seconds() - t0;
+    s->cjf = cj;
+    s->jac_current = 1;
+    s->need_setup = 0;
+    s->ss = 20.0;
+    if (r == BG_ERR_SINGULAR) return BG_ERR_SINGULAR;
+    if (r != BG_OK) return r < 0 ? r : BG_ERR_LIBRARY;
+    return 0;
+}
+
+/* delta = M^-1 F with the scaling of the factored matrix. */
+static int lsolve(dae_solver *s, double *v)
+{
+    double t0 = seconds();
+    double cj = s->cjf;
+    for (int i = 0; i < s->n; i++)
+        if (s->rowdiff[i]) v[i] /= cj;
+    int r = ls_solve(s->ls, v, 1);
+    for (int j = 0; j < s->n; j++)
+        if (s->kind[j] == DAE_ALG2) v[j] *= cj;
+    if (s->cj != cj) {
+        double f = 2.0 / (1.0 + s->cj / cj);
+        for (int j = 0; j < s->n; j++) v[j] *= f;
+    }
+    s->st.linear_solves++;
+    s->st.t_linalg += seconds() - t0;
+    return r;
+}
+
+enum { NL_OK = 0, NL_RECOVER = 1, NL_RES_RECOVER = 2, NL_SINGULAR = 3 };
+
+/* Newton corrector; y, yp, ee hold the result. Returns NL_* or < 0 fatal. */
+static int newton(dae_solver *s, double t)
+{
+    int n = s->n;
+    memcpy(s->y, s->ypred, (size_t)n * sizeof(double));
+    memcpy(s->yp, s->yppred, (size_t)n * sizeof(double));
+    memset(s->ee, 0, (size_t)n * sizeof(double));
+    double ratio = s->cj / (s->cjf != 0 ? s->cjf : s->cj);
+    if (s->first || ratio < CJ_LOW || ratio > CJ_HIGH) s->need_setup = 1;
+    s->jac_current = 0;
+    double oldnrm = 0;
+    for (int m = 0; m < s->o.max_newton; m++) {
+        int r = call_res(s, t, s->y, s->yp, s->res, 0);
+        if (r < 0) return r;
+        if (r > 0) return NL_RES_RECOVER;
+        if (s->need_setup) {
+            r = setup(s, t, s->res);
+            if (r == BG_ERR_SINGULAR) return NL_SINGULAR;
+            if (r < 0) return r;
+            if (r > 0) return NL_RES_RECOVER;
+        }
+        memcpy(s->delta, s->res, (size_t)n * sizeof(double));
+        if (lsolve(s, s->delta) != BG_OK) return NL_SINGULAR;
+        s->st.newton_iters++;
+        for (int i = 0; i < n; i++) {
+            s->y[i] -= s->delta[i];
+            s->yp[i] -= s->cj * s->delta[i];
+            s->ee[i] -= s->delta[i];
+        }
+        double dn = wrms(s, s->delta, s->wnewt);
+        if (!isfinite(dn)) return NL_RES_RECOVER;
+        if (m == 0) {
+            oldnrm = dn;
+            if (dn <= 1e-4 * EPS_NEWT) return NL_OK;
+        } else {
+            double rate = pow(dn / oldnrm, 1.0 / m);
+            if (rate > RATE_MAX) return NL_RECOVER;
+            s->ss = rate / (1.0 - rate);
+        }
+        if (s->ss * dn <= EPS_NEWT) return NL_OK;
+    }
+    return NL_RECOVER;
+}
+
+/* Error test: 0 pass, 1 fail. Sets err_k, err_km1, knew. */
+static int test_error(dae_solver *s)
+{
+    int k = s->kk;
+    double enorm_k = wrms(s, s->ee, s->werr);
+    s->err_k = s->sigma[k] * enorm_k;
+    double terr_k = (k + 1) * s->err_k;
+    s->knew = k;
+    s->err_km1 = 0;
+    if (k > 1) {
+        for (int i = 0; i < s->n; i++) s->tmp[i] = s->phi[k][i] + s->ee[i];
+        s->err_km1 = s->sigma[k - 1] * wrms(s, s->tmp, s->werr);
+        double terr_km1 = k * s->err_km1;
+        if (k > 2) {
+            for (int i = 0; i < s->n; i++) s->tmp[i] += s->phi[k - 1][i];
+            double terr_km2 = (k - 1) * s->sigma[k - 2] * wrms(s, s->tmp, s->werr);
+            if (fmax(terr_km1, terr_km2) <= terr_k) s->knew = k - 1;
+        } else if (terr_km1 <= 0.5 * terr_k) {
+            s->knew = k - 1;
+        }
+    }
+    return s->ck * enorm_k > 1.0;
+}
+
+static void complete_step(dae_solver *s)
+{
+    int n = s->n;
+    s->st.steps++;
+    s->nst_local++;
+    int kdiff = s->kk - s->kused;
+    s->kused = s->kk;
+    s->hused = s->hh;
+    s->st.steps_at_order[s->kused]++;
+    s->st.h_last = s->hh;
+    s->st.order_last = s->kused;
+    s->st.h_min_used = fmin(s->st.h_min_used, fabs(s->hh));
+    s->st.h_max_used = fmax(s->st.h_max_used, fabs(s->hh));
+    if (s->knew == s->kk - 1 || s->kk == s->o.max_order) s->phase = 1;
+    double hmax_inv = s->o.h_max > 0 ? 1.0 / s->o.h_max : 0.0;
+    if (s->o.fixed_step) {
+        /* keep h and k */
+    } else if (s->phase == 0) {
+        if (s->st.steps > 1 || s->nst_local > 1) {
+            s->kk++;
+            double hnew = 2 * s->hh, tmp;
+            if ((tmp = fabs(hnew) * hmax_inv) > 1) hnew /= tmp;
+            s->hh = hnew;
+        }
+    } else {
+        enum { LOWER, MAINTAIN, RAISE } action;
+        double err_kp1 = 0, err_knew;
+        int k = s->kk;
+        if (s->knew == k - 1)
+            action = LOWER;
+        else if (k == s->o.max_order || k + 1 >= s->ns || kdiff == 1)
+            action = MAINTAIN;
+        else {
+            for (int i = 0; i < n; i++) s->tmp[i] = s->ee[i] - s->phi[k + 1][i];
+            err_kp1 = wrms(s, s->tmp, s->werr) / (k + 2);
+            double terr_k = (k + 1) * s->err_k, terr_kp1 = (k + 2) * err_kp1;
+            if (k == 1)
+                action = terr_kp1 >= 0.5 * terr_k ? MAINTAIN : RAISE;
+            else {
+                double terr_km1 = k * s->err_km1;
+                if (terr_km1 <= fmin(terr_k, terr_kp1))
+                    action = LOWER;
+                else
+                    action = terr_kp1 >= terr_k ? MAINTAIN : RAISE;
+            }
+        }
+        if (action == RAISE) {
+            s->kk++;
+            err_knew = err_kp1;
+        } else if (action == LOWER) {
+            s->kk--;
+            err_knew = s->err_km1;
+        } else
+            err_knew = s->err_k;
+        double hnew = s->hh;
+        double rr = pow(2 * err_knew + 1e-4, -1.0 / (s->kk + 1));
+        if (rr >= 2) {
+            double tmp;
+            hnew = 2 * s->hh;
+            if ((tmp = fabs(hnew) * hmax_inv) > 1) hnew /= tmp;
+        } else if (rr <= 1) {
+            hnew = s->hh * fmax(0.5, fmin(0.9, rr));
+        }
+        s->hh = hnew;
+    }
+    if (s->kused < MAXORD) memcpy(s->phi[s->kused + 1], s->ee, (size_t)n * sizeof(double));
+    for (int i = 0; i < n; i++) s->phi[s->kused][i] += s->ee[i];
+    for (int j = s->kused - 1; j >= 0; j--)
+        for (int i = 0; i < n; i++) s->phi[j][i] += s->phi[j + 1][i];
+}
+
+int dae_dense(const dae_solver *s, double t, double *y, double *yp)
+{
+    int n = s->n;
+    if (s->first || s->hused == 0) {
+        if (y) memcpy(y, s->phi[0], (size_t)n * sizeof *y);
+        if (yp) memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
+        return t == s->tn ? BG_OK : BG_ERR_ARGUMENT;
+    }
+    double tfuzz = 100 * DBL_EPSILON * (fabs(s->tn) + fabs(s->hh));
+    if (s->hused < 0) tfuzz = -tfuzz;
+    if ((t - (s->tn - s->hused - tfuzz)) * s->hused < 0 || (t - (s->tn + tfuzz)) * s->hused > 0)
+        return BG_ERR_ARGUMENT;
+    double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
+    int kord = s->kused > 0 ? s->kused : 1;
+    if (y) memcpy(y, s->phi[0], (size_t)n * sizeof *y);
+    if (yp) memset(yp, 0, (size_t)n * sizeof *yp);
+    for (int j = 1; j <= kord; j++) {
+        d = d * gam + c / s->psi[j - 1];
+        c = c * gam;
+        gam = (delt + s->psi[j - 1]) / s->psi[j];
+        for (int i = 0; i < n; i++) {
+            if (y) y[i] += c * s->phi[j][i];
+            if (yp) yp[i] += d * s->phi[j][i];
+        }
+    }
+    return BG_OK;
+}
+
+/* -------------------------------------------------------------- stepping ---- */
+
+/* Next time the step must land on (breakpoint or t_stop) beyond tn in direction dir, or NAN. */
+static double next_stop(const dae_solver *s, double dir, int *is_bkpt)
+{
+    double ts = NAN;
+    *is_bkpt = 0;
+    if (dir > 0 && s->ibk < s->nbkpt) {
+        ts = s->bkpt[s->ibk];
+        *is_bkpt = 1;
+    }
+    if (s->o.has_t_stop && (s->o.t_stop - s->tn) * dir > 0 &&
+        (isnan(ts) || (s->o.t_stop - ts) * dir < 0)) {
+        ts = s->o.t_stop;
+        *is_bkpt = 0;
+    }
+    return ts;
+}
+
+static void clip_to_stop(dae_solver *s)
+{
+    int isb;
+    double ts = next_stop(s, s->hh > 0 ? 1.0 : -1.0, &isb);
+    if (!isnan(ts) && (s->tn + 1.0001 * s->hh - ts) * s->hh >= 0) s->hh = ts - s->tn;
+    if (s->o.h_max > 0 && fabs(s->hh) > s->o.h_max) s->hh = copysign(s->o.h_max, s->hh);
+}
+
+/* Initial step and history from phi[0] = y, phi[1] = y' (unscaled). */
+static int first_step(dae_solver *s, double tout, double hpref)
+{
+    double dir = tout >= s->tn ? 1.0 : -1.0;
+    s->hh = 0;
+    set_weights(s, s->phi[0]);
+    double h;
+    if (s->o.h_init > 0)
+        h = s->o.h_init;
+    else {
+        double tdist = fabs(tout - s->tn);
+        int isb;
+        double ts = next_stop(s, dir, &isb);
+        if (!isnan(ts)) tdist = fmin(tdist, fabs(ts - s->tn));
+        if (tdist == 0)
+            return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_solve_to",
+                                  "tout = %g is too close to t = %g to choose a first step", tout,
+                                  s->tn);
+        h = 0.001 * tdist;
+        if (hpref > 0) h = hpref;
+        double ypnorm = wrms(s, s->phi[1], s->werr);
+        if (ypnorm > 0.5 / h) h = 0.5 / ypnorm;
+    }
+    s->hh = dir * h;
+    clip_to_stop(s);
+    for (int i = 0; i < s->n; i++) s->phi[1][i] *= s->hh;
+    s->kk = 1;
+    s->kused = 0;
+    s->hused = 0;
+    s->psi[0] = s->hh;
+    s->cj = 1.0 / s->hh;
+    s->phase = 0;
+    s->ns = 0;
+    s->nst_local = 0;
+    s->need_setup = 1;
+    s->first = 0;
+    return BG_OK;
+}
+
+static int largest_error_var(const dae_solver *s)
+{
+    int im = -1;
+    double m = -1;
+    for (int i = 0; i < s->n; i++) {
+        double e = fabs(s->ee[i] * s->werr[i]);
+        if (e > m) {
+            m = e;
+            im = i;
+        }
+    }
+    return im;
+}
+
+static int project_step(dae_solver *s)
+{
+    int nc = s->p.ncons;
+    double *y = s->phi[0];
+    int r = s->p.cons(s->p.user, s->tn, y, s->gv, NULL);
+    if (r != 0)
+        return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
+                              "constraint function returned %d at t = %g", r, s->tn);
+    double g = 0;
+    for (int i = 0; i < nc; i++) g = fmax(g, fabs(s->gv[i]));
+    s->st.max_drift = fmax(s->st.max_drift, g);
+    if (!s->o.projection) return BG_OK;
+    for (int it = 0; it < 3; it++) {
+        if ((r = s->p.cons(s->p.user, s->tn, y, s->gv, s->G)) != 0)
+            return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
+                                  "constraint function returned %d at t = %g", r, s->tn);
+        double t0 = seconds();
+        r = aat_factor(s->aat_proj, s->G, 0.0);
+        if (r == BG_OK) r = aat_solve(s->aat_proj, s->gv, s->gw);
+        s->st.t_linalg += seconds() - t0;
+        if (r != BG_OK)
+            return bg_error_raise(&s->err, DAE_LSETUP_FAIL, "dae_solve_to",
+                                  "projection at t = %g: %s", s->tn,
+                                  aat_get_error(s->aat_proj)->message);
+        sp_matvec_t(s->G, -1.0, s->gw, 0.0, s->tmp);
+        for (int i = 0; i < s->n; i++) y[i] += s->tmp[i];
+        s->st.projections++;
+        if (wrms(s, s->tmp, s->ewt) < 1e-3) break;
+    }
+    return BG_OK;
+}
+
+/* Restart at a breakpoint: left value of y, consistent right value of y', order 1. */
+static int restart_at_breakpoint(dae_solver *s, double tout)
+{
+    double hprev = fabs(s->hused);
+    dae_dense(s, s->tn, s->y, s->yp);
+    memcpy(s->phi[0], s->y, (size_t)s->n * sizeof(double));
+    memcpy(s->phi[1], s->yp, (size_t)s->n * sizeof(double));
+    double keep = s->st.init_residual;
+    int r = dae_consistent_init(s);
+    s->st.init_residual = keep;
+    if (r != BG_OK) return r;
+    s->first = 1;
+    return first_step(s, tout, hprev);
+}
+
+static int step_once(dae_solver *s)
+{
+    char nb[32];
+    int nef = 0, ncf = 0, last_res_fail = 0;
+    const char *w = "dae_solve_to";
+    clip_to_stop(s);
+    set_weights(s, s->phi[0]);
+    double tolsf = DBL_EPSILON * wrms(s, s->phi[0], s->ewt);
+    if (tolsf > 1)
+        return bg_error_raise(&s->err, DAE_TOO_MUCH_ACC, w,
+                              "at t = %g the tolerances are below round-off: increase them by a "
+                              "factor of at least %.3g",
+                              s->tn, tolsf);
+    for (;;) {
+        int isb;
+        double ts = next_stop(s, s->hh > 0 ? 1 : -1, &isb);
+        int landing = !isnan(ts) && s->tn + s->hh == ts;
+        double hmin = fmax(s->o.h_min, 4 * DBL_EPSILON * fabs(s->tn));
+        if (fabs(s->hh) < hmin && !landing)
+            return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
+                                  "step size %.3g at t = %.17g is below the minimum %.3g "
+                                  "(%d error-test and %d Newton failures in this step)",
+                                  s->hh, s->tn, hmin, nef, ncf);
+        set_weights(s, s->phi[0]);
+        set_coeffs(s);
+        predict(s);
+        double tnew = landing ? ts : s->tn + s->hh;
+        int nl = newton(s, tnew);
+        if (nl < 0) {
+            restore(s);
+            return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, w,
+                                  "a callback returned the fatal status %d at t = %.17g", nl,
+                                  tnew);
+        }
+        if (nl == NL_OK) {
+            if (s->o.fixed_step || !test_error(s)) {
+                complete_step(s);
+                s->tn = tnew;
+                return landing && isb ? 1 : 0;
+            }
+            restore(s);
+            s->st.rejected_error++;
+            nef++;
+            s->phase = 1;
+            if (nef >= MAX_NEF) {
+                int iv = largest_error_var(s);
+                return bg_error_raise(&s->err, DAE_ERR_FAIL, w,
+                                      "error test failed %d times at t = %.17g, h = %.3g; the "
+                                      "largest weighted error is in %s",
+                                      nef, s->tn, s->hh, vname(s, iv, nb, sizeof nb));
+            }
+            if (nef == 1) {
+                double ekn = s->kk == s->knew ? s->err_k : s->err_km1;
+                s->kk = s->knew;
+                double rr = 0.9 * pow(2 * ekn + 1e-4, -1.0 / (s->kk + 1));
+                s->hh *= fmax(0.25, fmin(0.9, rr));
+            } else if (nef == 2) {
+                s->kk = s->knew;
+                s->hh *= 0.25;
+            } else {
+                s->kk = 1;
+                s->hh *= 0.25;
+            }
+            continue;
+        }
+        restore(s);
+        s->phase = 1;
+        if (nl == NL_RECOVER && !s->jac_current) { /* stale Jacobian: refresh, same step */
+            s->need_setup = 1;
+            continue;
+        }
+        ncf++;
+        s->st.newton_fails++;
+        last_res_fail = nl == NL_RES_RECOVER;
+        if (ncf >= MAX_NCF) {
+            if (nl == NL_SINGULAR) {
+                int c = ls_singular_col(s->ls);
+                return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w,
+                                      "Newton matrix singular at t = %.17g, h = %.3g: column of "
+                                      "%s (%s)",
+                                      s->tn, s->hh, vname(s, c, nb, sizeof nb),
+                                      ls_get_error(s->ls)->message);
+            }
+            if (last_res_fail)
+                return bg_error_raise(&s->err, DAE_RES_FAIL, w,
+                                      "the residual failed (recoverable status, NaN or Inf) %d "
+                                      "times at t = %.17g, h = %.3g",
+                                      ncf, s->tn, s->hh);
+            return bg_error_raise(&s->err, DAE_CONV_FAIL, w,
+                                  "Newton iteration failed %d times at t = %.17g, h = %.3g", ncf,
+                                  s->tn, s->hh);
+        }
+        s->hh *= 0.25;
+        s->need_setup = 1;
+    }
+}
+
+static void output_state(dae_solver *s, double t, double *tret, double *y, double *yp)
+{
+    *tret = t;
+    if (dae_dense(s, t, y, yp) != BG_OK) {
+        if (y) memcpy(y, s->phi[0], (size_t)s->n * sizeof *y);
+        if (yp) dae_dense(s, s->tn, NULL, yp);
+        *tret = s->tn;
+    }
+}
+
+/* Illinois search for the earliest sign change of the event functions in (tlo, tn]. */
+static int find_root(dae_solver *s)
+{
+    int nr = s->p.nroots, r;
+    dae_dense(s, s->tn, s->y, s->yp);
+    if ((r = s->p.roots(s->p.user, s->tn, s->y, s->yp, s->ghi)) != 0)
+        return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
+                              "root function returned %d at t = %g", r, s->tn);
+    int any = 0;
+    for (int i = 0; i < nr; i++)
+        if ((s->glo[i] < 0 && s->ghi[i] >= 0) || (s->glo[i] > 0 && s->ghi[i] <= 0)) any = 1;
+    if (!any) {
+        s->tlo = s->tn;
+        memcpy(s->glo, s->ghi, (size_t)nr * sizeof(double));
+        return 0;
+    }
+    double ta = s->tlo, tb = s->tn;
+    double ttol = 100 * DBL_EPSILON * (fabs(s->tn) + fabs(s->hused));
+    double *ga = s->glo, *gb = s->ghi, *gm = s->gmid;
+    int side = 0;
+    for (int it = 0; it < 200 && fabs(tb - ta) > ttol; it++) {
+        /* component with the earliest secant crossing */
+        double best = -1, frac = 0.5;
+        for (int i = 0; i < nr; i++) {
+            if (!((ga[i] < 0 && gb[i] >= 0) || (ga[i] > 0 && gb[i] <= 0))) continue;
+            double f = fabs(gb[i]) / fabs(gb[i] - ga[i]); /* fraction from tb back */
+            if (f > best) {
+                best = f;
+                frac = 1 - f;
+            }
+        }
+        if (side == 1) frac *= 0.5; /* Illinois: the same end kept twice, weigh it down */
+        if (side == -1) frac = 1 - 0.5 * (1 - frac);
+        double tm = ta + frac * (tb - ta);
+        double lim = 0.5 * ttol;
+        if (fabs(tm - ta) < lim) tm = ta + copysign(lim, tb - ta);
+        if (fabs(tb - tm) < lim) tm = tb - copysign(lim, tb - ta);
+        dae_dense(s, tm, s->y, s->yp);
+        if ((r = s->p.roots(s->p.user, tm, s->y, s->yp, gm)) != 0)
+            return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
+                                  "root function returned %d at t = %g", r, tm);
+        int left = 0;
+        for (int i = 0; i < nr; i++)
+            if ((ga[i] < 0 && gm[i] >= 0) || (ga[i] > 0 && gm[i] <= 0)) left = 1;
+        if (left) {
+            tb = tm;
+            memcpy(gb, gm, (size_t)nr * sizeof(double));
+            side = -1; /* tb moved: ta is the end kept */
+        } else {
+            ta = tm;
+            memcpy(ga, gm, (size_t)nr * sizeof(double));
+            side = 1;
+        }
+    }
+    for (int i = 0; i < nr; i++)
+        s->rfound[i] = (ga[i] < 0 && gb[i] >= 0) ? 1 : (ga[i] > 0 && gb[i] <= 0) ? -1 : 0;
+    s->troot = tb;
+    s->root_pending = 1;
+    /* the search goes on from tb; glo must hold g(tb) */
+    memcpy(s->glo, gb, (size_t)nr * sizeof(double));
+    s->tlo = tb;
+    return 1;
+}
+
+static int advance(dae_solver *s, double tout, double *tret, double *y, double *yp, int one)
+{
+    const char *w = "dae_solve_to";
+    if (!s || !tret) return BG_ERR_ARGUMENT;
+    if (!s->initialized)
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first");
+    if (!isfinite(tout))
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "tout = %g is not finite", tout);
+    if (s->first) {
+        if (tout == s->tn) {
+            output_state(s, s->tn, tret, y, yp);
+            return DAE_SUCCESS;
+        }
+        int r = first_step(s, tout, 0);
+        if (r != BG_OK) return r;
+    }
+    double dir = s->hh >= 0 ? 1.0 : -1.0;
+    if (!one && (tout - (s->tn - s->hused)) * dir < 0 && !s->root_pending)
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w,
+                              "tout = %g lies behind the last step [%g, %g]", tout,
+                              s->tn - s->hused, s->tn);
+    for (long nsteps = 0;; nsteps++) {
+        if (s->root_pending && (s->troot - tout) * dir <= 0) {
+            s->root_pending = 0;
+            output_state(s, s->troot, tret, y, yp);
+            return DAE_ROOT_RETURN;
+        }
+        if (!one && (s->tn - tout) * dir >= 0) {
+            output_state(s, tout, tret, y, yp);
+            return DAE_SUCCESS;
+        }
+        if (s->o.has_t_stop && s->tn == s->o.t_stop) {
+            output_state(s, s->tn, tret, y, yp);
+            return DAE_TSTOP_RETURN;
+        }
+        if (one && nsteps == 1) {
+            output_state(s, s->tn, tret, y, yp);
+            return DAE_SUCCESS;
+        }
+        if (nsteps >= s->o.max_steps) {
+            output_state(s, s->tn, tret, y, yp);
+            return bg_error_raise(&s->err, DAE_TOO_MUCH_WORK, w,
+                                  "%ld steps taken before reaching tout = %g (t = %g)", nsteps,
+                                  tout, s->tn);
+        }
+        int r = step_once(s);
+        sync_stats(s);
+        if (r < 0) {
+            output_state(s, s->tn, tret, y, yp);
+            return r;
+        }
+        if (s->p.cons && s->p.ncons > 0 && (r = project_step(s)) < 0) {
+            output_state(s, s->tn, tret, y, yp);
+            return r;
+        }
+        if (r == 1) { /* landed on a breakpoint */
+            s->ibk++;
+            if (s->p.nroots > 0 && (r = find_root(s)) < 0) return r;
+            int rr = restart_at_breakpoint(s, tout);
+            if (rr != BG_OK) {
+                output_state(s, s->tn, tret, y, yp);
+                return rr;
+            }
+            continue;
+        }
+        if (s->p.nroots > 0 && (r = find_root(s)) < 0) {
+            output_state(s, s->tn, tret, y, yp);
+            return r;
+        }
+    }
+}
+
+int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp)
+{
+    return advance(s, tout, tret, y, yp, 0);
+}
+
+int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp)
+{
+    return advance(s, tout, tret, y, yp, 1);
+}
+
+int dae_roots_found(const dae_solver *s, int *found)
+{
+    if (!s || !found) return BG_ERR_ARGUMENT;
+    for (int i = 0; i < s->p.nroots; i++) found[i] = s->rfound[i];
+    return BG_OK;
+}
+
+/* ------------------------------------------------------------ statistics ---- */
+
+int dae_stats_line(const dae_stats *st, char *buf, size_t size)
+{
+    return snprintf(buf, size,
+                    "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
+                    "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
+                    "h=[%.3g,%.3g] drift=%.3g init_res=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs",
+                    st->steps, st->rejected_error, st->newton_iters, st->newton_fails,
+                    st->res_evals, st->res_evals_fd, st->jac_evals, st->factor_symbolic,
+                    st->factor_full, st->factor_refactor, st->linear_solves,
+                    st->steps_at_order[1], st->steps_at_order[2], st->steps_at_order[3],
+                    st->steps_at_order[4], st->steps_at_order[5],
+                    st->steps ? st->h_min_used : 0.0, st->h_max_used, st->max_drift,
+                    st->init_residual, st->t_res, st->t_jac, st->t_linalg);
+}
+
+int dae_stats_csv_header(char *buf, size_t size)
+{
+    return snprintf(buf, size,
+                    "steps,rejected,newton,conv_fails,res,res_fd,jac,symbolic,factor,refactor,"
+                    "solves,order1,order2,order3,order4,order5,h_min,h_max,max_drift,"
+                    "init_residual,t_res,t_jac,t_linalg");
+}
+
+int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
+{
+    return snprintf(buf, size,
+                    "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,"
+                    "%.6g,%.6g,%.6g,%.6g,%.6g",
+                    st->steps, st->rejected_error, st->newton_iters, st->newton_fails,
+                    st->res_evals, st->res_evals_fd, st->jac_evals, st->factor_symbolic,
+                    st->factor_full, st->factor_refactor, st->linear_solves,
+                    st->steps_at_order[1], st->steps_at_order[2], st->steps_at_order[3],
+                    st->steps_at_order[4], st->steps_at_order[5],
+                    st->steps ? st->h_min_used : 0.0, st->h_max_used, st->max_drift,
+                    st->init_residual, st->t_res, st->t_jac, st->t_linalg);
+}

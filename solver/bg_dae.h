@@ -1,0 +1,161 @@
+/* The modified-BDF integrator for semi-explicit index-2 DAEs F(t, y, y') = 0.
+ *
+ * Unknowns are of three kinds: differential (y' appears), index-1 algebraic, and index-2
+ * algebraic (constraint efforts such as joint reactions, fixed only through the derivative of a
+ * constraint). The method is the variable-order (1..5), variable-step BDF in fixed-leading-
+ * coefficient form of DASSL and IDA (Brenan, Campbell and Petzold, "Numerical Solution of
+ * Initial-Value Problems in DAEs", SIAM 1996, ch. 5), with what index 2 needs on top:
+ *   - the local error test excludes the index-2 variables or scales their error by h (option);
+ *   - the Newton convergence norm scales index-2 corrections by h;
+ *   - the iteration matrix dF/dy + (alpha/h) dF/dy' is scaled (rows that contain y' by h/alpha,
+ *     index-2 columns by alpha/h) so that it stays O(1) as h -> 0;
+ *   - consistent initial values replace constraint rows by their time derivative;
+ *   - optional projection onto position constraints after each step.
+ * The details and the reasons are in the header comment of bg_dae.c.
+ *
+ * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),
+ * < 0 for a fatal one (the integration stops with DAE_CALLBACK_FAIL). */
+#ifndef BG_DAE_H
+#define BG_DAE_H
+
+#include <stddef.h>
+
+#include "bg_linsol.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum dae_var_kind { DAE_DIFF = 0, DAE_ALG = 1, DAE_ALG2 = 2 } dae_var_kind;
+
+/* F = F(t, y, yp). */
+typedef int (*dae_res_fn)(void *user, double t, const double *y, const double *yp, double *F);
+/* Values of Jy = dF/dy and Jyp = dF/dy' on the patterns declared in dae_problem (zero them or
+ * overwrite every entry). */
+typedef int (*dae_jac_fn)(void *user, double t, const double *y, const double *yp, sp_csc *Jy,
+                          sp_csc *Jyp);
+/* Position-level constraints for projection and drift: g(y) (ncons values) and, if G != NULL,
+ * the values of G = dg/dy on cons_pattern. */
+typedef int (*dae_cons_fn)(void *user, double t, const double *y, double *g, sp_csc *G);
+/* Event functions g(t, y, y') (nroots values): their sign changes are located. */
+typedef int (*dae_root_fn)(void *user, double t, const double *y, const double *yp, double *g);
+
+typedef struct dae_problem {
+    int n;
+    dae_res_fn res;
+    dae_jac_fn jac;               /* NULL: coloured finite differences on the patterns */
+    const sp_csc *jac_y_pattern;  /* n x n pattern of dF/dy; NULL: dense */
+    const sp_csc *jac_yp_pattern; /* n x n pattern of dF/dy'; NULL: dense */
+    const int *kind;              /* n values of dae_var_kind; NULL: all differential */
+    const char *const *names;     /* n names for messages; NULL: "y[i]" */
+    void *user;
+    /* optional position constraints (projection, drift) */
+    int ncons;
+    dae_cons_fn cons;
+    const sp_csc *cons_pattern;   /* ncons x n pattern of dg/dy */
+    /* optional event functions */
+    int nroots;
+    dae_root_fn roots;
+} dae_problem;
+
+typedef enum dae_index2_policy {
+    DAE_I2_EXCLUDE = 0, /* index-2 variables take no part in the local error test */
+    DAE_I2_SCALE_H = 1  /* their local error estimate is multiplied by h */
+} dae_index2_policy;
+
+typedef struct dae_options {
+    double rtol;              /* default 1e-6 */
+    double atol;              /* default 1e-8, used when atol_vec is NULL */
+    const double *atol_vec;   /* n values or NULL */
+    int max_order;            /* 1..5, default 5 */
+    double h_init;            /* 0: chosen by the solver */
+    double h_min;             /* default 0: limited by round-off only */
+    double h_max;             /* 0: no limit */
+    long max_steps;           /* per call of dae_solve_to; default 100000 */
+    dae_index2_policy index2; /* default DAE_I2_EXCLUDE */
+    ls_kind linsol;           /* default LS_KLU */
+    int has_t_stop;           /* never integrate past t_stop */
+    double t_stop;
+    const double *breakpoints; /* ascending times where the step must land (kinks) */
+    int nbreakpoints;
+    int projection;           /* project onto cons after each step (needs cons) */
+    int max_newton;           /* Newton iterations per step, default 4 */
+    int fixed_step;           /* 1: constant h_init, order max_order after dae_set_history, no
+                                 error-test rejection (for convergence-order studies) */
+} dae_options;
+
+void dae_options_default(dae_options *o);
+
+typedef struct dae_stats {
+    long steps, rejected_error, newton_iters, newton_fails;
+    long res_evals, res_evals_fd, jac_evals;
+    long factor_symbolic, factor_full, factor_refactor, linear_solves;
+    long steps_at_order[6];
+    long projections;
+    double h_min_used, h_max_used, h_last;
+    int order_last;
+    double max_drift;          /* max |g| before projection over the run (needs cons) */
+    double init_residual;      /* scaled residual norm after consistent initialisation */
+    double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
+} dae_stats;
+
+/* Return codes of dae_solve_to / dae_step besides the bg_status codes. */
+enum dae_return {
+    DAE_SUCCESS = 0,
+    DAE_TSTOP_RETURN = 2,  /* reached t_stop */
+    DAE_ROOT_RETURN = 3,   /* an event function changed sign: see dae_roots_found */
+    DAE_TOO_MUCH_WORK = -20,
+    DAE_TOO_MUCH_ACC = -21,    /* tolerance below round-off */
+    DAE_ERR_FAIL = -22,        /* error test failed repeatedly or with |h| = h_min */
+    DAE_CONV_FAIL = -23,       /* Newton failed repeatedly */
+    DAE_LSETUP_FAIL = -24,     /* Newton matrix singular */
+    DAE_RES_FAIL = -25,        /* residual kept failing (recoverable failures, NaN or Inf) */
+    DAE_CALLBACK_FAIL = -26,   /* a callback returned < 0 */
+    DAE_INIT_FAIL = -27,       /* consistent initialisation failed */
+    DAE_STEP_TOO_SMALL = -28
+};
+
+typedef struct dae_solver dae_solver;
+
+/* NULL on failure with the reason in err. The problem's arrays and patterns are copied. */
+dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err);
+void dae_free(dae_solver **s);
+bg_error *dae_get_error(dae_solver *s);
+
+/* Start at t0 from y0, yp0 (yp0 may be NULL: zero). No consistency is assumed or checked. */
+int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
+/* Consistent initial values at the current time: keeps the differential variables (projected
+ * onto the constraint rows if they violate them), computes y' of the differential variables and
+ * the algebraic variables of both kinds. Constraint rows (rows of F that depend on differential
+ * variables only) are replaced by their time derivative, which fixes the index-2 variables.
+ * The scaled residual norm reached goes to stats.init_residual. */
+int dae_consistent_init(dae_solver *s);
+/* After a discontinuity: new state at time t; order 1, new first step. */
+int dae_reinit(dae_solver *s, double t, const double *y, const double *yp);
+/* Fixed-step studies: history y(t0 - i h), i = 0..k, as k+1 consecutive arrays of n values
+ * (Y[i*n + j]); the next steps use order k and step h. */
+int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y);
+
+/* Integrate to tout and return y, yp there (interpolated). Returns DAE_SUCCESS,
+ * DAE_TSTOP_RETURN, DAE_ROOT_RETURN (then *tret is the root) or an error (< 0), in which case
+ * *tret, y and yp hold the last accepted state. */
+int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp);
+/* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret. */
+int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp);
+/* y and yp at any t in the last step [tn - h_last, tn] (y or yp may be NULL). */
+int dae_dense(const dae_solver *s, double t, double *y, double *yp);
+/* After DAE_ROOT_RETURN: found[i] = +1 or -1 (direction) for the functions that changed sign. */
+int dae_roots_found(const dae_solver *s, int *found);
+
+double dae_current_time(const dae_solver *s);
+const dae_stats *dae_get_stats(const dae_solver *s);
+/* One line "steps=... rejected=... ..." / a CSV header and a CSV row. */
+int dae_stats_line(const dae_stats *st, char *buf, size_t size);
+int dae_stats_csv_header(char *buf, size_t size);
+int dae_stats_csv(const dae_stats *st, char *buf, size_t size);
+const char *dae_return_name(int code);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
