@@ -713,7 +713,7 @@ int dae_consistent_init(dae_solver *s)
                          "%s failed during the projection at t = %g", "residual", t);
     }
     double dt = cbrt(DBL_EPSILON) * fmax(1.0, fabs(t));
-    double unorm = 0;
+    double unorm = INFINITY, uprev = INFINITY;
     for (int it = 0; it < 25; it++) {
         if ((r = call_res(s, t, y, yp, F, 0)) != 0)
             return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
@@ -755,6 +755,7 @@ int dae_consistent_init(dae_solver *s)
                                   t, c >= 0 && s->kind[c] == DAE_DIFF ? "the derivative of " : "",
                                   vname(s, c, nb, sizeof nb), ls_get_error(s->kls)->message);
         }
+        uprev = unorm;
         unorm = 0;
         for (int j = 0; j < n; j++) {
             double sc;
@@ -767,7 +768,9 @@ int dae_consistent_init(dae_solver *s)
             }
             unorm = fmax(unorm, fabs(u[j]) * sc);
         }
-        if (unorm <= 1e-8) break;
+        /* converged: corrections far below the tolerances, or no longer decreasing at the
+         * level of round-off */
+        if (unorm <= 1e-3 || (unorm < 1 && unorm > 0.5 * uprev)) break;
     }
     if ((r = call_res(s, t, y, yp, F, 0)) != 0)
         return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL, "%s failed at t = %g",
@@ -777,7 +780,7 @@ int dae_consistent_init(dae_solver *s)
     memcpy(s->phi[0], y, (size_t)n * sizeof *y);
     memcpy(s->phi[1], yp, (size_t)n * sizeof *yp);
     s->need_setup = 1;
-    if (unorm > 1e-8 || s->st.init_residual > 1e-8)
+    if (unorm >= 1 || s->st.init_residual > 1e-8)
         return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                               "Newton iteration for consistent values did not converge at t = %g "
                               "(scaled residual %.3g)",

@@ -227,6 +227,7 @@ ls_kind ls_get_kind(const ls_solver *s) { return s->kind; }
 bg_error *ls_get_error(ls_solver *s) { return &s->err; }
 
 /* ---- CHOLMOD: (A A^T + beta I) x = b ---- */
+#define AAT_PIVOT_TOL 1e-12 /* relative pivot below which rows count as dependent */
 struct aat_solver {
     int m, n;
     sp_csc *pattern;
@@ -268,6 +269,10 @@ aat_solver *aat_create(const sp_csc *P, bg_error *err)
     }
     cholmod_start(&s->c);
     s->c.print = 0; /* the library never prints */
+    /* simplicial LDL^T: D is at hand to detect numerically dependent rows, which a Cholesky
+     * factorization in floating point passes with tiny positive pivots */
+    s->c.supernodal = CHOLMOD_SIMPLICIAL;
+    s->c.final_ll = 0;
     s->m = P->nrow;
     s->n = P->ncol;
     s->pattern = sp_csc_copy(P);
@@ -327,6 +332,19 @@ int aat_factor(aat_solver *s, const sp_csc *A, double beta)
     if (!ok || s->c.status < 0)
         return bg_error_raise(&s->err, BG_ERR_LIBRARY, "aat_factor",
                               "cholmod_factorize failed (CHOLMOD status %d)", s->c.status);
+    if (!s->L->is_ll && !s->L->is_super && s->m > 0) {
+        const int *Lp = s->L->p, *perm = s->L->Perm;
+        const double *Lx = s->L->x;
+        double dmax = 0;
+        for (int j = 0; j < s->m; j++) dmax = fmax(dmax, fabs(Lx[Lp[j]]));
+        for (int j = 0; j < s->m; j++)
+            if (!(Lx[Lp[j]] > AAT_PIVOT_TOL * dmax))
+                return bg_error_raise(&s->err, BG_ERR_NOT_POSDEF, "aat_factor",
+                                      "A*A^T + %g I is numerically singular: pivot %d (row %d of "
+                                      "A) is %.3g against a largest pivot of %.3g (the constraint "
+                                      "rows are linearly dependent)",
+                                      beta, j, perm ? perm[j] : j, Lx[Lp[j]], dmax);
+    }
     s->factored = 1;
     return BG_OK;
 }

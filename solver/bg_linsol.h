@@ -57,7 +57,9 @@ bg_error *ls_get_error(ls_solver *s);
 /* ---- A*A^T systems by CHOLMOD (constraint projection) ----
  * For an m x n matrix A of full row rank, (A A^T + beta I) x = b by a sparse Cholesky
  * factorization of A A^T (CHOLMOD's unsymmetric mode: the product is never formed by the
- * caller). Pattern analysed once at creation; factor and solve reuse workspace. */
+ * caller). Pattern analysed once at creation; factor and solve reuse workspace. The factorization
+ * is a simplicial LDL^T, so that rows that are numerically dependent (a pivot below 1e-12 times
+ * the largest) are reported instead of passing with a tiny positive pivot. */
 typedef struct aat_solver aat_solver;
 
 aat_solver *aat_create(const sp_csc *pattern, bg_error *err);

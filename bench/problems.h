@@ -1,0 +1,112 @@
+/* A collection of DAE and stiff ODE test problems for the modified-BDF solver (bg_dae.h), with
+ * analytic Jacobians on declared sparsity patterns, exact solutions where they exist, reference
+ * end values from the published test sets, and the accuracy measures of the IVP Test Set.
+ *
+ * Every problem is written as a residual F(t, y, y') = 0 from the published equations (the
+ * sources are named at each problem in problems.c; the Fortran and R definitions kept in
+ * shared/testset/src are the specification, no code is taken from them):
+ *   ap102       Ascher and Petzold, Computer Methods for ODEs and DAEs (SIAM 1998), Ex. 10.2:
+ *               linear index 2, exact solution x1 = e^t, x2 = e^t/(t-2).
+ *   pendulum2   the index-2 pendulum of J. Cash's MEBDFDAE driver (pendul2.f), reference by a
+ *               30-digit recomputation.
+ *   robertson   Robertson's chemical kinetics to t = 1e11 (IVP Test Set "rober").
+ *   vdp_scaled  van der Pol in the scaled form of the IVP Test Set "vdpol", eps = 1e-6, [0, 2].
+ *   hires       HIRES plant physiology (IVP Test Set "hires").
+ *   lin2        a linear semi-explicit index-2 system with a manufactured smooth solution
+ *               (order studies).
+ *   smooth_ode  a linear 2x2 ODE with a manufactured smooth solution (order studies).
+ *   kinks       y1' = u(t), y2' = y1 with a piecewise-linear forcing u that has kinks at the
+ *               problem's breakpoints; exact solution piecewise polynomial.
+ *
+ * Accuracy (IVP Test Set, Mazzia, Magherini and Iavernaro, Release 2.4):
+ *   scd   = -log10(max_i |y_i - yref_i| / |yref_i|) over the scored components with yref_i != 0,
+ *   mescd = -log10(max_i |y_i - yref_i| / (atol/rtol + |yref_i|)) over all components,
+ * both computed here twice: over the components that are not index-2 algebraic and over the
+ * index-2 components alone, so that the error policy for index-2 variables stays visible. */
+#ifndef BG_BENCH_PROBLEMS_H
+#define BG_BENCH_PROBLEMS_H
+
+#include "bg_dae.h"
+#include "bg_sparse.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct bp_problem {
+    const char *name;
+    const char *title;
+    int n;
+    double t0, tend;
+    const double *y0;          /* n initial values */
+    const double *yp0;         /* n initial derivatives (consistent for every problem here) */
+    const int *kind;           /* n values of dae_var_kind */
+    const char *const *names;  /* n variable names */
+    dae_res_fn res;
+    dae_jac_fn jac;            /* analytic Jy, Jyp values on the patterns */
+    /* Builds the n x n patterns of dF/dy and dF/dy' (values zero). 0 or BG_ERR_MEMORY. */
+    int (*patterns)(sp_csc **jy, sp_csc **jyp);
+    /* Exact solution y(t) and, if yp != NULL, y'(t); NULL when none is known. */
+    void (*exact)(double t, double *y, double *yp);
+    const double *yref;        /* n reference values at tend; NULL: use exact(tend) */
+    const char *ref_source;    /* where yref comes from */
+    const unsigned char *scored; /* n flags: components that enter scd; NULL: all */
+    /* position constraints (projection, drift), ncons = 0 if none */
+    int ncons;
+    dae_cons_fn cons;
+    int (*cons_pattern)(sp_csc **g); /* ncons x n pattern of dg/dy */
+    /* breakpoints of the forcing (ascending, inside (t0, tend)), 0 if none */
+    int nbreakpoints;
+    const double *breakpoints;
+} bp_problem;
+
+/* The table: bp_count() problems, bp_get(i) for i < bp_count(). */
+int bp_count(void);
+const bp_problem *bp_get(int i);
+/* Lookup by name; NULL if unknown. */
+const bp_problem *bp_find(const char *name);
+
+/* A dae_problem ready for dae_create, with the patterns it points to. */
+typedef struct bp_instance {
+    const bp_problem *p;
+    dae_problem dp;
+    sp_csc *jy, *jyp; /* patterns of dF/dy and dF/dy' */
+    sp_csc *g;        /* pattern of dg/dy (NULL without constraints) */
+} bp_instance;
+
+/* Fills in (patterns built, residual, Jacobian, kinds, names, constraints; user = NULL; no event
+ * functions). Returns 0, or BG_ERR_MEMORY (in is then freed). */
+int bp_instance_init(bp_instance *in, const bp_problem *p);
+/* Frees the patterns; in may be partly initialised (zeroed first) and is zeroed. */
+void bp_instance_free(bp_instance *in);
+
+/* Reference values at tend: yref if given, else exact(tend). Returns 0, or -1 if neither. */
+int bp_reference(const bp_problem *p, double *yref);
+
+/* Accuracy against a reference. Each field is +INFINITY when the error is exactly zero and NAN
+ * when no component qualifies (e.g. the index-2 fields of an ODE). */
+typedef struct bp_score {
+    double scd;      /* scored components that are not index 2, yref != 0 */
+    double mescd;    /* components that are not index 2 */
+    double scd_i2;   /* index-2 scored components with yref != 0 */
+    double mescd_i2; /* index-2 components */
+    int worst;       /* component (0-based) that limits scd, -1 if none */
+} bp_score;
+
+/* y against yref with mescd's atol/rtol (scalar tolerances). */
+void bp_score_compute(const bp_problem *p, const double *y, const double *yref, double rtol,
+                      double atol, bp_score *s);
+
+/* Checks the analytic Jacobian at (t, y, yp) with central differences (sp_jac_check): dF/dy and
+ * dF/dy' separately. The errors are relative to |fd| + floor (see bg_fdjac.h). Returns 0 or the
+ * first negative status (callback, memory). */
+int bp_check_jacobian(const bp_problem *p, double t, const double *y, const double *yp,
+                      double floor, double *max_err_y, double *max_err_yp);
+
+/* Position constraint g(y) of the pendulum (x^2 + y^2 - 1 = 0) and its Jacobian values. */
+int bp_pendulum_cons(void *user, double t, const double *y, double *g, sp_csc *G);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
