@@ -814,7 +814,7 @@ int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y)
     s->hused = h;
     s->kk = k;
     s->kused = k;
-    s->ns = k + 1;
+    s->ns = 0; /* the first set_coeffs computes the (constant-step) coefficients */
     s->phase = 1;
     s->first = 0;
     s->o.h_init = h;
@@ -1172,36 +1172,41 @@ static int largest_error_var(const dae_solver *s)
     return im;
 }
 
-static int project_step(dae_solver *s)
+/* Minimum-norm Gauss-Newton correction of y onto g(t, y) = 0 (at most 3 iterations). */
+static int project_vec(dae_solver *s, double t, double *y)
 {
-    int nc = s->p.ncons;
-    double *y = s->phi[0];
-    int r = s->p.cons(s->p.user, s->tn, y, s->gv, NULL);
-    if (r != 0)
-        return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
-                              "constraint function returned %d at t = %g", r, s->tn);
-    double g = 0;
-    for (int i = 0; i < nc; i++) g = fmax(g, fabs(s->gv[i]));
-    s->st.max_drift = fmax(s->st.max_drift, g);
-    if (!s->o.projection) return BG_OK;
     for (int it = 0; it < 3; it++) {
-        if ((r = s->p.cons(s->p.user, s->tn, y, s->gv, s->G)) != 0)
+        int r = s->p.cons(s->p.user, t, y, s->gv, s->G);
+        if (r != 0)
             return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
-                                  "constraint function returned %d at t = %g", r, s->tn);
+                                  "constraint function returned %d at t = %g", r, t);
         double t0 = seconds();
         r = aat_factor(s->aat_proj, s->G, 0.0);
         if (r == BG_OK) r = aat_solve(s->aat_proj, s->gv, s->gw);
         s->st.t_linalg += seconds() - t0;
         if (r != BG_OK)
             return bg_error_raise(&s->err, DAE_LSETUP_FAIL, "dae_solve_to",
-                                  "projection at t = %g: %s", s->tn,
+                                  "projection at t = %g: %s", t,
                                   aat_get_error(s->aat_proj)->message);
         sp_matvec_t(s->G, -1.0, s->gw, 0.0, s->tmp);
         for (int i = 0; i < s->n; i++) y[i] += s->tmp[i];
         s->st.projections++;
-        if (wrms(s, s->tmp, s->ewt) < 1e-3) break;
+        if (wrms(s, s->tmp, s->ewt) < 1e-6) break;
     }
     return BG_OK;
+}
+
+/* Drift after an accepted step, and projection of y_n if asked. */
+static int project_step(dae_solver *s)
+{
+    int r = s->p.cons(s->p.user, s->tn, s->phi[0], s->gv, NULL);
+    if (r != 0)
+        return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
+                              "constraint function returned %d at t = %g", r, s->tn);
+    double g = 0;
+    for (int i = 0; i < s->p.ncons; i++) g = fmax(g, fabs(s->gv[i]));
+    s->st.max_drift = fmax(s->st.max_drift, g);
+    return s->o.projection ? project_vec(s, s->tn, s->phi[0]) : BG_OK;
 }
 
 /* Restart at a breakpoint: left value of y, consistent right value of y', order 1. */
@@ -1237,6 +1242,11 @@ static int step_once(dae_solver *s)
         double ts = next_stop(s, s->hh > 0 ? 1 : -1, &isb);
         int landing = !isnan(ts) && s->tn + s->hh == ts;
         double hmin = fmax(s->o.h_min, 4 * DBL_EPSILON * fabs(s->tn));
+        if (fabs(s->hh) < hmin && !landing && last_res_fail)
+            return bg_error_raise(&s->err, DAE_RES_FAIL, w,
+                                  "the residual kept failing (recoverable status, NaN or Inf) "
+                                  "until the step size fell to %.3g at t = %.17g",
+                                  s->hh, s->tn);
         if (fabs(s->hh) < hmin && !landing)
             return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
                                   "step size %.3g at t = %.17g is below the minimum %.3g "
@@ -1316,6 +1326,7 @@ static int step_once(dae_solver *s)
     }
 }
 
+/* Interpolated output; with projection on, interpolated values are projected as well. */
 static void output_state(dae_solver *s, double t, double *tret, double *y, double *yp)
 {
     *tret = t;
@@ -1323,6 +1334,8 @@ static void output_state(dae_solver *s, double t, double *tret, double *y, doubl
         if (y) memcpy(y, s->phi[0], (size_t)s->n * sizeof *y);
         if (yp) dae_dense(s, s->tn, NULL, yp);
         *tret = s->tn;
+    } else if (y && s->o.projection && t != s->tn) {
+        project_vec(s, t, y); /* a failure leaves the interpolated value and the message */
     }
 }
 
