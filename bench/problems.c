@@ -35,7 +35,8 @@ static int pattern_diag(int n, int m, sp_csc **out)
 {
     int(*ij)[2] = malloc(((size_t)m + 1) * sizeof *ij);
     if (!ij) return BG_ERR_MEMORY;
-    for (int k = 0; k < m; k++) ij[k][0] = ij[k][1] = k;
+    for (int k = 0; k < m; k++)
+        ij[k][0] = ij[k][1] = k;
     int st = pattern_from_pairs(n, n, (const int(*)[2])ij, m, out);
     free(ij);
     return st;
@@ -73,7 +74,8 @@ static int ap102_res(void *user, double t, const double *y, const double *yp, do
 {
     (void)user;
     double et = exp(t);
-    F[0] = yp[0] - ((1.0 - AP_ALPHA) / (t - 2.0) * y[0] - y[0] + (AP_ALPHA - 1.0) * y[1] + 2.0 * et);
+    F[0] =
+        yp[0] - ((1.0 - AP_ALPHA) / (t - 2.0) * y[0] - y[0] + (AP_ALPHA - 1.0) * y[1] + 2.0 * et);
     F[1] = (t + 2.0) * (y[0] - et);
     return 0;
 }
@@ -146,7 +148,8 @@ static int pend_jac(void *user, double t, const double *y, const double *yp, sp_
     set(Jy, 4, 1, y[3]);
     set(Jy, 4, 2, y[0]);
     set(Jy, 4, 3, y[1]);
-    for (int i = 0; i < 4; i++) set(Jyp, i, i, 1.0);
+    for (int i = 0; i < 4; i++)
+        set(Jyp, i, i, 1.0);
     return 0;
 }
 
@@ -218,7 +221,8 @@ static int rober_jac(void *user, double t, const double *y, const double *yp, sp
     set(Jy, 1, 1, 2.0 * RB_K2 * y[1] + RB_K3 * y[2]);
     set(Jy, 1, 2, RB_K3 * y[1]);
     set(Jy, 2, 1, -2.0 * RB_K2 * y[1]);
-    for (int i = 0; i < 3; i++) set(Jyp, i, i, 1.0);
+    for (int i = 0; i < 3; i++)
+        set(Jyp, i, i, 1.0);
     return 0;
 }
 
@@ -256,8 +260,7 @@ static int vdp_res(void *user, double t, const double *y, const double *yp, doub
     return 0;
 }
 
-static int vdp_jac(void *user, double t, const double *y, const double *yp, sp_csc *Jy,
-                   sp_csc *Jyp)
+static int vdp_jac(void *user, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp)
 {
     (void)user, (void)t, (void)yp;
     sp_csc_zero(Jy);
@@ -314,11 +317,12 @@ static int hires_res(void *user, double t, const double *y, const double *yp, do
     (void)user, (void)t;
     double f[8];
     hires_f(y, f);
-    for (int i = 0; i < 8; i++) F[i] = yp[i] - f[i];
+    for (int i = 0; i < 8; i++)
+        F[i] = yp[i] - f[i];
     return 0;
 }
 
-/* (row, column, df/dy) of the right-hand side; entries depending on y are filled in hires_jac. */
+/* Pattern of df/dy (Ex_hires.f, hiresjac); dF/dy = -df/dy. */
 static const int hires_ij[][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 0}, {1, 1}, {2, 2}, {2, 3},
                                   {2, 4}, {3, 1}, {3, 2}, {3, 3}, {4, 4}, {4, 5}, {4, 6},
                                   {5, 3}, {5, 4}, {5, 5}, {5, 6}, {5, 7}, {6, 5}, {6, 6},
@@ -328,35 +332,36 @@ static int hires_jac(void *user, double t, const double *y, const double *yp, sp
                      sp_csc *Jyp)
 {
     (void)user, (void)t, (void)yp;
-    double d[25] = {-HI_K1,
-                    HI_K2,
-                    HI_K6,
-                    HI_K1,
-                    -(HI_K2 + HI_K3),
-                    -(HI_K6 + HI_K1),
-                    HI_K2,
-                    HI_K5,
-                    HI_K3,
-                    HI_K1,
-                    -(HI_K4 + HI_K2),
-                    -(HI_K5 + HI_K1),
-                    HI_K2,
-                    HI_K2,
-                    HI_K8,
-                    HI_K1,
-                    -HI_K7 * y[7] - HI_K2,
-                    HI_K8,
-                    -HI_K7 * y[5],
-                    HI_K7 * y[7],
-                    -(HI_K2 + HI_K8 + HI_K9),
-                    HI_K7 * y[5],
-                    -HI_K7 * y[7],
-                    HI_K2 + HI_K8 + HI_K9,
-                    -HI_K7 * y[5]};
     sp_csc_zero(Jy);
     sp_csc_zero(Jyp);
-    for (int k = 0; k < 25; k++) set(Jy, hires_ij[k][0], hires_ij[k][1], -d[k]);
-    for (int i = 0; i < 8; i++) set(Jyp, i, i, 1.0);
+    /* df/dy row by row, entered negated */
+    set(Jy, 0, 0, HI_K1);
+    set(Jy, 0, 1, -HI_K2);
+    set(Jy, 0, 2, -HI_K6);
+    set(Jy, 1, 0, -HI_K1);
+    set(Jy, 1, 1, HI_K2 + HI_K3);
+    set(Jy, 2, 2, HI_K6 + HI_K1);
+    set(Jy, 2, 3, -HI_K2);
+    set(Jy, 2, 4, -HI_K5);
+    set(Jy, 3, 1, -HI_K3);
+    set(Jy, 3, 2, -HI_K1);
+    set(Jy, 3, 3, HI_K4 + HI_K2);
+    set(Jy, 4, 4, HI_K5 + HI_K1);
+    set(Jy, 4, 5, -HI_K2);
+    set(Jy, 4, 6, -HI_K2);
+    set(Jy, 5, 3, -HI_K8);
+    set(Jy, 5, 4, -HI_K1);
+    set(Jy, 5, 5, HI_K7 * y[7] + HI_K2);
+    set(Jy, 5, 6, -HI_K8);
+    set(Jy, 5, 7, HI_K7 * y[5]);
+    set(Jy, 6, 5, -HI_K7 * y[7]);
+    set(Jy, 6, 6, HI_K2 + HI_K8 + HI_K9);
+    set(Jy, 6, 7, -HI_K7 * y[5]);
+    set(Jy, 7, 5, HI_K7 * y[7]);
+    set(Jy, 7, 6, -(HI_K2 + HI_K8 + HI_K9));
+    set(Jy, 7, 7, HI_K7 * y[5]);
+    for (int i = 0; i < 8; i++)
+        set(Jyp, i, i, 1.0);
     return 0;
 }
 
@@ -371,13 +376,13 @@ static const double hires_y0[] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057};
 static const double hires_yp0[] = {-HI_K1 + HI_OKS, HI_K1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 static const int hires_kind[] = {DAE_DIFF, DAE_DIFF, DAE_DIFF, DAE_DIFF,
                                  DAE_DIFF, DAE_DIFF, DAE_DIFF, DAE_DIFF};
-static const char *const hires_names[] = {"Pr", "Pfr", "PrX", "PfrX", "PrX2", "PfrX2", "PfrX2E", "E"};
+static const char *const hires_names[] = {"Pr",   "Pfr",   "PrX",    "PfrX",
+                                          "PrX2", "PfrX2", "PfrX2E", "E"};
 /* shared/testset/reference_solutions.json, hires (deTestSet R/ex_reference.R; hiressol in
  * Ex_hires.f: RADAU5 in extended precision, rtol = atol = h0 = 1.1e-18). */
-static const double hires_yref[] = {0.7371312573325668e-3, 0.1442485726316185e-3,
-                                    0.5888729740967575e-4, 0.1175651343283149e-2,
-                                    0.2386356198831331e-2, 0.6238968252742796e-2,
-                                    0.2849998395185769e-2, 0.2850001604814231e-2};
+static const double hires_yref[] = {
+    0.7371312573325668e-3, 0.1442485726316185e-3, 0.5888729740967575e-4, 0.1175651343283149e-2,
+    0.2386356198831331e-2, 0.6238968252742796e-2, 0.2849998395185769e-2, 0.2850001604814231e-2};
 
 /* ==== lin2: a linear semi-explicit index-2 system with a manufactured solution (ours):
  *   x1' = x2 + lam + f1(t),  x2' = -x1 + 2 lam + f2(t),  0 = x1 + x2 - s(t).
@@ -502,7 +507,8 @@ static const double kink_bp[] = {0.3, 0.55, 0.8};
 static int kink_segment(double t)
 {
     int s = 0;
-    while (s < KINK_NODES - 2 && t >= kink_t[s + 1]) s++;
+    while (s < KINK_NODES - 2 && t >= kink_t[s + 1])
+        s++;
     return s;
 }
 
@@ -572,39 +578,137 @@ static const char *const kinks_names[] = {"y1", "y2"};
 
 /* ==== the table ==== */
 static const bp_problem problems[] = {
-    {"ap102", "Ascher-Petzold Ex. 10.2 (linear index 2, exact solution)", 2, 0.0, 1.0, ap102_y0,
-     ap102_yp0, ap102_kind, ap102_names, ap102_res, ap102_jac, ap102_patterns, ap102_exact, NULL,
-     "exact solution x1 = e^t, x2 = e^t/(t-2)", NULL, 0, NULL, NULL, 0, NULL},
-    {"pendulum2", "pendulum, index-2 formulation (Cash, pendul2.f)", 5, 0.0, 1.0, pend_y0,
-     pend_yp0, pend_kind, pend_names, pend_res, pend_jac, pend_patterns, NULL, pend_yref,
-     "reference_solutions.json pendulum_index2.reference_recomputed_30digits", NULL, 1,
-     bp_pendulum_cons, pend_cons_pattern, 0, NULL},
-    {"robertson", "Robertson chemical kinetics (IVP Test Set rober)", 3, 0.0, 1.0e11, rober_y0,
-     rober_yp0, rober_kind, rober_names, rober_res, rober_jac, rober_patterns, NULL, rober_yref,
-     "reference_solutions.json rober (deTestSet ex_reference.R)", NULL, 0, NULL, NULL, 0, NULL},
-    {"vdp_scaled", "van der Pol, scaled, eps = 1e-6 (IVP Test Set vdpol)", 2, 0.0, 2.0, vdp_y0,
-     vdp_yp0, vdp_kind, vdp_names, vdp_res, vdp_jac, vdp_patterns, NULL, vdp_yref,
-     "IVP Test Set 2.4 vdpol.f solut (RADAU, rtol = atol = 1.1e-18); not in shared/testset", NULL,
-     0, NULL, NULL, 0, NULL},
-    {"hires", "HIRES plant physiology (IVP Test Set hires)", 8, 0.0, 321.8122, hires_y0,
-     hires_yp0, hires_kind, hires_names, hires_res, hires_jac, hires_patterns, NULL, hires_yref,
-     "reference_solutions.json hires (deTestSet ex_reference.R)", NULL, 0, NULL, NULL, 0, NULL},
-    {"lin2", "linear index 2, manufactured solution x1 = sin t, x2 = cos 2t, lam = e^-t", 3, 0.0,
-     2.0, lin2_y0, lin2_yp0, lin2_kind, lin2_names, lin2_res, lin2_jac, lin2_patterns, lin2_exact,
-     NULL, "exact solution", NULL, 0, NULL, NULL, 0, NULL},
-    {"smooth_ode", "linear 2x2 ODE, manufactured solution", 2, 0.0, 2.0, smooth_y0, smooth_yp0,
-     smooth_kind, smooth_names, smooth_res, smooth_jac, smooth_patterns, smooth_exact, NULL,
-     "exact solution", NULL, 0, NULL, NULL, 0, NULL},
-    {"kinks", "y1' = u(t) piecewise linear with kinks, y2' = y1", 2, 0.0, 1.0, kinks_y0,
-     kinks_yp0, kinks_kind, kinks_names, kinks_res, kinks_jac, kinks_patterns, kinks_exact, NULL,
-     "exact solution (piecewise polynomial)", NULL, 0, NULL, NULL, 3, kink_bp},
+    {.name = "ap102",
+     .title = "Ascher-Petzold Ex. 10.2 (linear index 2, exact solution)",
+     .n = 2,
+     .t0 = 0.0,
+     .tend = 1.0,
+     .y0 = ap102_y0,
+     .yp0 = ap102_yp0,
+     .kind = ap102_kind,
+     .names = ap102_names,
+     .res = ap102_res,
+     .jac = ap102_jac,
+     .patterns = ap102_patterns,
+     .exact = ap102_exact,
+     .ref_source = "exact solution x1 = e^t, x2 = e^t/(t-2)"},
+    {.name = "pendulum2",
+     .title = "pendulum, index-2 formulation (Cash, pendul2.f)",
+     .n = 5,
+     .t0 = 0.0,
+     .tend = 1.0,
+     .y0 = pend_y0,
+     .yp0 = pend_yp0,
+     .kind = pend_kind,
+     .names = pend_names,
+     .res = pend_res,
+     .jac = pend_jac,
+     .patterns = pend_patterns,
+     .yref = pend_yref,
+     .ref_source = "reference_solutions.json pendulum_index2.reference_recomputed_30digits",
+     .ncons = 1,
+     .cons = bp_pendulum_cons,
+     .cons_pattern = pend_cons_pattern},
+    {.name = "robertson",
+     .title = "Robertson chemical kinetics (IVP Test Set rober)",
+     .n = 3,
+     .t0 = 0.0,
+     .tend = 1.0e11,
+     .y0 = rober_y0,
+     .yp0 = rober_yp0,
+     .kind = rober_kind,
+     .names = rober_names,
+     .res = rober_res,
+     .jac = rober_jac,
+     .patterns = rober_patterns,
+     .yref = rober_yref,
+     .ref_source = "reference_solutions.json rober (deTestSet ex_reference.R)"},
+    {.name = "vdp_scaled",
+     .title = "van der Pol, scaled, eps = 1e-6 (IVP Test Set vdpol)",
+     .n = 2,
+     .t0 = 0.0,
+     .tend = 2.0,
+     .y0 = vdp_y0,
+     .yp0 = vdp_yp0,
+     .kind = vdp_kind,
+     .names = vdp_names,
+     .res = vdp_res,
+     .jac = vdp_jac,
+     .patterns = vdp_patterns,
+     .yref = vdp_yref,
+     .ref_source = "IVP Test Set 2.4 vdpol.f solut (RADAU, rtol = atol = 1.1e-18); not in "
+                   "shared/testset"},
+    {.name = "hires",
+     .title = "HIRES plant physiology (IVP Test Set hires)",
+     .n = 8,
+     .t0 = 0.0,
+     .tend = 321.8122,
+     .y0 = hires_y0,
+     .yp0 = hires_yp0,
+     .kind = hires_kind,
+     .names = hires_names,
+     .res = hires_res,
+     .jac = hires_jac,
+     .patterns = hires_patterns,
+     .yref = hires_yref,
+     .ref_source = "reference_solutions.json hires (deTestSet ex_reference.R)"},
+    {.name = "lin2",
+     .title = "linear index 2, manufactured solution x1 = sin t, x2 = cos 2t, lam = e^-t",
+     .n = 3,
+     .t0 = 0.0,
+     .tend = 2.0,
+     .y0 = lin2_y0,
+     .yp0 = lin2_yp0,
+     .kind = lin2_kind,
+     .names = lin2_names,
+     .res = lin2_res,
+     .jac = lin2_jac,
+     .patterns = lin2_patterns,
+     .exact = lin2_exact,
+     .ref_source = "exact solution"},
+    {.name = "smooth_ode",
+     .title = "linear 2x2 ODE, manufactured solution",
+     .n = 2,
+     .t0 = 0.0,
+     .tend = 2.0,
+     .y0 = smooth_y0,
+     .yp0 = smooth_yp0,
+     .kind = smooth_kind,
+     .names = smooth_names,
+     .res = smooth_res,
+     .jac = smooth_jac,
+     .patterns = smooth_patterns,
+     .exact = smooth_exact,
+     .ref_source = "exact solution"},
+    {.name = "kinks",
+     .title = "y1' = u(t) piecewise linear with kinks, y2' = y1",
+     .n = 2,
+     .t0 = 0.0,
+     .tend = 1.0,
+     .y0 = kinks_y0,
+     .yp0 = kinks_yp0,
+     .kind = kinks_kind,
+     .names = kinks_names,
+     .res = kinks_res,
+     .jac = kinks_jac,
+     .patterns = kinks_patterns,
+     .exact = kinks_exact,
+     .ref_source = "exact solution (piecewise polynomial)",
+     .nbreakpoints = 3,
+     .breakpoints = kink_bp},
 };
 
 #define NPROBLEMS ((int)(sizeof problems / sizeof problems[0]))
 
-int bp_count(void) { return NPROBLEMS; }
+int bp_count(void)
+{
+    return NPROBLEMS;
+}
 
-const bp_problem *bp_get(int i) { return (i >= 0 && i < NPROBLEMS) ? &problems[i] : NULL; }
+const bp_problem *bp_get(int i)
+{
+    return (i >= 0 && i < NPROBLEMS) ? &problems[i] : NULL;
+}
 
 const bp_problem *bp_find(const char *name)
 {

@@ -38,18 +38,18 @@ typedef struct bp_problem {
     const char *title;
     int n;
     double t0, tend;
-    const double *y0;          /* n initial values */
-    const double *yp0;         /* n initial derivatives (consistent for every problem here) */
-    const int *kind;           /* n values of dae_var_kind */
-    const char *const *names;  /* n variable names */
+    const double *y0;         /* n initial values */
+    const double *yp0;        /* n initial derivatives (consistent for every problem here) */
+    const int *kind;          /* n values of dae_var_kind */
+    const char *const *names; /* n variable names */
     dae_res_fn res;
-    dae_jac_fn jac;            /* analytic Jy, Jyp values on the patterns */
+    dae_jac_fn jac; /* analytic Jy, Jyp values on the patterns */
     /* Builds the n x n patterns of dF/dy and dF/dy' (values zero). 0 or BG_ERR_MEMORY. */
     int (*patterns)(sp_csc **jy, sp_csc **jyp);
     /* Exact solution y(t) and, if yp != NULL, y'(t); NULL when none is known. */
     void (*exact)(double t, double *y, double *yp);
-    const double *yref;        /* n reference values at tend; NULL: use exact(tend) */
-    const char *ref_source;    /* where yref comes from */
+    const double *yref;          /* n reference values at tend; NULL: use exact(tend) */
+    const char *ref_source;      /* where yref comes from */
     const unsigned char *scored; /* n flags: components that enter scd; NULL: all */
     /* position constraints (projection, drift), ncons = 0 if none */
     int ncons;

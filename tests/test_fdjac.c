@@ -615,6 +615,11 @@ static void test_jac_check(tap_rng *r, int n)
            "jac_check n=%d: 1e-3 relative error found at (7,5) (got rc %d at (%d,%d))", n, rc,
            worst[0].row, worst[0].col);
     tap_close(max_err, 1e-3, 1e-3, 0.0, "jac_check n=%d: its err is 1e-3", n);
+    /* The count is of entries with err > tol: tol just below and just above that error. */
+    rc = sp_jac_check(J, chain_f, &c, n, x, floor_, 0.8e-3, NULL, 0, &max_err);
+    tap_ok(rc == 1, "jac_check n=%d: err 1e-3 > tol 8e-4 counted (got %d)", n, rc);
+    rc = sp_jac_check(J, chain_f, &c, n, x, floor_, 1.2e-3, NULL, 0, &max_err);
+    tap_ok(rc == 0, "jac_check n=%d: err 1e-3 < tol 1.2e-3 not counted (got %d)", n, rc);
     J->val[pos] = truth;
 
     /* Entry (8,10) missing from the analytic pattern. */

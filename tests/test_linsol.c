@@ -202,6 +202,9 @@ static void test_vs_lapack(tap_rng *r, int n, int nrhs, int band)
             continue;
         }
         tap_ok(ls_get_kind(s) == kind, "%s n=%d: ls_get_kind", kind_name(kind), n);
+        memcpy(x[k], b, sizeof(double) * nb);
+        tap_ok(ls_solve(s, x[k], nrhs) < 0, "%s n=%d: ls_solve before any factorization fails",
+               kind_name(kind), n);
         rc = ls_factor(s, A);
         tap_ok(rc == BG_OK, "%s n=%d: ls_factor returns BG_OK (got %d)", kind_name(kind), n, rc);
         tap_ok(ls_singular_col(s) == -1, "%s n=%d: ls_singular_col == -1 after success",
@@ -451,6 +454,9 @@ static void test_singular(tap_rng *r)
         e = ls_get_error(s);
         tap_ok(e != NULL && e->message[0] != '\0' && e->status == BG_ERR_SINGULAR,
                "singular %s: error message set (\"%s\")", kn, e ? e->message : "");
+        memcpy(x, b, sizeof b);
+        tap_ok(ls_solve(s, x, 1) < 0, "singular %s: ls_solve after a singular factorization fails",
+               kn);
         /* Recovery: a good matrix of the same pattern. */
         rc = ls_factor(s, A);
         memcpy(x, b, sizeof b);
@@ -696,6 +702,47 @@ out0:
     sp_csc_free(&Ex);
 }
 
+/* ---- NaN or Inf in the matrix ---- */
+
+static void test_nonfinite(tap_rng *r)
+{
+    int n = 20, k, t;
+    sp_csc *A = gen_dd(r, n, 3, 0, 0.0), *B = NULL;
+    if (!A) return;
+    for (k = 0; k < 2; k++) {
+        ls_kind kind = k ? LS_DENSE : LS_KLU;
+        const char *kn = kind_name(kind);
+        ls_solver *s = ls_create(kind, A, NULL);
+        if (!tap_ok(s != NULL, "nonfinite %s: create", kn)) continue;
+        for (t = 0; t < 3; t++) {
+            /* t = 0: NaN on a fresh solver; 1: +Inf after a good factorization; 2: -Inf. */
+            int j = 11 + t, p, i, rc;
+            char si[16], sj[16];
+            const char *msg;
+            sp_csc_free(&B);
+            B = sp_csc_copy(A);
+            p = B->colptr[j + 1] - 1; /* last off-diagonal entry of column j if any */
+            if (B->rowind[p] == j && p > B->colptr[j]) p--;
+            i = B->rowind[p];
+            B->val[p] = t == 0 ? NAN : (t == 1 ? INFINITY : -INFINITY);
+            if (t == 1) ls_factor(s, A);
+            rc = ls_factor(s, B);
+            msg = ls_get_error(s)->message;
+            tap_ok(rc == BG_ERR_NONFINITE, "nonfinite %s: %s at (%d,%d) -> BG_ERR_NONFINITE (got %d)", kn,
+                   t == 0 ? "NaN" : (t == 1 ? "+Inf" : "-Inf"), i, j, rc);
+            snprintf(si, sizeof si, "%d", i);
+            snprintf(sj, sizeof sj, "%d", j);
+            if (!tap_ok(strstr(msg, si) && strstr(msg, sj), "nonfinite %s: message names row %d and column %d",
+                        kn, i, j))
+                tap_diag("message: \"%s\"", msg);
+        }
+        tap_ok(ls_factor(s, A) == BG_OK, "nonfinite %s: a finite matrix factors afterwards", kn);
+        ls_free(&s);
+    }
+    sp_csc_free(&A);
+    sp_csc_free(&B);
+}
+
 /* ---- A A^T + beta I by CHOLMOD ---- */
 
 /* Random m x n (m < n), full row rank: the leading m x m block is strictly diagonally dominant by
@@ -756,6 +803,8 @@ static void test_aat(tap_rng *r, int m, int n, double density)
         goto out;
     }
     tap_ok(aat_factor_count(s) == 0, "aat %dx%d: no factorization yet", m, n);
+    for (k = 0; k < m; k++) b[k] = 1.0;
+    tap_ok(aat_solve(s, b, x) < 0, "aat %dx%d: aat_solve before aat_factor fails", m, n);
     for (t = 0; t < 2; t++) {
         double beta = betas[t];
         for (k = 0; k < m; k++) b[k] = tap_rng_range(r, -1, 1);
@@ -894,13 +943,14 @@ int main(void)
     test_vs_lapack(&r, 100, 1, 0);
     test_vs_lapack(&r, 100, 3, 0);
     test_vs_lapack(&r, 1000, 1, 0);
-    test_vs_lapack(&r, 1000, 3, 30);
+    test_vs_lapack(&r, 500, 3, 30);
     test_klu_large(&r, 10000);
     test_refactor(&r, 200);
     test_singular(&r);
     test_fallback();
     test_rcond();
     test_pattern(&r);
+    test_nonfinite(&r);
     test_aat(&r, 30, 50, 0.1);
     test_aat(&r, 200, 500, 0.02);
     test_aat_rank_deficient(&r);
