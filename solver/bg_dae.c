@@ -1494,19 +1494,22 @@ int dae_roots_found(const dae_solver *s, int *found)
 
 /* ------------------------------------------------------------ statistics ---- */
 
+/* The fields of dae_stats in the order of the line and CSV formats below. */
+#define DAE_STATS_FIELDS(st)                                                                   \
+    (st)->steps, (st)->rejected_error, (st)->newton_iters, (st)->newton_fails, (st)->res_evals, \
+        (st)->res_evals_fd, (st)->jac_evals, (st)->factor_symbolic, (st)->factor_full,         \
+        (st)->factor_refactor, (st)->linear_solves, (st)->steps_at_order[1],                   \
+        (st)->steps_at_order[2], (st)->steps_at_order[3], (st)->steps_at_order[4],             \
+        (st)->steps_at_order[5], (st)->steps ? (st)->h_min_used : 0.0, (st)->h_max_used,       \
+        (st)->max_drift, (st)->init_residual, (st)->t_res, (st)->t_jac, (st)->t_linalg
+
 int dae_stats_line(const dae_stats *st, char *buf, size_t size)
 {
     return snprintf(buf, size,
                     "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
                     "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
                     "h=[%.3g,%.3g] drift=%.3g init_res=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs",
-                    st->steps, st->rejected_error, st->newton_iters, st->newton_fails,
-                    st->res_evals, st->res_evals_fd, st->jac_evals, st->factor_symbolic,
-                    st->factor_full, st->factor_refactor, st->linear_solves,
-                    st->steps_at_order[1], st->steps_at_order[2], st->steps_at_order[3],
-                    st->steps_at_order[4], st->steps_at_order[5],
-                    st->steps ? st->h_min_used : 0.0, st->h_max_used, st->max_drift,
-                    st->init_residual, st->t_res, st->t_jac, st->t_linalg);
+                    DAE_STATS_FIELDS(st));
 }
 
 int dae_stats_csv_header(char *buf, size_t size)
@@ -1522,11 +1525,5 @@ int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
     return snprintf(buf, size,
                     "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,"
                     "%.6g,%.6g,%.6g,%.6g,%.6g",
-                    st->steps, st->rejected_error, st->newton_iters, st->newton_fails,
-                    st->res_evals, st->res_evals_fd, st->jac_evals, st->factor_symbolic,
-                    st->factor_full, st->factor_refactor, st->linear_solves,
-                    st->steps_at_order[1], st->steps_at_order[2], st->steps_at_order[3],
-                    st->steps_at_order[4], st->steps_at_order[5],
-                    st->steps ? st->h_min_used : 0.0, st->h_max_used, st->max_drift,
-                    st->init_residual, st->t_res, st->t_jac, st->t_linalg);
+                    DAE_STATS_FIELDS(st));
 }

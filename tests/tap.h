@@ -49,6 +49,15 @@ TAP_UNUSED static void tap_name_(char *name, const char *fmt, va_list ap)
         if (name[i] == '#' || name[i] == '\n') name[i] = ' ';
 }
 
+/* Counts and prints one test point; the failure line gets no newline when more follows. */
+TAP_UNUSED static void tap_point_(int cond, const char *name)
+{
+    tap_count_++;
+    if (!cond) tap_failed_++;
+    printf("%sok %d - %s\n", cond ? "" : "not ", tap_count_, name);
+    if (!cond) printf("# Failed test %d: %s", tap_count_, name);
+}
+
 /* Returns cond != 0 so that callers can add details after a failure. */
 TAP_PRINTF(2, 3) static int tap_ok(int cond, const char *fmt, ...)
 {
@@ -57,10 +66,8 @@ TAP_PRINTF(2, 3) static int tap_ok(int cond, const char *fmt, ...)
     va_start(ap, fmt);
     tap_name_(name, fmt, ap);
     va_end(ap);
-    tap_count_++;
-    if (!cond) tap_failed_++;
-    printf("%sok %d - %s\n", cond ? "" : "not ", tap_count_, name);
-    if (!cond) printf("# Failed test %d: %s\n", tap_count_, name);
+    tap_point_(cond, name);
+    if (!cond) printf("\n");
     fflush(stdout);
     return cond != 0;
 }
@@ -77,13 +84,10 @@ static int tap_close(double got, double want, double rtol, double atol, const ch
     va_start(ap, fmt);
     tap_name_(name, fmt, ap);
     va_end(ap);
-    tap_count_++;
-    if (!cond) tap_failed_++;
-    printf("%sok %d - %s\n", cond ? "" : "not ", tap_count_, name);
+    tap_point_(cond, name);
     if (!cond)
-        printf("# Failed test %d: %s: got %.17g, want %.17g (|diff| %.3g > atol %.3g + rtol %.3g "
-               "* |want|)\n",
-               tap_count_, name, got, want, diff, atol, rtol);
+        printf(": got %.17g, want %.17g (|diff| %.3g > atol %.3g + rtol %.3g * |want|)\n", got,
+               want, diff, atol, rtol);
     fflush(stdout);
     return cond;
 }

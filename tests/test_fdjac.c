@@ -9,30 +9,9 @@
 
 #include "bg_fdjac.h"
 #include "tap.h"
+#include "testutil.h"
 
 /* ---- helpers ---- */
-
-/* CSC from a column-major mask and values, through sp_csc_alloc only. */
-static sp_csc *csc_from_mask(int nrow, int ncol, const unsigned char *mask, const double *vals)
-{
-    int i, j, nnz = 0, p = 0;
-    sp_csc *A;
-    for (i = 0; i < nrow * ncol; i++) nnz += mask[i] != 0;
-    A = sp_csc_alloc(nrow, ncol, nnz);
-    if (!A) return NULL;
-    for (j = 0; j < ncol; j++) {
-        A->colptr[j] = p;
-        for (i = 0; i < nrow; i++)
-            if (mask[i + (size_t)j * nrow]) {
-                A->rowind[p] = i;
-                A->val[p] = vals ? vals[i + (size_t)j * nrow] : 1.0;
-                p++;
-            }
-    }
-    A->colptr[ncol] = p;
-    A->nnz = p;
-    return A;
-}
 
 static sp_csc *random_pattern(tap_rng *r, int nrow, int ncol, double density)
 {
@@ -44,7 +23,7 @@ static sp_csc *random_pattern(tap_rng *r, int nrow, int ncol, double density)
         mask[k] = tap_rng_unif(r) < density;
         vals[k] = tap_rng_range(r, 0.5, 2.0) * (tap_rng_unif(r) < 0.5 ? -1.0 : 1.0);
     }
-    A = csc_from_mask(nrow, ncol, mask, vals);
+    A = tu_csc_from_mask(nrow, ncol, mask, vals);
     free(mask);
     free(vals);
     return A;
@@ -60,7 +39,7 @@ static sp_csc *band_pattern(int n, int p, int q)
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++)
             if (i - j <= p && j - i <= q) mask[i + (size_t)j * n] = 1;
-    A = csc_from_mask(n, n, mask, NULL);
+    A = tu_csc_from_mask(n, n, mask, NULL);
     free(mask);
     return A;
 }
@@ -350,7 +329,7 @@ static sp_csc *chain_jac(const chain *c, const double *x, int skip_i, int skip_j
                 mask[i + (size_t)j * n] = 1;
                 vals[i + (size_t)j * n] = chain_d(c, x, i, j);
             }
-    J = csc_from_mask(n, n, mask, vals);
+    J = tu_csc_from_mask(n, n, mask, vals);
     free(mask);
     free(vals);
     return J;

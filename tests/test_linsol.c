@@ -8,6 +8,7 @@
 
 #include "bg_linsol.h"
 #include "tap.h"
+#include "testutil.h"
 
 /* LAPACK (Fortran interface; the trailing size_t is the hidden length of character arguments). */
 void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
@@ -88,38 +89,10 @@ static sp_csc *gen_dd(tap_rng *r, int n, int per_col, int band, double longp)
     return A;
 }
 
-/* CSC of a dense column-major matrix, keeping entries with mask != 0 (all nonzeros if mask is
- * NULL). */
-static sp_csc *csc_of_dense(int nrow, int ncol, const double *D, const unsigned char *mask)
-{
-    int i, j, nnz = 0, p = 0;
-    sp_csc *A;
-    for (i = 0; i < nrow * ncol; i++) nnz += mask ? mask[i] != 0 : D[i] != 0.0;
-    A = sp_csc_alloc(nrow, ncol, nnz);
-    if (!A) return NULL;
-    for (j = 0; j < ncol; j++) {
-        A->colptr[j] = p;
-        for (i = 0; i < nrow; i++) {
-            size_t c = i + (size_t)j * nrow;
-            if (mask ? mask[c] != 0 : D[c] != 0.0) {
-                A->rowind[p] = i;
-                A->val[p] = D[c];
-                p++;
-            }
-        }
-    }
-    A->colptr[ncol] = p;
-    A->nnz = p;
-    return A;
-}
-
 static double *my_dense(const sp_csc *A)
 {
-    double *D = calloc((size_t)A->nrow * A->ncol, sizeof(double));
-    int j, p;
-    for (j = 0; j < A->ncol; j++)
-        for (p = A->colptr[j]; p < A->colptr[j + 1]; p++)
-            D[A->rowind[p] + (size_t)j * A->nrow] += A->val[p];
+    double *D = malloc(((size_t)A->nrow * A->ncol + 1) * sizeof(double));
+    if (D) tu_dense(A, D);
     return D;
 }
 
@@ -416,13 +389,13 @@ static void test_singular(tap_rng *r)
     }
     for (k = 0; k < N * N; k++) mask[k] = D[k] != 0.0;
     for (k = 0; k < N; k++) mask[k + ZC * N] = 1; /* column 7 full in the pattern */
-    A = csc_of_dense(N, N, D, mask);
+    A = tu_csc_from_mask(N, N, mask, D);
     /* Same pattern, column 7 numerically zero. */
     memcpy(Dz, D, sizeof D);
     for (i = 0; i < N; i++) Dz[i + ZC * N] = 0.0;
-    Az = csc_of_dense(N, N, Dz, mask);
+    Az = tu_csc_from_mask(N, N, mask, Dz);
     /* Column 7 structurally empty. */
-    Ae = csc_of_dense(N, N, Dz, NULL);
+    Ae = tu_csc_from_mask(N, N, NULL, Dz);
     /* Column 7 equal to column 3: rows 3 and 7 and columns 3 and 7 hold only the block
      * [[2, 2], [-4, -4]] (exact arithmetic: the dependent pivot is exactly zero). */
     memcpy(Dd, D, sizeof D);
@@ -432,7 +405,7 @@ static void test_singular(tap_rng *r)
     }
     Dd[3 + 3 * N] = Dd[3 + 7 * N] = 2.0;
     Dd[7 + 3 * N] = Dd[7 + 7 * N] = -4.0;
-    Ad = csc_of_dense(N, N, Dd, NULL);
+    Ad = tu_csc_from_mask(N, N, NULL, Dd);
     for (i = 0; i < N; i++) b[i] = tap_rng_range(r, -1, 1);
 
     if (!A || !Az || !Ad || !Ae) {
@@ -541,8 +514,8 @@ static void test_fallback(void)
     D2[1] = 1.0;
     D2[N] = 1.0;
     D2[N + 1] = 0.0;
-    A1 = csc_of_dense(N, N, D1, mask);
-    A2 = csc_of_dense(N, N, D2, mask);
+    A1 = tu_csc_from_mask(N, N, mask, D1);
+    A2 = tu_csc_from_mask(N, N, mask, D2);
     for (i = 0; i < N; i++) b[i] = i + 1.0;
     want[0] = b[1];
     want[1] = b[0];
@@ -575,7 +548,7 @@ static void test_rcond(void)
 {
     const double dl = 1e-6;
     double D[4] = {1.0, 1.0, 1.0, 1.0 + dl}, b[2] = {1.0, -2.0}, x[2], want[2];
-    sp_csc *A = csc_of_dense(2, 2, D, NULL);
+    sp_csc *A = tu_csc_from_mask(2, 2, NULL, D);
     ls_solver *s = A ? ls_create(LS_KLU, A, NULL) : NULL;
     const ls_stats *st;
     int rc;
@@ -655,7 +628,7 @@ static void test_pattern(tap_rng *r)
             D[k] = 1e-3;
             break;
         }
-    Ex = csc_of_dense(n, n, D, mask);
+    Ex = tu_csc_from_mask(n, n, mask, D);
     free(D);
     free(mask);
 
@@ -760,7 +733,7 @@ static sp_csc *gen_wide(tap_rng *r, int m, int n, double density)
         for (j = 0; j < m; j++) s += fabs(D[i + (size_t)j * m]);
         D[i + (size_t)i * m] = (s + tap_rng_range(r, 0.5, 1.5)) * (tap_rng_unif(r) < 0.5 ? -1 : 1);
     }
-    A = csc_of_dense(m, n, D, NULL);
+    A = tu_csc_from_mask(m, n, NULL, D);
     free(D);
     return A;
 }
@@ -861,7 +834,7 @@ static void test_aat_rank_deficient(tap_rng *r)
     memset(D, 0, sizeof D);
     for (i = 0; i < M; i++)
         for (k = 0; k < 3; k++) D[i + (at[i] + k) * M] = rows[i][k];
-    A = csc_of_dense(M, NC, D, NULL);
+    A = tu_csc_from_mask(M, NC, NULL, D);
     s = A ? aat_create(A, NULL) : NULL;
     if (tap_ok(s != NULL, "aat rank deficient (exact): create")) {
         rc = aat_factor(s, A, 0.0);
@@ -880,7 +853,7 @@ static void test_aat_rank_deficient(tap_rng *r)
     {
         double *Dr = my_dense(R);
         for (k = 0; k < n; k++) Dr[9 + (size_t)k * m] = Dr[4 + (size_t)k * m];
-        P = csc_of_dense(m, n, Dr, NULL);
+        P = tu_csc_from_mask(m, n, NULL, Dr);
         free(Dr);
     }
     s = P ? aat_create(P, NULL) : NULL;

@@ -11,6 +11,7 @@
 
 #include "bg_sparse.h"
 #include "tap.h"
+#include "testutil.h"
 
 /* ---- helpers ---- */
 
@@ -39,39 +40,6 @@ static int structure_ok(const sp_csc *A)
     return 1;
 }
 
-/* Builds a CSC matrix from a mask (column-major, nonzero = present) and values, without going
- * through the code under test except sp_csc_alloc. */
-static sp_csc *csc_from_mask(int nrow, int ncol, const unsigned char *mask, const double *vals)
-{
-    int i, j, nnz = 0, p = 0;
-    sp_csc *A;
-    for (i = 0; i < nrow * ncol; i++) nnz += mask[i] != 0;
-    A = sp_csc_alloc(nrow, ncol, nnz);
-    if (!A) return NULL;
-    for (j = 0; j < ncol; j++) {
-        A->colptr[j] = p;
-        for (i = 0; i < nrow; i++)
-            if (mask[i + (size_t)j * nrow]) {
-                A->rowind[p] = i;
-                A->val[p] = vals[i + (size_t)j * nrow];
-                p++;
-            }
-    }
-    A->colptr[ncol] = p;
-    A->nnz = p;
-    return A;
-}
-
-/* Dense copy of A computed here (not by sp_csc_to_dense). */
-static void my_dense(const sp_csc *A, double *D)
-{
-    int j, p;
-    memset(D, 0, sizeof(double) * (size_t)A->nrow * (size_t)A->ncol);
-    for (j = 0; j < A->ncol; j++)
-        for (p = A->colptr[j]; p < A->colptr[j + 1]; p++)
-            D[A->rowind[p] + (size_t)j * A->nrow] += A->val[p];
-}
-
 /* A random nrow x ncol matrix with about density*nrow*ncol entries of random values in [-1,1]. */
 static sp_csc *random_csc(tap_rng *r, int nrow, int ncol, double density)
 {
@@ -83,7 +51,7 @@ static sp_csc *random_csc(tap_rng *r, int nrow, int ncol, double density)
         mask[k] = tap_rng_unif(r) < density;
         vals[k] = tap_rng_range(r, -1.0, 1.0);
     }
-    A = csc_from_mask(nrow, ncol, mask, vals);
+    A = tu_csc_from_mask(nrow, ncol, mask, vals);
     free(mask);
     free(vals);
     return A;
@@ -235,7 +203,7 @@ static void test_builder_random(tap_rng *r, int nrow, int ncol, int ncells, int 
         Dw[I[k] + (size_t)J[k] * nrow] += W[k];
     }
     sp_scatter_add(A, slot, W, nadd);
-    my_dense(A, Dout);
+    tu_dense(A, Dout);
     tap_ok(dense_equal(Dout, Dw, nd),
            "%s: sp_scatter_add after zero == dense sum of new values", tag);
     sp_scatter_add(A, slot, W, nadd);
@@ -263,7 +231,7 @@ static void test_builder_random(tap_rng *r, int nrow, int ncol, int ncells, int 
     A2 = sp_builder_finish(b, slot);
     if (tap_ok(A2 != NULL, "%s: second sp_builder_finish", tag)) {
         ok = A2->nnz == ndistinct && structure_ok(A2);
-        my_dense(A2, Dout);
+        tu_dense(A2, Dout);
         ok = ok && dense_equal(Dout, D, nd);
         for (k = 0; k < nadd + nextra && ok; k++)
             if (slot[k] < A2->colptr[J[k]] || slot[k] >= A2->colptr[J[k] + 1] ||
@@ -434,8 +402,8 @@ static void test_union(tap_rng *r, int nrow, int ncol)
     }
     tap_ok(n_a > 0 && n_b > 0 && n_ab > 0, "%s: has entries only in A (%d), only in B (%d), in both (%d)",
            tag, n_a, n_b, n_ab);
-    A = csc_from_mask(nrow, ncol, ma, va);
-    B = csc_from_mask(nrow, ncol, mb, vb);
+    A = tu_csc_from_mask(nrow, ncol, ma, va);
+    B = tu_csc_from_mask(nrow, ncol, mb, vb);
     if (!A || !B) {
         tap_ok(0, "%s: alloc", tag);
         goto out;
@@ -562,7 +530,7 @@ static void test_matvec(tap_rng *r, int nrow, int ncol, double density)
         tap_ok(0, "%s: alloc", tag);
         goto out;
     }
-    my_dense(A, D);
+    tu_dense(A, D);
     for (tr = 0; tr < 2; tr++) {
         int nin = tr ? nrow : ncol, nout = tr ? ncol : nrow;
         for (t = 0; t < 5; t++) {
@@ -617,8 +585,8 @@ static void test_transpose(tap_rng *r, int nrow, int ncol, double density)
            "transpose %dx%d: dimensions %dx%d and nnz", nrow, ncol, T->nrow, T->ncol);
     tap_ok(structure_ok(T) && sp_csc_check(T, NULL) == BG_OK,
            "transpose %dx%d: structure valid, rows ascending", nrow, ncol);
-    my_dense(A, DA);
-    my_dense(T, DT);
+    tu_dense(A, DA);
+    tu_dense(T, DT);
     for (i = 0; i < nrow; i++)
         for (j = 0; j < ncol; j++)
             if (DT[j + (size_t)i * ncol] != DA[i + (size_t)j * nrow]) ok = 0;
@@ -772,7 +740,7 @@ static void check_mm(FILE *f, const sp_csc *A, const char *tag)
     tap_ok(ok, "%s: %d entries read, 1-based, each once", tag, A->nnz);
     extra = fscanf(f, "%d", &m);
     tap_ok(extra == EOF, "%s: nothing after the last entry", tag);
-    my_dense(A, W);
+    tu_dense(A, W);
     ok = 1;
     {
         int j, p;
