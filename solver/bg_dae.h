@@ -6,7 +6,10 @@
  * coefficient form of DASSL and IDA (Brenan, Campbell and Petzold, "Numerical Solution of
  * Initial-Value Problems in DAEs", SIAM 1996, ch. 5), with what index 2 needs on top:
  *   - the local error test excludes the index-2 variables or scales their error by h (option);
- *   - the Newton convergence norm scales index-2 corrections by h;
+ *   - the Newton convergence norm weighs index-2 corrections in full (or scaled by h, option),
+ *     the rate estimate restarts when alpha/h changes, and a step may not grow again until k+1
+ *     steps have passed since an error-test failure (this stops the fail/grow cycle that
+ *     index-2 variables cause in DASSL-type step control);
  *   - the iteration matrix dF/dy + (alpha/h) dF/dy' is scaled (rows that contain y' by h/alpha,
  *     index-2 columns by alpha/h) so that it stays O(1) as h -> 0;
  *   - consistent initial values replace constraint rows by their time derivative;
@@ -82,6 +85,8 @@ typedef struct dae_options {
     int max_newton;           /* Newton iterations per step, default 4 */
     int fixed_step;           /* 1: constant h_init, order max_order after dae_set_history, no
                                  error-test rejection (for convergence-order studies) */
+    int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
+                                  convergence test (default 0: full weight, see bg_dae.c) */
 } dae_options;
 
 void dae_options_default(dae_options *o);

@@ -379,6 +379,13 @@ static void test_ap102(void)
                polname[ip], e1);
         tap_ok(ret == DAE_SUCCESS && e2 <= 1e-5, "ap102 %s rtol 1e-6: x2(1) rel err %.3g <= 1e-5",
                polname[ip], e2);
+        /* the same without landing on t = 1: x2 interpolated inside the last step */
+        o.has_t_stop = 0;
+        ret = run_to(p, &o, 1.0, y, NULL, &st);
+        e2 = fabs(y[1] - ex[1]) / fabs(ex[1]);
+        tap_ok(ret == DAE_SUCCESS && e2 <= 1e-5,
+               "ap102 %s rtol 1e-6: interpolated x2(1) rel err %.3g <= 1e-5", polname[ip], e2);
+        o.has_t_stop = 1;
 
         o.rtol = 1e-4;
         ret = run_to(p, &o, 1.0, y, NULL, &st);
@@ -505,11 +512,9 @@ static void test_reference_problem(const char *name, double atol_over_rtol)
                  "newton fails %ld",
                  name, o.rtol, o.atol, sc.mescd, sc.scd, sc.worst >= 0 ? p->names[sc.worst] : "-",
                  st.steps, st.rejected_error, st.newton_fails);
-        /* global error accumulates over long stiff runs: two digits of margin (IDA at the same
-         * settings reaches the same mescd within 0.3, see bench/ida_compare) */
-        tap_ok(ret == DAE_SUCCESS && sc.mescd >= -log10(o.rtol) - 2.0,
+        tap_ok(ret == DAE_SUCCESS && sc.mescd >= -log10(o.rtol) - 1.5,
                "%s rtol %g: completes, mescd %.2f >= %.1f", name, o.rtol, sc.mescd,
-               -log10(o.rtol) - 2.0);
+               -log10(o.rtol) - 1.5);
     }
 }
 
@@ -610,8 +615,11 @@ static void test_lin2_efficiency(void)
                  fabs(y[2] - ex[2]) / fabs(ex[2]));
         tap_ok(ret == DAE_SUCCESS && e <= 100.0,
                "lin2 %s rtol 1e-8: differential error %.3g <= 100 tolerances", polname[ip], e);
-        /* no bound on the error-test failures here: on lin2 at rtol 1e-8 IDA fails its error
-         * test about as often (940 of 1069 steps, bench/ida_compare --problem lin2) */
+        /* DASSL-type step control cycles here (IDA: 940 failures in 1069 steps); the solver's
+         * no-growth-after-failure rule must prevent that */
+        tap_ok(ret == DAE_SUCCESS && 10 * st.rejected_error < st.steps,
+               "lin2 %s rtol 1e-8: error-test failures (%ld) below a tenth of the steps (%ld)",
+               polname[ip], st.rejected_error, st.steps);
     }
 }
 
