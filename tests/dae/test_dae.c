@@ -1010,6 +1010,82 @@ static void test_stats_output(void)
            "stats: steps at each order add up to the steps (%ld)", st.steps);
 }
 
+
+/* ---- event location ----
+ * The harmonic oscillator y1' = y2, y2' = -y1, y(0) = (1, 0) has y1 = cos t: event g0 = y1
+ * changes sign at t = pi/2 (falling), 3 pi/2 (rising), 5 pi/2 (falling); g1 = t - 1 once at
+ * t = 1 (rising). The located times are compared with these exact values. */
+
+static int osc_res(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user, (void)t;
+    F[0] = yp[0] - y[1];
+    F[1] = yp[1] + y[0];
+    return 0;
+}
+
+static int osc_roots(void *user, double t, const double *y, const double *yp, double *g)
+{
+    (void)yp;
+    int *calls = user;
+    (*calls)++;
+    g[0] = y[0];
+    g[1] = t - 1.0;
+    return 0;
+}
+
+static void test_roots(void)
+{
+    int calls = 0;
+    dae_problem p = {0};
+    p.n = 2;
+    p.res = osc_res;
+    p.user = &calls;
+    p.nroots = 2;
+    p.roots = osc_roots;
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    bg_error err = {0};
+    dae_solver *s = dae_create(&p, &o, &err);
+    double y0[2] = {1, 0}, yp0[2] = {0, -1}, y[2], yp[2], t = 0;
+    const double pi2 = acos(-1.0) / 2;
+    int ok = s && dae_init(s, 0.0, y0, yp0) == BG_OK;
+    tap_ok(ok, "roots: create and init (%s)", s ? "" : err.message);
+    if (!ok) {
+        dae_free(&s);
+        return;
+    }
+    /* expected events in time order: t = 1 (g1 rising), pi/2 (g0 falling), 3pi/2, 5pi/2 */
+    const double tev[4] = {1.0, pi2, 3 * pi2, 5 * pi2};
+    const int which[4] = {1, 0, 0, 0}, dir[4] = {1, -1, 1, -1};
+    int nfound = 0, found[2], r;
+    double tout = 0.5; /* an output time before the first event: it must come first */
+    r = dae_solve_to(s, tout, &t, y, yp);
+    tap_ok(r == DAE_SUCCESS && t == tout && fabs(y[0] - cos(tout)) < 1e-8,
+           "roots: output at 0.5 before any event (%s, y1 err %.2g)", dae_return_name(r),
+           fabs(y[0] - cos(tout)));
+    while (nfound < 4) {
+        r = dae_solve_to(s, 8.0, &t, y, yp);
+        if (r != DAE_ROOT_RETURN) break;
+        dae_roots_found(s, found);
+        int k = nfound++;
+        tap_ok(found[which[k]] == dir[k] && found[1 - which[k]] == 0 && fabs(t - tev[k]) < 1e-8,
+               "roots: event %d at t = %.12f (exact %.12f, err %.2g), function %d direction %d",
+               k, t, tev[k], fabs(t - tev[k]), which[k], found[which[k]]);
+        tap_ok(fabs(y[0] - cos(t)) < 1e-8, "roots: solution at the event is right (err %.2g)",
+               fabs(y[0] - cos(t)));
+    }
+    tap_ok(nfound == 4, "roots: all four events found (%d)", nfound);
+    r = dae_solve_to(s, 8.0, &t, y, yp);
+    tap_ok(r == DAE_SUCCESS && t == 8.0 && fabs(y[0] - cos(8.0)) < 1e-8,
+           "roots: integration continues to t = 8 after the events (%s, err %.2g)",
+           dae_return_name(r), fabs(y[0] - cos(8.0)));
+    tap_diag("roots: %d calls of the event function", calls);
+    dae_free(&s);
+}
+
 int main(void)
 {
     /* h for orders 1..5 (index 0 unused), in the asymptotic range (at h = 0.1 BDF5 on lin2 still
@@ -1034,5 +1110,6 @@ int main(void)
     test_breakpoints();
     test_failures();
     test_stats_output();
+    test_roots();
     return tap_done();
 }
