@@ -141,11 +141,19 @@ static int run_ida(const bp_problem *p, double rtol, double atol, int suppress, 
         snprintf(msg, msz, "IDA set-up failed");
         goto done;
     }
+    /* IDAReInit at each breakpoint resets IDA's counters: add them up segment by segment */
     realtype t = p->t0;
+    memset(rr, 0, sizeof *rr);
     for (int b = 0; b <= p->nbreakpoints; b++) {
         double tb = b < p->nbreakpoints ? p->breakpoints[b] : p->tend;
         IDASetStopTime(mem, tb);
         r = IDASolve(mem, tb, &t, yy, yp, IDA_NORMAL);
+        long v;
+        IDAGetNumSteps(mem, &v), rr->steps += v;
+        IDAGetNumErrTestFails(mem, &v), rr->rejected += v;
+        IDAGetNumJacEvals(mem, &v), rr->jac += v;
+        IDAGetNumLinSolvSetups(mem, &v), rr->factors += v;
+        IDAGetNumResEvals(mem, &v), rr->res += v;
         if (r < 0) {
             snprintf(msg, msz, "IDASolve returned %d at t = %g", r, t);
             goto done;
@@ -154,12 +162,6 @@ static int run_ida(const bp_problem *p, double rtol, double atol, int suppress, 
     }
     r = 0;
     for (int i = 0; i < n; i++) y[i] = NV_Ith_S(yy, i);
-    long v;
-    IDAGetNumSteps(mem, &v), rr->steps = v;
-    IDAGetNumErrTestFails(mem, &v), rr->rejected = v;
-    IDAGetNumJacEvals(mem, &v), rr->jac = v;
-    IDAGetNumLinSolvSetups(mem, &v), rr->factors = v;
-    IDAGetNumResEvals(mem, &v), rr->res = v;
 done:
     IDAFree(&mem);
     SUNLinSolFree(LS);

@@ -1153,10 +1153,13 @@ static int first_step(dae_solver *s, double tout, double hpref)
             return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_solve_to",
                                   "tout = %g is too close to t = %g to choose a first step", tout,
                                   s->tn);
-        h = 0.001 * tdist;
-        if (hpref > 0) h = hpref;
-        double ypnorm = wrms(s, s->phi[1], s->werr);
-        if (ypnorm > 0.5 / h) h = 0.5 / ypnorm;
+        if (hpref > 0) {
+            h = fmin(hpref, tdist);
+        } else { /* IDA's rule: the first step changes y by at most half a tolerance unit */
+            h = 0.001 * tdist;
+            double ypnorm = wrms(s, s->phi[1], s->werr);
+            if (ypnorm > 0.5 / h) h = 0.5 / ypnorm;
+        }
     }
     s->hh = dir * h;
     clip_to_stop(s);
@@ -1226,10 +1229,22 @@ static int project_step(dae_solver *s)
 }
 
 /* Restart at a breakpoint: left value of y, consistent right value of y', order 1. */
+/* The first step after a breakpoint is sized from y'' just before it (differenced from the
+ * interpolant over the last half step): the local error of the order-1 restart is about
+ * h^2/2 |y''|, so h = 0.5 sqrt(2 / |y''|) in the error norm, at most the last step. Far larger
+ * than IDA's first-step rule, which would restart from h ~ 0.5/|y'| and double up again. */
 static int restart_at_breakpoint(dae_solver *s, double tout)
 {
-    double hprev = fabs(s->hused);
+    double hprev = fabs(s->hused), hpref = hprev;
+    double hm = 0.5 * s->hused;
     dae_dense(s, s->tn, s->y, s->yp);
+    if (dae_dense(s, s->tn - hm, NULL, s->tmp) == BG_OK) {
+        for (int i = 0; i < s->n; i++) s->tmp[i] = (s->yp[i] - s->tmp[i]) / hm;
+        s->hh = 0;
+        set_weights(s, s->y);
+        double ypp = wrms(s, s->tmp, s->werr);
+        if (ypp > 0) hpref = fmin(hprev, 0.5 * sqrt(2.0 / ypp));
+    }
     memcpy(s->phi[0], s->y, (size_t)s->n * sizeof(double));
     memcpy(s->phi[1], s->yp, (size_t)s->n * sizeof(double));
     double keep = s->st.init_residual;
@@ -1237,7 +1252,7 @@ static int restart_at_breakpoint(dae_solver *s, double tout)
     s->st.init_residual = keep;
     if (r != BG_OK) return r;
     s->first = 1;
-    return first_step(s, tout, hprev);
+    return first_step(s, tout, hpref);
 }
 
 static int step_once(dae_solver *s)
