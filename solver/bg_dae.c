@@ -614,6 +614,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
                                   "initial value of %s is not finite", vname(s, i, nb, sizeof nb));
     memset(&s->st, 0, sizeof s->st);
     s->st.h_min_used = INFINITY;
+    s->st.rcond_min = INFINITY;
     memcpy(s->phi[0], y0, (size_t)s->n * sizeof *y0);
     if (yp0)
         memcpy(s->phi[1], yp0, (size_t)s->n * sizeof *yp0);
@@ -908,6 +909,7 @@ static int setup(dae_solver *s, double t, const double *F)
     }
     r = ls_factor(s->ls, M);
     s->st.t_linalg += seconds() - t0;
+    if (r == BG_OK) s->st.rcond_min = fmin(s->st.rcond_min, ls_get_stats(s->ls)->rcond);
     s->cjf = cj;
     s->jac_current = 1;
     s->need_setup = 0;

@@ -101,6 +101,8 @@ typedef struct dae_stats {
     int order_last;
     double max_drift;          /* max |g| before projection over the run (needs cons) */
     double init_residual;      /* scaled residual norm after consistent initialisation */
+    double rcond_min;          /* smallest reciprocal condition estimate of the (scaled) Newton
+                                  matrix (KLU: min|Ukk|/max|Ukk|; dense: LAPACK dgecon) */
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
 } dae_stats;
 
