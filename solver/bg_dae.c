@@ -37,11 +37,7 @@
  * (constraints) and its condition grows like h^-2. We factor R M C instead, with R = h/alpha on
  * rows that contain y' and 1 elsewhere, C = cj on index-2 columns and 1 elsewhere; every block is
  * then O(1). The solution is mapped back by delta = C z.
- * Consistent initial values: rows of F that depend on differential variables only (the
- * constraints) are replaced by their total time derivative dF_i/dt + sum_j dF_i/dy_j y_j', which
- * together with the other rows determines y' of the differential variables and both kinds of
- * algebraic variables; before that, differential variables that violate the constraints are
- * moved by the minimum-norm Gauss-Newton correction -A^T (A A^T)^-1 F_C (CHOLMOD).
+ * Consistent initial values and the structural classification of the unknowns: bg_dae_init.c.
  * Drift: with position constraints g(y) given, the maximum |g| after each step is recorded and,
  * if asked, y is projected back by the same minimum-norm correction.
  * Breakpoints: steps are clipped to land exactly on each breakpoint, where the method restarts at
@@ -59,81 +55,16 @@
 
 #include "bg_fdjac.h"
 
-#define MAXORD 5
-#define NPHI (MAXORD + 2)
-#define MAX_NEF 10   /* error-test failures in one step */
-#define MAX_NCF 10   /* Newton failures in one step */
-#define EPS_NEWT 0.33
-#define RATE_MAX 0.9
-#define CJ_LOW 0.6
-#define CJ_HIGH (1.0 / 0.6)
+#include "bg_dae_impl.h"
 
-struct dae_solver {
-    int n;
-    dae_problem p;
-    dae_options o;
-    int *kind;
-    char **names;
-    double *atol;     /* n */
-    double *bkpt;     /* sorted breakpoints */
-    int nbkpt;
-    /* Jacobians and the Newton matrix */
-    sp_csc *Jy, *Jyp;
-    sp_union *U;
-    sp_fdjac *fdy, *fdyp;
-    ls_solver *ls;
-    int *rowdiff;      /* row i contains y' */
-    int *rowcons;      /* row i depends on differential variables only: a constraint */
-    int ncons_rows;
-    double cjf;        /* cj the factored matrix was built with */
-    int jac_current;   /* Jacobian evaluated at this step's predictor */
-    int need_setup;
-    double ss;         /* Newton rate factor */
-    /* consistent initialisation */
-    sp_csc *K;         /* (y'_D, y_A) Jacobian */
-    int *kslot_yp, *kslot_y; /* entry p of Jyp / Jy -> slot in K, -1 if not used */
-    ls_solver *kls;
-    sp_csc *A;         /* constraint rows x differential columns of Jy (projection at init) */
-    int *aslot;        /* entry p of Jy -> slot in A, -1 */
-    aat_solver *aat_init;
-    /* drift and projection */
-    sp_csc *G;
-    aat_solver *aat_proj;
-    double *gv, *gw;
-    /* BDF state */
-    double tn, hh, hused, cj, cjold;
-    int kk, kused, knew, phase, ns, nst_local, first;
-    int since_fail;    /* accepted steps since the last error-test failure */
-    double psi[MAXORD + 1], alpha[MAXORD + 1], beta[MAXORD + 1], sigma[MAXORD + 1],
-        gamma[MAXORD + 1];
-    double alphas, alpha0, ck;
-    double *phi[NPHI];
-    double *ewt, *werr, *wnewt;
-    double *y, *yp, *ypred, *yppred, *ee, *delta, *res, *tmp, *tmp2, *typ;
-    double err_k, err_km1;
-    /* roots */
-    double *glo, *ghi, *gmid;
-    double tlo;
-    int *rfound;
-    int root_pending;
-    double troot;
-    int ibk;           /* next breakpoint index */
-    int initialized;
-    /* FD context */
-    double fd_t;
-    const double *fd_y, *fd_yp;
-    dae_stats st;
-    bg_error err;
-};
-
-static double seconds(void)
+double daei_seconds(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static const char *vname(const dae_solver *s, int i, char *buf, size_t sz)
+const char *daei_vname(const dae_solver *s, int i, char *buf, size_t sz)
 {
     if (i < 0) return "(none)";
     if (s->names && s->names[i]) return s->names[i];
@@ -185,11 +116,11 @@ static int is_finite_vec(const double *v, int n, int *bad)
 }
 
 /* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. */
-static int call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd)
+int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd)
 {
-    double t0 = seconds();
+    double t0 = daei_seconds();
     int r = s->p.res(s->p.user, t, y, yp, F);
-    s->st.t_res += seconds() - t0;
+    s->st.t_res += daei_seconds() - t0;
     if (fd)
         s->st.res_evals_fd++;
     else
@@ -204,19 +135,19 @@ static int call_res(dae_solver *s, double t, const double *y, const double *yp, 
 static int fd_res_y(void *u, const double *x, double *f)
 {
     dae_solver *s = u;
-    return call_res(s, s->fd_t, x, s->fd_yp, f, 1);
+    return daei_call_res(s, s->fd_t, x, s->fd_yp, f, 1);
 }
 
 static int fd_res_yp(void *u, const double *x, double *f)
 {
     dae_solver *s = u;
-    return call_res(s, s->fd_t, s->fd_y, x, f, 1);
+    return daei_call_res(s, s->fd_t, s->fd_y, x, f, 1);
 }
 
 /* Jy, Jyp at (t, y, yp); F = F(t, y, yp) must be given (used by finite differences). */
-static int eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F)
+int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F)
 {
-    double t0 = seconds();
+    double t0 = daei_seconds();
     int r;
     s->st.jac_evals++;
     if (s->p.jac) {
@@ -233,7 +164,7 @@ static int eval_jac(dae_solver *s, double t, const double *y, const double *yp, 
             r = sp_fdjac_eval(s->fdyp, fd_res_yp, s, yp, F, s->typ, s->Jyp);
         }
     }
-    s->st.t_jac += seconds() - t0;
+    s->st.t_jac += daei_seconds() - t0;
     if (r == 0) {
         int bad;
         if (!is_finite_vec(s->Jy->val, s->Jy->nnz, &bad) ||
@@ -245,7 +176,7 @@ static int eval_jac(dae_solver *s, double t, const double *y, const double *yp, 
 
 /* ------------------------------------------------------------------- norms ---- */
 
-static void set_weights(dae_solver *s, const double *y)
+void daei_set_weights(dae_solver *s, const double *y)
 {
     double h = fabs(s->hh);
     for (int i = 0; i < s->n; i++) {
@@ -261,7 +192,7 @@ static void set_weights(dae_solver *s, const double *y)
     }
 }
 
-static double wrms(const dae_solver *s, const double *v, const double *w)
+double daei_wrms(const dae_solver *s, const double *v, const double *w)
 {
     double sum = 0.0;
     for (int i = 0; i < s->n; i++) {
@@ -273,12 +204,14 @@ static double wrms(const dae_solver *s, const double *v, const double *w)
 
 /* --------------------------------------------------------------- creation ---- */
 
-static sp_csc *dense_pattern(int n)
+/* Dense n x n pattern; with kind, only the columns of differential variables. */
+static sp_csc *dense_pattern(int n, const int *kind)
 {
     sp_builder *b = sp_builder_create(n, n, n * n);
     if (!b) return NULL;
     for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) sp_builder_add(b, i, j, 0.0);
+        if (!kind || kind[j] == DAE_DIFF)
+            for (int i = 0; i < n; i++) sp_builder_add(b, i, j, 0.0);
     sp_csc *P = sp_builder_finish(b, NULL);
     sp_builder_free(&b);
     return P;
@@ -301,15 +234,7 @@ void dae_free(dae_solver **sp)
     sp_fdjac_free(&s->fdy);
     sp_fdjac_free(&s->fdyp);
     ls_free(&s->ls);
-    free(s->rowdiff);
-    free(s->rowcons);
-    sp_csc_free(&s->K);
-    free(s->kslot_yp);
-    free(s->kslot_y);
-    ls_free(&s->kls);
-    sp_csc_free(&s->A);
-    free(s->aslot);
-    aat_free(&s->aat_init);
+    daei_init_free(s);
     sp_csc_free(&s->G);
     aat_free(&s->aat_proj);
     free(s->gv);
@@ -340,70 +265,6 @@ static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
-}
-
-/* Pattern of the consistent-initialisation Jacobian K: column j is y'_j (differential) or y_j
- * (algebraic); non-constraint rows take dF/dy' or dF/dy, constraint rows take dF/dy of the
- * differential columns (the derivative of the constraint). Also the constraint block A. */
-static int build_init_patterns(dae_solver *s)
-{
-    int n = s->n;
-    sp_builder *b = sp_builder_create(n, n, s->Jy->nnz + s->Jyp->nnz);
-    sp_builder *ba = sp_builder_create(s->ncons_rows, n, s->Jy->nnz);
-    int *sy = malloc(((size_t)s->Jy->nnz + 1) * sizeof *sy);
-    int *syp = malloc(((size_t)s->Jyp->nnz + 1) * sizeof *syp);
-    int *sa = malloc(((size_t)s->Jy->nnz + 1) * sizeof *sa);
-    int ok = b && ba && sy && syp && sa;
-    s->kslot_y = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->kslot_y);
-    s->kslot_yp = malloc(((size_t)s->Jyp->nnz + 1) * sizeof *s->kslot_yp);
-    s->aslot = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->aslot);
-    ok = ok && s->kslot_y && s->kslot_yp && s->aslot;
-    /* constraint rows are renumbered 0..ncons_rows-1 for A */
-    int *crow = malloc(((size_t)n + 1) * sizeof *crow);
-    ok = ok && crow;
-    if (ok) {
-        int c = 0;
-        for (int i = 0; i < n; i++) crow[i] = s->rowcons[i] ? c++ : -1;
-        for (int j = 0; j < n && ok; j++) {
-            int diff = s->kind[j] == DAE_DIFF;
-            for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++) {
-                int i = s->Jyp->rowind[p];
-                syp[p] = (diff && !s->rowcons[i]) ? sp_builder_add(b, i, j, 0.0) : -1;
-            }
-            for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
-                int i = s->Jy->rowind[p];
-                if (s->rowcons[i])
-                    sy[p] = diff ? sp_builder_add(b, i, j, 0.0) : -1;
-                else
-                    sy[p] = diff ? -1 : sp_builder_add(b, i, j, 0.0);
-                sa[p] = (s->rowcons[i] && diff) ? sp_builder_add(ba, crow[i], j, 0.0) : -1;
-            }
-        }
-    }
-    int *slot = ok ? malloc(((size_t)sp_builder_count(b) + 1) * sizeof *slot) : NULL;
-    if (slot && (s->K = sp_builder_finish(b, slot)) != NULL) {
-        for (int p = 0; p < s->Jy->nnz; p++) s->kslot_y[p] = sy[p] >= 0 ? slot[sy[p]] : -1;
-        for (int p = 0; p < s->Jyp->nnz; p++) s->kslot_yp[p] = syp[p] >= 0 ? slot[syp[p]] : -1;
-        if (s->ncons_rows > 0) {
-            int *aslot = malloc(((size_t)sp_builder_count(ba) + 1) * sizeof *aslot);
-            sp_csc *Afull = aslot ? sp_builder_finish(ba, aslot) : NULL;
-            if (Afull) {
-                s->A = Afull;
-                for (int p = 0; p < s->Jy->nnz; p++) s->aslot[p] = sa[p] >= 0 ? aslot[sa[p]] : -1;
-            }
-            free(aslot);
-            ok = s->A != NULL;
-        }
-    }
-    free(slot);
-    ok = ok && s->K;
-    sp_builder_free(&b);
-    sp_builder_free(&ba);
-    free(sy);
-    free(syp);
-    free(sa);
-    free(crow);
-    return ok;
 }
 
 dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err)
@@ -456,7 +317,7 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     if (!s->kind || !s->atol) goto nomem;
     for (int i = 0; i < n; i++) {
         s->kind[i] = p->kind ? p->kind[i] : DAE_DIFF;
-        if (s->kind[i] < DAE_DIFF || s->kind[i] > DAE_ALG2) {
+        if (p->kind && (s->kind[i] < DAE_DIFF || s->kind[i] > DAE_ALG2)) {
             bg_error_raise(err, BG_ERR_ARGUMENT, w, "kind[%d] = %d is not a dae_var_kind", i,
                            s->kind[i]);
             dae_free(&s);
@@ -483,9 +344,9 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         qsort(s->bkpt, (size_t)o->nbreakpoints, sizeof *s->bkpt, cmp_double);
         s->nbkpt = o->nbreakpoints;
     }
-    /* Jacobian patterns */
-    s->Jy = p->jac_y_pattern ? sp_csc_copy(p->jac_y_pattern) : dense_pattern(n);
-    s->Jyp = p->jac_yp_pattern ? sp_csc_copy(p->jac_yp_pattern) : dense_pattern(n);
+    /* Jacobian patterns: dense where not given (dF/dy' in the differential columns only) */
+    s->Jy = p->jac_y_pattern ? sp_csc_copy(p->jac_y_pattern) : dense_pattern(n, NULL);
+    s->Jyp = p->jac_yp_pattern ? sp_csc_copy(p->jac_yp_pattern) : dense_pattern(n, p->kind);
     if (!s->Jy || !s->Jyp) goto nomem;
     if (s->Jy->nrow != n || s->Jy->ncol != n || s->Jyp->nrow != n || s->Jyp->ncol != n ||
         sp_csc_check(s->Jy, &s->err) || sp_csc_check(s->Jyp, &s->err)) {
@@ -494,6 +355,8 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         dae_free(&s);
         return NULL;
     }
+    /* no kinds given: classify from the structure */
+    if (!p->kind && dae_classify(s->Jy, s->Jyp, s->kind) < 0) goto nomem;
     sp_csc_zero(s->Jy);
     sp_csc_zero(s->Jyp);
     s->U = sp_union_create(s->Jy, s->Jyp);
@@ -508,43 +371,9 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         dae_free(&s);
         return NULL;
     }
-    /* row classes */
-    s->rowdiff = calloc((size_t)n, sizeof *s->rowdiff);
-    s->rowcons = calloc((size_t)n, sizeof *s->rowcons);
-    if (!s->rowdiff || !s->rowcons) goto nomem;
-    for (int p2 = 0; p2 < s->Jyp->nnz; p2++) s->rowdiff[s->Jyp->rowind[p2]] = 1;
-    {
-        int *touch_alg = calloc((size_t)n, sizeof *touch_alg);
-        int *touch = calloc((size_t)n, sizeof *touch);
-        if (!touch_alg || !touch) {
-            free(touch_alg);
-            free(touch);
-            goto nomem;
-        }
-        for (int j = 0; j < n; j++)
-            for (int q = s->Jy->colptr[j]; q < s->Jy->colptr[j + 1]; q++) {
-                touch[s->Jy->rowind[q]] = 1;
-                if (s->kind[j] != DAE_DIFF) touch_alg[s->Jy->rowind[q]] = 1;
-            }
-        for (int i = 0; i < n; i++) {
-            s->rowcons[i] = !s->rowdiff[i] && touch[i] && !touch_alg[i];
-            s->ncons_rows += s->rowcons[i];
-        }
-        free(touch_alg);
-        free(touch);
-    }
-    if (!build_init_patterns(s)) goto nomem;
-    s->kls = ls_create(o->linsol, s->K, err);
-    if (!s->kls) {
+    if (daei_init_setup(s, err) != BG_OK) {
         dae_free(&s);
         return NULL;
-    }
-    if (s->A) {
-        s->aat_init = aat_create(s->A, err);
-        if (!s->aat_init) {
-            dae_free(&s);
-            return NULL;
-        }
     }
     if (p->cons && p->ncons > 0) {
         if (!p->cons_pattern || p->cons_pattern->nrow != p->ncons || p->cons_pattern->ncol != n) {
@@ -592,12 +421,17 @@ bg_error *dae_get_error(dae_solver *s) { return &s->err; }
 double dae_current_time(const dae_solver *s) { return s->tn; }
 const dae_stats *dae_get_stats(const dae_solver *s) { return &s->st; }
 
-static void sync_stats(dae_solver *s)
+void daei_sync_stats(dae_solver *s)
 {
-    const ls_stats *a = ls_get_stats(s->ls), *b = ls_get_stats(s->kls);
-    s->st.factor_symbolic = a->symbolic + b->symbolic;
-    s->st.factor_full = a->factor + b->factor;
-    s->st.factor_refactor = a->refactor + b->refactor;
+    ls_solver *all[3] = {s->ls, s->kls, s->kktls};
+    s->st.factor_symbolic = s->st.factor_full = s->st.factor_refactor = 0;
+    for (int k = 0; k < 3; k++) {
+        if (!all[k]) continue;
+        const ls_stats *a = ls_get_stats(all[k]);
+        s->st.factor_symbolic += a->symbolic;
+        s->st.factor_full += a->factor;
+        s->st.factor_refactor += a->refactor;
+    }
 }
 
 /* ----------------------------------------------------------- initial values ---- */
@@ -611,7 +445,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     for (int i = 0; i < s->n; i++)
         if (!isfinite(y0[i]) || (yp0 && !isfinite(yp0[i])))
             return bg_error_raise(&s->err, BG_ERR_NONFINITE, "dae_init",
-                                  "initial value of %s is not finite", vname(s, i, nb, sizeof nb));
+                                  "initial value of %s is not finite", daei_vname(s, i, nb, sizeof nb));
     memset(&s->st, 0, sizeof s->st);
     s->st.h_min_used = INFINITY;
     s->st.rcond_min = INFINITY;
@@ -648,158 +482,6 @@ int dae_reinit(dae_solver *s, double t, const double *y, const double *yp)
     int r = dae_init(s, t, y, yp);
     if (r == BG_OK) s->st = keep;
     return r;
-}
-
-/* Scaled residual: max_i |F_i| / (1 + sum_j |Jy_ij y_j| + |Jyp_ij yp_j|). Needs Jy, Jyp. */
-static double scaled_residual(dae_solver *s, const double *F, const double *y, const double *yp)
-{
-    double *den = s->tmp2;
-    for (int i = 0; i < s->n; i++) den[i] = 1.0;
-    for (int j = 0; j < s->n; j++) {
-        for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
-            den[s->Jy->rowind[p]] += fabs(s->Jy->val[p] * y[j]);
-        for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++)
-            den[s->Jyp->rowind[p]] += fabs(s->Jyp->val[p] * yp[j]);
-    }
-    double m = 0;
-    for (int i = 0; i < s->n; i++) m = fmax(m, fabs(F[i]) / den[i]);
-    return m;
-}
-
-static int init_fail(dae_solver *s, int code, const char *fmt, const char *what, double v)
-{
-    return bg_error_raise(&s->err, code, "dae_consistent_init", fmt, what, v);
-}
-
-/* Moves the differential variables onto the constraint rows F_C(t, y) = 0. */
-static int project_init(dae_solver *s, double t, double *y, double *yp)
-{
-    double *F = s->res;
-    for (int it = 0; it < 20; it++) {
-        int r = call_res(s, t, y, yp, F, 0);
-        if (r != 0) return r;
-        double fcmax = 0, ymax = 1;
-        for (int i = 0; i < s->n; i++)
-            if (s->rowcons[i]) fcmax = fmax(fcmax, fabs(F[i]));
-        for (int i = 0; i < s->n; i++) ymax = fmax(ymax, fabs(y[i]));
-        if (fcmax <= 1e-14 * ymax) return 0;
-        if ((r = eval_jac(s, t, y, yp, F)) != 0) return r;
-        sp_csc_zero(s->A);
-        for (int p = 0; p < s->Jy->nnz; p++)
-            if (s->aslot[p] >= 0) s->A->val[s->aslot[p]] = s->Jy->val[p];
-        r = aat_factor(s->aat_init, s->A, 0.0);
-        if (r != BG_OK)
-            return bg_error_raise(&s->err, DAE_INIT_FAIL, "dae_consistent_init",
-                                  "constraint rows are dependent: %s",
-                                  aat_get_error(s->aat_init)->message);
-        double *fc = s->tmp, *w = s->delta;
-        int c = 0;
-        for (int i = 0; i < s->n; i++)
-            if (s->rowcons[i]) fc[c++] = F[i];
-        aat_solve(s->aat_init, fc, w);
-        sp_matvec_t(s->A, -1.0, w, 0.0, s->tmp2); /* -A^T w: correction of every column */
-        for (int j = 0; j < s->n; j++)
-            if (s->kind[j] == DAE_DIFF) y[j] += s->tmp2[j];
-    }
-    return bg_error_raise(&s->err, DAE_INIT_FAIL, "dae_consistent_init",
-                          "position projection did not converge in 20 iterations");
-}
-
-int dae_consistent_init(dae_solver *s)
-{
-    const char *w = "dae_consistent_init";
-    if (!s || !s->initialized)
-        return s ? bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first")
-                 : BG_ERR_ARGUMENT;
-    int n = s->n, r;
-    double t = s->tn;
-    double *y = s->y, *yp = s->yp, *F = s->res, *u = s->ee;
-    char nb[32];
-    memcpy(y, s->phi[0], (size_t)n * sizeof *y);
-    memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
-    for (int j = 0; j < n; j++)
-        if (s->kind[j] == DAE_ALG2) yp[j] = 0.0;
-    s->hh = 0;
-    set_weights(s, y);
-    if (s->ncons_rows > 0 && (r = project_init(s, t, y, yp)) != 0) {
-        if (r == DAE_INIT_FAIL) return r;
-        return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
-                         "%s failed during the projection at t = %g", "residual", t);
-    }
-    double dt = cbrt(DBL_EPSILON) * fmax(1.0, fabs(t));
-    double unorm = INFINITY, uprev = INFINITY;
-    for (int it = 0; it < 25; it++) {
-        if ((r = call_res(s, t, y, yp, F, 0)) != 0)
-            return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
-                             "%s failed at t = %g", "residual", t);
-        if ((r = eval_jac(s, t, y, yp, F)) != 0)
-            return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
-                             "%s failed at t = %g", "Jacobian", t);
-        /* constraint rows: d/dt F_i = dF_i/dt + sum_j dF_i/dy_j y'_j */
-        if (s->ncons_rows > 0) {
-            double *fp = s->tmp, *fm = s->delta;
-            if ((r = call_res(s, t + dt, y, yp, fp, 0)) != 0 ||
-                (r = call_res(s, t - dt, y, yp, fm, 0)) != 0)
-                return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
-                                 "%s failed near t = %g", "residual", t);
-            for (int i = 0; i < n; i++)
-                if (s->rowcons[i]) F[i] = (fp[i] - fm[i]) / (2 * dt);
-            for (int j = 0; j < n; j++)
-                if (s->kind[j] == DAE_DIFF)
-                    for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
-                        if (s->rowcons[s->Jy->rowind[p]]) F[s->Jy->rowind[p]] += s->Jy->val[p] * yp[j];
-        }
-        sp_csc_zero(s->K);
-        for (int p = 0; p < s->Jy->nnz; p++)
-            if (s->kslot_y[p] >= 0) s->K->val[s->kslot_y[p]] = s->Jy->val[p];
-        for (int p = 0; p < s->Jyp->nnz; p++)
-            if (s->kslot_yp[p] >= 0) s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
-        double t0 = seconds();
-        r = ls_factor(s->kls, s->K);
-        if (r == BG_OK) {
-            memcpy(u, F, (size_t)n * sizeof *u);
-            r = ls_solve(s->kls, u, 1);
-        }
-        s->st.t_linalg += seconds() - t0;
-        if (r != BG_OK) {
-            int c = ls_singular_col(s->kls);
-            return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
-                                  "the system for y' and the algebraic variables is singular at "
-                                  "t = %g: no equation determines %s%s (%s)",
-                                  t, c >= 0 && s->kind[c] == DAE_DIFF ? "the derivative of " : "",
-                                  vname(s, c, nb, sizeof nb), ls_get_error(s->kls)->message);
-        }
-        uprev = unorm;
-        unorm = 0;
-        for (int j = 0; j < n; j++) {
-            double sc;
-            if (s->kind[j] == DAE_DIFF) {
-                yp[j] -= u[j];
-                sc = 1.0 / (s->o.rtol * fabs(yp[j]) + s->atol[j]);
-            } else {
-                y[j] -= u[j];
-                sc = 1.0 / (s->o.rtol * fabs(y[j]) + s->atol[j]);
-            }
-            unorm = fmax(unorm, fabs(u[j]) * sc);
-        }
-        /* converged: corrections far below the tolerances, or no longer decreasing at the
-         * level of round-off */
-        if (unorm <= 1e-3 || (unorm < 1 && unorm > 0.5 * uprev)) break;
-    }
-    if ((r = call_res(s, t, y, yp, F, 0)) != 0)
-        return init_fail(s, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL, "%s failed at t = %g",
-                         "residual", t);
-    s->st.init_residual = scaled_residual(s, F, y, yp);
-    sync_stats(s);
-    memcpy(s->phi[0], y, (size_t)n * sizeof *y);
-    memcpy(s->phi[1], yp, (size_t)n * sizeof *yp);
-    s->need_setup = 1;
-    if (unorm >= 1 || s->st.init_residual > 1e-8)
-        return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
-                              "Newton iteration for consistent values did not converge at t = %g "
-                              "(scaled residual %.3g)",
-                              t, s->st.init_residual);
-    return BG_OK;
 }
 
 int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y)
@@ -896,19 +578,19 @@ static void predict(dae_solver *s)
 /* Jacobian, scaled Newton matrix, factorization. */
 static int setup(dae_solver *s, double t, const double *F)
 {
-    int r = eval_jac(s, t, s->y, s->yp, F);
+    int r = daei_eval_jac(s, t, s->y, s->yp, F);
     if (r != 0) return r;
-    double t0 = seconds();
+    double t0 = daei_seconds();
     double cj = s->cj;
     sp_union_combine(s->U, s->Jy, 1.0, s->Jyp, cj);
     sp_csc *M = s->U->M;
     for (int j = 0; j < s->n; j++) {
         double cs = s->kind[j] == DAE_ALG2 ? cj : 1.0;
         for (int p = M->colptr[j]; p < M->colptr[j + 1]; p++)
-            M->val[p] *= cs * (s->rowdiff[M->rowind[p]] ? 1.0 / cj : 1.0);
+            M->val[p] *= cs * (s->rowscaled[M->rowind[p]] ? 1.0 / cj : 1.0);
     }
     r = ls_factor(s->ls, M);
-    s->st.t_linalg += seconds() - t0;
+    s->st.t_linalg += daei_seconds() - t0;
     if (r == BG_OK) s->st.rcond_min = fmin(s->st.rcond_min, ls_get_stats(s->ls)->rcond);
     s->cjf = cj;
     s->jac_current = 1;
@@ -922,10 +604,10 @@ static int setup(dae_solver *s, double t, const double *F)
 /* delta = M^-1 F with the scaling of the factored matrix. */
 static int lsolve(dae_solver *s, double *v)
 {
-    double t0 = seconds();
+    double t0 = daei_seconds();
     double cj = s->cjf;
     for (int i = 0; i < s->n; i++)
-        if (s->rowdiff[i]) v[i] /= cj;
+        if (s->rowscaled[i]) v[i] /= cj;
     int r = ls_solve(s->ls, v, 1);
     for (int j = 0; j < s->n; j++)
         if (s->kind[j] == DAE_ALG2) v[j] *= cj;
@@ -934,7 +616,7 @@ static int lsolve(dae_solver *s, double *v)
         for (int j = 0; j < s->n; j++) v[j] *= f;
     }
     s->st.linear_solves++;
-    s->st.t_linalg += seconds() - t0;
+    s->st.t_linalg += daei_seconds() - t0;
     return r;
 }
 
@@ -954,7 +636,7 @@ static int newton(dae_solver *s, double t)
     s->jac_current = 0;
     double oldnrm = 0;
     for (int m = 0; m < s->o.max_newton; m++) {
-        int r = call_res(s, t, s->y, s->yp, s->res, 0);
+        int r = daei_call_res(s, t, s->y, s->yp, s->res, 0);
         if (r < 0) return r;
         if (r > 0) return NL_RES_RECOVER;
         if (s->need_setup) {
@@ -971,7 +653,7 @@ static int newton(dae_solver *s, double t)
             s->yp[i] -= s->cj * s->delta[i];
             s->ee[i] -= s->delta[i];
         }
-        double dn = wrms(s, s->delta, s->wnewt);
+        double dn = daei_wrms(s, s->delta, s->wnewt);
         if (!isfinite(dn)) return NL_RES_RECOVER;
         if (m == 0) {
             oldnrm = dn;
@@ -990,18 +672,18 @@ static int newton(dae_solver *s, double t)
 static int test_error(dae_solver *s)
 {
     int k = s->kk;
-    double enorm_k = wrms(s, s->ee, s->werr);
+    double enorm_k = daei_wrms(s, s->ee, s->werr);
     s->err_k = s->sigma[k] * enorm_k;
     double terr_k = (k + 1) * s->err_k;
     s->knew = k;
     s->err_km1 = 0;
     if (k > 1) {
         for (int i = 0; i < s->n; i++) s->tmp[i] = s->phi[k][i] + s->ee[i];
-        s->err_km1 = s->sigma[k - 1] * wrms(s, s->tmp, s->werr);
+        s->err_km1 = s->sigma[k - 1] * daei_wrms(s, s->tmp, s->werr);
         double terr_km1 = k * s->err_km1;
         if (k > 2) {
             for (int i = 0; i < s->n; i++) s->tmp[i] += s->phi[k - 1][i];
-            double terr_km2 = (k - 1) * s->sigma[k - 2] * wrms(s, s->tmp, s->werr);
+            double terr_km2 = (k - 1) * s->sigma[k - 2] * daei_wrms(s, s->tmp, s->werr);
             if (fmax(terr_km1, terr_km2) <= terr_k) s->knew = k - 1;
         } else if (terr_km1 <= 0.5 * terr_k) {
             s->knew = k - 1;
@@ -1045,7 +727,7 @@ static void complete_step(dae_solver *s)
             action = MAINTAIN;
         else {
             for (int i = 0; i < n; i++) s->tmp[i] = s->ee[i] - s->phi[k + 1][i];
-            err_kp1 = wrms(s, s->tmp, s->werr) / (k + 2);
+            err_kp1 = daei_wrms(s, s->tmp, s->werr) / (k + 2);
             double terr_k = (k + 1) * s->err_k, terr_kp1 = (k + 2) * err_kp1;
             if (k == 1)
                 action = terr_kp1 >= 0.5 * terr_k ? MAINTAIN : RAISE;
@@ -1142,7 +824,7 @@ static int first_step(dae_solver *s, double tout, double hpref)
 {
     double dir = tout >= s->tn ? 1.0 : -1.0;
     s->hh = 0;
-    set_weights(s, s->phi[0]);
+    daei_set_weights(s, s->phi[0]);
     double h;
     if (s->o.h_init > 0)
         h = s->o.h_init;
@@ -1159,7 +841,7 @@ static int first_step(dae_solver *s, double tout, double hpref)
             h = fmin(hpref, tdist);
         } else { /* IDA's rule: the first step changes y by at most half a tolerance unit */
             h = 0.001 * tdist;
-            double ypnorm = wrms(s, s->phi[1], s->werr);
+            double ypnorm = daei_wrms(s, s->phi[1], s->werr);
             if (ypnorm > 0.5 / h) h = 0.5 / ypnorm;
         }
     }
@@ -1201,10 +883,10 @@ static int project_vec(dae_solver *s, double t, double *y)
         if (r != 0)
             return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
                                   "constraint function returned %d at t = %g", r, t);
-        double t0 = seconds();
+        double t0 = daei_seconds();
         r = aat_factor(s->aat_proj, s->G, 0.0);
         if (r == BG_OK) r = aat_solve(s->aat_proj, s->gv, s->gw);
-        s->st.t_linalg += seconds() - t0;
+        s->st.t_linalg += daei_seconds() - t0;
         if (r != BG_OK)
             return bg_error_raise(&s->err, DAE_LSETUP_FAIL, "dae_solve_to",
                                   "projection at t = %g: %s", t,
@@ -1212,7 +894,7 @@ static int project_vec(dae_solver *s, double t, double *y)
         sp_matvec_t(s->G, -1.0, s->gw, 0.0, s->tmp);
         for (int i = 0; i < s->n; i++) y[i] += s->tmp[i];
         s->st.projections++;
-        if (wrms(s, s->tmp, s->ewt) < 1e-6) break;
+        if (daei_wrms(s, s->tmp, s->ewt) < 1e-6) break;
     }
     return BG_OK;
 }
@@ -1243,8 +925,8 @@ static int restart_at_breakpoint(dae_solver *s, double tout)
     if (dae_dense(s, s->tn - hm, NULL, s->tmp) == BG_OK) {
         for (int i = 0; i < s->n; i++) s->tmp[i] = (s->yp[i] - s->tmp[i]) / hm;
         s->hh = 0;
-        set_weights(s, s->y);
-        double ypp = wrms(s, s->tmp, s->werr);
+        daei_set_weights(s, s->y);
+        double ypp = daei_wrms(s, s->tmp, s->werr);
         if (ypp > 0) hpref = fmin(hprev, 0.5 * sqrt(2.0 / ypp));
     }
     memcpy(s->phi[0], s->y, (size_t)s->n * sizeof(double));
@@ -1263,8 +945,8 @@ static int step_once(dae_solver *s)
     int nef = 0, ncf = 0, last_res_fail = 0;
     const char *w = "dae_solve_to";
     clip_to_stop(s);
-    set_weights(s, s->phi[0]);
-    double tolsf = DBL_EPSILON * wrms(s, s->phi[0], s->ewt);
+    daei_set_weights(s, s->phi[0]);
+    double tolsf = DBL_EPSILON * daei_wrms(s, s->phi[0], s->ewt);
     if (tolsf > 1)
         return bg_error_raise(&s->err, DAE_TOO_MUCH_ACC, w,
                               "at t = %g the tolerances are below round-off: increase them by a "
@@ -1285,7 +967,7 @@ static int step_once(dae_solver *s)
                                   "step size %.3g at t = %.17g is below the minimum %.3g "
                                   "(%d error-test and %d Newton failures in this step)",
                                   s->hh, s->tn, hmin, nef, ncf);
-        set_weights(s, s->phi[0]);
+        daei_set_weights(s, s->phi[0]);
         set_coeffs(s);
         predict(s);
         double tnew = landing ? ts : s->tn + s->hh;
@@ -1312,7 +994,7 @@ static int step_once(dae_solver *s)
                 return bg_error_raise(&s->err, DAE_ERR_FAIL, w,
                                       "error test failed %d times at t = %.17g, h = %.3g; the "
                                       "largest weighted error is in %s",
-                                      nef, s->tn, s->hh, vname(s, iv, nb, sizeof nb));
+                                      nef, s->tn, s->hh, daei_vname(s, iv, nb, sizeof nb));
             }
             if (nef == 1) {
                 double ekn = s->kk == s->knew ? s->err_k : s->err_km1;
@@ -1343,7 +1025,7 @@ static int step_once(dae_solver *s)
                 return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w,
                                       "Newton matrix singular at t = %.17g, h = %.3g: column of "
                                       "%s (%s)",
-                                      s->tn, s->hh, vname(s, c, nb, sizeof nb),
+                                      s->tn, s->hh, daei_vname(s, c, nb, sizeof nb),
                                       ls_get_error(s->ls)->message);
             }
             if (last_res_fail)
@@ -1483,7 +1165,7 @@ static int advance(dae_solver *s, double tout, double *tret, double *y, double *
                                   tout, s->tn);
         }
         int r = step_once(s);
-        sync_stats(s);
+        daei_sync_stats(s);
         if (r < 0) {
             output_state(s, s->tn, tret, y, yp);
             return r;

@@ -49,7 +49,8 @@ typedef struct dae_problem {
     dae_jac_fn jac;               /* NULL: coloured finite differences on the patterns */
     const sp_csc *jac_y_pattern;  /* n x n pattern of dF/dy; NULL: dense */
     const sp_csc *jac_yp_pattern; /* n x n pattern of dF/dy'; NULL: dense */
-    const int *kind;              /* n values of dae_var_kind; NULL: all differential */
+    const int *kind;              /* n values of dae_var_kind; NULL: found from the patterns by
+                                     dae_classify (all differential if no patterns are given) */
     const char *const *names;     /* n names for messages; NULL: "y[i]" */
     void *user;
     /* optional position constraints (projection, drift) */
@@ -123,6 +124,16 @@ enum dae_return {
 };
 
 typedef struct dae_solver dae_solver;
+
+/* Structural classification of the unknowns from the patterns of dF/dy and dF/dy'. A variable is
+ * differential if some equation contains its derivative. The algebraic ones are split by the
+ * Dulmage-Mendelsohn decomposition of the algebraic equations (rows without y') against the
+ * algebraic variables (with the differential variables taken as known): a variable in the
+ * under-determined part cannot be found from those equations, only through the derivative of a
+ * constraint, and is index 2 (a constraint effort, or anything that depends on one); the others
+ * are index 1. kind receives n values. Returns the number of index-2 variables, or
+ * BG_ERR_MEMORY. */
+int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind);
 
 /* NULL on failure with the reason in err. The problem's arrays and patterns are copied. */
 dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err);

@@ -1114,6 +1114,149 @@ static void test_conditioning(void)
            rc[0]);
 }
 
+/* ---- hidden constraints, as bond graphs produce them ----
+ * Two masses m1, m2 pushed by a constant force F on mass 1 and joined rigidly, written with the
+ * bond variables a bond-graph compiler generates: momenta p (differential), flows f = p/m
+ * (index 1), efforts e and the constraint force lam. The constraint f1 - f2 = 0 involves
+ * index-1 variables only; lam, e1 and e2 are index 2 without appearing in any row that contains
+ * only differential variables. Closed form: lam = F m2/(m1+m2), e1 = F m1/(m1+m2), and the common
+ * velocity grows as F t/(m1+m2). Unknowns: p1 p2 f1 f2 e1 e2 lam. */
+enum { TM_P1, TM_P2, TM_F1, TM_F2, TM_E1, TM_E2, TM_LAM, TM_N };
+static const double tm_m1 = 2.0, tm_m2 = 3.0, tm_F = 10.0;
+
+static int tm_res(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user, (void)t;
+    F[0] = yp[TM_P1] - y[TM_E1];
+    F[1] = y[TM_F1] - y[TM_P1] / tm_m1;
+    F[2] = yp[TM_P2] - y[TM_E2];
+    F[3] = y[TM_F2] - y[TM_P2] / tm_m2;
+    F[4] = tm_F - y[TM_E1] - y[TM_LAM];
+    F[5] = y[TM_E2] - y[TM_LAM];
+    F[6] = y[TM_F1] - y[TM_F2];
+    return 0;
+}
+
+/* (row, column, value) of dF/dy; dF/dy' is 1 at (0, P1) and (2, P2). */
+static const int tm_jy_ij[][2] = {{0, TM_E1}, {1, TM_F1}, {1, TM_P1}, {2, TM_E2}, {3, TM_F2},
+                                  {3, TM_P2}, {4, TM_E1}, {4, TM_LAM}, {5, TM_E2}, {5, TM_LAM},
+                                  {6, TM_F1}, {6, TM_F2}};
+static const double tm_jy_v[] = {-1, 1, -1 / 2.0, -1, 1, -1 / 3.0, -1, -1, 1, -1, 1, -1};
+
+static int tm_jac(void *user, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp)
+{
+    (void)user, (void)t, (void)y, (void)yp;
+    sp_csc_zero(Jy);
+    for (size_t k = 0; k < sizeof tm_jy_v / sizeof *tm_jy_v; k++)
+        Jy->val[sp_csc_find(Jy, tm_jy_ij[k][0], tm_jy_ij[k][1])] = tm_jy_v[k];
+    for (int p = 0; p < Jyp->nnz; p++) Jyp->val[p] = 1.0;
+    return 0;
+}
+
+static const double *tm_x, *tm_xp;
+static int tm_res_y(void *u, const double *y, double *F) { return tm_res(u, 0, y, tm_xp, F); }
+static int tm_res_yp(void *u, const double *yp, double *F) { return tm_res(u, 0, tm_x, yp, F); }
+
+static void test_hidden_constraint(void)
+{
+    sp_builder *by = sp_builder_create(TM_N, TM_N, 16), *byp = sp_builder_create(TM_N, TM_N, 2);
+    for (size_t k = 0; k < sizeof tm_jy_v / sizeof *tm_jy_v; k++)
+        sp_builder_add(by, tm_jy_ij[k][0], tm_jy_ij[k][1], 0.0);
+    sp_builder_add(byp, 0, TM_P1, 0.0);
+    sp_builder_add(byp, 2, TM_P2, 0.0);
+    sp_csc *Jy = sp_builder_finish(by, NULL), *Jyp = sp_builder_finish(byp, NULL);
+    sp_builder_free(&by);
+    sp_builder_free(&byp);
+
+    /* the Jacobian is right (independent check by central differences) */
+    double x[TM_N] = {1, 2, 3, 4, 5, 6, 7}, xp[TM_N] = {0.5, -1, 0, 0, 0, 0, 0}, ey, eyp;
+    tm_jac(NULL, 0, x, xp, Jy, Jyp);
+    tm_x = x;
+    tm_xp = xp;
+    int ny = sp_jac_check(Jy, tm_res_y, NULL, TM_N, x, 1e-6, 1e-7, NULL, 0, &ey);
+    int nyp = sp_jac_check(Jyp, tm_res_yp, NULL, TM_N, xp, 1e-6, 1e-7, NULL, 0, &eyp);
+    tap_ok(ny == 0 && nyp == 0, "hidden constraint: Jacobians match central differences (%.2g, %.2g)",
+           ey, eyp);
+
+    int kind[TM_N];
+    int n2 = dae_classify(Jy, Jyp, kind);
+    tap_ok(n2 == 3 && kind[TM_P1] == DAE_DIFF && kind[TM_P2] == DAE_DIFF && kind[TM_F1] == DAE_ALG &&
+               kind[TM_F2] == DAE_ALG && kind[TM_E1] == DAE_ALG2 && kind[TM_E2] == DAE_ALG2 &&
+               kind[TM_LAM] == DAE_ALG2,
+           "hidden constraint: classification p:diff, f:index 1, e1 e2 lam:index 2 (%d index-2)",
+           n2);
+    static const char *const tmn[TM_N] = {"p1", "p2", "f1", "f2", "e1", "e2", "lam"};
+    dae_problem p = {0};
+    p.n = TM_N;
+    p.res = tm_res;
+    p.jac = tm_jac;
+    p.jac_y_pattern = Jy;
+    p.jac_yp_pattern = Jyp;
+    p.names = tmn; /* kind NULL: classified by the solver */
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = 1e-8;
+    o.atol = 1e-10;
+    bg_error err = {0};
+    dae_solver *s = dae_create(&p, &o, &err);
+    tap_ok(s != NULL, "hidden constraint: create (%s)", err.message);
+    if (!s) {
+        sp_csc_free(&Jy);
+        sp_csc_free(&Jyp);
+        return;
+    }
+    /* start off the constraint: v1 = 1, v2 = 0.5; everything else wrong */
+    double y0[TM_N] = {2.0, 1.5, 9, 9, 9, 9, 9}, yp0[TM_N] = {0};
+    dae_init(s, 0.0, y0, yp0);
+    int r = dae_consistent_init(s);
+    double y[TM_N], yp[TM_N], t;
+    dae_dense(s, 0.0, y, yp);
+    /* minimum-norm change of (p1, p2) onto p1/m1 = p2/m2 */
+    double g = y0[0] / tm_m1 - y0[1] / tm_m2, a = 1 / tm_m1, b = -1 / tm_m2;
+    double c = g / (a * a + b * b), p1 = y0[0] - c * a, p2 = y0[1] - c * b;
+    double lam = tm_F * tm_m2 / (tm_m1 + tm_m2);
+    /* 1e-9: the algebraic variables carry a 1e-10 weight in the KKT system */
+    tap_ok(r == 0 && fabs(y[TM_P1] - p1) < 1e-9 && fabs(y[TM_P2] - p2) < 1e-9,
+           "hidden constraint: momenta moved by the minimum-norm correction (%.12g, %.12g)",
+           y[TM_P1], y[TM_P2]);
+    tap_ok(r == 0 && fabs(y[TM_LAM] - lam) < 1e-10 &&
+               fabs(y[TM_E1] - tm_F * tm_m1 / (tm_m1 + tm_m2)) < 1e-10,
+           "hidden constraint: lam = F m2/(m1+m2) = %g (got %.15g), e1 = F m1/(m1+m2)", lam,
+           y[TM_LAM]);
+    tap_ok(r == 0 && fabs(yp[TM_F1] - tm_F / (tm_m1 + tm_m2)) < 1e-9,
+           "hidden constraint: index-1 flow derivative f1' = F/(m1+m2) (got %.12g)", yp[TM_F1]);
+    double v0 = p1 / tm_m1;
+    r = dae_solve_to(s, 2.0, &t, y, yp);
+    double v = v0 + tm_F * 2.0 / (tm_m1 + tm_m2);
+    tap_ok(r == DAE_SUCCESS && fabs(y[TM_F1] - v) < 1e-7 && fabs(y[TM_F2] - v) < 1e-7 &&
+               fabs(y[TM_LAM] - lam) < 1e-6,
+           "hidden constraint: at t = 2, v = %.12g (got %.12g, %.12g), lam %.12g", v, y[TM_F1],
+           y[TM_F2], y[TM_LAM]);
+    tap_diag("hidden constraint: %ld steps, %ld error-test failures", dae_get_stats(s)->steps,
+             dae_get_stats(s)->rejected_error);
+    dae_free(&s);
+    sp_csc_free(&Jy);
+    sp_csc_free(&Jyp);
+}
+
+/* dae_classify reproduces the kinds of the problem table from the patterns alone. */
+static void test_classify_table(void)
+{
+    static const char *const names[4] = {"ap102", "pendulum2", "lin2", "robertson"};
+    for (int k = 0; k < 4; k++) {
+        const bp_problem *p = bp_find(names[k]);
+        sp_csc *jy = NULL, *jyp = NULL;
+        int kind[MAXN], same = 1;
+        p->patterns(&jy, &jyp);
+        int n2 = dae_classify(jy, jyp, kind);
+        for (int j = 0; j < p->n; j++) same = same && kind[j] == p->kind[j];
+        tap_ok(n2 >= 0 && same, "classify: %s kinds found from the patterns (%d index 2)",
+               p->name, n2);
+        sp_csc_free(&jy);
+        sp_csc_free(&jyp);
+    }
+}
+
 int main(void)
 {
     /* h for orders 1..5 (index 0 unused), in the asymptotic range (at h = 0.1 BDF5 on lin2 still
@@ -1140,5 +1283,7 @@ int main(void)
     test_stats_output();
     test_roots();
     test_conditioning();
+    test_hidden_constraint();
+    test_classify_table();
     return tap_done();
 }

@@ -1,0 +1,438 @@
+/* Structure analysis and consistent initial values for semi-explicit DAEs of index up to 2.
+ *
+ * Classification (dae_classify). A variable whose derivative appears is differential. The
+ * algebraic equations (rows without y') are matched against the algebraic variables (augmenting
+ * paths, Kuhn's method, iterative); the variables reachable from an unmatched variable along
+ * alternating paths form the under-determined part of the Dulmage-Mendelsohn decomposition (Duff,
+ * Erisman and Reid, Direct Methods for Sparse Matrices, ch. 6). They cannot be computed from the
+ * algebraic equations with the differential variables known: they are fixed only through the
+ * time derivative of a constraint, i.e. they are index-2 unknowns (constraint efforts and every
+ * algebraic variable that depends on one). The rest are index 1.
+ *
+ * Row classes. ROW_DIFF rows contain y'. An algebraic row is ROW_ALG2 if it contains an index-2
+ * unknown, ROW_ALG1 otherwise. ROW_ALG1 rows involve differential and index-1 variables only;
+ * they are the constraints (explicit ones, or hidden behind index-1 variables as in bond graphs:
+ * f1 - f2 = 0 with f = p/m) whose derivative fixes the index-2 unknowns.
+ *
+ * Consistent initial values (dae_consistent_init), in two stages.
+ *  A. The algebraic rows G(y) = 0 (both classes) are solved for y with the smallest change
+ *     (Euclidean norm) of the differential variables: Gauss-Newton steps from the KKT system
+ *         [ D   B^T ] [ dy ]   [  0 ]
+ *         [ B   0   ] [ mu ] = [ -G ],   B = dG/dy,
+ *     D = 1 on differential and 1e-10 on algebraic variables (so that these move freely and the
+ *     system stays regular). With no constraint on the differential variables, they do not move.
+ *     (The error weights would be the obvious scaling, but they make large components cheap to
+ *     move: a pendulum started slightly off its velocity constraint was moved by 0.38 in x.)
+ *  B. With y_D and the index-1 variables fixed, Newton on the square system
+ *         ROW_DIFF and ROW_ALG2 rows:  F_i(t, y, y') = 0,
+ *         ROW_ALG1 rows:               dF_i/dt + sum_j dF_i/dy_j y'_j = 0   (j not index 2),
+ *     for the unknowns y' of the differential and index-1 variables and y of the index-2 ones.
+ *     dF_i/dt is a central difference in t. The second derivatives of F are left out of the
+ *     Jacobian of the differentiated rows (exact for constraints linear in the algebraic
+ *     variables, as junction and velocity constraints are); the Jacobian is evaluated afresh in
+ *     each iteration. The index-1 variables get their y' as a by-product, which starts the BDF
+ *     predictor well.
+ * A model of index higher than 2 leaves stage B singular; the message names the variable. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bg_dae_impl.h"
+
+#define KKT_ALG_WEIGHT 1e-10 /* D on algebraic variables in stage A */
+#define INIT_MAX_ITER 25
+
+/* ------------------------------------------------------------ classification ---- */
+
+int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind)
+{
+    int n = Jy->ncol, nalg2 = 0, ret = BG_ERR_MEMORY;
+    int *rowalg = malloc(((size_t)n + 1) * sizeof *rowalg);
+    int *matchrow = malloc(((size_t)n + 1) * sizeof *matchrow); /* variable matched to row */
+    int *stamp = calloc((size_t)n + 1, sizeof *stamp);
+    int *svar = malloc(((size_t)n + 1) * sizeof *svar), *sp = malloc(((size_t)n + 1) * sizeof *sp);
+    int *srow = malloc(((size_t)n + 1) * sizeof *srow);
+    int *matched = calloc((size_t)n + 1, sizeof *matched);
+    if (!rowalg || !matchrow || !stamp || !svar || !sp || !srow || !matched) goto done;
+    for (int i = 0; i < n; i++) {
+        rowalg[i] = 1;
+        matchrow[i] = -1;
+    }
+    for (int p = 0; p < Jyp->nnz; p++) rowalg[Jyp->rowind[p]] = 0;
+    for (int j = 0; j < n; j++)
+        kind[j] = Jyp->colptr[j + 1] > Jyp->colptr[j] ? DAE_DIFF : DAE_ALG;
+    /* maximum matching of algebraic rows and algebraic variables, one augmenting path search
+     * (depth first, explicit stack) per variable */
+    for (int j0 = 0; j0 < n; j0++) {
+        if (kind[j0] != DAE_ALG) continue;
+        int top = 0, found = 0;
+        svar[0] = j0;
+        sp[0] = Jy->colptr[j0];
+        while (top >= 0 && !found) {
+            int v = svar[top];
+            int pushed = 0;
+            while (sp[top] < Jy->colptr[v + 1]) {
+                int i = Jy->rowind[sp[top]++];
+                if (!rowalg[i] || stamp[i] == j0 + 1) continue;
+                stamp[i] = j0 + 1;
+                srow[top] = i;
+                if (matchrow[i] < 0) {
+                    found = 1;
+                } else {
+                    svar[top + 1] = matchrow[i];
+                    sp[top + 1] = Jy->colptr[matchrow[i]];
+                    top++;
+                    pushed = 1;
+                }
+                break;
+            }
+            if (found) break;
+            if (!pushed && sp[top] >= Jy->colptr[v + 1]) top--;
+        }
+        if (found)
+            for (int k = top; k >= 0; k--) matchrow[srow[k]] = svar[k];
+    }
+    for (int i = 0; i < n; i++)
+        if (matchrow[i] >= 0) matched[matchrow[i]] = 1;
+    /* under-determined part: breadth first from the unmatched algebraic variables */
+    int head = 0, tail = 0;
+    for (int j = 0; j < n; j++)
+        if (kind[j] == DAE_ALG && !matched[j]) {
+            kind[j] = DAE_ALG2;
+            svar[tail++] = j;
+        }
+    while (head < tail) {
+        int v = svar[head++];
+        for (int p = Jy->colptr[v]; p < Jy->colptr[v + 1]; p++) {
+            int i = Jy->rowind[p];
+            if (!rowalg[i]) continue;
+            int w = matchrow[i];
+            if (w >= 0 && kind[w] == DAE_ALG) {
+                kind[w] = DAE_ALG2;
+                svar[tail++] = w;
+            }
+        }
+    }
+    nalg2 = tail;
+    ret = nalg2;
+done:
+    free(rowalg);
+    free(matchrow);
+    free(stamp);
+    free(svar);
+    free(sp);
+    free(srow);
+    free(matched);
+    return ret;
+}
+
+/* ------------------------------------------------------------------- set-up ---- */
+
+void daei_init_free(dae_solver *s)
+{
+    free(s->rowkind);
+    free(s->rowscaled);
+    sp_csc_free(&s->K);
+    free(s->kslot_yp);
+    free(s->kslot_y);
+    ls_free(&s->kls);
+    free(s->arow);
+    sp_csc_free(&s->kkt);
+    free(s->kkt_diag);
+    free(s->kkt_b);
+    free(s->kkt_bt);
+    ls_free(&s->kktls);
+    free(s->kkt_rhs);
+}
+
+/* K: column j is y'_j (differential, index 1) or y_j (index 2). */
+static int build_k(dae_solver *s)
+{
+    int n = s->n, ok = 0;
+    sp_builder *b = sp_builder_create(n, n, s->Jy->nnz + s->Jyp->nnz);
+    int *sy = malloc(((size_t)s->Jy->nnz + 1) * sizeof *sy);
+    int *syp = malloc(((size_t)s->Jyp->nnz + 1) * sizeof *syp);
+    int *slot = NULL;
+    if (!b || !sy || !syp) goto done;
+    for (int j = 0; j < n; j++) {
+        int i2 = s->kind[j] == DAE_ALG2;
+        for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++)
+            syp[p] = sp_builder_add(b, s->Jyp->rowind[p], j, 0.0); /* ROW_DIFF rows only */
+        for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
+            int rk = s->rowkind[s->Jy->rowind[p]];
+            int use = rk == ROW_ALG1 ? !i2 : i2;
+            sy[p] = use ? sp_builder_add(b, s->Jy->rowind[p], j, 0.0) : -1;
+        }
+    }
+    slot = malloc(((size_t)sp_builder_count(b) + 1) * sizeof *slot);
+    if (!slot || !(s->K = sp_builder_finish(b, slot))) goto done;
+    for (int p = 0; p < s->Jy->nnz; p++) s->kslot_y[p] = sy[p] >= 0 ? slot[sy[p]] : -1;
+    for (int p = 0; p < s->Jyp->nnz; p++) s->kslot_yp[p] = slot[syp[p]];
+    ok = 1;
+done:
+    sp_builder_free(&b);
+    free(sy);
+    free(syp);
+    free(slot);
+    return ok;
+}
+
+/* KKT matrix of stage A: n + nalg_rows square. */
+static int build_kkt(dae_solver *s)
+{
+    int n = s->n, N = n + s->nalg_rows, ok = 0;
+    sp_builder *b = sp_builder_create(N, N, n + 2 * s->Jy->nnz);
+    int *slot = NULL;
+    if (!b) goto done;
+    for (int j = 0; j < n; j++) s->kkt_diag[j] = sp_builder_add(b, j, j, 0.0);
+    for (int j = 0; j < n; j++)
+        for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
+            int a = s->arow[s->Jy->rowind[p]];
+            s->kkt_b[p] = a >= 0 ? sp_builder_add(b, n + a, j, 0.0) : -1;
+            s->kkt_bt[p] = a >= 0 ? sp_builder_add(b, j, n + a, 0.0) : -1;
+        }
+    slot = malloc(((size_t)sp_builder_count(b) + 1) * sizeof *slot);
+    if (!slot || !(s->kkt = sp_builder_finish(b, slot))) goto done;
+    for (int j = 0; j < n; j++) s->kkt_diag[j] = slot[s->kkt_diag[j]];
+    for (int p = 0; p < s->Jy->nnz; p++) {
+        if (s->kkt_b[p] >= 0) s->kkt_b[p] = slot[s->kkt_b[p]];
+        if (s->kkt_bt[p] >= 0) s->kkt_bt[p] = slot[s->kkt_bt[p]];
+    }
+    ok = 1;
+done:
+    sp_builder_free(&b);
+    free(slot);
+    return ok;
+}
+
+int daei_init_setup(dae_solver *s, bg_error *err)
+{
+    const char *w = "dae_create";
+    int n = s->n;
+    char nb[32];
+    s->rowkind = calloc((size_t)n, sizeof *s->rowkind);
+    s->rowscaled = calloc((size_t)n, sizeof *s->rowscaled);
+    s->arow = malloc((size_t)n * sizeof *s->arow);
+    s->kslot_y = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->kslot_y);
+    s->kslot_yp = malloc(((size_t)s->Jyp->nnz + 1) * sizeof *s->kslot_yp);
+    if (!s->rowkind || !s->rowscaled || !s->arow || !s->kslot_y || !s->kslot_yp) goto nomem;
+    /* the kinds must fit the patterns */
+    for (int j = 0; j < n; j++) {
+        int has_yp = s->Jyp->colptr[j + 1] > s->Jyp->colptr[j];
+        if (s->kind[j] == DAE_DIFF && !has_yp)
+            return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                                  "%s is declared differential, but no equation contains its "
+                                  "derivative (empty column of dF/dy')",
+                                  daei_vname(s, j, nb, sizeof nb));
+        if (s->kind[j] != DAE_DIFF && has_yp)
+            return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                                  "%s is declared algebraic, but equation %d contains its "
+                                  "derivative",
+                                  daei_vname(s, j, nb, sizeof nb),
+                                  s->Jyp->rowind[s->Jyp->colptr[j]]);
+    }
+    /* row classes */
+    int *touched = calloc((size_t)n, sizeof *touched);
+    if (!touched) goto nomem;
+    for (int p = 0; p < s->Jyp->nnz; p++) touched[s->Jyp->rowind[p]] = 1;
+    for (int i = 0; i < n; i++) s->rowkind[i] = touched[i] ? ROW_DIFF : ROW_ALG1;
+    for (int j = 0; j < n; j++)
+        for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
+            int i = s->Jy->rowind[p];
+            touched[i] = 1;
+            if (s->kind[j] == DAE_ALG2 && s->rowkind[i] == ROW_ALG1) s->rowkind[i] = ROW_ALG2;
+        }
+    for (int i = 0; i < n; i++)
+        if (!touched[i]) {
+            free(touched);
+            return bg_error_raise(err, BG_ERR_PATTERN, w,
+                                  "equation %d depends on no variable (empty row of both "
+                                  "Jacobian patterns)",
+                                  i);
+        }
+    free(touched);
+    s->nalg_rows = s->nalg1_rows = 0;
+    for (int i = 0; i < n; i++) {
+        s->rowscaled[i] = s->rowkind[i] != ROW_ALG1;
+        s->arow[i] = s->rowkind[i] == ROW_DIFF ? -1 : s->nalg_rows++;
+        s->nalg1_rows += s->rowkind[i] == ROW_ALG1;
+    }
+    if (!build_k(s)) goto nomem;
+    if (!(s->kls = ls_create(s->o.linsol, s->K, err))) return BG_ERR_LIBRARY;
+    if (s->nalg_rows > 0) {
+        s->kkt_diag = malloc((size_t)n * sizeof *s->kkt_diag);
+        s->kkt_b = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->kkt_b);
+        s->kkt_bt = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->kkt_bt);
+        s->kkt_rhs = malloc(((size_t)n + s->nalg_rows) * sizeof *s->kkt_rhs);
+        if (!s->kkt_diag || !s->kkt_b || !s->kkt_bt || !s->kkt_rhs || !build_kkt(s)) goto nomem;
+        if (!(s->kktls = ls_create(s->o.linsol, s->kkt, err))) return BG_ERR_LIBRARY;
+    }
+    return BG_OK;
+nomem:
+    return bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory (n = %d)", n);
+}
+
+/* ------------------------------------------------------ consistent values ---- */
+
+/* Scaled residual of row i: |F_i| / (1 + sum_j |Jy_ij y_j| + |Jyp_ij yp_j|), into den. */
+static void row_scales(dae_solver *s, const double *y, const double *yp, double *den)
+{
+    for (int i = 0; i < s->n; i++) den[i] = 1.0;
+    for (int j = 0; j < s->n; j++) {
+        for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
+            den[s->Jy->rowind[p]] += fabs(s->Jy->val[p] * y[j]);
+        for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++)
+            den[s->Jyp->rowind[p]] += fabs(s->Jyp->val[p] * yp[j]);
+    }
+}
+
+static int cb_fail(dae_solver *s, int r, const char *what, double t)
+{
+    return bg_error_raise(&s->err, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
+                          "dae_consistent_init", "the %s failed (status %d) at t = %g", what, r,
+                          t);
+}
+
+/* F and the Jacobians at (t, y, yp). */
+static int eval_all(dae_solver *s, double t, const double *y, const double *yp)
+{
+    int r = daei_call_res(s, t, y, yp, s->res, 0);
+    if (r != 0) return cb_fail(s, r, "residual", t);
+    r = daei_eval_jac(s, t, y, yp, s->res);
+    if (r != 0) return cb_fail(s, r, "Jacobian", t);
+    return BG_OK;
+}
+
+static int factor_solve(dae_solver *s, ls_solver *ls, const sp_csc *M, double *rhs)
+{
+    double t0 = daei_seconds();
+    int r = ls_factor(ls, M);
+    if (r == BG_OK) r = ls_solve(ls, rhs, 1);
+    s->st.t_linalg += daei_seconds() - t0;
+    return r;
+}
+
+/* Stage A: the algebraic rows, moving the differential variables as little as possible. */
+static int stage_a(dae_solver *s, double t, double *y, const double *yp)
+{
+    const char *w = "dae_consistent_init";
+    int n = s->n, r;
+    double *den = s->tmp2, *z = s->kkt_rhs;
+    for (int it = 0;; it++) {
+        if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
+        row_scales(s, y, yp, den);
+        double gmax = 0;
+        int imax = -1;
+        for (int i = 0; i < n; i++)
+            if (s->arow[i] >= 0 && fabs(s->res[i]) / den[i] > gmax) {
+                gmax = fabs(s->res[i]) / den[i];
+                imax = i;
+            }
+        if (gmax <= 10 * DBL_EPSILON) return BG_OK;
+        if (it == INIT_MAX_ITER)
+            return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                                  "the algebraic equations could not be satisfied at t = %g: "
+                                  "equation %d keeps a scaled residual of %.3g",
+                                  t, imax, gmax);
+        sp_csc_zero(s->kkt);
+        for (int j = 0; j < n; j++)
+            s->kkt->val[s->kkt_diag[j]] = s->kind[j] == DAE_DIFF ? 1.0 : KKT_ALG_WEIGHT;
+        for (int j = 0; j < n; j++)
+            for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
+                if (s->kkt_b[p] >= 0) {
+                    s->kkt->val[s->kkt_b[p]] = s->Jy->val[p];
+                    s->kkt->val[s->kkt_bt[p]] = s->Jy->val[p];
+                }
+        for (int j = 0; j < n; j++) z[j] = 0.0;
+        for (int i = 0; i < n; i++)
+            if (s->arow[i] >= 0) z[n + s->arow[i]] = -s->res[i];
+        if ((r = factor_solve(s, s->kktls, s->kkt, z)) != BG_OK)
+            return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                                  "the algebraic equations are dependent or contradict each other "
+                                  "at t = %g (%s)",
+                                  t, ls_get_error(s->kktls)->message);
+        for (int j = 0; j < n; j++) y[j] += z[j];
+    }
+}
+
+int dae_consistent_init(dae_solver *s)
+{
+    const char *w = "dae_consistent_init";
+    if (!s || !s->initialized)
+        return s ? bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first")
+                 : BG_ERR_ARGUMENT;
+    int n = s->n, r;
+    double t = s->tn;
+    double *y = s->y, *yp = s->yp, *F = s->res, *u = s->ee;
+    char nb[32];
+    memcpy(y, s->phi[0], (size_t)n * sizeof *y);
+    memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
+    for (int j = 0; j < n; j++)
+        if (s->kind[j] == DAE_ALG2) yp[j] = 0.0;
+    s->hh = 0;
+    daei_set_weights(s, y);
+    if (s->nalg_rows > 0 && (r = stage_a(s, t, y, yp)) != BG_OK) return r;
+
+    /* stage B */
+    double dt = cbrt(DBL_EPSILON) * fmax(1.0, fabs(t));
+    double unorm = INFINITY, uprev = INFINITY;
+    for (int it = 0; it < INIT_MAX_ITER; it++) {
+        if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
+        if (s->nalg1_rows > 0) { /* differentiated rows: dF_i/dt + sum_j dF_i/dy_j y'_j */
+            double *fp = s->tmp, *fm = s->delta;
+            if ((r = daei_call_res(s, t + dt, y, yp, fp, 0)) != 0 ||
+                (r = daei_call_res(s, t - dt, y, yp, fm, 0)) != 0)
+                return cb_fail(s, r, "residual", t);
+            for (int i = 0; i < n; i++)
+                if (s->rowkind[i] == ROW_ALG1) F[i] = (fp[i] - fm[i]) / (2 * dt);
+            for (int j = 0; j < n; j++)
+                if (s->kind[j] != DAE_ALG2)
+                    for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
+                        if (s->rowkind[s->Jy->rowind[p]] == ROW_ALG1)
+                            F[s->Jy->rowind[p]] += s->Jy->val[p] * yp[j];
+        }
+        sp_csc_zero(s->K);
+        for (int p = 0; p < s->Jy->nnz; p++)
+            if (s->kslot_y[p] >= 0) s->K->val[s->kslot_y[p]] = s->Jy->val[p];
+        for (int p = 0; p < s->Jyp->nnz; p++) s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
+        memcpy(u, F, (size_t)n * sizeof *u);
+        if ((r = factor_solve(s, s->kls, s->K, u)) != BG_OK) {
+            int c = ls_singular_col(s->kls);
+            return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                                  "the equations for the derivatives and the index-2 unknowns are "
+                                  "singular at t = %g: nothing determines %s%s%s (%s)",
+                                  t, c >= 0 && s->kind[c] != DAE_ALG2 ? "the derivative of " : "",
+                                  daei_vname(s, c, nb, sizeof nb),
+                                  c >= 0 && s->kind[c] == DAE_ALG2
+                                      ? "; is it really index 2, and is the index at most 2?"
+                                      : "",
+                                  ls_get_error(s->kls)->message);
+        }
+        uprev = unorm;
+        unorm = 0;
+        for (int j = 0; j < n; j++) {
+            double *v = s->kind[j] == DAE_ALG2 ? &y[j] : &yp[j];
+            *v -= u[j];
+            unorm = fmax(unorm, fabs(u[j]) / (s->o.rtol * fabs(*v) + s->atol[j]));
+        }
+        /* converged: corrections far below the tolerances, or no longer decreasing at the
+         * level of round-off */
+        if (unorm <= 1e-3 || (unorm < 1 && unorm > 0.5 * uprev)) break;
+    }
+    if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
+    row_scales(s, y, yp, s->tmp2);
+    double m = 0;
+    for (int i = 0; i < n; i++) m = fmax(m, fabs(F[i]) / s->tmp2[i]);
+    s->st.init_residual = m;
+    daei_sync_stats(s);
+    memcpy(s->phi[0], y, (size_t)n * sizeof *y);
+    memcpy(s->phi[1], yp, (size_t)n * sizeof *yp);
+    s->need_setup = 1;
+    if (unorm >= 1 || m > 1e-8)
+        return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                              "Newton iteration for consistent values did not converge at t = %g "
+                              "(scaled residual %.3g)",
+                              t, m);
+    return BG_OK;
+}
