@@ -1,0 +1,65 @@
+/* The standard bond-graph elements, in d dimensions (the d components of a bond are independent
+ * unless a matrix couples them). Sign convention: power is positive into one-port elements
+ * (I, C, R) and out of sources (Se, Sf); an element whose bond points the other way sees the
+ * flow with the opposite sign. TF and GY take power in at port 0 and give it out at port 1.
+ * Junctions accept any orientation: s_k = +1 for a bond ending at the junction, -1 otherwise.
+ *
+ *   I   states p:  p' = e,            M f_in = p    (M = m I or a d x d matrix; or f = phi(p))
+ *   C   states q:  q' = f_in,         e = k q       (or e = psi(q))
+ *   R               e = r f_in                      (or e = phi(f_in))
+ *   Se              e = E             (constant vector, function of t, or a signal)
+ *   Sf              f_out = F         (idem; F = 0 makes the effort a constraint effort)
+ *   TF              e0 = m e1,        f1_out = m f0_in     (m constant or a signal)
+ *   GY              e0 = r f1_out,    e1 = r f0_in
+ *   0-junction      e_k = e_0 (k > 0),  sum_k s_k f_k = 0
+ *   1-junction      f_k = f_0 (k > 0),  sum_k s_k e_k = 0
+ *   gain (signal)   z = g x             (x any unknown: a sensor, or a signal path)
+ * TF, GY and the junctions conserve power exactly: sum of e.f over their ports is zero.
+ *
+ * Every constructor returns the element id (>= 0) or a negative status with the message in the
+ * model's error record; ports are numbered 0, 1, ... as listed. */
+#ifndef BGR_ELEMENTS_H
+#define BGR_ELEMENTS_H
+
+#include "bgr_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* y = f(x) with dy/dx into *dfdx. */
+typedef double (*bgr_fn)(void *user, double x, double *dfdx);
+/* A function of time. */
+typedef double (*bgr_time_fn)(void *user, double t);
+
+int bgr_I(bgr_model *m, bgr_comp c, const char *name, int d, double mass);
+/* M: d x d, column-major, symmetric positive definite. */
+int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double *M);
+int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
+int bgr_C(bgr_model *m, bgr_comp c, const char *name, int d, double stiffness);
+int bgr_C_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn psi, void *user);
+int bgr_R(bgr_model *m, bgr_comp c, const char *name, int d, double resistance);
+int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
+/* value: d constants (NULL: zeros). */
+int bgr_Se(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
+int bgr_Se_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
+int bgr_Se_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
+int bgr_Sf(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
+int bgr_Sf_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
+int bgr_Sf_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
+int bgr_TF(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
+int bgr_TF_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref modulus);
+int bgr_GY(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
+int bgr_zero(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
+int bgr_one(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
+/* Signal z = gain * x; its output is bgr_ref {BGR_OWN, id, 0}. */
+int bgr_gain(bgr_model *m, bgr_comp c, const char *name, bgr_ref x, double gain);
+
+/* The classes themselves, for bgr_element_add by hand. */
+extern const bgr_element_class bgr_class_I, bgr_class_C, bgr_class_R, bgr_class_Se,
+    bgr_class_Sf, bgr_class_TF, bgr_class_GY, bgr_class_zero, bgr_class_one, bgr_class_gain;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,845 @@
+/* The bond-graph model: components, elements, ports and bonds; compilation into numbered,
+ * named unknowns and equations with Jacobian patterns and slots; the residual and Jacobian
+ * callbacks; statistics, listings and the Jacobian check (see bgr_model.h). */
+#include "bgr_model.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bg_fdjac.h"
+
+typedef struct comp_rec {
+    char *name, *path;
+    int parent;
+} comp_rec;
+
+typedef struct export_rec {
+    int comp;
+    char *name;
+    bgr_port port;
+} export_rec;
+
+typedef struct bond_rec {
+    char *name;
+    int comp, d, var0;
+    bgr_port a, b;
+    char **elab, **flab;
+} bond_rec;
+
+typedef struct dep_rec {
+    int eq, var, wrt_yp;
+} dep_rec;
+
+struct bgr_model {
+    bg_error err;
+    comp_rec *comp;
+    int ncomp, capcomp;
+    export_rec *exp;
+    int nexp, capexp;
+    bgr_element **el;
+    int nel, capel;
+    bond_rec *bond;
+    int nbond, capbond;
+    char **state_names, **alg_names; /* per element, flattened later */
+    /* compiled */
+    int compiled, n, neq_declared;
+    char **vname, **ename;
+    int *eq_owner;
+    int *kind, *declared_i2;
+    double *y0, *yp0;
+    dep_rec *dep;
+    int ndep, capdep;
+    sp_csc *Jy, *Jyp;
+    int *slot;
+    double *vals;
+    /* per element own unknown names (kept until compile) */
+    char ***el_state_names, ***el_alg_names;
+    /* for the Jacobian check */
+    double ck_t;
+    const double *ck_y, *ck_yp;
+};
+
+static int fail(bgr_model *m, int status, const char *where, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    bg_error_vraise(&m->err, status, where, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+static char *dupstr(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+static char *join(const char *a, const char *b)
+{
+    size_t na = strlen(a), nb = strlen(b);
+    char *d = malloc(na + nb + 2);
+    if (!d) return NULL;
+    memcpy(d, a, na);
+    d[na] = na ? '/' : '\0';
+    memcpy(d + na + (na ? 1 : 0), b, nb + 1);
+    return d;
+}
+
+/* Grows *arr (elements of size sz) to hold n+1 items. */
+static int reserve(void **arr, int *cap, int n, size_t sz)
+{
+    if (n < *cap) return 1;
+    int nc = *cap ? 2 * *cap : 16;
+    void *p = realloc(*arr, (size_t)nc * sz);
+    if (!p) return 0;
+    *arr = p;
+    *cap = nc;
+    return 1;
+}
+
+static int valid_name(const char *s) { return s && *s && !strchr(s, '/'); }
+
+bgr_model *bgr_model_create(const char *name)
+{
+    bgr_model *m = calloc(1, sizeof *m);
+    if (!m) return NULL;
+    if (!reserve((void **)&m->comp, &m->capcomp, 0, sizeof *m->comp) ||
+        !(m->comp[0].name = dupstr(name && *name ? name : "model")) ||
+        !(m->comp[0].path = dupstr(m->comp[0].name))) {
+        bgr_model_free(&m);
+        return NULL;
+    }
+    m->comp[0].parent = -1;
+    m->ncomp = 1;
+    return m;
+}
+
+static void free_strs(char **v, int n)
+{
+    if (!v) return;
+    for (int i = 0; i < n; i++) free(v[i]);
+    free(v);
+}
+
+void bgr_model_free(bgr_model **mp)
+{
+    if (!mp || !*mp) return;
+    bgr_model *m = *mp;
+    for (int c = 0; c < m->ncomp; c++) {
+        free(m->comp[c].name);
+        free(m->comp[c].path);
+    }
+    free(m->comp);
+    for (int e = 0; e < m->nexp; e++) free(m->exp[e].name);
+    free(m->exp);
+    for (int i = 0; i < m->nel; i++) {
+        bgr_element *el = m->el[i];
+        if (el->cls && el->cls->destroy) el->cls->destroy(el->params);
+        free(el->bond);
+        free(el->sign);
+        free(el->dim);
+        free(el->name);
+        free_strs(m->el_state_names[i], el->nstates);
+        free_strs(m->el_alg_names[i], el->nalg);
+        free(el);
+    }
+    free(m->el);
+    free(m->el_state_names);
+    free(m->el_alg_names);
+    for (int b = 0; b < m->nbond; b++) {
+        free(m->bond[b].name);
+        free_strs(m->bond[b].elab, m->bond[b].d);
+        free_strs(m->bond[b].flab, m->bond[b].d);
+    }
+    free(m->bond);
+    free_strs(m->vname, m->n);
+    free_strs(m->ename, m->n);
+    free(m->eq_owner);
+    free(m->kind);
+    free(m->declared_i2);
+    free(m->y0);
+    free(m->yp0);
+    free(m->dep);
+    sp_csc_free(&m->Jy);
+    sp_csc_free(&m->Jyp);
+    free(m->slot);
+    free(m->vals);
+    free(m);
+    *mp = NULL;
+}
+
+const bg_error *bgr_model_error(const bgr_model *m) { return &m->err; }
+bg_error *bgr_model_error_mut(bgr_model *m) { return &m->err; }
+
+static int check_building(bgr_model *m, const char *where)
+{
+    if (m->compiled != 0)
+        return fail(m, BG_ERR_ARGUMENT, where, "the model is compiled: no more changes");
+    return BG_OK;
+}
+
+bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name)
+{
+    const char *w = "bgr_component";
+    if (check_building(m, w)) return BG_ERR_ARGUMENT;
+    if (parent < 0 || parent >= m->ncomp)
+        return fail(m, BG_ERR_ARGUMENT, w, "parent component %d does not exist", parent);
+    if (!valid_name(name))
+        return fail(m, BG_ERR_ARGUMENT, w, "component name '%s' in %s must be non-empty, no '/'",
+                    name ? name : "(null)", m->comp[parent].path);
+    for (int c = 1; c < m->ncomp; c++)
+        if (m->comp[c].parent == parent && !strcmp(m->comp[c].name, name))
+            return fail(m, BG_ERR_ARGUMENT, w, "component %s/%s exists already",
+                        m->comp[parent].path, name);
+    if (!reserve((void **)&m->comp, &m->capcomp, m->ncomp, sizeof *m->comp))
+        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    comp_rec *r = &m->comp[m->ncomp];
+    r->name = dupstr(name);
+    r->path = join(m->comp[parent].path, name);
+    r->parent = parent;
+    if (!r->name || !r->path) {
+        free(r->name);
+        free(r->path);
+        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    }
+    return m->ncomp++;
+}
+
+const char *bgr_component_path(const bgr_model *m, bgr_comp c)
+{
+    return c >= 0 && c < m->ncomp ? m->comp[c].path : NULL;
+}
+
+static char **copy_names(const char *const *src, int n, const char *prefix)
+{
+    char **v = calloc((size_t)n + 1, sizeof *v);
+    if (!v) return NULL;
+    for (int i = 0; i < n; i++) {
+        char buf[32];
+        snprintf(buf, sizeof buf, "%s%d", prefix, i);
+        v[i] = dupstr(src && src[i] ? src[i] : buf);
+        if (!v[i]) {
+            free_strs(v, n);
+            return NULL;
+        }
+    }
+    return v;
+}
+
+int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls,
+                    void *params, int nports, const int *dims, int nstates,
+                    const char *const *state_names, int nalg, const char *const *alg_names)
+{
+    const char *w = "bgr_element_add";
+    int st = check_building(m, w);
+    if (!st && (c < 0 || c >= m->ncomp))
+        st = fail(m, BG_ERR_ARGUMENT, w, "component %d does not exist", c);
+    if (!st && !valid_name(name))
+        st = fail(m, BG_ERR_ARGUMENT, w, "element name '%s' in %s must be non-empty, no '/'",
+                  name ? name : "(null)", m->comp[c].path);
+    if (!st && (!cls || !cls->declare || !cls->residual || !cls->jacobian))
+        st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: incomplete element class",
+                  m->comp[c].path, name);
+    if (!st && (nports < 0 || nstates < 0 || nalg < 0))
+        st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: negative count", m->comp[c].path, name);
+    for (int i = 0; !st && i < m->nel; i++)
+        if (m->el[i]->comp == c && !strcmp(m->el[i]->name, name))
+            st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s exists already", m->comp[c].path,
+                      name);
+    if (!st && (!reserve((void **)&m->el, &m->capel, m->nel, sizeof *m->el) ||
+                !(m->el_state_names = realloc(m->el_state_names,
+                                              (size_t)m->capel * sizeof *m->el_state_names)) ||
+                !(m->el_alg_names =
+                      realloc(m->el_alg_names, (size_t)m->capel * sizeof *m->el_alg_names))))
+        st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+    bgr_element *el = st ? NULL : calloc(1, sizeof *el);
+    if (!st && !el) st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+    if (st) {
+        if (cls && cls->destroy) cls->destroy(params);
+        return st;
+    }
+    el->cls = cls;
+    el->params = params;
+    el->id = m->nel;
+    el->comp = c;
+    el->nports = nports;
+    el->nstates = nstates;
+    el->nalg = nalg;
+    el->name = dupstr(name);
+    el->bond = malloc(((size_t)nports + 1) * sizeof *el->bond);
+    el->sign = calloc((size_t)nports + 1, sizeof *el->sign);
+    el->dim = calloc((size_t)nports + 1, sizeof *el->dim);
+    char **sn = copy_names(state_names, nstates, "x");
+    char **an = copy_names(alg_names, nalg, "z");
+    if (!el->name || !el->bond || !el->sign || !el->dim || !sn || !an) {
+        if (cls->destroy) cls->destroy(params);
+        free(el->name);
+        free(el->bond);
+        free(el->sign);
+        free(el->dim);
+        free_strs(sn, nstates);
+        free_strs(an, nalg);
+        free(el);
+        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    }
+    for (int k = 0; k < nports; k++) {
+        el->bond[k] = -1;
+        el->dim[k] = dims ? dims[k] : 0;
+    }
+    m->el[m->nel] = el;
+    m->el_state_names[m->nel] = sn;
+    m->el_alg_names[m->nel] = an;
+    return m->nel++;
+}
+
+bgr_port bgr_port_of(const bgr_model *m, int elem, int port)
+{
+    bgr_port p = {-1, -1};
+    if (elem >= 0 && elem < m->nel && port >= 0 && port < m->el[elem]->nports) {
+        p.elem = elem;
+        p.port = port;
+    }
+    return p;
+}
+
+bgr_element *bgr_element_get(bgr_model *m, int elem)
+{
+    return elem >= 0 && elem < m->nel ? m->el[elem] : NULL;
+}
+
+static char *elem_path(const bgr_model *m, const bgr_element *el)
+{
+    return join(m->comp[el->comp].path, el->name);
+}
+
+int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner)
+{
+    const char *w = "bgr_export";
+    if (check_building(m, w)) return BG_ERR_ARGUMENT;
+    if (c < 0 || c >= m->ncomp || !valid_name(name))
+        return fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or port name '%s'", c,
+                    name ? name : "(null)");
+    if (inner.elem < 0)
+        return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s: the inner port is invalid",
+                    m->comp[c].path, name);
+    for (int e = 0; e < m->nexp; e++)
+        if (m->exp[e].comp == c && !strcmp(m->exp[e].name, name))
+            return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s exists already", m->comp[c].path,
+                        name);
+    if (!reserve((void **)&m->exp, &m->capexp, m->nexp, sizeof *m->exp))
+        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    m->exp[m->nexp].comp = c;
+    m->exp[m->nexp].port = inner;
+    if (!(m->exp[m->nexp].name = dupstr(name))) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    m->nexp++;
+    return BG_OK;
+}
+
+bgr_port bgr_comp_port(const bgr_model *m, bgr_comp c, const char *name)
+{
+    bgr_port none = {-1, -1};
+    for (int e = 0; e < m->nexp; e++)
+        if (m->exp[e].comp == c && name && !strcmp(m->exp[e].name, name)) return m->exp[e].port;
+    return none;
+}
+
+static const char *port_desc(const bgr_model *m, bgr_port p, char *buf, size_t size)
+{
+    if (p.elem < 0 || p.elem >= m->nel) {
+        snprintf(buf, size, "(invalid port)");
+        return buf;
+    }
+    const bgr_element *el = m->el[p.elem];
+    snprintf(buf, size, "%s/%s port %d", m->comp[el->comp].path, el->name, p.port);
+    return buf;
+}
+
+int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_port b,
+             const char *const *effort_labels, const char *const *flow_labels)
+{
+    const char *w = "bgr_bond";
+    char ba[256], bb[256];
+    if (check_building(m, w)) return BG_ERR_ARGUMENT;
+    if (c < 0 || c >= m->ncomp || !valid_name(name))
+        return fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or bond name '%s'", c,
+                    name ? name : "(null)");
+    if (d < 1)
+        return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: dimension %d, expected >= 1",
+                    m->comp[c].path, name, d);
+    bgr_port ends[2] = {a, b};
+    for (int k = 0; k < 2; k++) {
+        bgr_port p = ends[k];
+        if (p.elem < 0 || p.elem >= m->nel || p.port < 0 || p.port >= m->el[p.elem]->nports)
+            return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: its %s port is invalid",
+                        m->comp[c].path, name, k ? "end" : "start");
+        bgr_element *el = m->el[p.elem];
+        if (el->bond[p.port] >= 0)
+            return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: %s is already joined by bond %s",
+                        m->comp[c].path, name, port_desc(m, p, ba, sizeof ba),
+                        m->bond[el->bond[p.port]].name);
+        if (el->dim[p.port] && el->dim[p.port] != d)
+            return fail(m, BG_ERR_ARGUMENT, w,
+                        "bond %s/%s has dimension %d, but %s needs dimension %d",
+                        m->comp[c].path, name, d, port_desc(m, p, ba, sizeof ba),
+                        el->dim[p.port]);
+    }
+    if (a.elem == b.elem && a.port == b.port)
+        return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s joins %s to itself", m->comp[c].path,
+                    name, port_desc(m, a, ba, sizeof ba));
+    for (int i = 0; i < m->nbond; i++)
+        if (m->bond[i].comp == c && !strcmp(m->bond[i].name, name))
+            return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s exists already (%s -> %s)",
+                        m->comp[c].path, name, port_desc(m, a, ba, sizeof ba),
+                        port_desc(m, b, bb, sizeof bb));
+    if (!reserve((void **)&m->bond, &m->capbond, m->nbond, sizeof *m->bond))
+        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    bond_rec *r = &m->bond[m->nbond];
+    memset(r, 0, sizeof *r);
+    r->comp = c;
+    r->d = d;
+    r->a = a;
+    r->b = b;
+    r->name = dupstr(name);
+    r->elab = copy_names(effort_labels, d, d == 1 ? "e" : "e");
+    r->flab = copy_names(flow_labels, d, d == 1 ? "f" : "f");
+    if (!r->name || !r->elab || !r->flab) {
+        free(r->name);
+        free_strs(r->elab, d);
+        free_strs(r->flab, d);
+        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    }
+    if (d == 1) { /* plain "e" and "f" when not labelled */
+        if (!effort_labels) r->elab[0][1] = '\0';
+        if (!flow_labels) r->flab[0][1] = '\0';
+    }
+    m->el[a.elem]->bond[a.port] = m->nbond;
+    m->el[a.elem]->sign[a.port] = BGR_OUT;
+    m->el[b.elem]->bond[b.port] = m->nbond;
+    m->el[b.elem]->sign[b.port] = BGR_IN;
+    return m->nbond++;
+}
+
+/* ---- used by the element classes ---- */
+
+int bgr_ev(const bgr_element *el, const bgr_model *m, int k, int i)
+{
+    return m->bond[el->bond[k]].var0 + i;
+}
+
+int bgr_fv(const bgr_element *el, const bgr_model *m, int k, int i)
+{
+    const bond_rec *b = &m->bond[el->bond[k]];
+    return b->var0 + b->d + i;
+}
+
+int bgr_ref_var(const bgr_model *m, bgr_ref r)
+{
+    if (m->n == 0) return -1; /* not numbered yet */
+    switch (r.type) {
+    case BGR_EFFORT:
+    case BGR_FLOW:
+        if (r.id < 0 || r.id >= m->nbond || r.i < 0 || r.i >= m->bond[r.id].d) return -1;
+        return m->bond[r.id].var0 + (r.type == BGR_FLOW ? m->bond[r.id].d : 0) + r.i;
+    case BGR_STATE:
+        if (r.id < 0 || r.id >= m->nel || r.i < 0 || r.i >= m->el[r.id]->nstates) return -1;
+        return m->el[r.id]->state0 + r.i;
+    case BGR_OWN:
+        if (r.id < 0 || r.id >= m->nel || r.i < 0 || r.i >= m->el[r.id]->nalg) return -1;
+        return m->el[r.id]->alg0 + r.i;
+    }
+    return -1;
+}
+
+int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k)
+{
+    return el->bond[k] >= 0 ? m->bond[el->bond[k]].d : el->dim[k];
+}
+
+int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels)
+{
+    char *path = elem_path(m, el);
+    if (!path) return fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
+    el->neq = neq;
+    el->eq0 = m->neq_declared;
+    for (int k = 0; k < neq; k++) {
+        int row = m->neq_declared + k;
+        if (row >= m->n) {
+            fail(m, BG_ERR_PATTERN, "bgr_compile",
+                 "element %s declares more equations than there are unknowns", path);
+            free(path);
+            return BG_ERR_PATTERN;
+        }
+        char buf[32];
+        snprintf(buf, sizeof buf, "eq%d", k);
+        m->ename[row] = join(path, labels && labels[k] ? labels[k] : buf);
+        m->eq_owner[row] = el->id;
+        if (!m->ename[row]) {
+            free(path);
+            return fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
+        }
+    }
+    m->neq_declared += neq;
+    free(path);
+    return BG_OK;
+}
+
+int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp)
+{
+    if (k < 0 || k >= el->neq || var < 0 || var >= m->n)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                    "element %s/%s declares a dependency of equation %d on variable %d: out of "
+                    "range",
+                    m->comp[el->comp].path, el->name, k, var);
+    if (!reserve((void **)&m->dep, &m->capdep, m->ndep, sizeof *m->dep))
+        return fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
+    m->dep[m->ndep].eq = el->eq0 + k;
+    m->dep[m->ndep].var = var;
+    m->dep[m->ndep].wrt_yp = wrt_yp != 0;
+    m->ndep++;
+    el->ndep++;
+    return BG_OK;
+}
+
+int bgr_declare_index2(bgr_element *el, bgr_model *m, int var)
+{
+    if (var < el->alg0 || var >= el->alg0 + el->nalg)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                    "element %s/%s: only its own algebraic unknowns can be declared index 2",
+                    m->comp[el->comp].path, el->name);
+    m->declared_i2[var] = 1;
+    return BG_OK;
+}
+
+/* ---- compilation ---- */
+
+static int alloc_compiled(bgr_model *m)
+{
+    size_t n = (size_t)m->n + 1;
+    m->vname = calloc(n, sizeof *m->vname);
+    m->ename = calloc(n, sizeof *m->ename);
+    m->eq_owner = malloc(n * sizeof *m->eq_owner);
+    m->kind = malloc(n * sizeof *m->kind);
+    m->declared_i2 = calloc(n, sizeof *m->declared_i2);
+    m->y0 = calloc(n, sizeof *m->y0);
+    m->yp0 = calloc(n, sizeof *m->yp0);
+    return m->vname && m->ename && m->eq_owner && m->kind && m->declared_i2 && m->y0 && m->yp0;
+}
+
+static int name_variables(bgr_model *m)
+{
+    for (int b = 0; b < m->nbond; b++) {
+        bond_rec *r = &m->bond[b];
+        char *bp = join(m->comp[r->comp].path, r->name);
+        if (!bp) return 0;
+        for (int i = 0; i < r->d; i++) {
+            m->vname[r->var0 + i] = join(bp, r->elab[i]);
+            m->vname[r->var0 + r->d + i] = join(bp, r->flab[i]);
+            if (!m->vname[r->var0 + i] || !m->vname[r->var0 + r->d + i]) {
+                free(bp);
+                return 0;
+            }
+        }
+        free(bp);
+    }
+    for (int e = 0; e < m->nel; e++) {
+        bgr_element *el = m->el[e];
+        char *ep = elem_path(m, el);
+        if (!ep) return 0;
+        for (int i = 0; i < el->nstates; i++)
+            if (!(m->vname[el->state0 + i] = join(ep, m->el_state_names[e][i]))) {
+                free(ep);
+                return 0;
+            }
+        for (int i = 0; i < el->nalg; i++)
+            if (!(m->vname[el->alg0 + i] = join(ep, m->el_alg_names[e][i]))) {
+                free(ep);
+                return 0;
+            }
+        free(ep);
+    }
+    return 1;
+}
+
+static int compile(bgr_model *m);
+
+int bgr_compile(bgr_model *m)
+{
+    if (m->compiled > 0)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_compile", "the model is compiled already");
+    if (m->compiled < 0)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                    "an earlier compilation failed; build the model again");
+    int st = compile(m);
+    m->compiled = st == BG_OK ? 1 : -1;
+    return st;
+}
+
+static int compile(bgr_model *m)
+{
+    const char *w = "bgr_compile";
+    char buf[256];
+    /* every port joined, with the dimension it needs */
+    for (int e = 0; e < m->nel; e++)
+        for (int k = 0; k < m->el[e]->nports; k++)
+            if (m->el[e]->bond[k] < 0)
+                return fail(m, BG_ERR_PATTERN, w, "%s is not joined by any bond",
+                            port_desc(m, bgr_port_of(m, e, k), buf, sizeof buf));
+    /* number the unknowns: bonds (e then f), then states, then own algebraic unknowns */
+    int n = 0;
+    for (int b = 0; b < m->nbond; b++) {
+        m->bond[b].var0 = n;
+        n += 2 * m->bond[b].d;
+    }
+    for (int e = 0; e < m->nel; e++) {
+        m->el[e]->state0 = n;
+        n += m->el[e]->nstates;
+    }
+    for (int e = 0; e < m->nel; e++) {
+        m->el[e]->alg0 = n;
+        n += m->el[e]->nalg;
+    }
+    if (n == 0) return fail(m, BG_ERR_ARGUMENT, w, "model %s has no unknowns", m->comp[0].path);
+    m->n = n;
+    if (!alloc_compiled(m) || !name_variables(m)) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    /* equations and dependencies */
+    for (int e = 0; e < m->nel; e++) {
+        bgr_element *el = m->el[e];
+        int expect = el->nstates + el->nalg;
+        for (int k = 0; k < el->nports; k++) expect += bgr_port_dim(el, m, k);
+        el->dep0 = m->ndep;
+        el->ndep = 0;
+        int st = el->cls->declare(el, m);
+        if (st != BG_OK) return st;
+        if (el->neq != expect)
+            return fail(m, BG_ERR_PATTERN, w,
+                        "element %s/%s (%s) declares %d equations; it needs one per port "
+                        "component and one per own unknown: %d",
+                        m->comp[el->comp].path, el->name, el->cls->type, el->neq, expect);
+    }
+    if (m->neq_declared != n)
+        return fail(m, BG_ERR_PATTERN, w, "%d equations for %d unknowns", m->neq_declared, n);
+    /* patterns and slots */
+    sp_builder *by = sp_builder_create(n, n, m->ndep), *byp = sp_builder_create(n, n, n);
+    int *ky = malloc(((size_t)m->ndep + 1) * sizeof *ky);
+    int *sy = NULL, *syp = NULL;
+    m->slot = malloc(((size_t)m->ndep + 1) * sizeof *m->slot);
+    m->vals = calloc((size_t)m->ndep + 1, sizeof *m->vals);
+    int ok = by && byp && ky && m->slot && m->vals;
+    for (int k = 0; ok && k < m->ndep; k++)
+        ky[k] = sp_builder_add(m->dep[k].wrt_yp ? byp : by, m->dep[k].eq, m->dep[k].var, 0.0);
+    if (ok) {
+        sy = malloc(((size_t)sp_builder_count(by) + 1) * sizeof *sy);
+        syp = malloc(((size_t)sp_builder_count(byp) + 1) * sizeof *syp);
+        ok = sy && syp && (m->Jy = sp_builder_finish(by, sy)) && (m->Jyp = sp_builder_finish(byp, syp));
+    }
+    for (int k = 0; ok && k < m->ndep; k++) m->slot[k] = (m->dep[k].wrt_yp ? syp : sy)[ky[k]];
+    sp_builder_free(&by);
+    sp_builder_free(&byp);
+    free(ky);
+    free(sy);
+    free(syp);
+    if (!ok) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    /* kinds: from the structure, with the declarations on top */
+    if (dae_classify(m->Jy, m->Jyp, m->kind) < 0) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    for (int v = 0; v < n; v++)
+        if (m->declared_i2[v]) {
+            if (m->kind[v] == DAE_DIFF)
+                return fail(m, BG_ERR_PATTERN, w,
+                            "%s is declared index 2, but its derivative appears in an equation",
+                            m->vname[v]);
+            m->kind[v] = DAE_ALG2;
+        }
+    /* a variable no equation depends on */
+    for (int v = 0; v < n; v++)
+        if (m->Jy->colptr[v + 1] == m->Jy->colptr[v] && m->Jyp->colptr[v + 1] == m->Jyp->colptr[v])
+            return fail(m, BG_ERR_PATTERN, w, "no equation depends on %s", m->vname[v]);
+    return BG_OK;
+}
+
+int bgr_n(const bgr_model *m) { return m->compiled > 0 ? m->n : 0; }
+const char *bgr_var_name(const bgr_model *m, int v)
+{
+    return m->compiled > 0 && v >= 0 && v < m->n ? m->vname[v] : NULL;
+}
+const char *bgr_eq_name(const bgr_model *m, int e)
+{
+    return m->compiled > 0 && e >= 0 && e < m->n ? m->ename[e] : NULL;
+}
+const int *bgr_kinds(const bgr_model *m) { return m->compiled > 0 ? m->kind : NULL; }
+double *bgr_y0(bgr_model *m) { return m->compiled > 0 ? m->y0 : NULL; }
+double *bgr_yp0(bgr_model *m) { return m->compiled > 0 ? m->yp0 : NULL; }
+
+int bgr_find_var(const bgr_model *m, const char *path)
+{
+    if (m->compiled <= 0 || !path) return -1;
+    for (int v = 0; v < m->n; v++)
+        if (!strcmp(m->vname[v], path)) return v;
+    return -1;
+}
+
+int bgr_find_eq(const bgr_model *m, const char *path)
+{
+    if (m->compiled <= 0 || !path) return -1;
+    for (int e = 0; e < m->n; e++)
+        if (!strcmp(m->ename[e], path)) return e;
+    return -1;
+}
+
+/* ---- evaluation ---- */
+
+int bgr_residual(void *model, double t, const double *y, const double *yp, double *F)
+{
+    bgr_model *m = model;
+    for (int e = 0; e < m->nel; e++) {
+        const bgr_element *el = m->el[e];
+        int r = el->cls->residual(el, t, y, yp, F + el->eq0);
+        if (r != 0) return r;
+    }
+    return 0;
+}
+
+int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy,
+                 sp_csc *Jyp)
+{
+    bgr_model *m = model;
+    for (int e = 0; e < m->nel; e++) {
+        const bgr_element *el = m->el[e];
+        int r = el->cls->jacobian(el, t, y, yp, m->vals + el->dep0);
+        if (r != 0) return r;
+    }
+    sp_csc_zero(Jy);
+    sp_csc_zero(Jyp);
+    for (int k = 0; k < m->ndep; k++) (m->dep[k].wrt_yp ? Jyp : Jy)->val[m->slot[k]] += m->vals[k];
+    return 0;
+}
+
+int bgr_dae_problem(bgr_model *m, dae_problem *p)
+{
+    if (m->compiled <= 0)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_dae_problem", "compile the model first");
+    memset(p, 0, sizeof *p);
+    p->n = m->n;
+    p->res = bgr_residual;
+    p->jac = bgr_jacobian;
+    p->jac_y_pattern = m->Jy;
+    p->jac_yp_pattern = m->Jyp;
+    p->kind = m->kind;
+    p->names = (const char *const *)m->vname;
+    p->user = m;
+    return BG_OK;
+}
+
+/* ---- statistics, listing, check ---- */
+
+int bgr_get_stats(const bgr_model *m, bgr_stats *st)
+{
+    memset(st, 0, sizeof *st);
+    st->elements = m->nel;
+    st->bonds = m->nbond;
+    st->components = m->ncomp;
+    if (m->compiled <= 0) return BG_ERR_ARGUMENT;
+    st->equations = m->n;
+    st->nnz_dy = m->Jy->nnz;
+    st->nnz_dyp = m->Jyp->nnz;
+    for (int v = 0; v < m->n; v++) {
+        st->differential += m->kind[v] == DAE_DIFF;
+        st->algebraic += m->kind[v] == DAE_ALG;
+        st->index2 += m->kind[v] == DAE_ALG2;
+    }
+    return BG_OK;
+}
+
+int bgr_stats_print(const bgr_model *m, FILE *f)
+{
+    bgr_stats st;
+    if (bgr_get_stats(m, &st) != BG_OK) return BG_ERR_ARGUMENT;
+    fprintf(f,
+            "model %s: %d components, %d elements, %d bonds\n"
+            "  equations (= unknowns)                    %d\n"
+            "  entries of the partial derivative matrix  %d   (dF/dy)\n"
+            "  entries of the time-rate matrix           %d   (dF/dy')\n"
+            "  unknowns: %d differential, %d algebraic (index 1), %d index 2\n",
+            m->comp[0].path, st.components, st.elements, st.bonds, st.equations, st.nnz_dy,
+            st.nnz_dyp, st.differential, st.algebraic, st.index2);
+    return ferror(f) ? BG_ERR_IO : BG_OK;
+}
+
+int bgr_list_equations(const bgr_model *m, FILE *f)
+{
+    if (m->compiled <= 0) return BG_ERR_ARGUMENT;
+    static const char *kname[3] = {"differential", "algebraic", "index 2"};
+    fprintf(f, "# unknowns\n");
+    for (int v = 0; v < m->n; v++) fprintf(f, "%5d  %-40s %s\n", v, m->vname[v], kname[m->kind[v]]);
+    fprintf(f, "# equations\n");
+    for (int e = 0; e < m->nel; e++) {
+        const bgr_element *el = m->el[e];
+        for (int k = 0; k < el->neq; k++) {
+            int row = el->eq0 + k;
+            char text[512] = "";
+            if (el->cls->describe) el->cls->describe(el, m, k, text, sizeof text);
+            fprintf(f, "%5d  %s  [%s]%s%s\n       depends on:", row, m->ename[row], el->cls->type,
+                    text[0] ? "  " : "", text);
+            for (int d = el->dep0; d < el->dep0 + el->ndep; d++)
+                if (m->dep[d].eq == row)
+                    fprintf(f, " %s%s", m->vname[m->dep[d].var], m->dep[d].wrt_yp ? "'" : "");
+            fprintf(f, "\n");
+        }
+    }
+    return ferror(f) ? BG_ERR_IO : BG_OK;
+}
+
+static int ck_res_y(void *u, const double *y, double *F)
+{
+    bgr_model *m = u;
+    return bgr_residual(m, m->ck_t, y, m->ck_yp, F);
+}
+
+static int ck_res_yp(void *u, const double *yp, double *F)
+{
+    bgr_model *m = u;
+    return bgr_residual(m, m->ck_t, m->ck_y, yp, F);
+}
+
+int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp, double tol,
+                       char *report, size_t size)
+{
+    if (m->compiled <= 0) return BG_ERR_ARGUMENT;
+    sp_csc *Jy = sp_csc_copy(m->Jy), *Jyp = sp_csc_copy(m->Jyp);
+    if (!Jy || !Jyp) {
+        sp_csc_free(&Jy);
+        sp_csc_free(&Jyp);
+        return BG_ERR_MEMORY;
+    }
+    int r = bgr_jacobian(m, t, y, yp, Jy, Jyp);
+    m->ck_t = t;
+    m->ck_y = y;
+    m->ck_yp = yp;
+    sp_jac_entry wy = {-1, -1, 0, 0, 0}, wyp = {-1, -1, 0, 0, 0};
+    double ey = 0, eyp = 0;
+    int ny = r ? r : sp_jac_check(Jy, ck_res_y, m, m->n, y, 1e-6, tol, &wy, 1, &ey);
+    int nyp = r || ny < 0 ? 0 : sp_jac_check(Jyp, ck_res_yp, m, m->n, yp, 1e-6, tol, &wyp, 1, &eyp);
+    sp_csc_free(&Jy);
+    sp_csc_free(&Jyp);
+    if (ny < 0) return ny;
+    if (nyp < 0) return nyp;
+    const sp_jac_entry *wst = ey >= eyp ? &wy : &wyp;
+    if (report && size) {
+        if (wst->row < 0)
+            snprintf(report, size, "all partial derivatives match");
+        else {
+            const bgr_element *el = m->el[m->eq_owner[wst->row]];
+            snprintf(report, size,
+                     "%s: element %s/%s (%s), equation %s, d/d%s%s: analytic %.6g, finite "
+                     "difference %.6g (relative error %.3g)%s",
+                     ny + nyp ? "mismatch" : "all within tolerance; largest difference",
+                     m->comp[el->comp].path, el->name, el->cls->type, m->ename[wst->row],
+                     m->vname[wst->col], wst == &wyp ? "'" : "", wst->analytic, wst->fd, wst->err,
+                     wst->analytic == 0 ? " - not declared?" : "");
+        }
+    }
+    return ny + nyp;
+}

@@ -1,0 +1,191 @@
+/* Acausal bond graphs compiled into a semi-explicit DAE F(t, y, y') = 0 for bg_dae.
+ *
+ * A model holds components (name spaces, nested to any depth), elements and bonds. A bond joins
+ * two ports and carries an effort vector e and a flow vector f of dimension d >= 1; its power
+ * e.f flows from the port it starts at to the port it ends at (the half arrow). No causality is
+ * assigned: every element states its constitutive equations, one equation per port component
+ * and one per state of its own, so the compiled system is square. Signals (information only, no
+ * power) are plain unknowns that one element defines and others read.
+ *
+ * Unknowns: the e and f of every bond (algebraic), the states of the elements (momenta,
+ * displacements: differential), signals (algebraic). Which algebraic unknowns are index 2
+ * (constraint efforts and whatever depends on them) is found from the structure by dae_classify;
+ * an element may also declare an unknown index 2 itself.
+ *
+ * Compilation numbers unknowns and equations, gives each a hierarchical name
+ * (crane/boom/element07/node_b/vy), builds the patterns of dF/dy and dF/dy' once from the
+ * dependencies the elements declare, and assigns every declared partial derivative a fixed slot.
+ * The residual and Jacobian callbacks then loop over the elements and scatter: no allocation and
+ * no finite differences on that path.
+ *
+ * Writing an element: fill a bgr_element_class (bgr_elements.h has the standard ones). Its
+ * declare() states the equations and, for each equation, the unknowns it depends on (y or y');
+ * residual() writes the element's equations; jacobian() writes the partial derivatives in the
+ * order they were declared. Elements reach their unknowns through bgr_ev/bgr_fv (port effort and
+ * flow components), bgr_sv (states) and the variable ids they keep. */
+#ifndef BGR_MODEL_H
+#define BGR_MODEL_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "bg_dae.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct bgr_model bgr_model;
+typedef struct bgr_element bgr_element;
+
+/* Handles are small integers, valid for the model that issued them; negative means failure. */
+typedef int bgr_comp;                   /* component (0 = the root) */
+typedef struct bgr_port {
+    int elem, port;                     /* elem < 0: invalid */
+} bgr_port;
+
+/* The interface an element type implements. */
+typedef struct bgr_element_class {
+    const char *type;                   /* "I", "C", "R", "Se", ... */
+    /* Declare equations and dependencies with bgr_declare_*; return 0 or a BG_ERR_* code
+     * (message through bgr_model_error). Called by bgr_compile once bonds are numbered. */
+    int (*declare)(bgr_element *el, bgr_model *m);
+    /* F[k] for the element's equations k = 0 .. neq-1 (F points at its first equation). */
+    int (*residual)(const bgr_element *el, double t, const double *y, const double *yp,
+                    double *F);
+    /* Partial derivatives in declaration order into v. */
+    int (*jacobian)(const bgr_element *el, double t, const double *y, const double *yp,
+                    double *v);
+    /* Optional: the text of equation k with variable names (for listings). */
+    void (*describe)(const bgr_element *el, const bgr_model *m, int k, char *buf, size_t size);
+    void (*destroy)(void *params);      /* frees params (may be NULL) */
+} bgr_element_class;
+
+/* Orientation of a bond at a port, as the element sees it. */
+enum { BGR_IN = 1, BGR_OUT = -1 };
+
+struct bgr_element {
+    const bgr_element_class *cls;
+    void *params;                       /* owned, freed by cls->destroy */
+    int id, comp;
+    int nports;
+    int *bond;                          /* bond at each port (-1: unconnected) */
+    int *sign;                          /* BGR_IN if the bond ends here, BGR_OUT if it starts */
+    int *dim;                           /* required dimension of each port (0: any) */
+    int nstates, state0;                /* own differential unknowns */
+    int nalg, alg0;                     /* own algebraic unknowns (signals, multipliers) */
+    int neq, eq0;                       /* equations, first global row */
+    int ndep, dep0;                     /* declared partial derivatives, first slot index */
+    char *name;
+};
+
+/* ---- building ---- */
+bgr_model *bgr_model_create(const char *name);
+void bgr_model_free(bgr_model **m);
+/* Last error (file-free: the message names the component, element, bond or port). */
+const bg_error *bgr_model_error(const bgr_model *m);
+bg_error *bgr_model_error_mut(bgr_model *m);
+
+/* A component named name inside parent (0 = the model itself). Names are unique among the
+ * siblings and may not contain '/'. */
+bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name);
+/* Full path of a component, e.g. "crane/boom/element07". */
+const char *bgr_component_path(const bgr_model *m, bgr_comp c);
+
+/* An element of class cls in component c. params is owned by the element from here on (freed by
+ * cls->destroy, also on failure). nports ports; dims[k] the dimension port k needs (0: any;
+ * dims NULL: all any). nstates differential and nalg algebraic unknowns of its own, with names
+ * (suffixes under the element's path; NULL: "x0", "x1", ...). Returns the element id or < 0. */
+int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls,
+                    void *params, int nports, const int *dims, int nstates,
+                    const char *const *state_names, int nalg, const char *const *alg_names);
+bgr_port bgr_port_of(const bgr_model *m, int elem, int port);
+bgr_element *bgr_element_get(bgr_model *m, int elem);
+
+/* Expose an inner port as a named port of component c (any depth); bgr_comp_port finds it. */
+int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner);
+bgr_port bgr_comp_port(const bgr_model *m, bgr_comp c, const char *name);
+
+/* A bond of dimension d from port a to port b (power a -> b), named in component c.
+ * labels: d names for the effort components and d for the flow components (NULL: "e", "f" for
+ * d = 1, "e0".."e{d-1}", "f0".. otherwise). Returns the bond id or < 0 (port already used,
+ * dimension mismatch, invalid port). */
+int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_port b,
+             const char *const *effort_labels, const char *const *flow_labels);
+
+/* A reference to an unknown that is numbered only at compilation: a component of a bond's
+ * effort or flow, or an element's state or own algebraic unknown (a signal). */
+typedef enum bgr_ref_type { BGR_EFFORT, BGR_FLOW, BGR_STATE, BGR_OWN } bgr_ref_type;
+typedef struct bgr_ref {
+    bgr_ref_type type;
+    int id;   /* bond id (BGR_EFFORT, BGR_FLOW) or element id (BGR_STATE, BGR_OWN) */
+    int i;    /* component */
+} bgr_ref;
+/* The variable id of a reference (from the numbering step of bgr_compile on), or -1. */
+int bgr_ref_var(const bgr_model *m, bgr_ref r);
+
+/* Initial values for the solver (defaults 0): by variable id after compilation, or by name. */
+int bgr_find_var(const bgr_model *m, const char *path);
+int bgr_find_eq(const bgr_model *m, const char *path);
+
+/* ---- used by element classes (inside declare/residual/jacobian) ---- */
+/* Variable ids of effort / flow component i at port k, of state i, of own algebraic i. */
+int bgr_ev(const bgr_element *el, const bgr_model *m, int k, int i);
+int bgr_fv(const bgr_element *el, const bgr_model *m, int k, int i);
+static inline int bgr_sv(const bgr_element *el, int i) { return el->state0 + i; }
+static inline int bgr_av(const bgr_element *el, int i) { return el->alg0 + i; }
+int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k);
+/* Declare: the element has neq equations (labels: suffixes of their names; NULL: "eq0", ...). */
+int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels);
+/* Declare that equation k depends on variable var through y (wrt_yp = 0) or y' (1). The order
+ * of these calls is the order jacobian() writes its values in. */
+int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp);
+/* Declare one of the element's own algebraic unknowns index 2 (a constraint effort). */
+int bgr_declare_index2(bgr_element *el, bgr_model *m, int var);
+
+/* ---- compiling and solving ---- */
+/* Checks that every port is connected with the dimension it needs, numbers unknowns and
+ * equations, classifies the unknowns, builds the patterns and slots. BG_OK or an error whose
+ * message names the element and port at fault. */
+int bgr_compile(bgr_model *m);
+
+typedef struct bgr_stats {
+    int equations;      /* = unknowns */
+    int nnz_dy;         /* entries of dF/dy (the paper's "partial derivative matrix") */
+    int nnz_dyp;        /* entries of dF/dy' (the "time-rate matrix") */
+    int differential, algebraic, index2;
+    int elements, bonds, components;
+} bgr_stats;
+int bgr_get_stats(const bgr_model *m, bgr_stats *st);
+int bgr_stats_print(const bgr_model *m, FILE *f);
+
+/* A dae_problem for the compiled model (user = the model; the model must outlive the solver). */
+int bgr_dae_problem(bgr_model *m, dae_problem *p);
+int bgr_n(const bgr_model *m);
+const char *bgr_var_name(const bgr_model *m, int var);
+const char *bgr_eq_name(const bgr_model *m, int eq);
+const int *bgr_kinds(const bgr_model *m);
+/* Initial values: y0 and yp0 arrays of the model (n each), zero after compile; set freely. */
+double *bgr_y0(bgr_model *m);
+double *bgr_yp0(bgr_model *m);
+
+/* The residual and Jacobian of the compiled model (dae_res_fn / dae_jac_fn with user = model). */
+int bgr_residual(void *model, double t, const double *y, const double *yp, double *F);
+int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy,
+                 sp_csc *Jyp);
+
+/* Listing: one line per equation: its name, its text (if the class describes it) and the
+ * variables it depends on. */
+int bgr_list_equations(const bgr_model *m, FILE *f);
+
+/* Check mode: every element's analytic partial derivatives against central differences of the
+ * whole residual at (t, y, yp), entries missing from the declarations included. Returns the
+ * number of mismatches (> tol relative), or < 0 on failure; the worst is described in report
+ * (element, equation, variable, analytic, finite difference). */
+int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp, double tol,
+                       char *report, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
