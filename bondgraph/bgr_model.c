@@ -733,6 +733,35 @@ int bgr_dae_problem(bgr_model *m, dae_problem *p)
     return BG_OK;
 }
 
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max)
+{
+    int total = 0;
+    for (int e = 0; e < m->nel; e++)
+        if (m->el[e]->cls->breakpoints)
+            total += m->el[e]->cls->breakpoints(m->el[e], t0, t1, NULL, 0);
+    double *all = malloc(((size_t)total + 1) * sizeof *all);
+    if (!all) return BG_ERR_MEMORY;
+    int k = 0;
+    for (int e = 0; e < m->nel; e++)
+        if (m->el[e]->cls->breakpoints) {
+            int c = m->el[e]->cls->breakpoints(m->el[e], t0, t1, all + k, total - k);
+            k += c < total - k ? c : total - k;
+        }
+    qsort(all, (size_t)k, sizeof *all, cmp_dbl);
+    int u = 0;
+    for (int i = 0; i < k; i++)
+        if (all[i] > t0 && all[i] <= t1 && (u == 0 || all[i] != all[u - 1])) all[u++] = all[i];
+    for (int i = 0; i < u && i < max; i++) t[i] = all[i];
+    free(all);
+    return u;
+}
+
 /* ---- statistics, listing, check ---- */
 
 int bgr_get_stats(const bgr_model *m, bgr_stats *st)

@@ -59,6 +59,10 @@ typedef struct bgr_element_class {
     /* Optional: the text of equation k with variable names (for listings). */
     void (*describe)(const bgr_element *el, const bgr_model *m, int k, char *buf, size_t size);
     void (*destroy)(void *params);      /* frees params (may be NULL) */
+    /* Optional: times in (t0, t1] where the element's equations are not smooth in t (corners of
+     * a reference profile, steps); writes at most max of them into t, returns how many there are
+     * (may exceed max). bgr_breakpoints collects them for the solver. */
+    int (*breakpoints)(const bgr_element *el, double t0, double t1, double *t, int max);
 } bgr_element_class;
 
 /* Orientation of a bond at a port, as the element sees it. */
@@ -173,6 +177,10 @@ double *bgr_yp0(bgr_model *m);
 int bgr_residual(void *model, double t, const double *y, const double *yp, double *F);
 int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy,
                  sp_csc *Jyp);
+
+/* The breakpoints of all elements in (t0, t1], sorted, duplicates removed; at most max written
+ * into t. Returns how many there are (may exceed max), or < 0. */
+int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max);
 
 /* Listing: one line per equation: its name, its text (if the class describes it) and the
  * variables it depends on. */
