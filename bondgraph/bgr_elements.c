@@ -24,11 +24,11 @@ typedef struct par {
     bgr_time_fn tfn;
     void *user;
     bgr_ref ref;
-    int refvar;  /* resolved at declaration */
+    int refvar; /* resolved at declaration */
     /* variable ids, filled at declaration: ports' e and f, states, own unknowns */
-    int *e, *f;  /* nports*d each, port-major */
-    int *x;      /* states or own unknowns */
-    int *s;      /* orientation per port */
+    int *e, *f; /* nports*d each, port-major */
+    int *x;     /* states or own unknowns */
+    int *s;     /* orientation per port */
     int nports;
 } par;
 
@@ -75,8 +75,10 @@ static int bind(bgr_element *el, bgr_model *m)
             q->f[k * d + i] = bgr_fv(el, m, k, i);
         }
     }
-    for (int i = 0; i < el->nstates; i++) q->x[i] = bgr_sv(el, i);
-    for (int i = 0; i < el->nalg; i++) q->x[el->nstates + i] = bgr_av(el, i);
+    for (int i = 0; i < el->nstates; i++)
+        q->x[i] = bgr_sv(el, i);
+    for (int i = 0; i < el->nalg; i++)
+        q->x[el->nstates + i] = bgr_av(el, i);
     if (q->kind == LAW_SIGNAL) {
         q->refvar = bgr_ref_var(m, q->ref);
         if (q->refvar < 0)
@@ -105,17 +107,18 @@ static int declare_eqs(bgr_element *el, bgr_model *m, int neq, const char *(*lab
             strcpy(lab[k], buf);
     }
     if (st == BG_OK) st = bgr_declare_equations(el, m, neq, (const char *const *)lab);
-    for (int k = 0; lab && k < neq; k++) free(lab[k]);
+    for (int k = 0; lab && k < neq; k++)
+        free(lab[k]);
     free(lab);
     if (st == BG_ERR_MEMORY)
         return bg_error_raise(bgr_model_error_mut(m), st, "bgr_compile", "out of memory");
     return st;
 }
 
-#define DEP(k, v, w)                                                                             \
-    do {                                                                                         \
-        int st_ = bgr_declare_dep(el, m, (k), (v), (w));                                         \
-        if (st_ != BG_OK) return st_;                                                            \
+#define DEP(k, v, w)                                                                               \
+    do {                                                                                           \
+        int st_ = bgr_declare_dep(el, m, (k), (v), (w));                                           \
+        if (st_ != BG_OK) return st_;                                                              \
     } while (0)
 
 static int add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls, par *q,
@@ -131,7 +134,8 @@ static int add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_cla
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "bgr_element_add",
                               "out of memory");
     }
-    for (int k = 0; k < nports; k++) dims[k] = q->d;
+    for (int k = 0; k < nports; k++)
+        dims[k] = q->d;
     int id = bgr_element_add(m, c, name, cls, q, nports, dims, nstates, snames, nalg, anames);
     free(dims);
     return id;
@@ -141,8 +145,7 @@ static int check_d(bgr_model *m, const char *name, int d)
 {
     if (d < 1)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_element_add",
-                              "element %s: dimension %d, expected >= 1", name ? name : "(null)",
-                              d);
+                              "element %s: dimension %d, expected >= 1", name ? name : "(null)", d);
     return BG_OK;
 }
 
@@ -154,7 +157,10 @@ static void vname2(const bgr_model *m, int v, char *buf, size_t n)
 
 /* ------------------------------------------------------------------------- I ---- */
 
-static const char *lab_I(int k, int d) { return k < d ? "momentum" : "velocity"; }
+static const char *lab_I(int k, int d)
+{
+    return k < d ? "momentum" : "velocity";
+}
 
 static int I_declare(bgr_element *el, bgr_model *m)
 {
@@ -167,7 +173,8 @@ static int I_declare(bgr_element *el, bgr_model *m)
     }
     for (int i = 0; i < d; i++) {
         if (q->kind == LAW_MATRIX)
-            for (int j = 0; j < d; j++) DEP(d + i, q->f[j], 0);
+            for (int j = 0; j < d; j++)
+                DEP(d + i, q->f[j], 0);
         else
             DEP(d + i, q->f[i], 0);
         DEP(d + i, q->x[i], 0);
@@ -175,18 +182,19 @@ static int I_declare(bgr_element *el, bgr_model *m)
     return BG_OK;
 }
 
-static int I_residual(const bgr_element *el, double t, const double *y, const double *yp,
-                      double *F)
+static int I_residual(const bgr_element *el, double t, const double *y, const double *yp, double *F)
 {
     (void)t;
     const par *q = el->params;
     int d = q->d, s = q->s[0];
-    for (int i = 0; i < d; i++) F[i] = yp[q->x[i]] - y[q->e[i]];
+    for (int i = 0; i < d; i++)
+        F[i] = yp[q->x[i]] - y[q->e[i]];
     for (int i = 0; i < d; i++) {
         double mf;
         if (q->kind == LAW_MATRIX) {
             mf = 0;
-            for (int j = 0; j < d; j++) mf += q->vec[i + j * d] * s * y[q->f[j]];
+            for (int j = 0; j < d; j++)
+                mf += q->vec[i + j * d] * s * y[q->f[j]];
             F[d + i] = mf - y[q->x[i]];
         } else if (q->kind == LAW_FN) {
             double dphi;
@@ -198,8 +206,7 @@ static int I_residual(const bgr_element *el, double t, const double *y, const do
     return 0;
 }
 
-static int I_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
-                      double *v)
+static int I_jacobian(const bgr_element *el, double t, const double *y, const double *yp, double *v)
 {
     (void)t, (void)yp;
     const par *q = el->params;
@@ -210,7 +217,8 @@ static int I_jacobian(const bgr_element *el, double t, const double *y, const do
     }
     for (int i = 0; i < d; i++) {
         if (q->kind == LAW_MATRIX) {
-            for (int j = 0; j < d; j++) v[n++] = q->vec[i + j * d] * s;
+            for (int j = 0; j < d; j++)
+                v[n++] = q->vec[i + j * d] * s;
             v[n++] = -1.0;
         } else if (q->kind == LAW_FN) {
             double dphi;
@@ -246,11 +254,14 @@ static void I_describe(const bgr_element *el, const bgr_model *m, int k, char *b
     }
 }
 
-const bgr_element_class bgr_class_I = {"I", I_declare, I_residual, I_jacobian, I_describe,
-                                       par_free};
+const bgr_element_class bgr_class_I = {.type = "I",
+                                       .declare = I_declare,
+                                       .residual = I_residual,
+                                       .jacobian = I_jacobian,
+                                       .describe = I_describe,
+                                       .destroy = par_free};
 
-static const char *const *state_names(int d, const char *base, char (*buf)[16],
-                                      const char **ptr)
+static const char *const *state_names(int d, const char *base, char (*buf)[16], const char **ptr)
 {
     for (int i = 0; i < d && i < 16; i++) {
         if (d == 1)
@@ -262,8 +273,8 @@ static const char *const *state_names(int d, const char *base, char (*buf)[16],
     return ptr;
 }
 
-static int add_state_elem(bgr_model *m, bgr_comp c, const char *name,
-                          const bgr_element_class *cls, par *q, const char *sname)
+static int add_state_elem(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls,
+                          par *q, const char *sname)
 {
     if (q && q->d > 16) {
         int d = q->d;
@@ -307,7 +318,10 @@ int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
 
 /* ------------------------------------------------------------------------- C ---- */
 
-static const char *lab_C(int k, int d) { return k < d ? "displacement" : "effort"; }
+static const char *lab_C(int k, int d)
+{
+    return k < d ? "displacement" : "effort";
+}
 
 static int C_declare(bgr_element *el, bgr_model *m)
 {
@@ -325,23 +339,22 @@ static int C_declare(bgr_element *el, bgr_model *m)
     return BG_OK;
 }
 
-static int C_residual(const bgr_element *el, double t, const double *y, const double *yp,
-                      double *F)
+static int C_residual(const bgr_element *el, double t, const double *y, const double *yp, double *F)
 {
     (void)t;
     const par *q = el->params;
     int d = q->d, s = q->s[0];
-    for (int i = 0; i < d; i++) F[i] = yp[q->x[i]] - s * y[q->f[i]];
+    for (int i = 0; i < d; i++)
+        F[i] = yp[q->x[i]] - s * y[q->f[i]];
     for (int i = 0; i < d; i++) {
         double dpsi;
-        F[d + i] = y[q->e[i]] - (q->kind == LAW_FN ? q->fn(q->user, y[q->x[i]], &dpsi)
-                                                   : q->k * y[q->x[i]]);
+        F[d + i] = y[q->e[i]] -
+                   (q->kind == LAW_FN ? q->fn(q->user, y[q->x[i]], &dpsi) : q->k * y[q->x[i]]);
     }
     return 0;
 }
 
-static int C_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
-                      double *v)
+static int C_jacobian(const bgr_element *el, double t, const double *y, const double *yp, double *v)
 {
     (void)t, (void)yp;
     const par *q = el->params;
@@ -374,8 +387,12 @@ static void C_describe(const bgr_element *el, const bgr_model *m, int k, char *b
         snprintf(buf, n, "%s = %g * %s", b, q->k, a);
 }
 
-const bgr_element_class bgr_class_C = {"C", C_declare, C_residual, C_jacobian, C_describe,
-                                       par_free};
+const bgr_element_class bgr_class_C = {.type = "C",
+                                       .declare = C_declare,
+                                       .residual = C_residual,
+                                       .jacobian = C_jacobian,
+                                       .describe = C_describe,
+                                       .destroy = par_free};
 
 int bgr_C(bgr_model *m, bgr_comp c, const char *name, int d, double stiffness)
 {
@@ -413,8 +430,7 @@ static int R_declare(bgr_element *el, bgr_model *m)
     return BG_OK;
 }
 
-static int R_residual(const bgr_element *el, double t, const double *y, const double *yp,
-                      double *F)
+static int R_residual(const bgr_element *el, double t, const double *y, const double *yp, double *F)
 {
     (void)t, (void)yp;
     const par *q = el->params;
@@ -426,8 +442,7 @@ static int R_residual(const bgr_element *el, double t, const double *y, const do
     return 0;
 }
 
-static int R_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
-                      double *v)
+static int R_jacobian(const bgr_element *el, double t, const double *y, const double *yp, double *v)
 {
     (void)t, (void)yp;
     const par *q = el->params;
@@ -454,14 +469,17 @@ static void R_describe(const bgr_element *el, const bgr_model *m, int k, char *b
         snprintf(buf, n, "%s = %g * %s%s", a, q->k, sg, b);
 }
 
-const bgr_element_class bgr_class_R = {"R", R_declare, R_residual, R_jacobian, R_describe,
-                                       par_free};
+const bgr_element_class bgr_class_R = {.type = "R",
+                                       .declare = R_declare,
+                                       .residual = R_residual,
+                                       .jacobian = R_jacobian,
+                                       .describe = R_describe,
+                                       .destroy = par_free};
 
 int bgr_R(bgr_model *m, bgr_comp c, const char *name, int d, double resistance)
 {
     if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
-    return add(m, c, name, &bgr_class_R, par_new(d, LAW_LINEAR, resistance), 1, 0, NULL, 0,
-               NULL);
+    return add(m, c, name, &bgr_class_R, par_new(d, LAW_LINEAR, resistance), 1, 0, NULL, 0, NULL);
 }
 
 int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
@@ -499,22 +517,33 @@ static int src_declare(bgr_element *el, bgr_model *m, int flow)
 static double src_value(const par *q, int i, double t, const double *y)
 {
     switch (q->kind) {
-    case LAW_CONST: return q->vec ? q->vec[i] : 0.0;
-    case LAW_TIME: return q->tfn(q->user, t);
-    case LAW_SIGNAL: return y[q->refvar];
-    default: return 0.0;
+    case LAW_CONST:
+        return q->vec ? q->vec[i] : 0.0;
+    case LAW_TIME:
+        return q->tfn(q->user, t);
+    case LAW_SIGNAL:
+        return y[q->refvar];
+    default:
+        return 0.0;
     }
 }
 
-static int Se_declare(bgr_element *el, bgr_model *m) { return src_declare(el, m, 0); }
-static int Sf_declare(bgr_element *el, bgr_model *m) { return src_declare(el, m, 1); }
+static int Se_declare(bgr_element *el, bgr_model *m)
+{
+    return src_declare(el, m, 0);
+}
+static int Sf_declare(bgr_element *el, bgr_model *m)
+{
+    return src_declare(el, m, 1);
+}
 
 static int Se_residual(const bgr_element *el, double t, const double *y, const double *yp,
                        double *F)
 {
     (void)yp;
     const par *q = el->params;
-    for (int i = 0; i < q->d; i++) F[i] = y[q->e[i]] - src_value(q, i, t, y);
+    for (int i = 0; i < q->d; i++)
+        F[i] = y[q->e[i]] - src_value(q, i, t, y);
     return 0;
 }
 
@@ -523,7 +552,8 @@ static int Sf_residual(const bgr_element *el, double t, const double *y, const d
 {
     (void)yp;
     const par *q = el->params;
-    for (int i = 0; i < q->d; i++) F[i] = -q->s[0] * y[q->f[i]] - src_value(q, i, t, y);
+    for (int i = 0; i < q->d; i++)
+        F[i] = -q->s[0] * y[q->f[i]] - src_value(q, i, t, y);
     return 0;
 }
 
@@ -579,10 +609,18 @@ static void Sf_describe(const bgr_element *el, const bgr_model *m, int k, char *
     src_describe(el, m, k, buf, n, 1);
 }
 
-const bgr_element_class bgr_class_Se = {"Se", Se_declare, Se_residual, Se_jacobian, Se_describe,
-                                        par_free};
-const bgr_element_class bgr_class_Sf = {"Sf", Sf_declare, Sf_residual, Sf_jacobian, Sf_describe,
-                                        par_free};
+const bgr_element_class bgr_class_Se = {.type = "Se",
+                                        .declare = Se_declare,
+                                        .residual = Se_residual,
+                                        .jacobian = Se_jacobian,
+                                        .describe = Se_describe,
+                                        .destroy = par_free};
+const bgr_element_class bgr_class_Sf = {.type = "Sf",
+                                        .declare = Sf_declare,
+                                        .residual = Sf_residual,
+                                        .jacobian = Sf_jacobian,
+                                        .describe = Sf_describe,
+                                        .destroy = par_free};
 
 static par *src_const(int d, const double *value)
 {
@@ -648,7 +686,10 @@ int bgr_Sf_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal)
 
 /* ----------------------------------------------------------------- TF and GY ---- */
 
-static const char *lab_TF(int k, int d) { return k < d ? "effort" : "flow"; }
+static const char *lab_TF(int k, int d)
+{
+    return k < d ? "effort" : "flow";
+}
 
 static int TF_declare(bgr_element *el, bgr_model *m)
 {
@@ -718,13 +759,17 @@ static void TF_describe(const bgr_element *el, const bgr_model *m, int k, char *
     } else {
         vname2(m, q->f[d + i], a, sizeof a);
         vname2(m, q->f[i], b, sizeof b);
-        snprintf(buf, n, "%s%s = %s * %s%s", q->s[1] > 0 ? "-" : "", a, mo,
-                 q->s[0] > 0 ? "" : "-", b);
+        snprintf(buf, n, "%s%s = %s * %s%s", q->s[1] > 0 ? "-" : "", a, mo, q->s[0] > 0 ? "" : "-",
+                 b);
     }
 }
 
-const bgr_element_class bgr_class_TF = {"TF", TF_declare, TF_residual, TF_jacobian, TF_describe,
-                                        par_free};
+const bgr_element_class bgr_class_TF = {.type = "TF",
+                                        .declare = TF_declare,
+                                        .residual = TF_residual,
+                                        .jacobian = TF_jacobian,
+                                        .describe = TF_describe,
+                                        .destroy = par_free};
 
 int bgr_TF(bgr_model *m, bgr_comp c, const char *name, int d, double modulus)
 {
@@ -799,8 +844,12 @@ static void GY_describe(const bgr_element *el, const bgr_model *m, int k, char *
     }
 }
 
-const bgr_element_class bgr_class_GY = {"GY", GY_declare, GY_residual, GY_jacobian, GY_describe,
-                                        par_free};
+const bgr_element_class bgr_class_GY = {.type = "GY",
+                                        .declare = GY_declare,
+                                        .residual = GY_residual,
+                                        .jacobian = GY_jacobian,
+                                        .describe = GY_describe,
+                                        .destroy = par_free};
 
 int bgr_GY(bgr_model *m, bgr_comp c, const char *name, int d, double modulus)
 {
@@ -829,12 +878,19 @@ static int J_declare(bgr_element *el, bgr_model *m, int zero)
             DEP((k - 1) * d + i, same[i], 0);
         }
     for (int i = 0; i < d; i++)
-        for (int k = 0; k < np; k++) DEP((np - 1) * d + i, sum[k * d + i], 0);
+        for (int k = 0; k < np; k++)
+            DEP((np - 1) * d + i, sum[k * d + i], 0);
     return BG_OK;
 }
 
-static int J0_declare(bgr_element *el, bgr_model *m) { return J_declare(el, m, 1); }
-static int J1_declare(bgr_element *el, bgr_model *m) { return J_declare(el, m, 0); }
+static int J0_declare(bgr_element *el, bgr_model *m)
+{
+    return J_declare(el, m, 1);
+}
+static int J1_declare(bgr_element *el, bgr_model *m)
+{
+    return J_declare(el, m, 0);
+}
 
 static void J_residual(const bgr_element *el, const double *y, double *F, int zero)
 {
@@ -842,10 +898,12 @@ static void J_residual(const bgr_element *el, const double *y, double *F, int ze
     int d = q->d, np = el->nports;
     const int *same = zero ? q->e : q->f, *sum = zero ? q->f : q->e;
     for (int k = 1; k < np; k++)
-        for (int i = 0; i < d; i++) F[(k - 1) * d + i] = y[same[k * d + i]] - y[same[i]];
+        for (int i = 0; i < d; i++)
+            F[(k - 1) * d + i] = y[same[k * d + i]] - y[same[i]];
     for (int i = 0; i < d; i++) {
         double acc = 0;
-        for (int k = 0; k < np; k++) acc += q->s[k] * y[sum[k * d + i]];
+        for (int k = 0; k < np; k++)
+            acc += q->s[k] * y[sum[k * d + i]];
         F[(np - 1) * d + i] = acc;
     }
 }
@@ -866,8 +924,7 @@ static int J1_residual(const bgr_element *el, double t, const double *y, const d
     return 0;
 }
 
-static int J_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
-                      double *v)
+static int J_jacobian(const bgr_element *el, double t, const double *y, const double *yp, double *v)
 {
     (void)t, (void)y, (void)yp;
     const par *q = el->params;
@@ -878,7 +935,8 @@ static int J_jacobian(const bgr_element *el, double t, const double *y, const do
             v[n++] = -1.0;
         }
     for (int i = 0; i < d; i++)
-        for (int k = 0; k < np; k++) v[n++] = q->s[k];
+        for (int k = 0; k < np; k++)
+            v[n++] = q->s[k];
     return 0;
 }
 
@@ -900,8 +958,8 @@ static void J_describe(const bgr_element *el, const bgr_model *m, int k, char *b
         buf[0] = '\0';
         for (int p = 0; p < np && used + 1 < n; p++) {
             vname2(m, sum[p * d + i], a, sizeof a);
-            int w = snprintf(buf + used, n - used, "%s%s", q->s[p] > 0 ? (p ? " + " : "") : " - ",
-                             a);
+            int w =
+                snprintf(buf + used, n - used, "%s%s", q->s[p] > 0 ? (p ? " + " : "") : " - ", a);
             if (w < 0) break;
             used += (size_t)w;
         }
@@ -919,10 +977,18 @@ static void J1_describe(const bgr_element *el, const bgr_model *m, int k, char *
     J_describe(el, m, k, buf, n, 0);
 }
 
-const bgr_element_class bgr_class_zero = {"0", J0_declare, J0_residual, J_jacobian, J0_describe,
-                                          par_free};
-const bgr_element_class bgr_class_one = {"1", J1_declare, J1_residual, J_jacobian, J1_describe,
-                                         par_free};
+const bgr_element_class bgr_class_zero = {.type = "0",
+                                          .declare = J0_declare,
+                                          .residual = J0_residual,
+                                          .jacobian = J_jacobian,
+                                          .describe = J0_describe,
+                                          .destroy = par_free};
+const bgr_element_class bgr_class_one = {.type = "1",
+                                         .declare = J1_declare,
+                                         .residual = J1_residual,
+                                         .jacobian = J_jacobian,
+                                         .describe = J1_describe,
+                                         .destroy = par_free};
 
 static int junction(bgr_model *m, bgr_comp c, const char *name, int nports, int d,
                     const bgr_element_class *cls)
@@ -930,8 +996,8 @@ static int junction(bgr_model *m, bgr_comp c, const char *name, int nports, int 
     if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
     if (nports < 2)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_element_add",
-                              "junction %s: %d ports, expected at least 2",
-                              name ? name : "(null)", nports);
+                              "junction %s: %d ports, expected at least 2", name ? name : "(null)",
+                              nports);
     return add(m, c, name, cls, par_new(d, LAW_LINEAR, 0), nports, 0, NULL, 0, NULL);
 }
 
@@ -992,8 +1058,12 @@ static void gain_describe(const bgr_element *el, const bgr_model *m, int k, char
     snprintf(buf, n, "%s = %g * %s", a, q->k, b);
 }
 
-const bgr_element_class bgr_class_gain = {"gain", gain_declare, gain_residual, gain_jacobian,
-                                          gain_describe, par_free};
+const bgr_element_class bgr_class_gain = {.type = "gain",
+                                          .declare = gain_declare,
+                                          .residual = gain_residual,
+                                          .jacobian = gain_jacobian,
+                                          .describe = gain_describe,
+                                          .destroy = par_free};
 
 int bgr_gain(bgr_model *m, bgr_comp c, const char *name, bgr_ref x, double gain)
 {
