@@ -161,7 +161,8 @@ static int run_ida(const bp_problem *p, double rtol, double atol, int suppress, 
         if (b < p->nbreakpoints) IDAReInit(mem, t, yy, yp);
     }
     r = 0;
-    for (int i = 0; i < n; i++) y[i] = NV_Ith_S(yy, i);
+    for (int i = 0; i < n; i++)
+        y[i] = NV_Ith_S(yy, i);
 done:
     IDAFree(&mem);
     SUNLinSolFree(LS);
@@ -265,9 +266,10 @@ int main(int argc, char **argv)
             printf("\n%s (n = %d), atol = %g * rtol, IDA %s, medians of %d runs\n"
                    "%-6s %7s | %6s %5s %5s %6s %6s %9s %6s %6s | %6s %5s %5s %6s %6s %9s %6s "
                    "%6s | %6s\n",
-                   p->name, p->n, afac, suppress ? "id + suppressed algebraic error" : "no suppression", reps,
-                   "", "rtol", "steps", "rej", "jac", "fact", "res", "cpu ms", "scd", "scd2",
-                   "steps", "rej", "jac", "fact", "res", "cpu ms", "scd", "scd2", "time");
+                   p->name, p->n, afac,
+                   suppress ? "id + suppressed algebraic error" : "no suppression", reps, "",
+                   "rtol", "steps", "rej", "jac", "fact", "res", "cpu ms", "scd", "scd2", "steps",
+                   "rej", "jac", "fact", "res", "cpu ms", "scd", "scd2", "time");
         for (int k = 0; k < nr; k++) {
             double rtol = rtols[k], atol = afac * rtol;
             run_result a = {0}, b = {0};
@@ -289,9 +291,9 @@ int main(int argc, char **argv)
             } else {
                 printf("%-6s %7.0e | %6ld %5ld %5ld %6ld %6ld %9.3f %6.2f %6.2f | %6ld %5ld %5ld "
                        "%6ld %6ld %9.3f %6.2f %6.2f | %6.2f\n",
-                       "", rtol, a.steps, a.rejected, a.jac, a.factors, a.res, 1e3 * a.tmed,
-                       sa.scd, sa.scd_i2, b.steps, b.rejected, b.jac, b.factors, b.res,
-                       1e3 * b.tmed, sb.scd, sb.scd_i2, b.tmed > 0 ? a.tmed / b.tmed : NAN);
+                       "", rtol, a.steps, a.rejected, a.jac, a.factors, a.res, 1e3 * a.tmed, sa.scd,
+                       sa.scd_i2, b.steps, b.rejected, b.jac, b.factors, b.res, 1e3 * b.tmed,
+                       sb.scd, sb.scd_i2, b.tmed > 0 ? a.tmed / b.tmed : NAN);
             }
         }
         if (!csv)

@@ -76,8 +76,10 @@ int main(int argc, char **argv)
         else if (argv[a][0] != '-' && nn < 32)
             ns[nn++] = (int)strtod(argv[a], NULL);
         else {
-            fprintf(stderr, "klu_bench: unknown argument '%s'\n"
-                            "usage: klu_bench [--reps R] [--block B] [--csv] [n ...]\n", argv[a]);
+            fprintf(stderr,
+                    "klu_bench: unknown argument '%s'\n"
+                    "usage: klu_bench [--reps R] [--block B] [--csv] [n ...]\n",
+                    argv[a]);
             return 2;
         }
     }
@@ -126,11 +128,13 @@ int main(int argc, char **argv)
                 break;
             }
             double t2 = now();
-            for (int p = 0; p < A->nnz; p++) A->val[p] *= 1.0 + 0.01 * urand(); /* new values */
+            for (int p = 0; p < A->nnz; p++)
+                A->val[p] *= 1.0 + 0.01 * urand(); /* new values */
             double t3 = now();
             ls_factor(s, A);
             double t4 = now();
-            for (int i = 0; i < n; i++) x[i] = rhs[i] = urand();
+            for (int i = 0; i < n; i++)
+                x[i] = rhs[i] = urand();
             double t5 = now();
             ls_solve(s, x, 1);
             double t6 = now();
@@ -148,7 +152,8 @@ int main(int argc, char **argv)
                 rn = fmax(rn, fabs(ax[i] - rhs[i]));
                 xn = fmax(xn, fabs(x[i]));
             }
-            for (int p = 0; p < A->nnz; p++) an = fmax(an, fabs(A->val[p]));
+            for (int p = 0; p < A->nnz; p++)
+                an = fmax(an, fabs(A->val[p]));
             resid = fmax(resid, rn / (an * xn * 3 * b));
             free(ax);
             ls_free(&s);
@@ -157,8 +162,8 @@ int main(int argc, char **argv)
             double ma = median(ta, reps), mf = median(tf, reps), mr = median(tr, reps),
                    ms = median(ts, reps);
             if (csv)
-                printf("%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.3g\n", n, A->nnz, b, reps, ma, mf, mr,
-                       ms, resid);
+                printf("%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.3g\n", n, A->nnz, b, reps, ma, mf, mr, ms,
+                       resid);
             else
                 printf("%9d %10d %11.3f %11.3f %11.3f %11.3f %9.1e\n", n, A->nnz, 1e3 * ma,
                        1e3 * mf, 1e3 * mr, 1e3 * ms, resid);

@@ -56,8 +56,8 @@ int bgr_one(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
 int bgr_gain(bgr_model *m, bgr_comp c, const char *name, bgr_ref x, double gain);
 
 /* The classes themselves, for bgr_element_add by hand. */
-extern const bgr_element_class bgr_class_I, bgr_class_C, bgr_class_R, bgr_class_Se,
-    bgr_class_Sf, bgr_class_TF, bgr_class_GY, bgr_class_zero, bgr_class_one, bgr_class_gain;
+extern const bgr_element_class bgr_class_I, bgr_class_C, bgr_class_R, bgr_class_Se, bgr_class_Sf,
+    bgr_class_TF, bgr_class_GY, bgr_class_zero, bgr_class_one, bgr_class_gain;
 
 #ifdef __cplusplus
 }

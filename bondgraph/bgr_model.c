@@ -101,7 +101,10 @@ static int reserve(void **arr, int *cap, int n, size_t sz)
     return 1;
 }
 
-static int valid_name(const char *s) { return s && *s && !strchr(s, '/'); }
+static int valid_name(const char *s)
+{
+    return s && *s && !strchr(s, '/');
+}
 
 bgr_model *bgr_model_create(const char *name)
 {
@@ -121,7 +124,8 @@ bgr_model *bgr_model_create(const char *name)
 static void free_strs(char **v, int n)
 {
     if (!v) return;
-    for (int i = 0; i < n; i++) free(v[i]);
+    for (int i = 0; i < n; i++)
+        free(v[i]);
     free(v);
 }
 
@@ -134,7 +138,8 @@ void bgr_model_free(bgr_model **mp)
         free(m->comp[c].path);
     }
     free(m->comp);
-    for (int e = 0; e < m->nexp; e++) free(m->exp[e].name);
+    for (int e = 0; e < m->nexp; e++)
+        free(m->exp[e].name);
     free(m->exp);
     for (int i = 0; i < m->nel; i++) {
         bgr_element *el = m->el[i];
@@ -172,8 +177,14 @@ void bgr_model_free(bgr_model **mp)
     *mp = NULL;
 }
 
-const bg_error *bgr_model_error(const bgr_model *m) { return &m->err; }
-bg_error *bgr_model_error_mut(bgr_model *m) { return &m->err; }
+const bg_error *bgr_model_error(const bgr_model *m)
+{
+    return &m->err;
+}
+bg_error *bgr_model_error_mut(bgr_model *m)
+{
+    return &m->err;
+}
 
 static int check_building(bgr_model *m, const char *where)
 {
@@ -242,19 +253,18 @@ int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_elemen
         st = fail(m, BG_ERR_ARGUMENT, w, "element name '%s' in %s must be non-empty, no '/'",
                   name ? name : "(null)", m->comp[c].path);
     if (!st && (!cls || !cls->declare || !cls->residual || !cls->jacobian))
-        st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: incomplete element class",
-                  m->comp[c].path, name);
+        st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: incomplete element class", m->comp[c].path,
+                  name);
     if (!st && (nports < 0 || nstates < 0 || nalg < 0))
         st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: negative count", m->comp[c].path, name);
     for (int i = 0; !st && i < m->nel; i++)
         if (m->el[i]->comp == c && !strcmp(m->el[i]->name, name))
-            st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s exists already", m->comp[c].path,
-                      name);
-    if (!st && (!reserve((void **)&m->el, &m->capel, m->nel, sizeof *m->el) ||
-                !(m->el_state_names = realloc(m->el_state_names,
-                                              (size_t)m->capel * sizeof *m->el_state_names)) ||
-                !(m->el_alg_names =
-                      realloc(m->el_alg_names, (size_t)m->capel * sizeof *m->el_alg_names))))
+            st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s exists already", m->comp[c].path, name);
+    if (!st &&
+        (!reserve((void **)&m->el, &m->capel, m->nel, sizeof *m->el) ||
+         !(m->el_state_names =
+               realloc(m->el_state_names, (size_t)m->capel * sizeof *m->el_state_names)) ||
+         !(m->el_alg_names = realloc(m->el_alg_names, (size_t)m->capel * sizeof *m->el_alg_names))))
         st = fail(m, BG_ERR_MEMORY, w, "out of memory");
     bgr_element *el = st ? NULL : calloc(1, sizeof *el);
     if (!st && !el) st = fail(m, BG_ERR_MEMORY, w, "out of memory");
@@ -324,12 +334,11 @@ int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner)
         return fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or port name '%s'", c,
                     name ? name : "(null)");
     if (inner.elem < 0)
-        return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s: the inner port is invalid",
-                    m->comp[c].path, name);
+        return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s: the inner port is invalid", m->comp[c].path,
+                    name);
     for (int e = 0; e < m->nexp; e++)
         if (m->exp[e].comp == c && !strcmp(m->exp[e].name, name))
-            return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s exists already", m->comp[c].path,
-                        name);
+            return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s exists already", m->comp[c].path, name);
     if (!reserve((void **)&m->exp, &m->capexp, m->nexp, sizeof *m->exp))
         return fail(m, BG_ERR_MEMORY, w, "out of memory");
     m->exp[m->nexp].comp = c;
@@ -383,13 +392,12 @@ int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_
                         m->bond[el->bond[p.port]].name);
         if (el->dim[p.port] && el->dim[p.port] != d)
             return fail(m, BG_ERR_ARGUMENT, w,
-                        "bond %s/%s has dimension %d, but %s needs dimension %d",
-                        m->comp[c].path, name, d, port_desc(m, p, ba, sizeof ba),
-                        el->dim[p.port]);
+                        "bond %s/%s has dimension %d, but %s needs dimension %d", m->comp[c].path,
+                        name, d, port_desc(m, p, ba, sizeof ba), el->dim[p.port]);
     }
     if (a.elem == b.elem && a.port == b.port)
-        return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s joins %s to itself", m->comp[c].path,
-                    name, port_desc(m, a, ba, sizeof ba));
+        return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s joins %s to itself", m->comp[c].path, name,
+                    port_desc(m, a, ba, sizeof ba));
     for (int i = 0; i < m->nbond; i++)
         if (m->bond[i].comp == c && !strcmp(m->bond[i].name, name))
             return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s exists already (%s -> %s)",
@@ -609,7 +617,8 @@ static int compile(bgr_model *m)
     for (int e = 0; e < m->nel; e++) {
         bgr_element *el = m->el[e];
         int expect = el->nstates + el->nalg;
-        for (int k = 0; k < el->nports; k++) expect += bgr_port_dim(el, m, k);
+        for (int k = 0; k < el->nports; k++)
+            expect += bgr_port_dim(el, m, k);
         el->dep0 = m->ndep;
         el->ndep = 0;
         int st = el->cls->declare(el, m);
@@ -634,9 +643,11 @@ static int compile(bgr_model *m)
     if (ok) {
         sy = malloc(((size_t)sp_builder_count(by) + 1) * sizeof *sy);
         syp = malloc(((size_t)sp_builder_count(byp) + 1) * sizeof *syp);
-        ok = sy && syp && (m->Jy = sp_builder_finish(by, sy)) && (m->Jyp = sp_builder_finish(byp, syp));
+        ok = sy && syp && (m->Jy = sp_builder_finish(by, sy)) &&
+             (m->Jyp = sp_builder_finish(byp, syp));
     }
-    for (int k = 0; ok && k < m->ndep; k++) m->slot[k] = (m->dep[k].wrt_yp ? syp : sy)[ky[k]];
+    for (int k = 0; ok && k < m->ndep; k++)
+        m->slot[k] = (m->dep[k].wrt_yp ? syp : sy)[ky[k]];
     sp_builder_free(&by);
     sp_builder_free(&byp);
     free(ky);
@@ -660,7 +671,10 @@ static int compile(bgr_model *m)
     return BG_OK;
 }
 
-int bgr_n(const bgr_model *m) { return m->compiled > 0 ? m->n : 0; }
+int bgr_n(const bgr_model *m)
+{
+    return m->compiled > 0 ? m->n : 0;
+}
 const char *bgr_var_name(const bgr_model *m, int v)
 {
     return m->compiled > 0 && v >= 0 && v < m->n ? m->vname[v] : NULL;
@@ -669,9 +683,18 @@ const char *bgr_eq_name(const bgr_model *m, int e)
 {
     return m->compiled > 0 && e >= 0 && e < m->n ? m->ename[e] : NULL;
 }
-const int *bgr_kinds(const bgr_model *m) { return m->compiled > 0 ? m->kind : NULL; }
-double *bgr_y0(bgr_model *m) { return m->compiled > 0 ? m->y0 : NULL; }
-double *bgr_yp0(bgr_model *m) { return m->compiled > 0 ? m->yp0 : NULL; }
+const int *bgr_kinds(const bgr_model *m)
+{
+    return m->compiled > 0 ? m->kind : NULL;
+}
+double *bgr_y0(bgr_model *m)
+{
+    return m->compiled > 0 ? m->y0 : NULL;
+}
+double *bgr_yp0(bgr_model *m)
+{
+    return m->compiled > 0 ? m->yp0 : NULL;
+}
 
 int bgr_find_var(const bgr_model *m, const char *path)
 {
@@ -702,8 +725,7 @@ int bgr_residual(void *model, double t, const double *y, const double *yp, doubl
     return 0;
 }
 
-int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy,
-                 sp_csc *Jyp)
+int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp)
 {
     bgr_model *m = model;
     for (int e = 0; e < m->nel; e++) {
@@ -713,7 +735,8 @@ int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_cs
     }
     sp_csc_zero(Jy);
     sp_csc_zero(Jyp);
-    for (int k = 0; k < m->ndep; k++) (m->dep[k].wrt_yp ? Jyp : Jy)->val[m->slot[k]] += m->vals[k];
+    for (int k = 0; k < m->ndep; k++)
+        (m->dep[k].wrt_yp ? Jyp : Jy)->val[m->slot[k]] += m->vals[k];
     return 0;
 }
 
@@ -757,7 +780,8 @@ int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max
     int u = 0;
     for (int i = 0; i < k; i++)
         if (all[i] > t0 && all[i] <= t1 && (u == 0 || all[i] != all[u - 1])) all[u++] = all[i];
-    for (int i = 0; i < u && i < max; i++) t[i] = all[i];
+    for (int i = 0; i < u && i < max; i++)
+        t[i] = all[i];
     free(all);
     return u;
 }
@@ -802,7 +826,8 @@ int bgr_list_equations(const bgr_model *m, FILE *f)
     if (m->compiled <= 0) return BG_ERR_ARGUMENT;
     static const char *kname[3] = {"differential", "algebraic", "index 2"};
     fprintf(f, "# unknowns\n");
-    for (int v = 0; v < m->n; v++) fprintf(f, "%5d  %-40s %s\n", v, m->vname[v], kname[m->kind[v]]);
+    for (int v = 0; v < m->n; v++)
+        fprintf(f, "%5d  %-40s %s\n", v, m->vname[v], kname[m->kind[v]]);
     fprintf(f, "# equations\n");
     for (int e = 0; e < m->nel; e++) {
         const bgr_element *el = m->el[e];

@@ -39,26 +39,24 @@ typedef struct bgr_model bgr_model;
 typedef struct bgr_element bgr_element;
 
 /* Handles are small integers, valid for the model that issued them; negative means failure. */
-typedef int bgr_comp;                   /* component (0 = the root) */
+typedef int bgr_comp; /* component (0 = the root) */
 typedef struct bgr_port {
-    int elem, port;                     /* elem < 0: invalid */
+    int elem, port; /* elem < 0: invalid */
 } bgr_port;
 
 /* The interface an element type implements. */
 typedef struct bgr_element_class {
-    const char *type;                   /* "I", "C", "R", "Se", ... */
+    const char *type; /* "I", "C", "R", "Se", ... */
     /* Declare equations and dependencies with bgr_declare_*; return 0 or a BG_ERR_* code
      * (message through bgr_model_error). Called by bgr_compile once bonds are numbered. */
     int (*declare)(bgr_element *el, bgr_model *m);
     /* F[k] for the element's equations k = 0 .. neq-1 (F points at its first equation). */
-    int (*residual)(const bgr_element *el, double t, const double *y, const double *yp,
-                    double *F);
+    int (*residual)(const bgr_element *el, double t, const double *y, const double *yp, double *F);
     /* Partial derivatives in declaration order into v. */
-    int (*jacobian)(const bgr_element *el, double t, const double *y, const double *yp,
-                    double *v);
+    int (*jacobian)(const bgr_element *el, double t, const double *y, const double *yp, double *v);
     /* Optional: the text of equation k with variable names (for listings). */
     void (*describe)(const bgr_element *el, const bgr_model *m, int k, char *buf, size_t size);
-    void (*destroy)(void *params);      /* frees params (may be NULL) */
+    void (*destroy)(void *params); /* frees params (may be NULL) */
     /* Optional: times in (t0, t1] where the element's equations are not smooth in t (corners of
      * a reference profile, steps); writes at most max of them into t, returns how many there are
      * (may exceed max). bgr_breakpoints collects them for the solver. */
@@ -70,16 +68,16 @@ enum { BGR_IN = 1, BGR_OUT = -1 };
 
 struct bgr_element {
     const bgr_element_class *cls;
-    void *params;                       /* owned, freed by cls->destroy */
+    void *params; /* owned, freed by cls->destroy */
     int id, comp;
     int nports;
-    int *bond;                          /* bond at each port (-1: unconnected) */
-    int *sign;                          /* BGR_IN if the bond ends here, BGR_OUT if it starts */
-    int *dim;                           /* required dimension of each port (0: any) */
-    int nstates, state0;                /* own differential unknowns */
-    int nalg, alg0;                     /* own algebraic unknowns (signals, multipliers) */
-    int neq, eq0;                       /* equations, first global row */
-    int ndep, dep0;                     /* declared partial derivatives, first slot index */
+    int *bond;           /* bond at each port (-1: unconnected) */
+    int *sign;           /* BGR_IN if the bond ends here, BGR_OUT if it starts */
+    int *dim;            /* required dimension of each port (0: any) */
+    int nstates, state0; /* own differential unknowns */
+    int nalg, alg0;      /* own algebraic unknowns (signals, multipliers) */
+    int neq, eq0;        /* equations, first global row */
+    int ndep, dep0;      /* declared partial derivatives, first slot index */
     char *name;
 };
 
@@ -122,8 +120,8 @@ int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_
 typedef enum bgr_ref_type { BGR_EFFORT, BGR_FLOW, BGR_STATE, BGR_OWN } bgr_ref_type;
 typedef struct bgr_ref {
     bgr_ref_type type;
-    int id;   /* bond id (BGR_EFFORT, BGR_FLOW) or element id (BGR_STATE, BGR_OWN) */
-    int i;    /* component */
+    int id; /* bond id (BGR_EFFORT, BGR_FLOW) or element id (BGR_STATE, BGR_OWN) */
+    int i;  /* component */
 } bgr_ref;
 /* The variable id of a reference (from the numbering step of bgr_compile on), or -1. */
 int bgr_ref_var(const bgr_model *m, bgr_ref r);
@@ -136,8 +134,14 @@ int bgr_find_eq(const bgr_model *m, const char *path);
 /* Variable ids of effort / flow component i at port k, of state i, of own algebraic i. */
 int bgr_ev(const bgr_element *el, const bgr_model *m, int k, int i);
 int bgr_fv(const bgr_element *el, const bgr_model *m, int k, int i);
-static inline int bgr_sv(const bgr_element *el, int i) { return el->state0 + i; }
-static inline int bgr_av(const bgr_element *el, int i) { return el->alg0 + i; }
+static inline int bgr_sv(const bgr_element *el, int i)
+{
+    return el->state0 + i;
+}
+static inline int bgr_av(const bgr_element *el, int i)
+{
+    return el->alg0 + i;
+}
 int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k);
 /* Declare: the element has neq equations (labels: suffixes of their names; NULL: "eq0", ...). */
 int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels);
@@ -154,9 +158,9 @@ int bgr_declare_index2(bgr_element *el, bgr_model *m, int var);
 int bgr_compile(bgr_model *m);
 
 typedef struct bgr_stats {
-    int equations;      /* = unknowns */
-    int nnz_dy;         /* entries of dF/dy (the paper's "partial derivative matrix") */
-    int nnz_dyp;        /* entries of dF/dy' (the "time-rate matrix") */
+    int equations; /* = unknowns */
+    int nnz_dy;    /* entries of dF/dy (the paper's "partial derivative matrix") */
+    int nnz_dyp;   /* entries of dF/dy' (the "time-rate matrix") */
     int differential, algebraic, index2;
     int elements, bonds, components;
 } bgr_stats;
@@ -175,8 +179,7 @@ double *bgr_yp0(bgr_model *m);
 
 /* The residual and Jacobian of the compiled model (dae_res_fn / dae_jac_fn with user = model). */
 int bgr_residual(void *model, double t, const double *y, const double *yp, double *F);
-int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy,
-                 sp_csc *Jyp);
+int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp);
 
 /* The breakpoints of all elements in (t0, t1], sorted, duplicates removed; at most max written
  * into t. Returns how many there are (may exceed max), or < 0. */

@@ -87,19 +87,32 @@ void dae_options_default(dae_options *o)
 const char *dae_return_name(int code)
 {
     switch (code) {
-    case DAE_SUCCESS: return "DAE_SUCCESS";
-    case DAE_TSTOP_RETURN: return "DAE_TSTOP_RETURN";
-    case DAE_ROOT_RETURN: return "DAE_ROOT_RETURN";
-    case DAE_TOO_MUCH_WORK: return "DAE_TOO_MUCH_WORK";
-    case DAE_TOO_MUCH_ACC: return "DAE_TOO_MUCH_ACC";
-    case DAE_ERR_FAIL: return "DAE_ERR_FAIL";
-    case DAE_CONV_FAIL: return "DAE_CONV_FAIL";
-    case DAE_LSETUP_FAIL: return "DAE_LSETUP_FAIL";
-    case DAE_RES_FAIL: return "DAE_RES_FAIL";
-    case DAE_CALLBACK_FAIL: return "DAE_CALLBACK_FAIL";
-    case DAE_INIT_FAIL: return "DAE_INIT_FAIL";
-    case DAE_STEP_TOO_SMALL: return "DAE_STEP_TOO_SMALL";
-    default: return bg_status_name(code);
+    case DAE_SUCCESS:
+        return "DAE_SUCCESS";
+    case DAE_TSTOP_RETURN:
+        return "DAE_TSTOP_RETURN";
+    case DAE_ROOT_RETURN:
+        return "DAE_ROOT_RETURN";
+    case DAE_TOO_MUCH_WORK:
+        return "DAE_TOO_MUCH_WORK";
+    case DAE_TOO_MUCH_ACC:
+        return "DAE_TOO_MUCH_ACC";
+    case DAE_ERR_FAIL:
+        return "DAE_ERR_FAIL";
+    case DAE_CONV_FAIL:
+        return "DAE_CONV_FAIL";
+    case DAE_LSETUP_FAIL:
+        return "DAE_LSETUP_FAIL";
+    case DAE_RES_FAIL:
+        return "DAE_RES_FAIL";
+    case DAE_CALLBACK_FAIL:
+        return "DAE_CALLBACK_FAIL";
+    case DAE_INIT_FAIL:
+        return "DAE_INIT_FAIL";
+    case DAE_STEP_TOO_SMALL:
+        return "DAE_STEP_TOO_SMALL";
+    default:
+        return bg_status_name(code);
     }
 }
 
@@ -156,11 +169,13 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
         s->fd_t = t;
         s->fd_y = y;
         s->fd_yp = yp;
-        for (int j = 0; j < s->n; j++) s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol);
+        for (int j = 0; j < s->n; j++)
+            s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol);
         r = sp_fdjac_eval(s->fdy, fd_res_y, s, y, F, s->typ, s->Jy);
         if (r == 0) {
             double hs = fabs(s->hh) > 0 ? fabs(s->hh) : 1.0;
-            for (int j = 0; j < s->n; j++) s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol * hs);
+            for (int j = 0; j < s->n; j++)
+                s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol * hs);
             r = sp_fdjac_eval(s->fdyp, fd_res_yp, s, yp, F, s->typ, s->Jyp);
         }
     }
@@ -211,7 +226,8 @@ static sp_csc *dense_pattern(int n, const int *kind)
     if (!b) return NULL;
     for (int j = 0; j < n; j++)
         if (!kind || kind[j] == DAE_DIFF)
-            for (int i = 0; i < n; i++) sp_builder_add(b, i, j, 0.0);
+            for (int i = 0; i < n; i++)
+                sp_builder_add(b, i, j, 0.0);
     sp_csc *P = sp_builder_finish(b, NULL);
     sp_builder_free(&b);
     return P;
@@ -223,7 +239,8 @@ void dae_free(dae_solver **sp)
     dae_solver *s = *sp;
     free(s->kind);
     if (s->names) {
-        for (int i = 0; i < s->n; i++) free(s->names[i]);
+        for (int i = 0; i < s->n; i++)
+            free(s->names[i]);
         free(s->names);
     }
     free(s->atol);
@@ -239,7 +256,8 @@ void dae_free(dae_solver **sp)
     aat_free(&s->aat_proj);
     free(s->gv);
     free(s->gw);
-    for (int j = 0; j < NPHI; j++) free(s->phi[j]);
+    for (int j = 0; j < NPHI; j++)
+        free(s->phi[j]);
     free(s->ewt);
     free(s->werr);
     free(s->wnewt);
@@ -280,7 +298,8 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         return NULL;
     }
     int n = p->n;
-    if (!(o->rtol >= 0) || (!o->atol_vec && !(o->atol >= 0)) || (o->rtol == 0 && o->atol == 0 && !o->atol_vec)) {
+    if (!(o->rtol >= 0) || (!o->atol_vec && !(o->atol >= 0)) ||
+        (o->rtol == 0 && o->atol == 0 && !o->atol_vec)) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w,
                        "tolerances must be >= 0 and not both zero (rtol %g, atol %g)", o->rtol,
                        o->atol);
@@ -325,8 +344,8 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         }
         s->atol[i] = o->atol_vec ? o->atol_vec[i] : o->atol;
         if (!(s->atol[i] >= 0) || (s->atol[i] == 0 && o->rtol == 0)) {
-            bg_error_raise(err, BG_ERR_ARGUMENT, w, "atol[%d] = %g: must be >= 0 (and > 0 if rtol = 0)",
-                           i, s->atol[i]);
+            bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                           "atol[%d] = %g: must be >= 0 (and > 0 if rtol = 0)", i, s->atol[i]);
             dae_free(&s);
             return NULL;
         }
@@ -393,14 +412,13 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     }
     for (int j = 0; j < NPHI; j++)
         if (!(s->phi[j] = calloc((size_t)n, sizeof(double)))) goto nomem;
-    double **vecs[] = {&s->ewt, &s->werr, &s->wnewt, &s->y, &s->yp, &s->ypred, &s->yppred,
-                       &s->ee, &s->delta, &s->res, &s->tmp, &s->tmp2, &s->typ};
+    double **vecs[] = {&s->ewt, &s->werr,  &s->wnewt, &s->y,   &s->yp,   &s->ypred, &s->yppred,
+                       &s->ee,  &s->delta, &s->res,   &s->tmp, &s->tmp2, &s->typ};
     for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
         if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
     if (p->nroots > 0) {
         if (!p->roots) {
-            bg_error_raise(err, BG_ERR_ARGUMENT, w, "nroots = %d but no root function",
-                           p->nroots);
+            bg_error_raise(err, BG_ERR_ARGUMENT, w, "nroots = %d but no root function", p->nroots);
             dae_free(&s);
             return NULL;
         }
@@ -417,9 +435,18 @@ nomem:
     return NULL;
 }
 
-bg_error *dae_get_error(dae_solver *s) { return &s->err; }
-double dae_current_time(const dae_solver *s) { return s->tn; }
-const dae_stats *dae_get_stats(const dae_solver *s) { return &s->st; }
+bg_error *dae_get_error(dae_solver *s)
+{
+    return &s->err;
+}
+double dae_current_time(const dae_solver *s)
+{
+    return s->tn;
+}
+const dae_stats *dae_get_stats(const dae_solver *s)
+{
+    return &s->st;
+}
 
 void daei_sync_stats(dae_solver *s)
 {
@@ -445,7 +472,8 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     for (int i = 0; i < s->n; i++)
         if (!isfinite(y0[i]) || (yp0 && !isfinite(yp0[i])))
             return bg_error_raise(&s->err, BG_ERR_NONFINITE, "dae_init",
-                                  "initial value of %s is not finite", daei_vname(s, i, nb, sizeof nb));
+                                  "initial value of %s is not finite",
+                                  daei_vname(s, i, nb, sizeof nb));
     memset(&s->st, 0, sizeof s->st);
     s->st.h_min_used = INFINITY;
     s->st.rcond_min = INFINITY;
@@ -461,7 +489,8 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->kused = 0;
     s->kk = 1;
     s->ibk = 0;
-    while (s->ibk < s->nbkpt && s->bkpt[s->ibk] <= t0) s->ibk++;
+    while (s->ibk < s->nbkpt && s->bkpt[s->ibk] <= t0)
+        s->ibk++;
     s->root_pending = 0;
     s->tlo = t0;
     s->need_setup = 1;
@@ -505,7 +534,8 @@ int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y)
             s->phi[j][i] = d;
         }
     }
-    for (int j = 0; j <= MAXORD; j++) s->psi[j] = (j + 1) * h;
+    for (int j = 0; j <= MAXORD; j++)
+        s->psi[j] = (j + 1) * h;
     s->hh = h;
     s->hused = h;
     s->kk = k;
@@ -553,14 +583,17 @@ static void set_coeffs(dae_solver *s)
     s->ck = fabs(s->alpha[k] + s->alphas - s->alpha0);
     s->ck = fmax(s->ck, s->alpha[k]);
     for (int j = s->ns; j <= k; j++)
-        for (int i = 0; i < s->n; i++) s->phi[j][i] *= s->beta[j];
+        for (int i = 0; i < s->n; i++)
+            s->phi[j][i] *= s->beta[j];
 }
 
 static void restore(dae_solver *s)
 {
-    for (int j = 1; j <= s->kk; j++) s->psi[j - 1] = s->psi[j] - s->hh;
+    for (int j = 1; j <= s->kk; j++)
+        s->psi[j - 1] = s->psi[j] - s->hh;
     for (int j = s->ns; j <= s->kk; j++)
-        for (int i = 0; i < s->n; i++) s->phi[j][i] /= s->beta[j];
+        for (int i = 0; i < s->n; i++)
+            s->phi[j][i] /= s->beta[j];
 }
 
 static void predict(dae_solver *s)
@@ -613,7 +646,8 @@ static int lsolve(dae_solver *s, double *v)
         if (s->kind[j] == DAE_ALG2) v[j] *= cj;
     if (s->cj != cj) {
         double f = 2.0 / (1.0 + s->cj / cj);
-        for (int j = 0; j < s->n; j++) v[j] *= f;
+        for (int j = 0; j < s->n; j++)
+            v[j] *= f;
     }
     s->st.linear_solves++;
     s->st.t_linalg += daei_seconds() - t0;
@@ -678,11 +712,13 @@ static int test_error(dae_solver *s)
     s->knew = k;
     s->err_km1 = 0;
     if (k > 1) {
-        for (int i = 0; i < s->n; i++) s->tmp[i] = s->phi[k][i] + s->ee[i];
+        for (int i = 0; i < s->n; i++)
+            s->tmp[i] = s->phi[k][i] + s->ee[i];
         s->err_km1 = s->sigma[k - 1] * daei_wrms(s, s->tmp, s->werr);
         double terr_km1 = k * s->err_km1;
         if (k > 2) {
-            for (int i = 0; i < s->n; i++) s->tmp[i] += s->phi[k - 1][i];
+            for (int i = 0; i < s->n; i++)
+                s->tmp[i] += s->phi[k - 1][i];
             double terr_km2 = (k - 1) * s->sigma[k - 2] * daei_wrms(s, s->tmp, s->werr);
             if (fmax(terr_km1, terr_km2) <= terr_k) s->knew = k - 1;
         } else if (terr_km1 <= 0.5 * terr_k) {
@@ -726,7 +762,8 @@ static void complete_step(dae_solver *s)
         else if (k == s->o.max_order || k + 1 >= s->ns || kdiff == 1)
             action = MAINTAIN;
         else {
-            for (int i = 0; i < n; i++) s->tmp[i] = s->ee[i] - s->phi[k + 1][i];
+            for (int i = 0; i < n; i++)
+                s->tmp[i] = s->ee[i] - s->phi[k + 1][i];
             err_kp1 = daei_wrms(s, s->tmp, s->werr) / (k + 2);
             double terr_k = (k + 1) * s->err_k, terr_kp1 = (k + 2) * err_kp1;
             if (k == 1)
@@ -759,9 +796,11 @@ static void complete_step(dae_solver *s)
         s->hh = hnew;
     }
     if (s->kused < MAXORD) memcpy(s->phi[s->kused + 1], s->ee, (size_t)n * sizeof(double));
-    for (int i = 0; i < n; i++) s->phi[s->kused][i] += s->ee[i];
+    for (int i = 0; i < n; i++)
+        s->phi[s->kused][i] += s->ee[i];
     for (int j = s->kused - 1; j >= 0; j--)
-        for (int i = 0; i < n; i++) s->phi[j][i] += s->phi[j + 1][i];
+        for (int i = 0; i < n; i++)
+            s->phi[j][i] += s->phi[j + 1][i];
 }
 
 int dae_dense(const dae_solver *s, double t, double *y, double *yp)
@@ -847,7 +886,8 @@ static int first_step(dae_solver *s, double tout, double hpref)
     }
     s->hh = dir * h;
     clip_to_stop(s);
-    for (int i = 0; i < s->n; i++) s->phi[1][i] *= s->hh;
+    for (int i = 0; i < s->n; i++)
+        s->phi[1][i] *= s->hh;
     s->kk = 1;
     s->kused = 0;
     s->hused = 0;
@@ -892,7 +932,8 @@ static int project_vec(dae_solver *s, double t, double *y)
                                   "projection at t = %g: %s", t,
                                   aat_get_error(s->aat_proj)->message);
         sp_matvec_t(s->G, -1.0, s->gw, 0.0, s->tmp);
-        for (int i = 0; i < s->n; i++) y[i] += s->tmp[i];
+        for (int i = 0; i < s->n; i++)
+            y[i] += s->tmp[i];
         s->st.projections++;
         if (daei_wrms(s, s->tmp, s->ewt) < 1e-6) break;
     }
@@ -907,7 +948,8 @@ static int project_step(dae_solver *s)
         return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
                               "constraint function returned %d at t = %g", r, s->tn);
     double g = 0;
-    for (int i = 0; i < s->p.ncons; i++) g = fmax(g, fabs(s->gv[i]));
+    for (int i = 0; i < s->p.ncons; i++)
+        g = fmax(g, fabs(s->gv[i]));
     s->st.max_drift = fmax(s->st.max_drift, g);
     return s->o.projection ? project_vec(s, s->tn, s->phi[0]) : BG_OK;
 }
@@ -923,7 +965,8 @@ static int restart_at_breakpoint(dae_solver *s, double tout)
     double hm = 0.5 * s->hused;
     dae_dense(s, s->tn, s->y, s->yp);
     if (dae_dense(s, s->tn - hm, NULL, s->tmp) == BG_OK) {
-        for (int i = 0; i < s->n; i++) s->tmp[i] = (s->yp[i] - s->tmp[i]) / hm;
+        for (int i = 0; i < s->n; i++)
+            s->tmp[i] = (s->yp[i] - s->tmp[i]) / hm;
         s->hh = 0;
         daei_set_weights(s, s->y);
         double ypp = daei_wrms(s, s->tmp, s->werr);
@@ -975,8 +1018,7 @@ static int step_once(dae_solver *s)
         if (nl < 0) {
             restore(s);
             return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, w,
-                                  "a callback returned the fatal status %d at t = %.17g", nl,
-                                  tnew);
+                                  "a callback returned the fatal status %d at t = %.17g", nl, tnew);
         }
         if (nl == NL_OK) {
             if (s->o.fixed_step || !test_error(s)) {
@@ -1123,8 +1165,7 @@ static int advance(dae_solver *s, double tout, double *tret, double *y, double *
 {
     const char *w = "dae_solve_to";
     if (!s || !tret) return BG_ERR_ARGUMENT;
-    if (!s->initialized)
-        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first");
+    if (!s->initialized) return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first");
     if (!isfinite(tout))
         return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "tout = %g is not finite", tout);
     if (s->first) {
@@ -1204,29 +1245,31 @@ int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp)
 int dae_roots_found(const dae_solver *s, int *found)
 {
     if (!s || !found) return BG_ERR_ARGUMENT;
-    for (int i = 0; i < s->p.nroots; i++) found[i] = s->rfound[i];
+    for (int i = 0; i < s->p.nroots; i++)
+        found[i] = s->rfound[i];
     return BG_OK;
 }
 
 /* ------------------------------------------------------------ statistics ---- */
 
 /* The fields of dae_stats in the order of the line and CSV formats below. */
-#define DAE_STATS_FIELDS(st)                                                                   \
-    (st)->steps, (st)->rejected_error, (st)->newton_iters, (st)->newton_fails, (st)->res_evals, \
-        (st)->res_evals_fd, (st)->jac_evals, (st)->factor_symbolic, (st)->factor_full,         \
-        (st)->factor_refactor, (st)->linear_solves, (st)->steps_at_order[1],                   \
-        (st)->steps_at_order[2], (st)->steps_at_order[3], (st)->steps_at_order[4],             \
-        (st)->steps_at_order[5], (st)->steps ? (st)->h_min_used : 0.0, (st)->h_max_used,       \
-        (st)->max_drift, (st)->init_residual, (st)->rcond_min, (st)->t_res, (st)->t_jac,          \
+#define DAE_STATS_FIELDS(st)                                                                       \
+    (st)->steps, (st)->rejected_error, (st)->newton_iters, (st)->newton_fails, (st)->res_evals,    \
+        (st)->res_evals_fd, (st)->jac_evals, (st)->factor_symbolic, (st)->factor_full,             \
+        (st)->factor_refactor, (st)->linear_solves, (st)->steps_at_order[1],                       \
+        (st)->steps_at_order[2], (st)->steps_at_order[3], (st)->steps_at_order[4],                 \
+        (st)->steps_at_order[5], (st)->steps ? (st)->h_min_used : 0.0, (st)->h_max_used,           \
+        (st)->max_drift, (st)->init_residual, (st)->rcond_min, (st)->t_res, (st)->t_jac,           \
         (st)->t_linalg
 
 int dae_stats_line(const dae_stats *st, char *buf, size_t size)
 {
-    return snprintf(buf, size,
-                    "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
-                    "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
-                    "h=[%.3g,%.3g] drift=%.3g init_res=%.3g rcond_min=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs",
-                    DAE_STATS_FIELDS(st));
+    return snprintf(
+        buf, size,
+        "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
+        "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
+        "h=[%.3g,%.3g] drift=%.3g init_res=%.3g rcond_min=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs",
+        DAE_STATS_FIELDS(st));
 }
 
 int dae_stats_csv_header(char *buf, size_t size)

@@ -56,7 +56,7 @@ typedef struct dae_problem {
     /* optional position constraints (projection, drift) */
     int ncons;
     dae_cons_fn cons;
-    const sp_csc *cons_pattern;   /* ncons x n pattern of dg/dy */
+    const sp_csc *cons_pattern; /* ncons x n pattern of dg/dy */
     /* optional event functions */
     int nroots;
     dae_root_fn roots;
@@ -82,10 +82,10 @@ typedef struct dae_options {
     double t_stop;
     const double *breakpoints; /* ascending times where the step must land (kinks) */
     int nbreakpoints;
-    int projection;           /* project onto cons after each step (needs cons) */
-    int max_newton;           /* Newton iterations per step, default 4 */
-    int fixed_step;           /* 1: constant h_init, order max_order after dae_set_history, no
-                                 error-test rejection (for convergence-order studies) */
+    int projection;            /* project onto cons after each step (needs cons) */
+    int max_newton;            /* Newton iterations per step, default 4 */
+    int fixed_step;            /* 1: constant h_init, order max_order after dae_set_history, no
+                                  error-test rejection (for convergence-order studies) */
     int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
                                   convergence test (default 0: full weight, see bg_dae.c) */
 } dae_options;
@@ -100,26 +100,26 @@ typedef struct dae_stats {
     long projections;
     double h_min_used, h_max_used, h_last;
     int order_last;
-    double max_drift;          /* max |g| before projection over the run (needs cons) */
-    double init_residual;      /* scaled residual norm after consistent initialisation */
-    double rcond_min;          /* smallest reciprocal condition estimate of the (scaled) Newton
-                                  matrix (KLU: min|Ukk|/max|Ukk|; dense: LAPACK dgecon) */
+    double max_drift;              /* max |g| before projection over the run (needs cons) */
+    double init_residual;          /* scaled residual norm after consistent initialisation */
+    double rcond_min;              /* smallest reciprocal condition estimate of the (scaled) Newton
+                                      matrix (KLU: min|Ukk|/max|Ukk|; dense: LAPACK dgecon) */
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
 } dae_stats;
 
 /* Return codes of dae_solve_to / dae_step besides the bg_status codes. */
 enum dae_return {
     DAE_SUCCESS = 0,
-    DAE_TSTOP_RETURN = 2,  /* reached t_stop */
-    DAE_ROOT_RETURN = 3,   /* an event function changed sign: see dae_roots_found */
+    DAE_TSTOP_RETURN = 2, /* reached t_stop */
+    DAE_ROOT_RETURN = 3,  /* an event function changed sign: see dae_roots_found */
     DAE_TOO_MUCH_WORK = -20,
-    DAE_TOO_MUCH_ACC = -21,    /* tolerance below round-off */
-    DAE_ERR_FAIL = -22,        /* error test failed repeatedly or with |h| = h_min */
-    DAE_CONV_FAIL = -23,       /* Newton failed repeatedly */
-    DAE_LSETUP_FAIL = -24,     /* Newton matrix singular */
-    DAE_RES_FAIL = -25,        /* residual kept failing (recoverable failures, NaN or Inf) */
-    DAE_CALLBACK_FAIL = -26,   /* a callback returned < 0 */
-    DAE_INIT_FAIL = -27,       /* consistent initialisation failed */
+    DAE_TOO_MUCH_ACC = -21,  /* tolerance below round-off */
+    DAE_ERR_FAIL = -22,      /* error test failed repeatedly or with |h| = h_min */
+    DAE_CONV_FAIL = -23,     /* Newton failed repeatedly */
+    DAE_LSETUP_FAIL = -24,   /* Newton matrix singular */
+    DAE_RES_FAIL = -25,      /* residual kept failing (recoverable failures, NaN or Inf) */
+    DAE_CALLBACK_FAIL = -26, /* a callback returned < 0 */
+    DAE_INIT_FAIL = -27,     /* consistent initialisation failed */
     DAE_STEP_TOO_SMALL = -28
 };
 

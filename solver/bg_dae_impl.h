@@ -10,8 +10,8 @@
 
 #define MAXORD 5
 #define NPHI (MAXORD + 2)
-#define MAX_NEF 10   /* error-test failures in one step */
-#define MAX_NCF 10   /* Newton failures in one step */
+#define MAX_NEF 10 /* error-test failures in one step */
+#define MAX_NCF 10 /* Newton failures in one step */
 #define EPS_NEWT 0.33
 #define RATE_MAX 0.9
 #define CJ_LOW 0.6
@@ -23,32 +23,32 @@ struct dae_solver {
     dae_options o;
     int *kind;
     char **names;
-    double *atol;     /* n */
-    double *bkpt;     /* sorted breakpoints */
+    double *atol; /* n */
+    double *bkpt; /* sorted breakpoints */
     int nbkpt;
     /* Jacobians and the Newton matrix */
     sp_csc *Jy, *Jyp;
     sp_union *U;
     sp_fdjac *fdy, *fdyp;
     ls_solver *ls;
-    int *rowkind;      /* ROW_DIFF: contains y'; ROW_ALG1: algebraic, no index-2 unknown
-                          (differentiated at initialisation); ROW_ALG2: algebraic with an index-2
-                          unknown */
-    int *rowscaled;    /* row scaled by h/alpha in the Newton matrix (ROW_DIFF and ROW_ALG2) */
-    double cjf;        /* cj the factored matrix was built with */
-    int jac_current;   /* Jacobian evaluated at this step's predictor */
+    int *rowkind;    /* ROW_DIFF: contains y'; ROW_ALG1: algebraic, no index-2 unknown
+                        (differentiated at initialisation); ROW_ALG2: algebraic with an index-2
+                        unknown */
+    int *rowscaled;  /* row scaled by h/alpha in the Newton matrix (ROW_DIFF and ROW_ALG2) */
+    double cjf;      /* cj the factored matrix was built with */
+    int jac_current; /* Jacobian evaluated at this step's predictor */
     int need_setup;
-    double ss;         /* Newton rate factor */
+    double ss; /* Newton rate factor */
     /* consistent initialisation (bg_dae_init.c) */
-    sp_csc *K;         /* stage B: Jacobian in (y'_D, y'_A1, y_A2) */
+    sp_csc *K;               /* stage B: Jacobian in (y'_D, y'_A1, y_A2) */
     int *kslot_yp, *kslot_y; /* entry p of Jyp / Jy -> slot in K, -1 if not used */
     ls_solver *kls;
     int nalg_rows, nalg1_rows;
-    int *arow;         /* row i -> its number among the algebraic rows, -1 */
-    sp_csc *kkt;       /* stage A: [D B^T; B 0], B = algebraic rows of Jy, columns scaled */
+    int *arow;   /* row i -> its number among the algebraic rows, -1 */
+    sp_csc *kkt; /* stage A: [D B^T; B 0], B = algebraic rows of Jy, columns scaled */
     int *kkt_diag, *kkt_b, *kkt_bt; /* slots: diagonal j, entry p of Jy in B and in B^T */
     ls_solver *kktls;
-    double *kkt_rhs;   /* n + nalg_rows */
+    double *kkt_rhs; /* n + nalg_rows */
     /* drift and projection */
     sp_csc *G;
     aat_solver *aat_proj;
@@ -56,7 +56,7 @@ struct dae_solver {
     /* BDF state */
     double tn, hh, hused, cj, cjold;
     int kk, kused, knew, phase, ns, nst_local, first;
-    int since_fail;    /* accepted steps since the last error-test failure */
+    int since_fail; /* accepted steps since the last error-test failure */
     double psi[MAXORD + 1], alpha[MAXORD + 1], beta[MAXORD + 1], sigma[MAXORD + 1],
         gamma[MAXORD + 1];
     double alphas, alpha0, ck;
@@ -70,7 +70,7 @@ struct dae_solver {
     int *rfound;
     int root_pending;
     double troot;
-    int ibk;           /* next breakpoint index */
+    int ibk; /* next breakpoint index */
     int initialized;
     /* FD context */
     double fd_t;

@@ -59,7 +59,8 @@ int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind)
         rowalg[i] = 1;
         matchrow[i] = -1;
     }
-    for (int p = 0; p < Jyp->nnz; p++) rowalg[Jyp->rowind[p]] = 0;
+    for (int p = 0; p < Jyp->nnz; p++)
+        rowalg[Jyp->rowind[p]] = 0;
     for (int j = 0; j < n; j++)
         kind[j] = Jyp->colptr[j + 1] > Jyp->colptr[j] ? DAE_DIFF : DAE_ALG;
     /* maximum matching of algebraic rows and algebraic variables, one augmenting path search
@@ -91,7 +92,8 @@ int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind)
             if (!pushed && sp[top] >= Jy->colptr[v + 1]) top--;
         }
         if (found)
-            for (int k = top; k >= 0; k--) matchrow[srow[k]] = svar[k];
+            for (int k = top; k >= 0; k--)
+                matchrow[srow[k]] = svar[k];
     }
     for (int i = 0; i < n; i++)
         if (matchrow[i] >= 0) matched[matchrow[i]] = 1;
@@ -167,8 +169,10 @@ static int build_k(dae_solver *s)
     }
     slot = malloc(((size_t)sp_builder_count(b) + 1) * sizeof *slot);
     if (!slot || !(s->K = sp_builder_finish(b, slot))) goto done;
-    for (int p = 0; p < s->Jy->nnz; p++) s->kslot_y[p] = sy[p] >= 0 ? slot[sy[p]] : -1;
-    for (int p = 0; p < s->Jyp->nnz; p++) s->kslot_yp[p] = slot[syp[p]];
+    for (int p = 0; p < s->Jy->nnz; p++)
+        s->kslot_y[p] = sy[p] >= 0 ? slot[sy[p]] : -1;
+    for (int p = 0; p < s->Jyp->nnz; p++)
+        s->kslot_yp[p] = slot[syp[p]];
     ok = 1;
 done:
     sp_builder_free(&b);
@@ -185,7 +189,8 @@ static int build_kkt(dae_solver *s)
     sp_builder *b = sp_builder_create(N, N, n + 2 * s->Jy->nnz);
     int *slot = NULL;
     if (!b) goto done;
-    for (int j = 0; j < n; j++) s->kkt_diag[j] = sp_builder_add(b, j, j, 0.0);
+    for (int j = 0; j < n; j++)
+        s->kkt_diag[j] = sp_builder_add(b, j, j, 0.0);
     for (int j = 0; j < n; j++)
         for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
             int a = s->arow[s->Jy->rowind[p]];
@@ -194,7 +199,8 @@ static int build_kkt(dae_solver *s)
         }
     slot = malloc(((size_t)sp_builder_count(b) + 1) * sizeof *slot);
     if (!slot || !(s->kkt = sp_builder_finish(b, slot))) goto done;
-    for (int j = 0; j < n; j++) s->kkt_diag[j] = slot[s->kkt_diag[j]];
+    for (int j = 0; j < n; j++)
+        s->kkt_diag[j] = slot[s->kkt_diag[j]];
     for (int p = 0; p < s->Jy->nnz; p++) {
         if (s->kkt_b[p] >= 0) s->kkt_b[p] = slot[s->kkt_b[p]];
         if (s->kkt_bt[p] >= 0) s->kkt_bt[p] = slot[s->kkt_bt[p]];
@@ -235,8 +241,10 @@ int daei_init_setup(dae_solver *s, bg_error *err)
     /* row classes */
     int *touched = calloc((size_t)n, sizeof *touched);
     if (!touched) goto nomem;
-    for (int p = 0; p < s->Jyp->nnz; p++) touched[s->Jyp->rowind[p]] = 1;
-    for (int i = 0; i < n; i++) s->rowkind[i] = touched[i] ? ROW_DIFF : ROW_ALG1;
+    for (int p = 0; p < s->Jyp->nnz; p++)
+        touched[s->Jyp->rowind[p]] = 1;
+    for (int i = 0; i < n; i++)
+        s->rowkind[i] = touched[i] ? ROW_DIFF : ROW_ALG1;
     for (int j = 0; j < n; j++)
         for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
             int i = s->Jy->rowind[p];
@@ -278,7 +286,8 @@ nomem:
 /* Scaled residual of row i: |F_i| / (1 + sum_j |Jy_ij y_j| + |Jyp_ij yp_j|), into den. */
 static void row_scales(dae_solver *s, const double *y, const double *yp, double *den)
 {
-    for (int i = 0; i < s->n; i++) den[i] = 1.0;
+    for (int i = 0; i < s->n; i++)
+        den[i] = 1.0;
     for (int j = 0; j < s->n; j++) {
         for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
             den[s->Jy->rowind[p]] += fabs(s->Jy->val[p] * y[j]);
@@ -289,9 +298,8 @@ static void row_scales(dae_solver *s, const double *y, const double *yp, double 
 
 static int cb_fail(dae_solver *s, int r, const char *what, double t)
 {
-    return bg_error_raise(&s->err, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
-                          "dae_consistent_init", "the %s failed (status %d) at t = %g", what, r,
-                          t);
+    return bg_error_raise(&s->err, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL, "dae_consistent_init",
+                          "the %s failed (status %d) at t = %g", what, r, t);
 }
 
 /* F and the Jacobians at (t, y, yp). */
@@ -344,7 +352,8 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
                     s->kkt->val[s->kkt_b[p]] = s->Jy->val[p];
                     s->kkt->val[s->kkt_bt[p]] = s->Jy->val[p];
                 }
-        for (int j = 0; j < n; j++) z[j] = 0.0;
+        for (int j = 0; j < n; j++)
+            z[j] = 0.0;
         for (int i = 0; i < n; i++)
             if (s->arow[i] >= 0) z[n + s->arow[i]] = -s->res[i];
         if ((r = factor_solve(s, s->kktls, s->kkt, z)) != BG_OK)
@@ -352,7 +361,8 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
                                   "the algebraic equations are dependent or contradict each other "
                                   "at t = %g (%s)",
                                   t, ls_get_error(s->kktls)->message);
-        for (int j = 0; j < n; j++) y[j] += z[j];
+        for (int j = 0; j < n; j++)
+            y[j] += z[j];
     }
 }
 
@@ -395,7 +405,8 @@ int dae_consistent_init(dae_solver *s)
         sp_csc_zero(s->K);
         for (int p = 0; p < s->Jy->nnz; p++)
             if (s->kslot_y[p] >= 0) s->K->val[s->kslot_y[p]] = s->Jy->val[p];
-        for (int p = 0; p < s->Jyp->nnz; p++) s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
+        for (int p = 0; p < s->Jyp->nnz; p++)
+            s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
         memcpy(u, F, (size_t)n * sizeof *u);
         if ((r = factor_solve(s, s->kls, s->K, u)) != BG_OK) {
             int c = ls_singular_col(s->kls);
@@ -423,7 +434,8 @@ int dae_consistent_init(dae_solver *s)
     if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
     row_scales(s, y, yp, s->tmp2);
     double m = 0;
-    for (int i = 0; i < n; i++) m = fmax(m, fabs(F[i]) / s->tmp2[i]);
+    for (int i = 0; i < n; i++)
+        m = fmax(m, fabs(F[i]) / s->tmp2[i]);
     s->st.init_residual = m;
     daei_sync_stats(s);
     memcpy(s->phi[0], y, (size_t)n * sizeof *y);

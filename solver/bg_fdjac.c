@@ -29,7 +29,8 @@ sp_colouring *sp_colour(const sp_csc *P)
     c->group = malloc(((size_t)n + 1) * sizeof *c->group);
     c->gcols = malloc(((size_t)n + 1) * sizeof *c->gcols);
     if (!c->group || !c->gcols) goto fail;
-    for (int g = 0; g <= n; g++) mark[g] = -1;
+    for (int g = 0; g <= n; g++)
+        mark[g] = -1;
     int ng = 0;
     for (int j = 0; j < n; j++) {
         /* mark[g] == j: group g is taken by a neighbour of j */
@@ -41,17 +42,22 @@ sp_colouring *sp_colour(const sp_csc *P)
             }
         }
         int g = 0;
-        while (mark[g] == j) g++;
+        while (mark[g] == j)
+            g++;
         c->group[j] = g;
         if (g + 1 > ng) ng = g + 1;
     }
     c->ngroups = ng;
     c->gptr = calloc((size_t)ng + 1, sizeof *c->gptr);
     if (!c->gptr) goto fail;
-    for (int j = 0; j < n; j++) c->gptr[c->group[j] + 1]++;
-    for (int g = 0; g < ng; g++) c->gptr[g + 1] += c->gptr[g];
-    for (int g = 0; g <= ng; g++) mark[g] = c->gptr[g];
-    for (int j = 0; j < n; j++) c->gcols[mark[c->group[j]]++] = j;
+    for (int j = 0; j < n; j++)
+        c->gptr[c->group[j] + 1]++;
+    for (int g = 0; g < ng; g++)
+        c->gptr[g + 1] += c->gptr[g];
+    for (int g = 0; g <= ng; g++)
+        mark[g] = c->gptr[g];
+    for (int j = 0; j < n; j++)
+        c->gcols[mark[c->group[j]]++] = j;
     sp_csc_free(&T);
     free(mark);
     return c;
@@ -69,7 +75,8 @@ int sp_colouring_valid(const sp_colouring *c, const sp_csc *P)
     if (!owner) return 0;
     int ok = 1;
     for (int g = 0; g < c->ngroups && ok; g++) {
-        for (int i = 0; i < P->nrow; i++) owner[i] = -1;
+        for (int i = 0; i < P->nrow; i++)
+            owner[i] = -1;
         for (int t = c->gptr[g]; t < c->gptr[g + 1] && ok; t++) {
             int j = c->gcols[t];
             if (c->group[j] != g) ok = 0;
@@ -116,9 +123,15 @@ sp_fdjac *sp_fdjac_create(const sp_csc *P)
     return d;
 }
 
-int sp_fdjac_ngroups(const sp_fdjac *d) { return d->col->ngroups; }
+int sp_fdjac_ngroups(const sp_fdjac *d)
+{
+    return d->col->ngroups;
+}
 
-long sp_fdjac_calls(const sp_fdjac *d) { return d->calls; }
+long sp_fdjac_calls(const sp_fdjac *d)
+{
+    return d->calls;
+}
 
 int sp_fdjac_eval(sp_fdjac *d, sp_vecfn f, void *user, const double *x, const double *f0,
                   const double *typ, sp_csc *J)
@@ -139,7 +152,8 @@ int sp_fdjac_eval(sp_fdjac *d, sp_vecfn f, void *user, const double *x, const do
         }
         d->calls++;
         int st = f(user, d->xp, d->fp);
-        for (int t = c->gptr[g]; t < c->gptr[g + 1]; t++) d->xp[c->gcols[t]] = x[c->gcols[t]];
+        for (int t = c->gptr[g]; t < c->gptr[g + 1]; t++)
+            d->xp[c->gcols[t]] = x[c->gcols[t]];
         if (st != 0) return st;
         for (int t = c->gptr[g]; t < c->gptr[g + 1]; t++) {
             int j = c->gcols[t];
@@ -198,8 +212,10 @@ int sp_jac_check(const sp_csc *J, sp_vecfn f, void *user, int m, const double *x
         double hm = x[j] - xp[j];
         if ((st = f(user, xp, fm)) != 0) goto done;
         xp[j] = x[j];
-        for (int i = 0; i < m; i++) col[i] = 0.0;
-        for (int p = J->colptr[j]; p < J->colptr[j + 1]; p++) col[J->rowind[p]] = J->val[p];
+        for (int i = 0; i < m; i++)
+            col[i] = 0.0;
+        for (int p = J->colptr[j]; p < J->colptr[j + 1]; p++)
+            col[J->rowind[p]] = J->val[p];
         for (int i = 0; i < m; i++) {
             double fd = (fp[i] - fm[i]) / (hp + hm);
             double e = fabs(col[i] - fd) / (fabs(fd) + floor);

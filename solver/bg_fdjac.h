@@ -22,9 +22,9 @@ extern "C" {
 typedef struct sp_colouring {
     int ncol;
     int ngroups;
-    int *group;  /* ncol: group of column j, 0..ngroups-1 */
-    int *gptr;   /* ngroups+1: columns of group g are gcols[gptr[g] .. gptr[g+1]-1] */
-    int *gcols;  /* ncol */
+    int *group; /* ncol: group of column j, 0..ngroups-1 */
+    int *gptr;  /* ngroups+1: columns of group g are gcols[gptr[g] .. gptr[g+1]-1] */
+    int *gcols; /* ncol */
 } sp_colouring;
 
 sp_colouring *sp_colour(const sp_csc *pattern);

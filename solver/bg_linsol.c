@@ -72,7 +72,8 @@ ls_solver *ls_create(ls_kind kind, const sp_csc *P, bg_error *err)
         klu_defaults(&s->common);
         s->sym = klu_analyze(s->n, s->pattern->colptr, s->pattern->rowind, &s->common);
         if (!s->sym) {
-            bg_error_raise(err, s->common.status == KLU_OUT_OF_MEMORY ? BG_ERR_MEMORY : BG_ERR_LIBRARY,
+            bg_error_raise(err,
+                           s->common.status == KLU_OUT_OF_MEMORY ? BG_ERR_MEMORY : BG_ERR_LIBRARY,
                            w, "klu_analyze failed (KLU status %d) on the %d x %d pattern",
                            s->common.status, s->n, s->n);
             ls_free(&s);
@@ -123,9 +124,9 @@ static int klu_full(ls_solver *s, const sp_csc *A)
                                   s->common.singular_col, s->common.numerical_rank, s->n,
                                   s->common.structural_rank);
         }
-        return bg_error_raise(&s->err,
-                              s->common.status == KLU_OUT_OF_MEMORY ? BG_ERR_MEMORY : BG_ERR_LIBRARY,
-                              "ls_factor", "klu_factor failed (KLU status %d)", s->common.status);
+        return bg_error_raise(
+            &s->err, s->common.status == KLU_OUT_OF_MEMORY ? BG_ERR_MEMORY : BG_ERR_LIBRARY,
+            "ls_factor", "klu_factor failed (KLU status %d)", s->common.status);
     }
     klu_rcond(s->sym, s->num, &s->common);
     s->st.rcond = s->common.rcond;
@@ -217,14 +218,26 @@ int ls_solve(ls_solver *s, double *b, int nrhs)
     return BG_OK;
 }
 
-int ls_singular_col(const ls_solver *s) { return s ? s->singular_col : -1; }
+int ls_singular_col(const ls_solver *s)
+{
+    return s ? s->singular_col : -1;
+}
 void ls_set_rcond_min(ls_solver *s, double r)
 {
     if (s) s->rcond_min = r;
 }
-const ls_stats *ls_get_stats(const ls_solver *s) { return &s->st; }
-ls_kind ls_get_kind(const ls_solver *s) { return s->kind; }
-bg_error *ls_get_error(ls_solver *s) { return &s->err; }
+const ls_stats *ls_get_stats(const ls_solver *s)
+{
+    return &s->st;
+}
+ls_kind ls_get_kind(const ls_solver *s)
+{
+    return s->kind;
+}
+bg_error *ls_get_error(ls_solver *s)
+{
+    return &s->err;
+}
 
 /* ---- CHOLMOD: (A A^T + beta I) x = b ---- */
 #define AAT_PIVOT_TOL 1e-12 /* relative pivot below which rows count as dependent */
@@ -336,7 +349,8 @@ int aat_factor(aat_solver *s, const sp_csc *A, double beta)
         const int *Lp = s->L->p, *perm = s->L->Perm;
         const double *Lx = s->L->x;
         double dmax = 0;
-        for (int j = 0; j < s->m; j++) dmax = fmax(dmax, fabs(Lx[Lp[j]]));
+        for (int j = 0; j < s->m; j++)
+            dmax = fmax(dmax, fabs(Lx[Lp[j]]));
         for (int j = 0; j < s->m; j++)
             if (!(Lx[Lp[j]] > AAT_PIVOT_TOL * dmax))
                 return bg_error_raise(&s->err, BG_ERR_NOT_POSDEF, "aat_factor",
@@ -372,5 +386,11 @@ int aat_solve(aat_solver *s, const double *b, double *x)
     return BG_OK;
 }
 
-bg_error *aat_get_error(aat_solver *s) { return &s->err; }
-long aat_factor_count(const aat_solver *s) { return s->nfactor; }
+bg_error *aat_get_error(aat_solver *s)
+{
+    return &s->err;
+}
+long aat_factor_count(const aat_solver *s)
+{
+    return s->nfactor;
+}

@@ -23,12 +23,12 @@ extern "C" {
 typedef enum ls_kind { LS_KLU = 0, LS_DENSE = 1 } ls_kind;
 
 typedef struct ls_stats {
-    long symbolic;     /* symbolic analyses (KLU: 1 per solver object) */
-    long factor;       /* full numeric factorizations (fresh pivoting) */
-    long refactor;     /* refactorizations reusing the previous pivot sequence */
-    long fallback;     /* refactorizations that had to be redone as full factorizations */
-    long solve;        /* right-hand sides solved */
-    double rcond;      /* last reciprocal condition estimate (KLU: min|Ukk|/max|Ukk|) */
+    long symbolic; /* symbolic analyses (KLU: 1 per solver object) */
+    long factor;   /* full numeric factorizations (fresh pivoting) */
+    long refactor; /* refactorizations reusing the previous pivot sequence */
+    long fallback; /* refactorizations that had to be redone as full factorizations */
+    long solve;    /* right-hand sides solved */
+    double rcond;  /* last reciprocal condition estimate (KLU: min|Ukk|/max|Ukk|) */
 } ls_stats;
 
 typedef struct ls_solver ls_solver;

@@ -53,8 +53,10 @@ sp_csc *sp_csc_transpose(const sp_csc *A)
         sp_csc_free(&T);
         return NULL;
     }
-    for (int p = 0; p < A->nnz; p++) T->colptr[A->rowind[p] + 1]++;
-    for (int i = 0; i < A->nrow; i++) T->colptr[i + 1] += T->colptr[i];
+    for (int p = 0; p < A->nnz; p++)
+        T->colptr[A->rowind[p] + 1]++;
+    for (int i = 0; i < A->nrow; i++)
+        T->colptr[i + 1] += T->colptr[i];
     memcpy(next, T->colptr, (size_t)A->nrow * sizeof *next);
     for (int j = 0; j < A->ncol; j++)
         for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
@@ -161,10 +163,12 @@ void sp_matvec(const sp_csc *A, double alpha, const double *x, double beta, doub
     if (beta == 0.0)
         memset(y, 0, (size_t)A->nrow * sizeof *y);
     else if (beta != 1.0)
-        for (int i = 0; i < A->nrow; i++) y[i] *= beta;
+        for (int i = 0; i < A->nrow; i++)
+            y[i] *= beta;
     for (int j = 0; j < A->ncol; j++) {
         double ax = alpha * x[j];
-        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++) y[A->rowind[p]] += A->val[p] * ax;
+        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
+            y[A->rowind[p]] += A->val[p] * ax;
     }
 }
 
@@ -172,7 +176,8 @@ void sp_matvec_t(const sp_csc *A, double alpha, const double *x, double beta, do
 {
     for (int j = 0; j < A->ncol; j++) {
         double s = 0.0;
-        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++) s += A->val[p] * x[A->rowind[p]];
+        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
+            s += A->val[p] * x[A->rowind[p]];
         y[j] = (beta == 0.0 ? 0.0 : beta * y[j]) + alpha * s;
     }
 }
@@ -180,8 +185,8 @@ void sp_matvec_t(const sp_csc *A, double alpha, const double *x, double beta, do
 int sp_write_mm(const sp_csc *A, FILE *f)
 {
     if (!A || !f) return BG_ERR_ARGUMENT;
-    if (fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n%d %d %d\n", A->nrow,
-                A->ncol, A->nnz) < 0)
+    if (fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n%d %d %d\n", A->nrow, A->ncol,
+                A->nnz) < 0)
         return BG_ERR_IO;
     for (int j = 0; j < A->ncol; j++)
         for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
@@ -251,8 +256,8 @@ int sp_builder_add(sp_builder *b, int i, int j, double v)
         if (b->cap > (1 << 29))
             return bg_error_raise(&b->err, BG_ERR_MEMORY, "sp_builder_add", "too many entries");
         int cap = 2 * b->cap;
-        if (!grow((void **)&b->ri, sizeof *b->ri, cap) || !grow((void **)&b->ci, sizeof *b->ci, cap) ||
-            !grow((void **)&b->v, sizeof *b->v, cap))
+        if (!grow((void **)&b->ri, sizeof *b->ri, cap) ||
+            !grow((void **)&b->ci, sizeof *b->ci, cap) || !grow((void **)&b->v, sizeof *b->v, cap))
             return bg_error_raise(&b->err, BG_ERR_MEMORY, "sp_builder_add",
                                   "cannot grow to %d entries", cap);
         b->cap = cap;
@@ -263,9 +268,15 @@ int sp_builder_add(sp_builder *b, int i, int j, double v)
     return b->n++;
 }
 
-int sp_builder_count(const sp_builder *b) { return b->n; }
+int sp_builder_count(const sp_builder *b)
+{
+    return b->n;
+}
 
-const bg_error *sp_builder_error(const sp_builder *b) { return &b->err; }
+const bg_error *sp_builder_error(const sp_builder *b)
+{
+    return &b->err;
+}
 
 sp_csc *sp_builder_finish(sp_builder *b, int *slot)
 {
@@ -280,12 +291,17 @@ sp_csc *sp_builder_finish(sp_builder *b, int *slot)
     }
     /* Two stable counting sorts: by row, then by column, give column-major order with rows
      * ascending and, within one position, entries in order of addition. */
-    for (int k = 0; k < n; k++) cnt[b->ri[k] + 1]++;
-    for (int i = 0; i < nr; i++) cnt[i + 1] += cnt[i];
-    for (int k = 0; k < n; k++) tmp[cnt[b->ri[k]]++] = k;
+    for (int k = 0; k < n; k++)
+        cnt[b->ri[k] + 1]++;
+    for (int i = 0; i < nr; i++)
+        cnt[i + 1] += cnt[i];
+    for (int k = 0; k < n; k++)
+        tmp[cnt[b->ri[k]]++] = k;
     memset(cnt, 0, ((size_t)(nr > nc ? nr : nc) + 1) * sizeof *cnt);
-    for (int k = 0; k < n; k++) cnt[b->ci[k] + 1]++;
-    for (int j = 0; j < nc; j++) cnt[j + 1] += cnt[j];
+    for (int k = 0; k < n; k++)
+        cnt[b->ci[k] + 1]++;
+    for (int j = 0; j < nc; j++)
+        cnt[j + 1] += cnt[j];
     for (int t = 0; t < n; t++) {
         int k = tmp[t];
         order[cnt[b->ci[k]]++] = k;
@@ -313,7 +329,8 @@ sp_csc *sp_builder_finish(sp_builder *b, int *slot)
         A->val[p] += b->v[k];
         if (slot) slot[k] = p;
     }
-    for (int j = 0; j < nc; j++) A->colptr[j + 1] += A->colptr[j];
+    for (int j = 0; j < nc; j++)
+        A->colptr[j + 1] += A->colptr[j];
     A->nnz = nnz;
 done:
     free(cnt);
@@ -324,7 +341,8 @@ done:
 
 void sp_scatter_add(sp_csc *A, const int *slot, const double *v, int n)
 {
-    for (int k = 0; k < n; k++) A->val[slot[k]] += v[k];
+    for (int k = 0; k < n; k++)
+        A->val[slot[k]] += v[k];
 }
 
 /* ---- union ---- */
@@ -393,6 +411,8 @@ void sp_union_combine(sp_union *u, const sp_csc *A, double ca, const sp_csc *B, 
 {
     sp_csc_zero(u->M);
     double *m = u->M->val;
-    for (int p = 0; p < A->nnz; p++) m[u->map_a[p]] = ca * A->val[p];
-    for (int p = 0; p < B->nnz; p++) m[u->map_b[p]] += cb * B->val[p];
+    for (int p = 0; p < A->nnz; p++)
+        m[u->map_a[p]] = ca * A->val[p];
+    for (int p = 0; p < B->nnz; p++)
+        m[u->map_b[p]] += cb * B->val[p];
 }

@@ -7,18 +7,30 @@
 const char *bg_status_name(int status)
 {
     switch (status) {
-    case BG_OK: return "BG_OK";
-    case BG_RECOVERABLE: return "BG_RECOVERABLE";
-    case BG_ERR_MEMORY: return "BG_ERR_MEMORY";
-    case BG_ERR_ARGUMENT: return "BG_ERR_ARGUMENT";
-    case BG_ERR_SINGULAR: return "BG_ERR_SINGULAR";
-    case BG_ERR_NOT_POSDEF: return "BG_ERR_NOT_POSDEF";
-    case BG_ERR_LIBRARY: return "BG_ERR_LIBRARY";
-    case BG_ERR_CALLBACK: return "BG_ERR_CALLBACK";
-    case BG_ERR_IO: return "BG_ERR_IO";
-    case BG_ERR_PATTERN: return "BG_ERR_PATTERN";
-    case BG_ERR_NONFINITE: return "BG_ERR_NONFINITE";
-    default: return "unknown status";
+    case BG_OK:
+        return "BG_OK";
+    case BG_RECOVERABLE:
+        return "BG_RECOVERABLE";
+    case BG_ERR_MEMORY:
+        return "BG_ERR_MEMORY";
+    case BG_ERR_ARGUMENT:
+        return "BG_ERR_ARGUMENT";
+    case BG_ERR_SINGULAR:
+        return "BG_ERR_SINGULAR";
+    case BG_ERR_NOT_POSDEF:
+        return "BG_ERR_NOT_POSDEF";
+    case BG_ERR_LIBRARY:
+        return "BG_ERR_LIBRARY";
+    case BG_ERR_CALLBACK:
+        return "BG_ERR_CALLBACK";
+    case BG_ERR_IO:
+        return "BG_ERR_IO";
+    case BG_ERR_PATTERN:
+        return "BG_ERR_PATTERN";
+    case BG_ERR_NONFINITE:
+        return "BG_ERR_NONFINITE";
+    default:
+        return "unknown status";
     }
 }
 

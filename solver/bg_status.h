@@ -15,16 +15,16 @@ extern "C" {
 
 enum bg_status_code {
     BG_OK = 0,
-    BG_RECOVERABLE = 1,        /* a callback asked for a retry with a smaller step */
-    BG_ERR_MEMORY = -1,        /* allocation failed */
-    BG_ERR_ARGUMENT = -2,      /* an argument is out of range or inconsistent */
-    BG_ERR_SINGULAR = -3,      /* a matrix is (numerically or structurally) singular */
-    BG_ERR_NOT_POSDEF = -4,    /* a matrix expected positive definite is not */
-    BG_ERR_LIBRARY = -5,       /* SuiteSparse or LAPACK reported a failure */
-    BG_ERR_CALLBACK = -6,      /* a user callback returned a fatal status */
-    BG_ERR_IO = -7,            /* a file could not be written or read */
-    BG_ERR_PATTERN = -8,       /* a matrix does not have the pattern it was declared with */
-    BG_ERR_NONFINITE = -9      /* NaN or Inf where a finite number is needed */
+    BG_RECOVERABLE = 1,     /* a callback asked for a retry with a smaller step */
+    BG_ERR_MEMORY = -1,     /* allocation failed */
+    BG_ERR_ARGUMENT = -2,   /* an argument is out of range or inconsistent */
+    BG_ERR_SINGULAR = -3,   /* a matrix is (numerically or structurally) singular */
+    BG_ERR_NOT_POSDEF = -4, /* a matrix expected positive definite is not */
+    BG_ERR_LIBRARY = -5,    /* SuiteSparse or LAPACK reported a failure */
+    BG_ERR_CALLBACK = -6,   /* a user callback returned a fatal status */
+    BG_ERR_IO = -7,         /* a file could not be written or read */
+    BG_ERR_PATTERN = -8,    /* a matrix does not have the pattern it was declared with */
+    BG_ERR_NONFINITE = -9   /* NaN or Inf where a finite number is needed */
 };
 
 /* Name of a status code, e.g. "BG_ERR_SINGULAR"; "unknown status" for others. */
@@ -38,7 +38,7 @@ typedef void (*bg_error_handler)(void *user, int status, const char *where, cons
 typedef struct bg_error {
     bg_error_handler handler; /* NULL: keep the message only */
     void *user;
-    int status;               /* status of the last error, BG_OK if none */
+    int status; /* status of the last error, BG_OK if none */
     char message[BG_MESSAGE_SIZE];
 } bg_error;
 

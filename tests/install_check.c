@@ -13,7 +13,8 @@ int main(void)
     ls_solver *s = ls_create(LS_KLU, A, NULL);
     int st = s ? ls_factor(s, A) : -1;
     if (st == BG_OK) st = ls_solve(s, b, 1);
-    int ok = st == BG_OK && fabs(b[0] - 1) < 1e-14 && fabs(b[1] - 1) < 1e-14 && fabs(b[2] - 1) < 1e-14;
+    int ok =
+        st == BG_OK && fabs(b[0] - 1) < 1e-14 && fabs(b[1] - 1) < 1e-14 && fabs(b[2] - 1) < 1e-14;
     ls_free(&s);
     sp_csc_free(&A);
     if (!ok) fprintf(stderr, "install_check: wrong result (status %d)\n", st);

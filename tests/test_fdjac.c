@@ -65,12 +65,16 @@ static int my_greedy(const sp_csc *P, int *group)
     /* Row-wise lists of columns. */
     int *rcnt = calloc((size_t)m + 1, sizeof(int)), *rcol = malloc(sizeof(int) * (P->nnz + 1));
     int *fill = malloc(sizeof(int) * (m + 1)), *forbid = malloc(sizeof(int) * (n + 1));
-    for (p = 0; p < P->nnz; p++) rcnt[P->rowind[p] + 1]++;
-    for (i = 0; i < m; i++) rcnt[i + 1] += rcnt[i];
+    for (p = 0; p < P->nnz; p++)
+        rcnt[P->rowind[p] + 1]++;
+    for (i = 0; i < m; i++)
+        rcnt[i + 1] += rcnt[i];
     memcpy(fill, rcnt, sizeof(int) * m);
     for (j = 0; j < n; j++)
-        for (p = P->colptr[j]; p < P->colptr[j + 1]; p++) rcol[fill[P->rowind[p]]++] = j;
-    for (j = 0; j <= n; j++) forbid[j] = -1;
+        for (p = P->colptr[j]; p < P->colptr[j + 1]; p++)
+            rcol[fill[P->rowind[p]]++] = j;
+    for (j = 0; j <= n; j++)
+        forbid[j] = -1;
     for (j = 0; j < n; j++) {
         int g = 0;
         for (p = P->colptr[j]; p < P->colptr[j + 1]; p++) {
@@ -78,7 +82,8 @@ static int my_greedy(const sp_csc *P, int *group)
             for (q = rcnt[i]; q < rcnt[i + 1]; q++)
                 if (rcol[q] < j) forbid[group[rcol[q]]] = j;
         }
-        while (forbid[g] == j) g++;
+        while (forbid[g] == j)
+            g++;
         group[j] = g;
         if (g + 1 > ng) ng = g + 1;
     }
@@ -135,7 +140,8 @@ static int my_colouring_ok(const sp_colouring *c, const sp_csc *P, char *why, si
     /* Structural orthogonality, from group[] alone. */
     stamp = malloc(sizeof(int) * (P->nrow + 1));
     for (g = 0; g < c->ngroups && ok; g++) {
-        for (k = 0; k < P->nrow; k++) stamp[k] = -1;
+        for (k = 0; k < P->nrow; k++)
+            stamp[k] = -1;
         for (j = 0; j < n && ok; j++) {
             if (c->group[j] != g) continue;
             for (p = P->colptr[j]; p < P->colptr[j + 1]; p++) {
@@ -169,10 +175,11 @@ static void test_colour_random(tap_rng *r, int m, int n, double density)
                 c->ngroups))
         tap_diag("%s", why);
     else {
-        tap_ok(sp_colouring_valid(c, P) == 1, "colour random %dx%d d=%g: sp_colouring_valid", m,
-               n, density);
+        tap_ok(sp_colouring_valid(c, P) == 1, "colour random %dx%d d=%g: sp_colouring_valid", m, n,
+               density);
         ng = my_greedy(P, mine);
-        for (j = 0; j < n; j++) same = same && mine[j] == c->group[j];
+        for (j = 0; j < n; j++)
+            same = same && mine[j] == c->group[j];
         if (!tap_ok(ng == c->ngroups && same,
                     "colour random %dx%d d=%g: greedy natural-order colouring (%d groups)", m, n,
                     density, ng))
@@ -219,7 +226,8 @@ static void test_colour_special(void)
         grp[j] = 0;
         gcols[j] = j;
     }
-    tap_ok(F && sp_colouring_valid(&fake, F) == 0, "sp_colouring_valid: one group on full 6x6 -> 0");
+    tap_ok(F && sp_colouring_valid(&fake, F) == 0,
+           "sp_colouring_valid: one group on full 6x6 -> 0");
     fake.ngroups = 6; /* one column per group: valid */
     for (j = 0; j < 6; j++) {
         grp[j] = j;
@@ -266,7 +274,8 @@ static void test_colour_band(int n, int p, int q)
         tap_diag("want %d", p + q + 1);
     tap_ok(my_colouring_ok(c, P, why, sizeof why) && sp_colouring_valid(c, P) == 1,
            "band n=%d p=%d q=%d: valid %s", n, p, q, why);
-    for (j = 0; j < n; j++) mod = mod && c->group[j] == j % (p + q + 1);
+    for (j = 0; j < n; j++)
+        mod = mod && c->group[j] == j % (p + q + 1);
     tap_ok(mod, "band n=%d p=%d q=%d: group[j] == j mod (p+q+1)", n, p, q);
 out:
     sp_colouring_free(&c);
@@ -279,7 +288,7 @@ typedef struct chain {
     int n;
     double h2;
     long calls;
-    long fail_at;    /* call number (0-based) that fails, -1: never */
+    long fail_at; /* call number (0-based) that fails, -1: never */
     int fail_status;
 } chain;
 
@@ -357,7 +366,8 @@ static void test_fdjac_chain(tap_rng *r, int n)
     tap_ok(sp_fdjac_calls(d) == 0, "fdjac chain n=%d: no calls before eval", n);
     J = sp_csc_copy(P);
     if (!J) goto out;
-    for (p = 0; p < J->nnz; p++) J->val[p] = NAN;
+    for (p = 0; p < J->nnz; p++)
+        J->val[p] = NAN;
     chain_f(&c, x, f0);
     before = c.calls;
     rc = sp_fdjac_eval(d, chain_f, &c, x, f0, NULL, J);
@@ -374,14 +384,16 @@ static void test_fdjac_chain(tap_rng *r, int n)
             double want = chain_d(&c, x, J->rowind[p], j);
             double e = fabs(J->val[p] - want) / fmax(1.0, fabs(want));
             if (!(e <= 1e-6)) {
-                if (ok) tap_diag("J(%d,%d) = %.10g, analytic %.10g", J->rowind[p], j, J->val[p], want);
+                if (ok)
+                    tap_diag("J(%d,%d) = %.10g, analytic %.10g", J->rowind[p], j, J->val[p], want);
                 ok = 0;
             }
             if (e > worst) worst = e;
         }
     tap_ok(ok, "fdjac chain n=%d: matches analytic Jacobian to 1e-6 (worst %.2e)", n, worst);
     /* Second evaluation at another point. */
-    for (i = 0; i < n; i++) x[i] = x0[i] = tap_rng_range(r, -1.0, 1.0);
+    for (i = 0; i < n; i++)
+        x[i] = x0[i] = tap_rng_range(r, -1.0, 1.0);
     chain_f(&c, x, f0);
     before = c.calls;
     rc = sp_fdjac_eval(d, chain_f, &c, x, f0, NULL, J);
@@ -424,7 +436,8 @@ static int sinfun_f(void *user, const double *x, double *f)
     const sp_csc *A = s->A;
     int i, j, p;
     s->calls++;
-    for (i = 0; i < A->nrow; i++) f[i] = 0.0;
+    for (i = 0; i < A->nrow; i++)
+        f[i] = 0.0;
     for (j = 0; j < A->ncol; j++)
         for (p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
             i = A->rowind[p];
@@ -446,8 +459,10 @@ static void test_fdjac_rect(tap_rng *r, int m, int n, double density)
     tap_ok(sp_fdjac_ngroups(d) == ng, "fdjac random %dx%d: %d groups (own greedy %d)", m, n,
            sp_fdjac_ngroups(d), ng);
     J = sp_csc_copy(A);
-    for (p = 0; p < J->nnz; p++) J->val[p] = NAN;
-    for (j = 0; j < n; j++) x[j] = tap_rng_range(r, -2.0, 2.0);
+    for (p = 0; p < J->nnz; p++)
+        J->val[p] = NAN;
+    for (j = 0; j < n; j++)
+        x[j] = tap_rng_range(r, -2.0, 2.0);
     sinfun_f(&s, x, f0);
     s.calls = 0;
     rc = sp_fdjac_eval(d, sinfun_f, &s, x, f0, NULL, J);
@@ -483,7 +498,8 @@ static int quad_f(void *user, const double *x, double *f)
 {
     const quad *q = user;
     int j;
-    for (j = 0; j < q->n; j++) f[j] = (x[j] - q->c[j]) * (x[j] - q->c[j]);
+    for (j = 0; j < q->n; j++)
+        f[j] = (x[j] - q->c[j]) * (x[j] - q->c[j]);
     return 0;
 }
 
@@ -511,8 +527,8 @@ static void test_fdjac_step(void)
             double dlt = x[j] - c[j];
             double got = J->val[j] - 2.0 * dlt;
             tap_close(got, h, 1e-2, 0.0,
-                      "fdjac step (typ %s): x=%g typ=%g: J - f' == h = %s sqrt(eps) * %g", t ? "given" : "NULL",
-                      x[j], ty ? ty[j] : 1.0, x[j] < 0 ? "-" : "+", s);
+                      "fdjac step (typ %s): x=%g typ=%g: J - f' == h = %s sqrt(eps) * %g",
+                      t ? "given" : "NULL", x[j], ty ? ty[j] : 1.0, x[j] < 0 ? "-" : "+", s);
         }
     }
     tap_ok(sp_fdjac_calls(d) == 2, "fdjac step: 2 calls for 2 evals of 1 group");
@@ -552,7 +568,8 @@ static void test_jac_check(tap_rng *r, int n)
     int i, rc, pos;
     double truth;
 
-    for (i = 0; i < n; i++) x[i] = tap_rng_range(r, 0.4, 0.9) * (i % 3 == 1 ? -1.0 : 1.0);
+    for (i = 0; i < n; i++)
+        x[i] = tap_rng_range(r, 0.4, 0.9) * (i % 3 == 1 ? -1.0 : 1.0);
     J = chain_jac(&c, x, -1, -1);
     if (!J) goto out;
 
@@ -577,7 +594,8 @@ static void test_jac_check(tap_rng *r, int n)
     tap_ok(rc == 1, "jac_check n=%d: one wrong entry -> 1 entry above tol (got %d)", n, rc);
     if (!tap_ok(worst[0].row == 5 && worst[0].col == 6, "jac_check n=%d: worst entry is (5,6)", n))
         tap_diag("reported (%d,%d)", worst[0].row, worst[0].col);
-    tap_ok(worst[0].analytic == truth + 0.37, "jac_check n=%d: worst.analytic is the wrong value", n);
+    tap_ok(worst[0].analytic == truth + 0.37, "jac_check n=%d: worst.analytic is the wrong value",
+           n);
     tap_close(worst[0].fd, truth, 1e-6, 0.0, "jac_check n=%d: worst.fd is the true derivative", n);
     tap_close(worst[0].err, 0.37 / (fabs(truth) + floor_), 1e-6, 0.0,
               "jac_check n=%d: worst.err == |a - fd| / (|fd| + floor)", n);
@@ -606,8 +624,8 @@ static void test_jac_check(tap_rng *r, int n)
     memset(worst, 0, sizeof worst);
     rc = sp_jac_check(Jm, chain_f, &c, n, x, floor_, tol, worst, 5, &max_err);
     tap_ok(rc == 1, "jac_check n=%d: one missing entry -> 1 entry above tol (got %d)", n, rc);
-    if (!tap_ok(worst[0].row == 8 && worst[0].col == 10, "jac_check n=%d: missing entry (8,10) reported",
-                n))
+    if (!tap_ok(worst[0].row == 8 && worst[0].col == 10,
+                "jac_check n=%d: missing entry (8,10) reported", n))
         tap_diag("reported (%d,%d)", worst[0].row, worst[0].col);
     tap_ok(worst[0].analytic == 0.0, "jac_check n=%d: missing entry has analytic == 0", n);
     tap_close(worst[0].fd, x[10], 1e-6, 0.0, "jac_check n=%d: missing entry fd == x_10", n);
@@ -633,7 +651,8 @@ static void test_jac_check_rect(tap_rng *r, int m, int n)
     sp_jac_entry worst[3];
     int j, p, rc;
     if (!A) goto out;
-    for (j = 0; j < n; j++) x[j] = tap_rng_range(r, -1.0, 1.0);
+    for (j = 0; j < n; j++)
+        x[j] = tap_rng_range(r, -1.0, 1.0);
     J = sp_csc_copy(A);
     for (j = 0; j < n; j++)
         for (p = J->colptr[j]; p < J->colptr[j + 1]; p++)
@@ -643,7 +662,8 @@ static void test_jac_check_rect(tap_rng *r, int m, int n)
            m, n, rc, max_err);
     if (J->nnz > 0) {
         int q = J->nnz / 2, col = 0;
-        while (J->colptr[col + 1] <= q) col++;
+        while (J->colptr[col + 1] <= q)
+            col++;
         J->val[q] = -J->val[q];
         rc = sp_jac_check(J, sinfun_f, &s, m, x, 1e-6, 1e-6, worst, 3, &max_err);
         tap_ok(rc == 1 && worst[0].row == J->rowind[q] && worst[0].col == col,

@@ -37,7 +37,8 @@ static sp_csc *gen_dd(tap_rng *r, int n, int per_col, int band, double longp)
     double *val = malloc(sizeof(double) * cap);
     double *rabs = calloc(n, sizeof(double)), *cabs = calloc(n, sizeof(double));
     sp_csc *A = NULL;
-    for (k = 0; k < n; k++) stamp[k] = -1;
+    for (k = 0; k < n; k++)
+        stamp[k] = -1;
     for (j = 0; j < n; j++) {
         int start = nnz;
         colptr[j] = nnz;
@@ -143,7 +144,10 @@ static double rel_residual(const sp_csc *A, const double *x, const double *b)
     return rmax / (amax * xmax > 0 ? amax * xmax : 1.0);
 }
 
-static const char *kind_name(ls_kind k) { return k == LS_KLU ? "KLU" : "dense"; }
+static const char *kind_name(ls_kind k)
+{
+    return k == LS_KLU ? "KLU" : "dense";
+}
 
 /* ---- KLU and dense against LAPACK ---- */
 
@@ -160,7 +164,8 @@ static void test_vs_lapack(tap_rng *r, int n, int nrhs, int band)
         tap_ok(0, "gen n=%d", n);
         goto out;
     }
-    for (k = 0; k < (int)nb; k++) b[k] = xref[k] = tap_rng_range(r, -1.0, 1.0);
+    for (k = 0; k < (int)nb; k++)
+        b[k] = xref[k] = tap_rng_range(r, -1.0, 1.0);
     if (!tap_ok(lapack_solve(A, xref, nrhs) == 0, "n=%d: LAPACK reference", n)) goto out;
     for (k = 0; k < 2; k++) {
         ls_kind kind = k ? LS_DENSE : LS_KLU;
@@ -187,7 +192,8 @@ static void test_vs_lapack(tap_rng *r, int n, int nrhs, int band)
         tap_ok(rc == BG_OK, "%s n=%d: ls_solve(nrhs=%d) returns BG_OK", kind_name(kind), n, nrhs);
         for (q = 0; q < nrhs; q++) {
             double e = rel_err(x[k] + (size_t)q * n, xref + (size_t)q * n, n);
-            if (!tap_ok(e <= 1e-12, "%s n=%d rhs %d/%d: ||x - x_lapack|| / ||x_lapack|| = %.2e <= 1e-12",
+            if (!tap_ok(e <= 1e-12,
+                        "%s n=%d rhs %d/%d: ||x - x_lapack|| / ||x_lapack|| = %.2e <= 1e-12",
                         kind_name(kind), n, q + 1, nrhs, e))
                 tap_diag("x[0] = %.17g, lapack %.17g", x[k][(size_t)q * n], xref[(size_t)q * n]);
             tap_ok(rel_residual(A, x[k] + (size_t)q * n, b + (size_t)q * n) < 1e-14,
@@ -233,7 +239,8 @@ static void test_klu_large(tap_rng *r, int n)
     bg_error err;
 
     if (!A) goto out;
-    for (k = 0; k < (int)nb; k++) xt[k] = tap_rng_range(r, -1.0, 1.0);
+    for (k = 0; k < (int)nb; k++)
+        xt[k] = tap_rng_range(r, -1.0, 1.0);
     for (q = 0; q < nrhs; q++) {
         int j, p;
         for (j = 0; j < n; j++)
@@ -252,11 +259,14 @@ static void test_klu_large(tap_rng *r, int n)
     for (q = 0; q < nrhs; q++) {
         double res = rel_residual(A, x + (size_t)q * n, b + (size_t)q * n);
         double e = rel_err(x + (size_t)q * n, xt + (size_t)q * n, n);
-        tap_ok(res < 1e-12, "KLU n=%d rhs %d: ||Ax-b|| / (||A|| ||x||) = %.2e < 1e-12", n, q + 1, res);
-        tap_ok(e < 1e-10, "KLU n=%d rhs %d: ||x - x_true|| / ||x_true|| = %.2e < 1e-10", n, q + 1, e);
+        tap_ok(res < 1e-12, "KLU n=%d rhs %d: ||Ax-b|| / (||A|| ||x||) = %.2e < 1e-12", n, q + 1,
+               res);
+        tap_ok(e < 1e-10, "KLU n=%d rhs %d: ||x - x_true|| / ||x_true|| = %.2e < 1e-10", n, q + 1,
+               e);
     }
     /* Refactor with new values on the same pattern. */
-    for (k = 0; k < A->nnz; k++) A->val[k] *= (k % 7 == 0) ? 1.25 : 0.9;
+    for (k = 0; k < A->nnz; k++)
+        A->val[k] *= (k % 7 == 0) ? 1.25 : 0.9;
     rc = ls_factor(s, A);
     memcpy(x, b, sizeof(double) * (size_t)n);
     if (rc == BG_OK) rc = ls_solve(s, x, 1);
@@ -299,7 +309,8 @@ static void test_refactor(tap_rng *r, int n)
             }
         }
     }
-    for (k = 0; k < n; k++) b[k] = tap_rng_range(r, -1, 1);
+    for (k = 0; k < n; k++)
+        b[k] = tap_rng_range(r, -1, 1);
     s = ls_create(LS_KLU, A, NULL);
     if (!tap_ok(s != NULL, "refactor n=%d: ls_create", n)) goto out;
     st = ls_get_stats(s);
@@ -330,7 +341,8 @@ static void test_refactor(tap_rng *r, int n)
     memcpy(xref, b, sizeof(double) * n);
     ls_solve(s, x, 1);
     lapack_solve(A3, xref, 1);
-    tap_ok(rel_err(x, xref, n) <= 1e-12, "refactor n=%d: solution after forced full factor right", n);
+    tap_ok(rel_err(x, xref, n) <= 1e-12, "refactor n=%d: solution after forced full factor right",
+           n);
     /* And back to refactorization. */
     rc = ls_factor(s, A);
     st = ls_get_stats(s);
@@ -384,15 +396,19 @@ static void test_singular(tap_rng *r)
     }
     for (i = 0; i < N; i++) {
         double s = 0.0;
-        for (j = 0; j < N; j++) s += fabs(D[i + j * N]) + fabs(D[j + i * N]);
+        for (j = 0; j < N; j++)
+            s += fabs(D[i + j * N]) + fabs(D[j + i * N]);
         D[i + i * N] = s + 1.0;
     }
-    for (k = 0; k < N * N; k++) mask[k] = D[k] != 0.0;
-    for (k = 0; k < N; k++) mask[k + ZC * N] = 1; /* column 7 full in the pattern */
+    for (k = 0; k < N * N; k++)
+        mask[k] = D[k] != 0.0;
+    for (k = 0; k < N; k++)
+        mask[k + ZC * N] = 1; /* column 7 full in the pattern */
     A = tu_csc_from_mask(N, N, mask, D);
     /* Same pattern, column 7 numerically zero. */
     memcpy(Dz, D, sizeof D);
-    for (i = 0; i < N; i++) Dz[i + ZC * N] = 0.0;
+    for (i = 0; i < N; i++)
+        Dz[i + ZC * N] = 0.0;
     Az = tu_csc_from_mask(N, N, mask, Dz);
     /* Column 7 structurally empty. */
     Ae = tu_csc_from_mask(N, N, NULL, Dz);
@@ -406,7 +422,8 @@ static void test_singular(tap_rng *r)
     Dd[3 + 3 * N] = Dd[3 + 7 * N] = 2.0;
     Dd[7 + 3 * N] = Dd[7 + 7 * N] = -4.0;
     Ad = tu_csc_from_mask(N, N, NULL, Dd);
-    for (i = 0; i < N; i++) b[i] = tap_rng_range(r, -1, 1);
+    for (i = 0; i < N; i++)
+        b[i] = tap_rng_range(r, -1, 1);
 
     if (!A || !Az || !Ad || !Ae) {
         tap_ok(0, "singular: alloc");
@@ -421,7 +438,8 @@ static void test_singular(tap_rng *r)
         if (!tap_ok(s != NULL, "singular %s: create", kn)) continue;
         /* Fresh solver, zero column. */
         rc = ls_factor(s, Az);
-        tap_ok(rc == BG_ERR_SINGULAR, "singular %s: zero column 7 -> BG_ERR_SINGULAR (got %d)", kn, rc);
+        tap_ok(rc == BG_ERR_SINGULAR, "singular %s: zero column 7 -> BG_ERR_SINGULAR (got %d)", kn,
+               rc);
         col = ls_singular_col(s);
         tap_ok(col == ZC, "singular %s: ls_singular_col == 7 (got %d)", kn, col);
         e = ls_get_error(s);
@@ -440,9 +458,10 @@ static void test_singular(tap_rng *r)
                "singular %s: factor of a good matrix after a singular one solves", kn);
         /* Zero column met by a refactorization. */
         rc = ls_factor(s, Az);
-        tap_ok(rc == BG_ERR_SINGULAR && ls_singular_col(s) == ZC,
-               "singular %s: zero column after a good factor -> BG_ERR_SINGULAR, col 7 (got %d, %d)",
-               kn, rc, ls_singular_col(s));
+        tap_ok(
+            rc == BG_ERR_SINGULAR && ls_singular_col(s) == ZC,
+            "singular %s: zero column after a good factor -> BG_ERR_SINGULAR, col 7 (got %d, %d)",
+            kn, rc, ls_singular_col(s));
         ls_free(&s);
 
         /* Column 7 == column 3. */
@@ -450,9 +469,10 @@ static void test_singular(tap_rng *r)
         if (tap_ok(s != NULL, "singular %s: create (equal columns)", kn)) {
             rc = ls_factor(s, Ad);
             col = ls_singular_col(s);
-            tap_ok(rc == BG_ERR_SINGULAR, "singular %s: column 7 == column 3 -> BG_ERR_SINGULAR (got %d)",
-                   kn, rc);
-            tap_ok(col == 3 || col == 7, "singular %s: equal columns: singular col %d is 3 or 7", kn, col);
+            tap_ok(rc == BG_ERR_SINGULAR,
+                   "singular %s: column 7 == column 3 -> BG_ERR_SINGULAR (got %d)", kn, rc);
+            tap_ok(col == 3 || col == 7, "singular %s: equal columns: singular col %d is 3 or 7",
+                   kn, col);
             e = ls_get_error(s);
             tap_ok(e && e->message[0] != '\0', "singular %s: equal columns: message set", kn);
         }
@@ -516,10 +536,12 @@ static void test_fallback(void)
     D2[N + 1] = 0.0;
     A1 = tu_csc_from_mask(N, N, mask, D1);
     A2 = tu_csc_from_mask(N, N, mask, D2);
-    for (i = 0; i < N; i++) b[i] = i + 1.0;
+    for (i = 0; i < N; i++)
+        b[i] = i + 1.0;
     want[0] = b[1];
     want[1] = b[0];
-    for (i = 2; i < N; i++) want[i] = b[i] / (1.0 + i);
+    for (i = 2; i < N; i++)
+        want[i] = b[i] / (1.0 + i);
 
     s = (A1 && A2) ? ls_create(LS_KLU, A1, NULL) : NULL;
     if (!tap_ok(s != NULL, "fallback: create")) goto out;
@@ -529,7 +551,8 @@ static void test_fallback(void)
     st = ls_get_stats(s);
     tap_ok(rc == BG_OK, "fallback: refactor with a zero pivot still returns BG_OK (got %d)", rc);
     tap_ok(st->fallback == 1, "fallback: stats.fallback == 1 (got %ld)", st->fallback);
-    tap_ok(st->factor == 2, "fallback: the fallback is a full factorization: stats.factor == 2 (got %ld)",
+    tap_ok(st->factor == 2,
+           "fallback: the fallback is a full factorization: stats.factor == 2 (got %ld)",
            st->factor);
     tap_ok(st->symbolic == 1, "fallback: no new symbolic analysis (got %ld)", st->symbolic);
     memcpy(x, b, sizeof b);
@@ -568,7 +591,8 @@ static void test_rcond(void)
     rc = ls_factor(s, A);
     st = ls_get_stats(s);
     tap_ok(rc == BG_OK && st->fallback == 1 && st->factor == 2,
-           "rcond: rcond_min 1e-3 turns the refactorization into a fallback (rc %d, fallback %ld, factor %ld)",
+           "rcond: rcond_min 1e-3 turns the refactorization into a fallback (rc %d, fallback %ld, "
+           "factor %ld)",
            rc, st->fallback, st->factor);
     memcpy(x, b, sizeof b);
     ls_solve(s, x, 1);
@@ -621,7 +645,8 @@ static void test_pattern(tap_rng *r)
     /* Ex: A plus one entry. */
     D = my_dense(A);
     mask = calloc((size_t)n * n, 1);
-    for (k = 0; k < n * n; k++) mask[k] = D[k] != 0.0;
+    for (k = 0; k < n * n; k++)
+        mask[k] = D[k] != 0.0;
     for (k = 0; k < n * n; k++)
         if (!mask[k]) {
             mask[k] = 1;
@@ -639,11 +664,12 @@ static void test_pattern(tap_rng *r)
         int rc;
         if (!tap_ok(s != NULL, "pattern %s: create", kn)) continue;
         rc = ls_factor(s, Bm);
-        tap_ok(rc == BG_ERR_PATTERN, "pattern %s: same nnz, one row moved -> BG_ERR_PATTERN (got %d)", kn,
-               rc);
+        tap_ok(rc == BG_ERR_PATTERN,
+               "pattern %s: same nnz, one row moved -> BG_ERR_PATTERN (got %d)", kn, rc);
         tap_ok(ls_get_error(s)->message[0] != '\0', "pattern %s: message set", kn);
         rc = ls_factor(s, Ex);
-        tap_ok(rc == BG_ERR_PATTERN, "pattern %s: one extra entry -> BG_ERR_PATTERN (got %d)", kn, rc);
+        tap_ok(rc == BG_ERR_PATTERN, "pattern %s: one extra entry -> BG_ERR_PATTERN (got %d)", kn,
+               rc);
         rc = ls_factor(s, C);
         tap_ok(rc == BG_ERR_PATTERN, "pattern %s: %dx%d for %dx%d -> BG_ERR_PATTERN (got %d)", kn,
                n + 1, n + 1, n, n, rc);
@@ -701,12 +727,13 @@ static void test_nonfinite(tap_rng *r)
             if (t == 1) ls_factor(s, A);
             rc = ls_factor(s, B);
             msg = ls_get_error(s)->message;
-            tap_ok(rc == BG_ERR_NONFINITE, "nonfinite %s: %s at (%d,%d) -> BG_ERR_NONFINITE (got %d)", kn,
+            tap_ok(rc == BG_ERR_NONFINITE,
+                   "nonfinite %s: %s at (%d,%d) -> BG_ERR_NONFINITE (got %d)", kn,
                    t == 0 ? "NaN" : (t == 1 ? "+Inf" : "-Inf"), i, j, rc);
             snprintf(si, sizeof si, "%d", i);
             snprintf(sj, sizeof sj, "%d", j);
-            if (!tap_ok(strstr(msg, si) && strstr(msg, sj), "nonfinite %s: message names row %d and column %d",
-                        kn, i, j))
+            if (!tap_ok(strstr(msg, si) && strstr(msg, sj),
+                        "nonfinite %s: message names row %d and column %d", kn, i, j))
                 tap_diag("message: \"%s\"", msg);
         }
         tap_ok(ls_factor(s, A) == BG_OK, "nonfinite %s: a finite matrix factors afterwards", kn);
@@ -730,7 +757,8 @@ static sp_csc *gen_wide(tap_rng *r, int m, int n, double density)
             if (i != j && tap_rng_unif(r) < density) D[i + (size_t)j * m] = tap_rng_range(r, -1, 1);
     for (i = 0; i < m; i++) {
         double s = 0.0;
-        for (j = 0; j < m; j++) s += fabs(D[i + (size_t)j * m]);
+        for (j = 0; j < m; j++)
+            s += fabs(D[i + (size_t)j * m]);
         D[i + (size_t)i * m] = (s + tap_rng_range(r, 0.5, 1.5)) * (tap_rng_unif(r) < 0.5 ? -1 : 1);
     }
     A = tu_csc_from_mask(m, n, NULL, D);
@@ -746,7 +774,8 @@ static int dense_aat_solve(const sp_csc *A, double beta, const double *b, double
     for (j = 0; j < m; j++)
         for (i = 0; i < m; i++) {
             double s = 0.0;
-            for (k = 0; k < n; k++) s += D[i + (size_t)k * m] * D[j + (size_t)k * m];
+            for (k = 0; k < n; k++)
+                s += D[i + (size_t)k * m] * D[j + (size_t)k * m];
             G[i + (size_t)j * m] = s + (i == j ? beta : 0.0);
         }
     memcpy(x, b, sizeof(double) * m);
@@ -776,11 +805,13 @@ static void test_aat(tap_rng *r, int m, int n, double density)
         goto out;
     }
     tap_ok(aat_factor_count(s) == 0, "aat %dx%d: no factorization yet", m, n);
-    for (k = 0; k < m; k++) b[k] = 1.0;
+    for (k = 0; k < m; k++)
+        b[k] = 1.0;
     tap_ok(aat_solve(s, b, x) < 0, "aat %dx%d: aat_solve before aat_factor fails", m, n);
     for (t = 0; t < 2; t++) {
         double beta = betas[t];
-        for (k = 0; k < m; k++) b[k] = tap_rng_range(r, -1, 1);
+        for (k = 0; k < m; k++)
+            b[k] = tap_rng_range(r, -1, 1);
         rc = aat_factor(s, A, beta);
         tap_ok(rc == BG_OK, "aat %dx%d beta=%g: aat_factor BG_OK (got %d)", m, n, beta, rc);
         tap_ok(aat_factor_count(s) == t + 1, "aat %dx%d beta=%g: factor count %ld", m, n, beta,
@@ -794,13 +825,15 @@ static void test_aat(tap_rng *r, int m, int n, double density)
                rel_err(x, xref, m));
         memcpy(y, b, sizeof(double) * m);
         rc = aat_solve(s, y, y);
-        tap_ok(rc == BG_OK && rel_err(y, x, m) <= 1e-15, "aat %dx%d beta=%g: in place (x == b) too", m,
-               n, beta);
+        tap_ok(rc == BG_OK && rel_err(y, x, m) <= 1e-15, "aat %dx%d beta=%g: in place (x == b) too",
+               m, n, beta);
     }
     /* New values, same pattern. */
     A2 = sp_csc_copy(A);
-    for (k = 0; k < A2->nnz; k++) A2->val[k] *= 1.0 + 0.5 * tap_rng_unif(r);
-    for (k = 0; k < m; k++) b[k] = tap_rng_range(r, -1, 1);
+    for (k = 0; k < A2->nnz; k++)
+        A2->val[k] *= 1.0 + 0.5 * tap_rng_unif(r);
+    for (k = 0; k < m; k++)
+        b[k] = tap_rng_range(r, -1, 1);
     rc = aat_factor(s, A2, 1e-3);
     if (rc == BG_OK) rc = aat_solve(s, b, x);
     dense_aat_solve(A2, 1e-3, b, xref);
@@ -823,7 +856,8 @@ static void test_aat_rank_deficient(tap_rng *r)
     /* (a) Rows with disjoint supports and perfect-square norms, row 3 == row 1: every step of
      * the Cholesky factorization is exact, and the pivot of the repeated row is exactly 0. */
     enum { M = 6, NC = 15 };
-    static const double rows[M][3] = {{1, 2, 2}, {2, 3, 6}, {1, 4, 8}, {2, 3, 6}, {2, 6, 9}, {4, 4, 7}};
+    static const double rows[M][3] = {{1, 2, 2}, {2, 3, 6}, {1, 4, 8},
+                                      {2, 3, 6}, {2, 6, 9}, {4, 4, 7}};
     static const int at[M] = {0, 3, 6, 3, 9, 12};
     double D[M * NC];
     sp_csc *A, *R = NULL, *P = NULL;
@@ -833,13 +867,14 @@ static void test_aat_rank_deficient(tap_rng *r)
 
     memset(D, 0, sizeof D);
     for (i = 0; i < M; i++)
-        for (k = 0; k < 3; k++) D[i + (at[i] + k) * M] = rows[i][k];
+        for (k = 0; k < 3; k++)
+            D[i + (at[i] + k) * M] = rows[i][k];
     A = tu_csc_from_mask(M, NC, NULL, D);
     s = A ? aat_create(A, NULL) : NULL;
     if (tap_ok(s != NULL, "aat rank deficient (exact): create")) {
         rc = aat_factor(s, A, 0.0);
-        tap_ok(rc == BG_ERR_NOT_POSDEF, "aat rank deficient (exact): beta 0 -> BG_ERR_NOT_POSDEF (got %d)",
-               rc);
+        tap_ok(rc == BG_ERR_NOT_POSDEF,
+               "aat rank deficient (exact): beta 0 -> BG_ERR_NOT_POSDEF (got %d)", rc);
         tap_ok(aat_get_error(s)->message[0] != '\0', "aat rank deficient (exact): message \"%s\"",
                aat_get_error(s)->message);
         rc = aat_factor(s, A, 1e-3);
@@ -852,7 +887,8 @@ static void test_aat_rank_deficient(tap_rng *r)
     if (!R) goto out;
     {
         double *Dr = my_dense(R);
-        for (k = 0; k < n; k++) Dr[9 + (size_t)k * m] = Dr[4 + (size_t)k * m];
+        for (k = 0; k < n; k++)
+            Dr[9 + (size_t)k * m] = Dr[4 + (size_t)k * m];
         P = tu_csc_from_mask(m, n, NULL, Dr);
         free(Dr);
     }
@@ -860,13 +896,15 @@ static void test_aat_rank_deficient(tap_rng *r)
     if (tap_ok(s != NULL, "aat rank deficient (random, rows 4 == 9): create")) {
         rc = aat_factor(s, P, 0.0);
         tap_ok(rc == BG_ERR_NOT_POSDEF,
-               "aat rank deficient (random, rows 4 == 9): beta 0 -> BG_ERR_NOT_POSDEF (got %d)", rc);
+               "aat rank deficient (random, rows 4 == 9): beta 0 -> BG_ERR_NOT_POSDEF (got %d)",
+               rc);
         tap_ok(aat_get_error(s)->message[0] != '\0', "aat rank deficient (random): message set");
         /* beta > 0 regularises: the solve matches the dense one. */
         b = malloc(sizeof(double) * m);
         x = malloc(sizeof(double) * m);
         xref = malloc(sizeof(double) * m);
-        for (k = 0; k < m; k++) b[k] = tap_rng_range(r, -1, 1);
+        for (k = 0; k < m; k++)
+            b[k] = tap_rng_range(r, -1, 1);
         rc = aat_factor(s, P, 1e-3);
         if (rc == BG_OK) rc = aat_solve(s, b, x);
         dense_aat_solve(P, 1e-3, b, xref);
@@ -890,7 +928,8 @@ out:
 
 static void test_aat_pattern(tap_rng *r)
 {
-    sp_csc *A = gen_wide(r, 10, 25, 0.2), *B = gen_wide(r, 10, 25, 0.2), *C = gen_wide(r, 11, 25, 0.2);
+    sp_csc *A = gen_wide(r, 10, 25, 0.2), *B = gen_wide(r, 10, 25, 0.2),
+           *C = gen_wide(r, 11, 25, 0.2);
     aat_solver *s = A ? aat_create(A, NULL) : NULL;
     if (tap_ok(s != NULL, "aat pattern: create")) {
         int rc = aat_factor(s, B, 0.0);

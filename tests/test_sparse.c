@@ -127,7 +127,8 @@ static void test_builder_random(tap_rng *r, int nrow, int ncol, int ncells, int 
     tap_ok(sp_builder_count(b) == nadd, "%s: sp_builder_count == %d (got %d)", tag, nadd,
            sp_builder_count(b));
 
-    for (k = 0; k < nadd; k++) slot[k] = -12345;
+    for (k = 0; k < nadd; k++)
+        slot[k] = -12345;
     A = sp_builder_finish(b, slot);
     if (!tap_ok(A != NULL, "%s: sp_builder_finish", tag)) goto out;
     tap_ok(A->nrow == nrow && A->ncol == ncol, "%s: dimensions", tag);
@@ -157,8 +158,7 @@ static void test_builder_random(tap_rng *r, int nrow, int ncol, int ncells, int 
         }
     tap_ok(ok, "%s: duplicates summed, pattern == added positions", tag);
     sp_csc_to_dense(A, Dout);
-    tap_ok(dense_equal(Dout, D, nd),
-           "%s: sp_csc_to_dense == dense accumulation", tag);
+    tap_ok(dense_equal(Dout, D, nd), "%s: sp_csc_to_dense == dense accumulation", tag);
 
     /* Slot map. */
     ok = 1;
@@ -204,8 +204,8 @@ static void test_builder_random(tap_rng *r, int nrow, int ncol, int ncells, int 
     }
     sp_scatter_add(A, slot, W, nadd);
     tu_dense(A, Dout);
-    tap_ok(dense_equal(Dout, Dw, nd),
-           "%s: sp_scatter_add after zero == dense sum of new values", tag);
+    tap_ok(dense_equal(Dout, Dw, nd), "%s: sp_scatter_add after zero == dense sum of new values",
+           tag);
     sp_scatter_add(A, slot, W, nadd);
     ok = 1;
     for (j = 0; j < ncol && ok; j++)
@@ -278,8 +278,9 @@ static void test_builder_errors(void)
     for (t = 0; t < sizeof bad / sizeof bad[0]; t++) {
         rc = sp_builder_add(b, bad[t].i, bad[t].j, 1.0);
         e = sp_builder_error(b);
-        tap_ok(rc == BG_ERR_ARGUMENT, "builder errors: add(%d,%d) on 5x4 returns BG_ERR_ARGUMENT (got %d)",
-               bad[t].i, bad[t].j, rc);
+        tap_ok(rc == BG_ERR_ARGUMENT,
+               "builder errors: add(%d,%d) on 5x4 returns BG_ERR_ARGUMENT (got %d)", bad[t].i,
+               bad[t].j, rc);
         if (tap_ok(e != NULL, "builder errors: sp_builder_error not NULL")) {
             tap_ok(e->status == BG_ERR_ARGUMENT, "builder errors: error status recorded (%d)",
                    e->status);
@@ -310,7 +311,8 @@ static void test_builder_empty(void)
     tap_ok(sp_builder_count(b) == 0, "empty builder: count 0");
     A = sp_builder_finish(b, NULL);
     if (tap_ok(A != NULL, "empty builder: finish")) {
-        for (j = 0; j <= 3; j++) ok = ok && A->colptr[j] == 0;
+        for (j = 0; j <= 3; j++)
+            ok = ok && A->colptr[j] == 0;
         tap_ok(ok && A->nnz == 0 && A->nrow == 4 && A->ncol == 3 && sp_csc_check(A, NULL) == BG_OK,
                "empty builder: 4x3 with nnz 0, colptr all 0");
         sp_csc_free(&A);
@@ -345,13 +347,27 @@ static void test_check_faults(void)
         memcpy(A->val, va, sizeof va);
         A->nnz = 6;
         switch (t) {
-        case 0: A->rowind[2] = 3; A->rowind[4] = 1; break;
-        case 1: A->rowind[3] = 1; break;
-        case 2: A->rowind[4] = 4; break;
-        case 3: A->rowind[0] = -1; break;
-        case 4: A->colptr[1] = 6; break;
-        case 5: A->colptr[0] = 1; break;
-        default: break;
+        case 0:
+            A->rowind[2] = 3;
+            A->rowind[4] = 1;
+            break;
+        case 1:
+            A->rowind[3] = 1;
+            break;
+        case 2:
+            A->rowind[4] = 4;
+            break;
+        case 3:
+            A->rowind[0] = -1;
+            break;
+        case 4:
+            A->colptr[1] = 6;
+            break;
+        case 5:
+            A->colptr[0] = 1;
+            break;
+        default:
+            break;
         }
         bg_error_clear(&err);
         err.handler = NULL;
@@ -363,8 +379,7 @@ static void test_check_faults(void)
             tap_ok(rc == BG_ERR_PATTERN, "sp_csc_check: %s -> BG_ERR_PATTERN (got %d)", what[t],
                    rc);
             tap_ok(err.message[0] != '\0', "sp_csc_check: %s -> message", what[t]);
-            tap_ok(sp_csc_check(A, NULL) == BG_ERR_PATTERN, "sp_csc_check: %s, err NULL",
-                   what[t]);
+            tap_ok(sp_csc_check(A, NULL) == BG_ERR_PATTERN, "sp_csc_check: %s, err NULL", what[t]);
         }
         sp_csc_free(&A);
     }
@@ -386,9 +401,12 @@ static void test_union(tap_rng *r, int nrow, int ncol)
     for (k = 0; k < nd; k++) {
         double t = tap_rng_unif(r);
         int col = (int)(k / (size_t)nrow);
-        if (col == 0) t = 0.0;                     /* column 0 empty in both */
-        else if (col == 1 && t > 0.5) t = 0.65;    /* column 1: only A */
-        else if (col == 2 && t > 0.5) t = 0.8;     /* column 2: only B */
+        if (col == 0)
+            t = 0.0; /* column 0 empty in both */
+        else if (col == 1 && t > 0.5)
+            t = 0.65; /* column 1: only A */
+        else if (col == 2 && t > 0.5)
+            t = 0.8;                                /* column 2: only B */
         ma[k] = (t > 0.55 && t < 0.75) || t >= 0.9; /* A only: (.55,.75), both: >= .9 */
         mb[k] = (t >= 0.75);                        /* B only: [.75,.9) */
         if (col == 1) mb[k] = 0;
@@ -400,8 +418,8 @@ static void test_union(tap_rng *r, int nrow, int ncol)
         n_b += mb[k] && !ma[k];
         n_ab += ma[k] && mb[k];
     }
-    tap_ok(n_a > 0 && n_b > 0 && n_ab > 0, "%s: has entries only in A (%d), only in B (%d), in both (%d)",
-           tag, n_a, n_b, n_ab);
+    tap_ok(n_a > 0 && n_b > 0 && n_ab > 0,
+           "%s: has entries only in A (%d), only in B (%d), in both (%d)", tag, n_a, n_b, n_ab);
     A = tu_csc_from_mask(nrow, ncol, ma, va);
     B = tu_csc_from_mask(nrow, ncol, mb, vb);
     if (!A || !B) {
@@ -428,7 +446,8 @@ static void test_union(tap_rng *r, int nrow, int ncol)
     for (j = 0; j < ncol && ok; j++)
         for (p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
             int q = u->map_a[p];
-            if (q < u->M->colptr[j] || q >= u->M->colptr[j + 1] || u->M->rowind[q] != A->rowind[p]) {
+            if (q < u->M->colptr[j] || q >= u->M->colptr[j + 1] ||
+                u->M->rowind[q] != A->rowind[p]) {
                 ok = 0;
                 break;
             }
@@ -438,7 +457,8 @@ static void test_union(tap_rng *r, int nrow, int ncol)
     for (j = 0; j < ncol && ok; j++)
         for (p = B->colptr[j]; p < B->colptr[j + 1]; p++) {
             int q = u->map_b[p];
-            if (q < u->M->colptr[j] || q >= u->M->colptr[j + 1] || u->M->rowind[q] != B->rowind[p]) {
+            if (q < u->M->colptr[j] || q >= u->M->colptr[j + 1] ||
+                u->M->rowind[q] != B->rowind[p]) {
                 ok = 0;
                 break;
             }
@@ -448,13 +468,23 @@ static void test_union(tap_rng *r, int nrow, int ncol)
     for (rep = 0; rep < 4; rep++) {
         double ca, cb;
         switch (rep) {
-        case 0: ca = 1.0; cb = 1.0; break;
-        case 1: ca = tap_rng_range(r, -3, 3); cb = tap_rng_range(r, -3, 3); break;
-        case 2: ca = 0.0; cb = 1.0; break; /* must clear the previous values */
+        case 0:
+            ca = 1.0;
+            cb = 1.0;
+            break;
+        case 1:
+            ca = tap_rng_range(r, -3, 3);
+            cb = tap_rng_range(r, -3, 3);
+            break;
+        case 2:
+            ca = 0.0;
+            cb = 1.0;
+            break; /* must clear the previous values */
         default:
             ca = tap_rng_range(r, -3, 3);
             cb = 1.0 / 3.0;
-            for (p = 0; p < A->nnz; p++) A->val[p] *= 1.5; /* new values, same pattern */
+            for (p = 0; p < A->nnz; p++)
+                A->val[p] *= 1.5; /* new values, same pattern */
             for (j = 0; j < ncol; j++)
                 for (p = A->colptr[j]; p < A->colptr[j + 1]; p++)
                     va[A->rowind[p] + (size_t)j * nrow] = A->val[p];
@@ -494,7 +524,8 @@ out:
 
 static void test_union_shapes(tap_rng *r)
 {
-    sp_csc *A = random_csc(r, 3, 4, 0.5), *B = random_csc(r, 4, 3, 0.5), *C = random_csc(r, 3, 5, 0.5);
+    sp_csc *A = random_csc(r, 3, 4, 0.5), *B = random_csc(r, 4, 3, 0.5),
+           *C = random_csc(r, 3, 5, 0.5);
     sp_union *u = sp_union_create(A, B), *v = sp_union_create(A, C), *w = sp_union_create(A, A);
     tap_ok(u == NULL, "sp_union_create 3x4 with 4x3 returns NULL");
     tap_ok(v == NULL, "sp_union_create 3x4 with 3x5 returns NULL");
@@ -536,8 +567,10 @@ static void test_matvec(tap_rng *r, int nrow, int ncol, double density)
         for (t = 0; t < 5; t++) {
             double alpha = ab[t][0], beta = ab[t][1];
             int ok = 1;
-            for (j = 0; j < nin; j++) x[j] = tap_rng_range(r, -1, 1);
-            for (i = 0; i < nout; i++) y[i] = y0[i] = beta == 0.0 ? NAN : tap_rng_range(r, -1, 1);
+            for (j = 0; j < nin; j++)
+                x[j] = tap_rng_range(r, -1, 1);
+            for (i = 0; i < nout; i++)
+                y[i] = y0[i] = beta == 0.0 ? NAN : tap_rng_range(r, -1, 1);
             if (tr)
                 sp_matvec_t(A, alpha, x, beta, y);
             else
@@ -608,13 +641,14 @@ static void test_dense_round_trip(tap_rng *r, int nrow, int ncol)
         double u = tap_rng_unif(r);
         D[k] = u < 0.4 ? 0.0 : tap_rng_range(r, -1, 1);
     }
-    D[0] = 0.5;  /* |a| == drop is dropped at drop = 0.5 */
+    D[0] = 0.5; /* |a| == drop is dropped at drop = 0.5 */
     D[1] = -0.5;
     for (t = 0; t < 3; t++) {
         double drop = drops[t];
         sp_csc *A = sp_csc_from_dense(nrow, ncol, D, drop);
         int want_nnz = 0, ok = 1, j, p;
-        for (k = 0; k < nd; k++) want_nnz += (drop < 0.0) || fabs(D[k]) > drop;
+        for (k = 0; k < nd; k++)
+            want_nnz += (drop < 0.0) || fabs(D[k]) > drop;
         if (!tap_ok(A != NULL, "from_dense %dx%d drop=%g: not NULL", nrow, ncol, drop)) continue;
         tap_ok(A->nrow == nrow && A->ncol == ncol && A->nnz == want_nnz,
                "from_dense %dx%d drop=%g: nnz %d (got %d)", nrow, ncol, drop, want_nnz, A->nnz);
@@ -623,7 +657,8 @@ static void test_dense_round_trip(tap_rng *r, int nrow, int ncol)
             for (p = A->colptr[j]; p < A->colptr[j + 1]; p++)
                 if (A->val[p] != D[A->rowind[p] + (size_t)j * nrow]) ok = 0;
         tap_ok(ok, "from_dense %dx%d drop=%g: stored values are D's", nrow, ncol, drop);
-        for (k = 0; k < nd; k++) E[k] = 12345.0;
+        for (k = 0; k < nd; k++)
+            E[k] = 12345.0;
         sp_csc_to_dense(A, E);
         ok = 1;
         for (k = 0; k < nd; k++) {
@@ -684,7 +719,8 @@ static void test_alloc(void)
     sp_csc *A = sp_csc_alloc(6, 5, 10);
     int j, ok = 1;
     if (!tap_ok(A != NULL, "sp_csc_alloc(6,5,10)")) return;
-    for (j = 0; j <= 5; j++) ok = ok && A->colptr[j] == 0;
+    for (j = 0; j <= 5; j++)
+        ok = ok && A->colptr[j] == 0;
     tap_ok(ok && A->nrow == 6 && A->ncol == 5, "sp_csc_alloc: 6x5, colptr zero");
     sp_csc_free(&A);
 }
@@ -748,7 +784,8 @@ static void check_mm(FILE *f, const sp_csc *A, const char *tag)
             for (p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
                 size_t c = A->rowind[p] + (size_t)j * A->nrow;
                 if (!seen[c] || !(fabs(D[c] - W[c]) <= 1e-15 * fabs(W[c]))) {
-                    tap_diag("(%d,%d): read %.17g, want %.17g", A->rowind[p] + 1, j + 1, D[c], W[c]);
+                    tap_diag("(%d,%d): read %.17g, want %.17g", A->rowind[p] + 1, j + 1, D[c],
+                             W[c]);
                     ok = 0;
                     break;
                 }
@@ -773,7 +810,8 @@ static void test_mm(tap_rng *r)
         goto out;
     }
     /* Values of every magnitude and sign. */
-    for (p = 0; p < A->nnz; p++) A->val[p] *= pow(10.0, (double)(tap_rng_int(r, 61) - 30));
+    for (p = 0; p < A->nnz; p++)
+        A->val[p] *= pow(10.0, (double)(tap_rng_int(r, 61) - 30));
     if (A->nnz > 1) {
         A->val[0] = -1.0 / 3.0;
         A->val[1] = 1e-300;

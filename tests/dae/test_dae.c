@@ -1010,7 +1010,6 @@ static void test_stats_output(void)
            "stats: steps at each order add up to the steps (%ld)", st.steps);
 }
 
-
 /* ---- event location ----
  * The harmonic oscillator y1' = y2, y2' = -y1, y(0) = (1, 0) has y1 = cos t: event g0 = y1
  * changes sign at t = pi/2 (falling), 3 pi/2 (rising), 5 pi/2 (falling); g1 = t - 1 once at
@@ -1072,8 +1071,8 @@ static void test_roots(void)
         dae_roots_found(s, found);
         int k = nfound++;
         tap_ok(found[which[k]] == dir[k] && found[1 - which[k]] == 0 && fabs(t - tev[k]) < 1e-8,
-               "roots: event %d at t = %.12f (exact %.12f, err %.2g), function %d direction %d",
-               k, t, tev[k], fabs(t - tev[k]), which[k], found[which[k]]);
+               "roots: event %d at t = %.12f (exact %.12f, err %.2g), function %d direction %d", k,
+               t, tev[k], fabs(t - tev[k]), which[k], found[which[k]]);
         tap_ok(fabs(y[0] - cos(t)) < 1e-8, "roots: solution at the event is right (err %.2g)",
                fabs(y[0] - cos(t)));
     }
@@ -1138,9 +1137,9 @@ static int tm_res(void *user, double t, const double *y, const double *yp, doubl
 }
 
 /* (row, column, value) of dF/dy; dF/dy' is 1 at (0, P1) and (2, P2). */
-static const int tm_jy_ij[][2] = {{0, TM_E1}, {1, TM_F1}, {1, TM_P1}, {2, TM_E2}, {3, TM_F2},
-                                  {3, TM_P2}, {4, TM_E1}, {4, TM_LAM}, {5, TM_E2}, {5, TM_LAM},
-                                  {6, TM_F1}, {6, TM_F2}};
+static const int tm_jy_ij[][2] = {{0, TM_E1}, {1, TM_F1},  {1, TM_P1}, {2, TM_E2},
+                                  {3, TM_F2}, {3, TM_P2},  {4, TM_E1}, {4, TM_LAM},
+                                  {5, TM_E2}, {5, TM_LAM}, {6, TM_F1}, {6, TM_F2}};
 static const double tm_jy_v[] = {-1, 1, -1 / 2.0, -1, 1, -1 / 3.0, -1, -1, 1, -1, 1, -1};
 
 static int tm_jac(void *user, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp)
@@ -1149,13 +1148,20 @@ static int tm_jac(void *user, double t, const double *y, const double *yp, sp_cs
     sp_csc_zero(Jy);
     for (size_t k = 0; k < sizeof tm_jy_v / sizeof *tm_jy_v; k++)
         Jy->val[sp_csc_find(Jy, tm_jy_ij[k][0], tm_jy_ij[k][1])] = tm_jy_v[k];
-    for (int p = 0; p < Jyp->nnz; p++) Jyp->val[p] = 1.0;
+    for (int p = 0; p < Jyp->nnz; p++)
+        Jyp->val[p] = 1.0;
     return 0;
 }
 
 static const double *tm_x, *tm_xp;
-static int tm_res_y(void *u, const double *y, double *F) { return tm_res(u, 0, y, tm_xp, F); }
-static int tm_res_yp(void *u, const double *yp, double *F) { return tm_res(u, 0, tm_x, yp, F); }
+static int tm_res_y(void *u, const double *y, double *F)
+{
+    return tm_res(u, 0, y, tm_xp, F);
+}
+static int tm_res_yp(void *u, const double *yp, double *F)
+{
+    return tm_res(u, 0, tm_x, yp, F);
+}
 
 static void test_hidden_constraint(void)
 {
@@ -1175,14 +1181,14 @@ static void test_hidden_constraint(void)
     tm_xp = xp;
     int ny = sp_jac_check(Jy, tm_res_y, NULL, TM_N, x, 1e-6, 1e-7, NULL, 0, &ey);
     int nyp = sp_jac_check(Jyp, tm_res_yp, NULL, TM_N, xp, 1e-6, 1e-7, NULL, 0, &eyp);
-    tap_ok(ny == 0 && nyp == 0, "hidden constraint: Jacobians match central differences (%.2g, %.2g)",
-           ey, eyp);
+    tap_ok(ny == 0 && nyp == 0,
+           "hidden constraint: Jacobians match central differences (%.2g, %.2g)", ey, eyp);
 
     int kind[TM_N];
     int n2 = dae_classify(Jy, Jyp, kind);
-    tap_ok(n2 == 3 && kind[TM_P1] == DAE_DIFF && kind[TM_P2] == DAE_DIFF && kind[TM_F1] == DAE_ALG &&
-               kind[TM_F2] == DAE_ALG && kind[TM_E1] == DAE_ALG2 && kind[TM_E2] == DAE_ALG2 &&
-               kind[TM_LAM] == DAE_ALG2,
+    tap_ok(n2 == 3 && kind[TM_P1] == DAE_DIFF && kind[TM_P2] == DAE_DIFF &&
+               kind[TM_F1] == DAE_ALG && kind[TM_F2] == DAE_ALG && kind[TM_E1] == DAE_ALG2 &&
+               kind[TM_E2] == DAE_ALG2 && kind[TM_LAM] == DAE_ALG2,
            "hidden constraint: classification p:diff, f:index 1, e1 e2 lam:index 2 (%d index-2)",
            n2);
     static const char *const tmn[TM_N] = {"p1", "p2", "f1", "f2", "e1", "e2", "lam"};
@@ -1249,9 +1255,10 @@ static void test_classify_table(void)
         int kind[MAXN], same = 1;
         p->patterns(&jy, &jyp);
         int n2 = dae_classify(jy, jyp, kind);
-        for (int j = 0; j < p->n; j++) same = same && kind[j] == p->kind[j];
-        tap_ok(n2 >= 0 && same, "classify: %s kinds found from the patterns (%d index 2)",
-               p->name, n2);
+        for (int j = 0; j < p->n; j++)
+            same = same && kind[j] == p->kind[j];
+        tap_ok(n2 >= 0 && same, "classify: %s kinds found from the patterns (%d index 2)", p->name,
+               n2);
         sp_csc_free(&jy);
         sp_csc_free(&jyp);
     }
