@@ -50,7 +50,10 @@ typedef struct dae_problem {
     const sp_csc *jac_y_pattern;  /* n x n pattern of dF/dy; NULL: dense */
     const sp_csc *jac_yp_pattern; /* n x n pattern of dF/dy'; NULL: dense */
     const int *kind;              /* n values of dae_var_kind; NULL: found from the patterns by
-                                     dae_classify (all differential if no patterns are given) */
+                                     dae_classify (all differential if no patterns are given).
+                                     A DAE_ALG2 variable may appear differentiated (systems that
+                                     are not semi-explicit); dae_consistent_init then refuses and
+                                     consistent values must be given */
     const char *const *names;     /* n names for messages; NULL: "y[i]" */
     void *user;
     /* optional position constraints (projection, drift) */
@@ -142,11 +145,13 @@ bg_error *dae_get_error(dae_solver *s);
 
 /* Start at t0 from y0, yp0 (yp0 may be NULL: zero). No consistency is assumed or checked. */
 int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
-/* Consistent initial values at the current time: keeps the differential variables (projected
- * onto the constraint rows if they violate them), computes y' of the differential variables and
- * the algebraic variables of both kinds. Constraint rows (rows of F that depend on differential
- * variables only) are replaced by their time derivative, which fixes the index-2 variables.
- * The scaled residual norm reached goes to stats.init_residual. */
+/* Consistent initial values at the current time, for semi-explicit systems (y' appears only for
+ * differential variables; algebraic variables are fixed by the rows without y', or, index-2
+ * ones, through the derivatives of the constraints). First the algebraic rows are satisfied
+ * with the smallest change of the differential variables; then y' of the differential and
+ * index-1 variables and the values of the index-2 ones follow from the differential rows and
+ * the derivatives of the constraint rows (bg_dae_init.c has the details). The scaled residual
+ * norm reached goes to stats.init_residual. */
 int dae_consistent_init(dae_solver *s);
 /* After a discontinuity: new state at time t; order 1, new first step. */
 int dae_reinit(dae_solver *s, double t, const double *y, const double *yp);

@@ -44,6 +44,8 @@ struct dae_solver {
     int *kslot_yp, *kslot_y; /* entry p of Jyp / Jy -> slot in K, -1 if not used */
     ls_solver *kls;
     int nalg_rows, nalg1_rows;
+    int not_semi_explicit; /* an index-2 unknown appears differentiated (allowed, but then
+                              dae_consistent_init cannot be used) */
     int *arow;   /* row i -> its number among the algebraic rows, -1 */
     sp_csc *kkt; /* stage A: [D B^T; B 0], B = algebraic rows of Jy, columns scaled */
     int *kkt_diag, *kkt_b, *kkt_bt; /* slots: diagonal j, entry p of Jy in B and in B^T */

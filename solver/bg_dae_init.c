@@ -159,8 +159,8 @@ static int build_k(dae_solver *s)
     if (!b || !sy || !syp) goto done;
     for (int j = 0; j < n; j++) {
         int i2 = s->kind[j] == DAE_ALG2;
-        for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++)
-            syp[p] = sp_builder_add(b, s->Jyp->rowind[p], j, 0.0); /* ROW_DIFF rows only */
+        for (int p = s->Jyp->colptr[j]; p < s->Jyp->colptr[j + 1]; p++) /* ROW_DIFF rows */
+            syp[p] = s->kind[j] == DAE_DIFF ? sp_builder_add(b, s->Jyp->rowind[p], j, 0.0) : -1;
         for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
             int rk = s->rowkind[s->Jy->rowind[p]];
             int use = rk == ROW_ALG1 ? !i2 : i2;
@@ -172,7 +172,7 @@ static int build_k(dae_solver *s)
     for (int p = 0; p < s->Jy->nnz; p++)
         s->kslot_y[p] = sy[p] >= 0 ? slot[sy[p]] : -1;
     for (int p = 0; p < s->Jyp->nnz; p++)
-        s->kslot_yp[p] = slot[syp[p]];
+        s->kslot_yp[p] = syp[p] >= 0 ? slot[syp[p]] : -1;
     ok = 1;
 done:
     sp_builder_free(&b);
@@ -231,12 +231,14 @@ int daei_init_setup(dae_solver *s, bg_error *err)
                                   "%s is declared differential, but no equation contains its "
                                   "derivative (empty column of dF/dy')",
                                   daei_vname(s, j, nb, sizeof nb));
-        if (s->kind[j] != DAE_DIFF && has_yp)
+        if (s->kind[j] == DAE_ALG && has_yp)
             return bg_error_raise(err, BG_ERR_ARGUMENT, w,
                                   "%s is declared algebraic, but equation %d contains its "
-                                  "derivative",
+                                  "derivative (declare it index 2 if the system is not "
+                                  "semi-explicit)",
                                   daei_vname(s, j, nb, sizeof nb),
                                   s->Jyp->rowind[s->Jyp->colptr[j]]);
+        if (s->kind[j] == DAE_ALG2 && has_yp) s->not_semi_explicit = 1;
     }
     /* row classes */
     int *touched = calloc((size_t)n, sizeof *touched);
@@ -376,6 +378,10 @@ int dae_consistent_init(dae_solver *s)
     double t = s->tn;
     double *y = s->y, *yp = s->yp, *F = s->res, *u = s->ee;
     char nb[32];
+    if (s->not_semi_explicit)
+        return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                              "the system is not semi-explicit (an index-2 unknown appears "
+                              "differentiated); give consistent initial values to dae_init");
     memcpy(y, s->phi[0], (size_t)n * sizeof *y);
     memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
     for (int j = 0; j < n; j++)
@@ -406,7 +412,7 @@ int dae_consistent_init(dae_solver *s)
         for (int p = 0; p < s->Jy->nnz; p++)
             if (s->kslot_y[p] >= 0) s->K->val[s->kslot_y[p]] = s->Jy->val[p];
         for (int p = 0; p < s->Jyp->nnz; p++)
-            s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
+            if (s->kslot_yp[p] >= 0) s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
         memcpy(u, F, (size_t)n * sizeof *u);
         if ((r = factor_solve(s, s->kls, s->K, u)) != BG_OK) {
             int c = ls_singular_col(s->kls);

@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages the project needs, only those that are missing.
 set -euo pipefail
 pkgs=(build-essential meson ninja-build pkg-config python3 libsuitesparse-dev liblapack-dev
-      libblas-dev libsundials-dev libinih-dev)
+      libblas-dev libsundials-dev libinih-dev gnuplot-nox)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

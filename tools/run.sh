@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the main job: the KLU benchmark on block-banded
-# matrices (the crane scene takes its place once the crane lands).
+# Installs what is missing, builds, and runs the main job: the benchmark harness (every problem,
+# our solver and IDA, rtol 1e-4 .. 1e-10, stability suite; report in results/bench/report.md)
+# and the KLU timings on block-banded matrices. The crane scene takes its place once it lands.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
 [ -d build ] || meson setup build --buildtype=release >/dev/null
 ninja -C build >/dev/null
-exec ./build/bench/klu_bench "$@"
+./build/bench/bench --stability --out results/bench "$@"
+echo "report: results/bench/report.md"
+./build/bench/klu_bench

@@ -15,8 +15,21 @@ fi
 meson test -C "$B" --print-errorlogs "$@"
 mrc=$?
 
-# install check: the library, its headers and pkg-config file serve an outside program
 extra_pass=0; extra_fail=0
+# the benchmark harness in its quick form (every problem and solver, two tolerances) and the
+# stability suite: it must finish and write its files (timings are not judged here)
+if [ -x "$B/bench/bench" ]; then
+  if "$B/bench/bench" --quick --stability --out "$B/bench-quick" >"$B/bench-quick.log" 2>&1 \
+     && [ -s "$B/bench-quick/work_precision.csv" ] && [ -s "$B/bench-quick/report.md" ] \
+     && [ -s "$B/bench-quick/stability.csv" ]; then
+    echo "ok - bench --quick --stability ($(tail -n 1 "$B/bench-quick.log"))"; extra_pass=$((extra_pass+1))
+  else
+    echo "not ok - bench --quick --stability failed:"; tail -n 5 "$B/bench-quick.log"
+    extra_fail=$((extra_fail+1))
+  fi
+fi
+
+# install check: the library, its headers and pkg-config file serve an outside program
 dest=$(mktemp -d)
 if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
   prefix=$(meson introspect "$B" --buildoptions | python3 -c \
@@ -28,12 +41,12 @@ if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
        cc -std=c11 -Wall -Werror tests/install_check.c -o "$dest/install_check" \
        $(PKG_CONFIG_PATH="$pcdir" PKG_CONFIG_SYSROOT_DIR="$dest" pkg-config --cflags --libs bgdae) \
      && LD_LIBRARY_PATH="$dest$prefix/$libdir" "$dest/install_check"; then
-    echo "ok - install check: outside program built with pkg-config and ran"; extra_pass=1
+    echo "ok - install check: outside program built with pkg-config and ran"; extra_pass=$((extra_pass+1))
   else
-    echo "not ok - install check failed"; extra_fail=1
+    echo "not ok - install check failed"; extra_fail=$((extra_fail+1))
   fi
 else
-  echo "not ok - meson install failed"; extra_fail=1
+  echo "not ok - meson install failed"; extra_fail=$((extra_fail+1))
 fi
 rm -rf "$dest"
 
