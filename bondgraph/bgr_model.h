@@ -143,6 +143,8 @@ static inline int bgr_av(const bgr_element *el, int i)
     return el->alg0 + i;
 }
 int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k);
+/* Number of unknowns, from the numbering step of bgr_compile on (0 before). */
+int bgr_nvars(const bgr_model *m);
 /* Declare: the element has neq equations (labels: suffixes of their names; NULL: "eq0", ...). */
 int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels);
 /* Declare that equation k depends on variable var through y (wrt_yp = 0) or y' (1). The order
