@@ -671,6 +671,7 @@ static int compile(bgr_model *m)
     return BG_OK;
 }
 
+int bgr_nvars(const bgr_model *m) { return m->compiled >= 0 ? m->n : 0; }
 int bgr_n(const bgr_model *m)
 {
     return m->compiled > 0 ? m->n : 0;
