@@ -1,0 +1,200 @@
+/* Spring/damper, truss and rope between two points (equations in mech_axial.h). */
+#include "mech_axial.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "mech_util.h"
+
+typedef struct axial {
+    int rope;
+    double k, c, L0, eps;
+    int f[2], e[2], s[2], d; /* ids: flows, efforts, orientation, state */
+} axial;
+
+static void axial_free(void *p)
+{
+    free(p);
+}
+
+/* T and its partial derivatives with respect to L and L'. */
+static double tension(const axial *a, double L, double Ld, double *TL, double *TLd)
+{
+    double x = L - a->L0;
+    if (!a->rope) {
+        *TL = a->k;
+        *TLd = a->c;
+        return a->k * x + a->c * Ld;
+    }
+    /* s = eps log(1 + e^(x/eps)) (softplus), h = s' = logistic(x/eps), evaluated without
+     * overflow on either side */
+    double z = x / a->eps, ez = exp(-fabs(z));
+    double s = a->eps * log1p(ez) + (z > 0 ? x : 0.0);
+    double h = z > 0 ? 1.0 / (1.0 + ez) : ez / (1.0 + ez);
+    double hp = h * (1 - h) / a->eps;
+    *TL = a->k * h + a->c * Ld * hp;
+    *TLd = a->c * h;
+    return a->k * s + a->c * Ld * h;
+}
+
+static void axial_partials(const bgr_element *el, const double *y, mech_emit *E)
+{
+    const axial *a = el->params;
+    const double *d = y + a->d, *vA = y + a->f[0], *vB = y + a->f[1];
+    double L = sqrt(mech_dot(d, d)), u[3], dv[3];
+    if (!(L > 0)) L = 1e-300; /* declaration pass (d = 0): values unused */
+    for (int i = 0; i < 3; i++) {
+        u[i] = d[i] / L;
+        dv[i] = vB[i] - vA[i];
+    }
+    double Ld = mech_dot(u, dv), TL, TLd, T = tension(a, L, Ld, &TL, &TLd);
+    /* du_i/dd_j = (delta_ij - u_i u_j)/L; dLd/dd_j = (dv_j - Ld u_j)/L */
+    double dLd[3];
+    for (int j = 0; j < 3; j++)
+        dLd[j] = (dv[j] - Ld * u[j]) / L;
+    int row = 0;
+    for (int i = 0; i < 3; i++, row++) { /* d' - (vB - vA) */
+        mech_dep(E, row, a->d + i, 1, 1.0);
+        mech_dep(E, row, a->f[1] + i, 0, -1.0);
+        mech_dep(E, row, a->f[0] + i, 0, 1.0);
+    }
+    for (int k = 0; k < 2; k++) { /* s_A F_A + T u (k = 0);  s_B F_B - T u (k = 1) */
+        double sg = k == 0 ? 1.0 : -1.0;
+        for (int i = 0; i < 3; i++, row++) {
+            mech_dep(E, row, a->e[k] + i, 0, a->s[k]);
+            for (int j = 0; j < 3; j++) {
+                double dT = TL * u[j] + TLd * dLd[j];
+                double du = ((i == j) - u[i] * u[j]) / L;
+                mech_dep(E, row, a->d + j, 0, sg * (dT * u[i] + T * du));
+            }
+            for (int j = 0; j < 3; j++) {
+                mech_dep(E, row, a->f[1] + j, 0, sg * TLd * u[j] * u[i]);
+                mech_dep(E, row, a->f[0] + j, 0, -sg * TLd * u[j] * u[i]);
+            }
+        }
+    }
+}
+
+static int axial_declare(bgr_element *el, bgr_model *m)
+{
+    axial *a = el->params;
+    for (int k = 0; k < 2; k++) {
+        a->f[k] = bgr_fv(el, m, k, 0);
+        a->e[k] = bgr_ev(el, m, k, 0);
+        a->s[k] = el->sign[k];
+    }
+    a->d = bgr_sv(el, 0);
+    static const char *const lab[9] = {"stretch0", "stretch1", "stretch2", "forceA0", "forceA1",
+                                       "forceA2",  "forceB0",  "forceB1",  "forceB2"};
+    int st = bgr_declare_equations(el, m, 9, lab);
+    if (st != BG_OK) return st;
+    double *zero = calloc((size_t)bgr_nvars(m) + 1, sizeof *zero);
+    if (!zero)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "bgr_compile",
+                              "out of memory");
+    mech_emit E = {1, el, m, NULL, 0, BG_OK};
+    axial_partials(el, zero, &E);
+    free(zero);
+    return E.status;
+}
+
+static int axial_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *F)
+{
+    (void)t;
+    const axial *a = el->params;
+    const double *d = y + a->d, *vA = y + a->f[0], *vB = y + a->f[1];
+    double L = sqrt(mech_dot(d, d)), u[3], dv[3];
+    if (!(L > 0)) return 1; /* the two points met: recoverable, the step is cut */
+    for (int i = 0; i < 3; i++) {
+        u[i] = d[i] / L;
+        dv[i] = vB[i] - vA[i];
+    }
+    double TL, TLd, T = tension(a, L, mech_dot(u, dv), &TL, &TLd);
+    for (int i = 0; i < 3; i++)
+        F[i] = yp[a->d + i] - dv[i];
+    for (int i = 0; i < 3; i++) {
+        F[3 + i] = a->s[0] * y[a->e[0] + i] + T * u[i];
+        F[6 + i] = a->s[1] * y[a->e[1] + i] - T * u[i];
+    }
+    return 0;
+}
+
+static int axial_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *v)
+{
+    (void)t, (void)yp;
+    mech_emit E = {0, NULL, NULL, v, 0, BG_OK};
+    axial_partials(el, y, &E);
+    return 0;
+}
+
+static const bgr_element_class axial_class = {.type = "axial",
+                                              .declare = axial_declare,
+                                              .residual = axial_residual,
+                                              .jacobian = axial_jacobian,
+                                              .destroy = axial_free};
+
+static int add_axial(bgr_model *m, bgr_comp c, const char *name, int rope, double k, double cd,
+                     double L0, double eps)
+{
+    if (!(k >= 0) || !(cd >= 0) || !(L0 > 0) || !isfinite(k) || !isfinite(cd) || !isfinite(L0))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_axial",
+                              "%s: stiffness %g and damping %g must be >= 0, rest length %g > 0",
+                              name ? name : "(null)", k, cd, L0);
+    axial *a = calloc(1, sizeof *a);
+    if (!a)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "mech_axial", "out of memory");
+    a->rope = rope;
+    a->k = k;
+    a->c = cd;
+    a->L0 = L0;
+    a->eps = eps > 0 ? eps : 1e-4 * L0;
+    static const char *const sn[3] = {"d0", "d1", "d2"};
+    const int dims[2] = {3, 3};
+    return bgr_element_add(m, c, name, &axial_class, a, 2, dims, 3, sn, 0, NULL);
+}
+
+int mech_spring(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp, double L0)
+{
+    return add_axial(m, c, name, 0, k, c_damp, L0, 0);
+}
+
+int mech_truss(bgr_model *m, bgr_comp c, const char *name, double E, double A, double L0,
+               double c_damp)
+{
+    if (!(E > 0) || !(A > 0))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_truss",
+                              "%s: modulus %g and area %g must be > 0", name ? name : "(null)", E,
+                              A);
+    return add_axial(m, c, name, 0, E * A / L0, c_damp, L0, 0);
+}
+
+int mech_rope(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp, double L0,
+              double eps)
+{
+    return add_axial(m, c, name, 1, k, c_damp, L0, eps);
+}
+
+int mech_axial_set(bgr_model *m, int id, const double *xa, const double *xb)
+{
+    bgr_element *el = bgr_element_get(m, id);
+    double *y0 = bgr_y0(m);
+    if (!el || el->cls != &axial_class || !y0)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_axial_set",
+                              "element %d is not an axial element of a compiled model", id);
+    for (int i = 0; i < 3; i++)
+        y0[el->state0 + i] = xb[i] - xa[i];
+    return BG_OK;
+}
+
+double mech_axial_tension(const bgr_model *m, int id, const double *y)
+{
+    bgr_element *el = bgr_element_get((bgr_model *)m, id);
+    if (!el || el->cls != &axial_class) return NAN;
+    const axial *a = el->params;
+    const double *d = y + a->d, *vA = y + a->f[0], *vB = y + a->f[1];
+    double L = sqrt(mech_dot(d, d)), dv[3] = {vB[0] - vA[0], vB[1] - vA[1], vB[2] - vA[2]};
+    double TL, TLd;
+    return tension(a, L, mech_dot(d, dv) / L, &TL, &TLd);
+}

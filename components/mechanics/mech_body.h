@@ -1,0 +1,49 @@
+/* 3D rigid body with ports at material points.
+ *
+ * Conventions of the mechanical components: every port is expressed in the global frame; its flow
+ * is the velocity of the connection point (and, for 6D ports, the angular velocity), its effort
+ * the force (and moment about the point) that the bond's partner exerts on the element at the
+ * bond's head; an element at the bond's tail feels the opposite (force on the element = s e with
+ * s = +1 at the head, -1 at the tail), so the power into an element is s e.f and a bond conserves
+ * power.
+ *
+ * Unknowns (states): mass-centre position x and velocity v (global), angular velocity w in the
+ * body frame, orientation quaternion q = (q0, q1, q2, q3) (body to global: R(q), see
+ * mech_util.h for the homogeneous form that makes the drift of |q| harmless).
+ * Equations, for ports k at body-frame points r_k (mass-centre origin):
+ *     x' = v
+ *     m v' = sum_k s_k F_k + m g                                       (translation, global)
+ *     J w' + w x (J w) = sum_k [ r_k x (R^T s_k F_k) + R^T s_k M_k ]    (Euler, body frame)
+ *     q' = q (x) (0, w) / 2
+ *     v_k = v + R (w x r_k),    omega_k = R w   (6D ports only)
+ * as in the seed paper (shared/crane/PAPER.md: dp/dt = F_C in the global frame, dH/dt + w x H = M
+ * in the body frame, v_k = v_C + w x r_Ck), with the port quantities rotated to the global frame
+ * here so that joints and springs need no orientation of their own.
+ * J: inertia tensor about the mass centre in the body frame (symmetric positive definite). */
+#ifndef MECH_BODY_H
+#define MECH_BODY_H
+
+#include "bgr_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Ports 0..nports-1 at body-frame points r (3 per port); dims[k] = 6 (force and moment) or 3
+ * (force only; NULL: all 6). gravity: 3 values (NULL: none). Returns the element id or < 0.
+ * States are named x0 x1 x2 v0 v1 v2 w0 w1 w2 q0 q1 q2 q3 under the element's path. */
+int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const double *inertia,
+              const double *gravity, int nports, const double *r, const int *dims);
+
+/* Initial state (after bgr_compile): position x and velocity v of the mass centre, body
+ * angular velocity w, orientation q (NULL: identity); written into bgr_y0. */
+int mech_body_set(bgr_model *m, int body, const double *x, const double *v, const double *w,
+                  const double *q);
+
+/* Variable ids of the states (after bgr_compile): first of x, v, w, q. */
+int mech_body_var(const bgr_model *m, int body, char which);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

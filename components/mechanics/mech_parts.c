@@ -1,0 +1,383 @@
+/* Point mass, fixed support, spherical and revolute joints (equations in mech_parts.h). */
+#include "mech_parts.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "mech_util.h"
+
+typedef struct part {
+    int kind;                  /* PART_* */
+    int dim;                   /* port dimension (3 or 6) */
+    double m, g[3];            /* point mass */
+    int body_a;                /* revolute: body carrying the axis (-1: ground) */
+    double a[3], e1[3], e2[3]; /* revolute axis and its normal pair, in A's frame */
+    int drive;
+    /* ids filled at declaration */
+    int f[3], e[3], s[3]; /* first flow / effort id and orientation of each port */
+    int x, v, q;          /* states (point mass), quaternion of body A (revolute) */
+} part;
+
+enum { PART_MASS, PART_SUPPORT, PART_SPHERICAL, PART_REVOLUTE };
+
+static void part_free(void *p)
+{
+    free(p);
+}
+
+static int label_eqs(bgr_element *el, bgr_model *m, int n, const char *base)
+{
+    const char **lab = calloc((size_t)n + 1, sizeof *lab);
+    char(*buf)[24] = calloc((size_t)n + 1, sizeof *buf);
+    int st = BG_ERR_MEMORY;
+    if (lab && buf) {
+        for (int i = 0; i < n; i++) {
+            snprintf(buf[i], sizeof buf[i], "%s%d", base, i);
+            lab[i] = buf[i];
+        }
+        st = bgr_declare_equations(el, m, n, lab);
+    }
+    free(lab);
+    free(buf);
+    if (st == BG_ERR_MEMORY)
+        return bg_error_raise(bgr_model_error_mut(m), st, "bgr_compile", "out of memory");
+    return st;
+}
+
+/* Axis vectors in the global frame and their derivatives with respect to q_A. */
+static void revolute_axes(const part *p, const double *y, double *a, double *e1, double *e2,
+                          double da[4][3], double de1[4][3], double de2[4][3])
+{
+    if (p->body_a < 0) {
+        memcpy(a, p->a, 3 * sizeof *a);
+        memcpy(e1, p->e1, 3 * sizeof *e1);
+        memcpy(e2, p->e2, 3 * sizeof *e2);
+        memset(da, 0, 12 * sizeof **da);
+        memset(de1, 0, 12 * sizeof **de1);
+        memset(de2, 0, 12 * sizeof **de2);
+        return;
+    }
+    double R[9], dR[36];
+    mech_quat_R(y + p->q, R, dR);
+    mech_mv(R, p->a, a);
+    mech_mv(R, p->e1, e1);
+    mech_mv(R, p->e2, e2);
+    for (int j = 0; j < 4; j++) {
+        mech_mv(dR + 9 * j, p->a, da[j]);
+        mech_mv(dR + 9 * j, p->e1, de1[j]);
+        mech_mv(dR + 9 * j, p->e2, de2[j]);
+    }
+}
+
+static void part_partials(const bgr_element *el, const double *y, mech_emit *E)
+{
+    const part *p = el->params;
+    int row = 0;
+    switch (p->kind) {
+    case PART_MASS:
+        for (int i = 0; i < 3; i++, row++) { /* x' = v */
+            mech_dep(E, row, p->x + i, 1, 1.0);
+            mech_dep(E, row, p->v + i, 0, -1.0);
+        }
+        for (int i = 0; i < 3; i++, row++) { /* m v' - s F - m g */
+            mech_dep(E, row, p->v + i, 1, p->m);
+            mech_dep(E, row, p->e[0] + i, 0, -p->s[0]);
+        }
+        for (int i = 0; i < 3; i++, row++) { /* v_port - v */
+            mech_dep(E, row, p->f[0] + i, 0, 1.0);
+            mech_dep(E, row, p->v + i, 0, -1.0);
+        }
+        break;
+    case PART_SUPPORT:
+        for (int i = 0; i < p->dim; i++, row++)
+            mech_dep(E, row, p->f[0] + i, 0, 1.0);
+        break;
+    case PART_SPHERICAL:
+        for (int i = 0; i < 3; i++, row++) {
+            mech_dep(E, row, p->f[0] + i, 0, 1.0);
+            mech_dep(E, row, p->f[1] + i, 0, -1.0);
+        }
+        for (int i = 0; i < 3; i++, row++) {
+            mech_dep(E, row, p->e[0] + i, 0, p->s[0]);
+            mech_dep(E, row, p->e[1] + i, 0, p->s[1]);
+        }
+        if (p->dim == 6)
+            for (int k = 0; k < 2; k++)
+                for (int i = 0; i < 3; i++, row++)
+                    mech_dep(E, row, p->e[k] + 3 + i, 0, p->s[k]);
+        break;
+    case PART_REVOLUTE: {
+        double a[3], e1[3], e2[3], da[4][3], de1[4][3], de2[4][3];
+        revolute_axes(p, y, a, e1, e2, da, de1, de2);
+        const double *wA = y + p->f[0] + 3, *wB = y + p->f[1] + 3;
+        double dw[3] = {wB[0] - wA[0], wB[1] - wA[1], wB[2] - wA[2]};
+        for (int i = 0; i < 3; i++, row++) {
+            mech_dep(E, row, p->f[0] + i, 0, 1.0);
+            mech_dep(E, row, p->f[1] + i, 0, -1.0);
+        }
+        const double *ev[2] = {e1, e2};
+        double(*dev[2])[3] = {de1, de2};
+        for (int r = 0; r < 2; r++, row++) { /* (wB - wA).e_r = 0 */
+            for (int i = 0; i < 3; i++) {
+                mech_dep(E, row, p->f[1] + 3 + i, 0, ev[r][i]);
+                mech_dep(E, row, p->f[0] + 3 + i, 0, -ev[r][i]);
+            }
+            if (p->body_a >= 0)
+                for (int j = 0; j < 4; j++)
+                    mech_dep(E, row, p->q + j, 0, mech_dot(dw, dev[r][j]));
+        }
+        for (int i = 0; i < 3; i++, row++) { /* forces */
+            mech_dep(E, row, p->e[0] + i, 0, p->s[0]);
+            mech_dep(E, row, p->e[1] + i, 0, p->s[1]);
+        }
+        for (int i = 0; i < 3; i++, row++) { /* moments */
+            mech_dep(E, row, p->e[0] + 3 + i, 0, p->s[0]);
+            mech_dep(E, row, p->e[1] + 3 + i, 0, p->s[1]);
+        }
+        /* (s_B M_B).a + s_d e_d */
+        const double *MB = y + p->e[1] + 3;
+        for (int i = 0; i < 3; i++)
+            mech_dep(E, row, p->e[1] + 3 + i, 0, p->s[1] * a[i]);
+        if (p->body_a >= 0)
+            for (int j = 0; j < 4; j++)
+                mech_dep(E, row, p->q + j, 0, p->s[1] * mech_dot(MB, da[j]));
+        if (p->drive) mech_dep(E, row, p->e[2], 0, p->s[2]);
+        row++;
+        if (p->drive) { /* f_d - (wB - wA).a */
+            mech_dep(E, row, p->f[2], 0, 1.0);
+            for (int i = 0; i < 3; i++) {
+                mech_dep(E, row, p->f[1] + 3 + i, 0, -a[i]);
+                mech_dep(E, row, p->f[0] + 3 + i, 0, a[i]);
+            }
+            if (p->body_a >= 0)
+                for (int j = 0; j < 4; j++)
+                    mech_dep(E, row, p->q + j, 0, -mech_dot(dw, da[j]));
+            row++;
+        }
+        break;
+    }
+    }
+}
+
+static int part_declare(bgr_element *el, bgr_model *m)
+{
+    part *p = el->params;
+    for (int k = 0; k < el->nports; k++) {
+        p->f[k] = bgr_fv(el, m, k, 0);
+        p->e[k] = bgr_ev(el, m, k, 0);
+        p->s[k] = el->sign[k];
+    }
+    int neq = 0;
+    const char *base = "eq";
+    switch (p->kind) {
+    case PART_MASS:
+        p->x = bgr_sv(el, 0);
+        p->v = bgr_sv(el, 3);
+        neq = 9;
+        base = "mass";
+        break;
+    case PART_SUPPORT:
+        neq = p->dim;
+        base = "fixed";
+        break;
+    case PART_SPHERICAL:
+        neq = 2 * p->dim;
+        base = "joint";
+        break;
+    case PART_REVOLUTE:
+        neq = 12 + p->drive;
+        base = "joint";
+        if (p->body_a >= 0) {
+            bgr_ref r = {BGR_STATE, p->body_a, 9};
+            p->q = bgr_ref_var(m, r);
+            bgr_element *b = bgr_element_get(m, p->body_a);
+            if (p->q < 0 || !b || b->nstates != 13 || strcmp(b->cls->type, "body"))
+                return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_compile",
+                                      "revolute joint %s: element %d is not a rigid body", el->name,
+                                      p->body_a);
+        }
+        break;
+    }
+    int st = label_eqs(el, m, neq, base);
+    if (st != BG_OK) return st;
+    int nv = bgr_nvars(m);
+    double *zero = calloc((size_t)nv + 1, sizeof *zero);
+    if (!zero)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "bgr_compile",
+                              "out of memory");
+    if (p->kind == PART_REVOLUTE && p->body_a >= 0) zero[p->q] = 1.0;
+    mech_emit E = {1, el, m, NULL, 0, BG_OK};
+    part_partials(el, zero, &E);
+    free(zero);
+    return E.status;
+}
+
+static int part_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                         double *F)
+{
+    (void)t;
+    const part *p = el->params;
+    int row = 0;
+    switch (p->kind) {
+    case PART_MASS:
+        for (int i = 0; i < 3; i++)
+            F[row++] = yp[p->x + i] - y[p->v + i];
+        for (int i = 0; i < 3; i++)
+            F[row++] = p->m * yp[p->v + i] - p->s[0] * y[p->e[0] + i] - p->m * p->g[i];
+        for (int i = 0; i < 3; i++)
+            F[row++] = y[p->f[0] + i] - y[p->v + i];
+        break;
+    case PART_SUPPORT:
+        for (int i = 0; i < p->dim; i++)
+            F[row++] = y[p->f[0] + i];
+        break;
+    case PART_SPHERICAL:
+        for (int i = 0; i < 3; i++)
+            F[row++] = y[p->f[0] + i] - y[p->f[1] + i];
+        for (int i = 0; i < 3; i++)
+            F[row++] = p->s[0] * y[p->e[0] + i] + p->s[1] * y[p->e[1] + i];
+        if (p->dim == 6)
+            for (int k = 0; k < 2; k++)
+                for (int i = 0; i < 3; i++)
+                    F[row++] = p->s[k] * y[p->e[k] + 3 + i];
+        break;
+    case PART_REVOLUTE: {
+        double a[3], e1[3], e2[3], da[4][3], de1[4][3], de2[4][3];
+        revolute_axes(p, y, a, e1, e2, da, de1, de2);
+        const double *wA = y + p->f[0] + 3, *wB = y + p->f[1] + 3;
+        double dw[3] = {wB[0] - wA[0], wB[1] - wA[1], wB[2] - wA[2]};
+        for (int i = 0; i < 3; i++)
+            F[row++] = y[p->f[0] + i] - y[p->f[1] + i];
+        F[row++] = mech_dot(dw, e1);
+        F[row++] = mech_dot(dw, e2);
+        for (int i = 0; i < 3; i++)
+            F[row++] = p->s[0] * y[p->e[0] + i] + p->s[1] * y[p->e[1] + i];
+        for (int i = 0; i < 3; i++)
+            F[row++] = p->s[0] * y[p->e[0] + 3 + i] + p->s[1] * y[p->e[1] + 3 + i];
+        F[row++] = p->s[1] * mech_dot(y + p->e[1] + 3, a) + (p->drive ? p->s[2] * y[p->e[2]] : 0);
+        if (p->drive) F[row++] = y[p->f[2]] - mech_dot(dw, a);
+        break;
+    }
+    }
+    return 0;
+}
+
+static int part_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                         double *v)
+{
+    (void)t, (void)yp;
+    mech_emit E = {0, NULL, NULL, v, 0, BG_OK};
+    part_partials(el, y, &E);
+    return 0;
+}
+
+static const bgr_element_class mass_class = {.type = "point mass",
+                                             .declare = part_declare,
+                                             .residual = part_residual,
+                                             .jacobian = part_jacobian,
+                                             .destroy = part_free};
+static const bgr_element_class support_class = {.type = "support",
+                                                .declare = part_declare,
+                                                .residual = part_residual,
+                                                .jacobian = part_jacobian,
+                                                .destroy = part_free};
+static const bgr_element_class spherical_class = {.type = "spherical joint",
+                                                  .declare = part_declare,
+                                                  .residual = part_residual,
+                                                  .jacobian = part_jacobian,
+                                                  .destroy = part_free};
+static const bgr_element_class revolute_class = {.type = "revolute joint",
+                                                 .declare = part_declare,
+                                                 .residual = part_residual,
+                                                 .jacobian = part_jacobian,
+                                                 .destroy = part_free};
+
+static part *part_new(bgr_model *m, int kind, int dim)
+{
+    part *p = calloc(1, sizeof *p);
+    if (!p) {
+        bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "mech", "out of memory");
+        return NULL;
+    }
+    p->kind = kind;
+    p->dim = dim;
+    p->body_a = -1;
+    return p;
+}
+
+static int bad(bgr_model *m, const char *what, const char *name)
+{
+    return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech", "%s %s",
+                          name ? name : "(null)", what);
+}
+
+int mech_point_mass(bgr_model *m, bgr_comp c, const char *name, double mass, const double *gravity)
+{
+    if (!(mass > 0) || !isfinite(mass)) return bad(m, ": mass must be > 0", name);
+    part *p = part_new(m, PART_MASS, 3);
+    if (!p) return BG_ERR_MEMORY;
+    p->m = mass;
+    if (gravity) memcpy(p->g, gravity, sizeof p->g);
+    static const char *const sn[6] = {"x0", "x1", "x2", "v0", "v1", "v2"};
+    const int dims[1] = {3};
+    return bgr_element_add(m, c, name, &mass_class, p, 1, dims, 6, sn, 0, NULL);
+}
+
+int mech_point_mass_set(bgr_model *m, int id, const double *x, const double *v)
+{
+    bgr_element *el = bgr_element_get(m, id);
+    double *y0 = bgr_y0(m);
+    if (!el || el->cls != &mass_class || !y0)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_point_mass_set",
+                              "element %d is not a point mass of a compiled model", id);
+    for (int i = 0; i < 3; i++) {
+        y0[el->state0 + i] = x ? x[i] : 0.0;
+        y0[el->state0 + 3 + i] = v ? v[i] : 0.0;
+    }
+    return BG_OK;
+}
+
+int mech_support(bgr_model *m, bgr_comp c, const char *name, int dim)
+{
+    if (dim != 3 && dim != 6) return bad(m, ": support dimension must be 3 or 6", name);
+    part *p = part_new(m, PART_SUPPORT, dim);
+    if (!p) return BG_ERR_MEMORY;
+    return bgr_element_add(m, c, name, &support_class, p, 1, &p->dim, 0, NULL, 0, NULL);
+}
+
+int mech_spherical(bgr_model *m, bgr_comp c, const char *name, int dim)
+{
+    if (dim != 3 && dim != 6) return bad(m, ": joint dimension must be 3 or 6", name);
+    part *p = part_new(m, PART_SPHERICAL, dim);
+    if (!p) return BG_ERR_MEMORY;
+    const int dims[2] = {dim, dim};
+    return bgr_element_add(m, c, name, &spherical_class, p, 2, dims, 0, NULL, 0, NULL);
+}
+
+int mech_revolute(bgr_model *m, bgr_comp c, const char *name, int body_a, const double *axis_a,
+                  int drive)
+{
+    double n = axis_a ? sqrt(mech_dot(axis_a, axis_a)) : 0;
+    if (!(n > 0) || !isfinite(n)) return bad(m, ": revolute joint needs a nonzero axis", name);
+    part *p = part_new(m, PART_REVOLUTE, 6);
+    if (!p) return BG_ERR_MEMORY;
+    p->body_a = body_a;
+    p->drive = drive != 0;
+    for (int i = 0; i < 3; i++)
+        p->a[i] = axis_a[i] / n;
+    /* e1: the unit vector of the coordinate axis least aligned with a, made normal to a */
+    int k = fabs(p->a[0]) <= fabs(p->a[1]) && fabs(p->a[0]) <= fabs(p->a[2]) ? 0
+            : fabs(p->a[1]) <= fabs(p->a[2])                                 ? 1
+                                                                             : 2;
+    double u[3] = {0, 0, 0};
+    u[k] = 1;
+    double d = mech_dot(u, p->a);
+    for (int i = 0; i < 3; i++)
+        p->e1[i] = u[i] - d * p->a[i];
+    double ne = sqrt(mech_dot(p->e1, p->e1));
+    for (int i = 0; i < 3; i++)
+        p->e1[i] /= ne;
+    mech_cross(p->a, p->e1, p->e2);
+    const int dims[3] = {6, 6, 1};
+    return bgr_element_add(m, c, name, &revolute_class, p, 2 + p->drive, dims, 0, NULL, 0, NULL);
+}
