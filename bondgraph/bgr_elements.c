@@ -83,24 +83,24 @@ static int bind(bgr_element *el, bgr_model *m)
         q->refvar = bgr_ref_var(m, q->ref);
         if (q->refvar < 0)
             return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_compile",
-                                  "element %s (%s): its signal refers to no unknown", el->name,
-                                  el->cls->type);
+                                  "element %s/%s (%s): its signal refers to no unknown",
+                                  bgr_component_path(m, el->comp), el->name, el->cls->type);
     }
     return BG_OK;
 }
 
 /* Declares neq equations labelled prefix0, prefix1, ... in groups of d (label(k) chooses). */
-static int declare_eqs(bgr_element *el, bgr_model *m, int neq, const char *(*label)(int k, int d),
-                       int d)
+static int declare_eqs(bgr_element *el, bgr_model *m, int neq,
+                       const char *(*label)(int k, int d, int np), int d)
 {
     char **lab = calloc((size_t)neq + 1, sizeof *lab);
     int st = lab ? BG_OK : BG_ERR_MEMORY;
     for (int k = 0; st == BG_OK && k < neq; k++) {
         char buf[48];
         if (d == 1)
-            snprintf(buf, sizeof buf, "%s", label(k, d));
+            snprintf(buf, sizeof buf, "%s", label(k, d, el->nports));
         else
-            snprintf(buf, sizeof buf, "%s%d", label(k, d), k % d);
+            snprintf(buf, sizeof buf, "%s%d", label(k, d, el->nports), k % d);
         if (!(lab[k] = malloc(strlen(buf) + 1)))
             st = BG_ERR_MEMORY;
         else
@@ -157,8 +157,9 @@ static void vname2(const bgr_model *m, int v, char *buf, size_t n)
 
 /* ------------------------------------------------------------------------- I ---- */
 
-static const char *lab_I(int k, int d)
+static const char *lab_I(int k, int d, int np)
 {
+    (void)np;
     return k < d ? "momentum" : "velocity";
 }
 
@@ -280,7 +281,8 @@ static int add_state_elem(bgr_model *m, bgr_comp c, const char *name, const bgr_
         int d = q->d;
         par_free(q);
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_element_add",
-                              "element %s: dimension %d above 16", name ? name : "(null)", d);
+                              "element %s/%s: dimension %d above 16", bgr_component_path(m, c),
+                              name ? name : "(null)", d);
     }
     char buf[16][16];
     const char *ptr[16];
@@ -318,8 +320,9 @@ int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
 
 /* ------------------------------------------------------------------------- C ---- */
 
-static const char *lab_C(int k, int d)
+static const char *lab_C(int k, int d, int np)
 {
+    (void)np;
     return k < d ? "displacement" : "effort";
 }
 
@@ -412,8 +415,9 @@ int bgr_C_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn psi, void *user)
 
 /* ------------------------------------------------------------------------- R ---- */
 
-static const char *lab_R(int k, int d)
+static const char *lab_R(int k, int d, int np)
 {
+    (void)np;
     (void)k, (void)d;
     return "resistance";
 }
@@ -494,8 +498,9 @@ int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
 
 /* ------------------------------------------------------------------ Se and Sf ---- */
 
-static const char *lab_src(int k, int d)
+static const char *lab_src(int k, int d, int np)
 {
+    (void)np;
     (void)k, (void)d;
     return "source";
 }
@@ -686,8 +691,9 @@ int bgr_Sf_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal)
 
 /* ----------------------------------------------------------------- TF and GY ---- */
 
-static const char *lab_TF(int k, int d)
+static const char *lab_TF(int k, int d, int np)
 {
+    (void)np;
     return k < d ? "effort" : "flow";
 }
 
@@ -859,18 +865,31 @@ int bgr_GY(bgr_model *m, bgr_comp c, const char *name, int d, double modulus)
 
 /* ------------------------------------------------------------------ junctions ---- */
 
-static const char *lab_j(int k, int d)
-{
-    (void)k, (void)d;
-    return "junction";
-}
-
 /* zero = 1: 0-junction (common effort, flows sum); zero = 0: 1-junction. */
 static int J_declare(bgr_element *el, bgr_model *m, int zero)
 {
     par *q = el->params;
     int d = q->d, np = el->nports, st = bind(el, m);
-    if (st || (st = declare_eqs(el, m, np * d, lab_j, d))) return st;
+    if (st) return st;
+    /* rows: "equal<k>[_i]" (port k's effort or flow equals port 0's), "sum[<i>]" */
+    char(*buf)[32] = calloc((size_t)np * d + 1, sizeof *buf);
+    const char **lab = calloc((size_t)np * d + 1, sizeof *lab);
+    if (buf && lab) {
+        for (int r = 0; r < np * d; r++) {
+            int k = r / d + 1, i = r % d;
+            if (r < (np - 1) * d)
+                snprintf(buf[r], sizeof buf[r], d == 1 ? "equal%d" : "equal%d_%d", k, i);
+            else
+                snprintf(buf[r], sizeof buf[r], d == 1 ? "sum" : "sum%d", i);
+            lab[r] = buf[r];
+        }
+        st = bgr_declare_equations(el, m, np * d, lab);
+    } else {
+        st = bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "bgr_compile", "out of memory");
+    }
+    free(buf);
+    free(lab);
+    if (st) return st;
     const int *same = zero ? q->e : q->f, *sum = zero ? q->f : q->e;
     for (int k = 1; k < np; k++)
         for (int i = 0; i < d; i++) {
@@ -1013,8 +1032,9 @@ int bgr_one(bgr_model *m, bgr_comp c, const char *name, int nports, int d)
 
 /* ---------------------------------------------------------------------- gain ---- */
 
-static const char *lab_gain(int k, int d)
+static const char *lab_gain(int k, int d, int np)
 {
+    (void)np;
     (void)k, (void)d;
     return "signal";
 }

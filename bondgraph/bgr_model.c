@@ -260,12 +260,21 @@ int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_elemen
     for (int i = 0; !st && i < m->nel; i++)
         if (m->el[i]->comp == c && !strcmp(m->el[i]->name, name))
             st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s exists already", m->comp[c].path, name);
-    if (!st &&
-        (!reserve((void **)&m->el, &m->capel, m->nel, sizeof *m->el) ||
-         !(m->el_state_names =
-               realloc(m->el_state_names, (size_t)m->capel * sizeof *m->el_state_names)) ||
-         !(m->el_alg_names = realloc(m->el_alg_names, (size_t)m->capel * sizeof *m->el_alg_names))))
-        st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+    if (!st) { /* three arrays grown together; a failed realloc keeps the old block */
+        int cap = m->capel;
+        if (!reserve((void **)&m->el, &cap, m->nel, sizeof *m->el)) {
+            st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+        } else if (cap != m->capel || !m->el_state_names) {
+            char ***sn = realloc(m->el_state_names, (size_t)cap * sizeof *sn);
+            if (sn) m->el_state_names = sn;
+            char ***an = sn ? realloc(m->el_alg_names, (size_t)cap * sizeof *an) : NULL;
+            if (an) m->el_alg_names = an;
+            if (!sn || !an)
+                st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+            else
+                m->capel = cap;
+        }
+    }
     bgr_element *el = st ? NULL : calloc(1, sizeof *el);
     if (!st && !el) st = fail(m, BG_ERR_MEMORY, w, "out of memory");
     if (st) {
@@ -446,7 +455,7 @@ int bgr_fv(const bgr_element *el, const bgr_model *m, int k, int i)
 
 int bgr_ref_var(const bgr_model *m, bgr_ref r)
 {
-    if (m->n == 0) return -1; /* not numbered yet */
+    if (m->n == 0 || m->compiled < 0) return -1; /* not numbered yet, or compilation failed */
     switch (r.type) {
     case BGR_EFFORT:
     case BGR_FLOW:
@@ -671,7 +680,10 @@ static int compile(bgr_model *m)
     return BG_OK;
 }
 
-int bgr_nvars(const bgr_model *m) { return m->compiled >= 0 ? m->n : 0; }
+int bgr_nvars(const bgr_model *m)
+{
+    return m->compiled >= 0 ? m->n : 0;
+}
 int bgr_n(const bgr_model *m)
 {
     return m->compiled > 0 ? m->n : 0;
@@ -875,8 +887,13 @@ int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp
     m->ck_yp = yp;
     sp_jac_entry wy = {-1, -1, 0, 0, 0}, wyp = {-1, -1, 0, 0, 0};
     double ey = 0, eyp = 0;
-    int ny = r ? r : sp_jac_check(Jy, ck_res_y, m, m->n, y, 1e-6, tol, &wy, 1, &ey);
-    int nyp = r || ny < 0 ? 0 : sp_jac_check(Jyp, ck_res_yp, m, m->n, yp, 1e-6, tol, &wyp, 1, &eyp);
+    if (r != 0) {
+        sp_csc_free(&Jy);
+        sp_csc_free(&Jyp);
+        return r < 0 ? r : BG_ERR_CALLBACK;
+    }
+    int ny = sp_jac_check(Jy, ck_res_y, m, m->n, y, 1e-6, tol, &wy, 1, &ey);
+    int nyp = ny < 0 ? 0 : sp_jac_check(Jyp, ck_res_yp, m, m->n, yp, 1e-6, tol, &wyp, 1, &eyp);
     sp_csc_free(&Jy);
     sp_csc_free(&Jyp);
     if (ny < 0) return ny;

@@ -46,8 +46,8 @@ struct dae_solver {
     int nalg_rows, nalg1_rows;
     int not_semi_explicit; /* an index-2 unknown appears differentiated (allowed, but then
                               dae_consistent_init cannot be used) */
-    int *arow;   /* row i -> its number among the algebraic rows, -1 */
-    sp_csc *kkt; /* stage A: [D B^T; B 0], B = algebraic rows of Jy, columns scaled */
+    int *arow;             /* row i -> its number among the algebraic rows, -1 */
+    sp_csc *kkt;           /* stage A: [D B^T; B 0], B = algebraic rows of Jy, columns scaled */
     int *kkt_diag, *kkt_b, *kkt_bt; /* slots: diagonal j, entry p of Jy in B and in B^T */
     ls_solver *kktls;
     double *kkt_rhs; /* n + nalg_rows */
@@ -64,6 +64,8 @@ struct dae_solver {
     double alphas, alpha0, ck;
     double *phi[NPHI];
     double *ewt, *werr, *wnewt;
+    double *wdiff; /* Newton weights without the index-2 unknowns */
+    int has_alg2;
     double *y, *yp, *ypred, *yppred, *ee, *delta, *res, *tmp, *tmp2, *typ;
     double err_k, err_km1;
     /* roots */

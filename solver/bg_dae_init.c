@@ -19,8 +19,12 @@
  *     (Euclidean norm) of the differential variables: Gauss-Newton steps from the KKT system
  *         [ D   B^T ] [ dy ]   [  0 ]
  *         [ B   0   ] [ mu ] = [ -G ],   B = dG/dy,
- *     D = 1 on differential and 1e-10 on algebraic variables (so that these move freely and the
- *     system stays regular). With no constraint on the differential variables, they do not move.
+ *     D = 1 on differential variables, 0 on index-1 ones (free: the algebraic rows determine
+ *     them) and 1e-10 on index-2 ones (free as well, but not determined by these rows: the small
+ *     weight keeps the system regular; their values are recomputed in stage B). With no
+ *     constraint on the differential variables they do not move, whatever the coefficients.
+ *     (A small weight on the index-1 variables instead would move the differential ones by
+ *     about weight * coefficient^2: a spring k q - e = 0 with k = 1e4 shifted q by 2 %.)
  *     (The error weights would be the obvious scaling, but they make large components cheap to
  *     move: a pendulum started slightly off its velocity constraint was moved by 0.38 in x.)
  *  B. With y_D and the index-1 variables fixed, Newton on the square system
@@ -347,7 +351,9 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
                                   t, imax, gmax);
         sp_csc_zero(s->kkt);
         for (int j = 0; j < n; j++)
-            s->kkt->val[s->kkt_diag[j]] = s->kind[j] == DAE_DIFF ? 1.0 : KKT_ALG_WEIGHT;
+            s->kkt->val[s->kkt_diag[j]] = s->kind[j] == DAE_DIFF   ? 1.0
+                                          : s->kind[j] == DAE_ALG2 ? KKT_ALG_WEIGHT
+                                                                   : 0.0;
         for (int j = 0; j < n; j++)
             for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
                 if (s->kkt_b[p] >= 0) {

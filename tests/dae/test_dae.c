@@ -1238,8 +1238,7 @@ static void test_hidden_constraint(void)
                fabs(y[TM_LAM] - lam) < 1e-6,
            "hidden constraint: at t = 2, v = %.12g (got %.12g, %.12g), lam %.12g", v, y[TM_F1],
            y[TM_F2], y[TM_LAM]);
-    tap_diag("hidden constraint: %ld steps, %ld error-test failures", dae_get_stats(s)->steps,
-             dae_get_stats(s)->rejected_error);
+    stats_diag("hidden constraint", dae_get_stats(s));
     dae_free(&s);
     sp_csc_free(&Jy);
     sp_csc_free(&Jyp);
