@@ -58,12 +58,22 @@ typedef struct bp_problem {
     /* breakpoints of the forcing (ascending, inside (t0, tend)), 0 if none */
     int nbreakpoints;
     const double *breakpoints;
+    /* The published initial values where y0, yp0 above were made consistent from them (crank:
+     * the published set satisfies the algebraic rows only to about 1e-7); NULL otherwise. */
+    const double *y0_published;
+    const double *yp0_published;
 } bp_problem;
 
 /* The table: bp_count() problems, bp_get(i) for i < bp_count(). */
 int bp_count(void);
 const bp_problem *bp_get(int i);
-/* Lookup by name; NULL if unknown. */
+/* The IVP Test Set problems crank, pump, transamp, chemakzo and nand, in a table of their own:
+ * they are larger (n up to 24), have several constraints and index-2 variables (crank: 10),
+ * state-dependent or singular mass matrices, and published reference values of limited
+ * accuracy, so that properties asserted over the table above do not all hold for them. */
+int bp_testset_count(void);
+const bp_problem *bp_testset_get(int i);
+/* Lookup by name in both tables; NULL if unknown. */
 const bp_problem *bp_find(const char *name);
 
 /* A dae_problem ready for dae_create, with the patterns it points to. */
