@@ -496,6 +496,8 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     while (s->ibk < s->nbkpt && s->bkpt[s->ibk] <= t0)
         s->ibk++;
     s->root_pending = 0;
+    s->restart_pending = 0;
+    s->init_side = 0;
     s->tlo = t0;
     s->need_setup = 1;
     s->initialized = 1;
@@ -984,7 +986,9 @@ static int restart_at_breakpoint(dae_solver *s, double tout)
     memcpy(s->phi[0], s->y, (size_t)s->n * sizeof(double));
     memcpy(s->phi[1], s->yp, (size_t)s->n * sizeof(double));
     double keep = s->st.init_residual;
+    s->init_side = s->hused >= 0 ? 1 : -1; /* the right-hand values past the breakpoint */
     int r = dae_consistent_init(s);
+    s->init_side = 0;
     s->st.init_residual = keep;
     if (r != BG_OK) return r;
     s->first = 1;
@@ -1214,6 +1218,14 @@ static int advance(dae_solver *s, double tout, double *tret, double *y, double *
                                   "%ld steps taken before reaching tout = %g (t = %g)", nsteps,
                                   tout, s->tn);
         }
+        if (s->restart_pending) {
+            s->restart_pending = 0;
+            int rr = restart_at_breakpoint(s, tout);
+            if (rr != BG_OK) {
+                output_state(s, s->tn, tret, y, yp);
+                return rr;
+            }
+        }
         int r = step_once(s);
         daei_sync_stats(s);
         if (r < 0) {
@@ -1224,14 +1236,11 @@ static int advance(dae_solver *s, double tout, double *tret, double *y, double *
             output_state(s, s->tn, tret, y, yp);
             return r;
         }
-        if (r == 1) { /* landed on a breakpoint */
+        if (r == 1) { /* landed on a breakpoint: restart before the next step (which may be in
+                         the next call, when tout is the breakpoint itself) */
             s->ibk++;
             if (s->p.nroots > 0 && (r = find_root(s)) < 0) return r;
-            int rr = restart_at_breakpoint(s, tout);
-            if (rr != BG_OK) {
-                output_state(s, s->tn, tret, y, yp);
-                return rr;
-            }
+            s->restart_pending = 1;
             continue;
         }
         if (s->p.nroots > 0 && (r = find_root(s)) < 0) {

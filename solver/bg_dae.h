@@ -48,7 +48,11 @@ typedef struct dae_problem {
     dae_res_fn res;
     dae_jac_fn jac;               /* NULL: coloured finite differences on the patterns */
     const sp_csc *jac_y_pattern;  /* n x n pattern of dF/dy; NULL: dense */
-    const sp_csc *jac_yp_pattern; /* n x n pattern of dF/dy'; NULL: dense */
+    const sp_csc *jac_yp_pattern; /* n x n pattern of dF/dy'; NULL: dense in the differential
+                                     columns, i.e. every equation is taken to contain y': give
+                                     the patterns for a DAE (the algebraic equations, index-2
+                                     unknowns and consistent initialisation are found from
+                                     them) */
     const int *kind;              /* n values of dae_var_kind; NULL: found from the patterns by
                                      dae_classify (all differential if no patterns are given).
                                      A DAE_ALG2 variable may appear differentiated (systems that
@@ -150,8 +154,10 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
  * ones, through the derivatives of the constraints). First the algebraic rows are satisfied
  * with the smallest change of the differential variables; then y' of the differential and
  * index-1 variables and the values of the index-2 ones follow from the differential rows and
- * the derivatives of the constraint rows (bg_dae_init.c has the details). The scaled residual
- * norm reached goes to stats.init_residual. */
+ * the derivatives of the constraint rows (bg_dae_init.c has the details). The equations are
+ * evaluated one rounding unit after t, so that inputs with a jump at t (a step at t0, a corner of
+ * a reference) take their values after it; the solver does the same when it restarts at a
+ * breakpoint. The scaled residual norm reached goes to stats.init_residual. */
 int dae_consistent_init(dae_solver *s);
 /* After a discontinuity: new state at time t; order 1, new first step. */
 int dae_reinit(dae_solver *s, double t, const double *y, const double *yp);

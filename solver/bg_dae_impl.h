@@ -74,7 +74,9 @@ struct dae_solver {
     int *rfound;
     int root_pending;
     double troot;
-    int ibk; /* next breakpoint index */
+    int ibk;             /* next breakpoint index */
+    int restart_pending; /* landed on a breakpoint: restart before the next step */
+    int init_side;       /* consistent init: 0 at t, +1/-1 just after/before t (breakpoints) */
     int initialized;
     /* FD context */
     double fd_t;

@@ -394,6 +394,11 @@ int dae_consistent_init(dae_solver *s)
         if (s->kind[j] == DAE_ALG2) yp[j] = 0.0;
     s->hh = 0;
     daei_set_weights(s, y);
+    /* the equations are evaluated just past t (right-hand limits of inputs that jump there:
+     * at t0 and at breakpoints), with one-sided differences in t; forward unless the restart
+     * at a breakpoint says otherwise */
+    int side = s->init_side ? s->init_side : 1;
+    if (side) t = nextafter(t, side > 0 ? INFINITY : -INFINITY);
     if (s->nalg_rows > 0 && (r = stage_a(s, t, y, yp)) != BG_OK) return r;
 
     /* stage B */
@@ -403,11 +408,20 @@ int dae_consistent_init(dae_solver *s)
         if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
         if (s->nalg1_rows > 0) { /* differentiated rows: dF_i/dt + sum_j dF_i/dy_j y'_j */
             double *fp = s->tmp, *fm = s->delta;
-            if ((r = daei_call_res(s, t + dt, y, yp, fp, 0)) != 0 ||
-                (r = daei_call_res(s, t - dt, y, yp, fm, 0)) != 0)
-                return cb_fail(s, r, "residual", t);
-            for (int i = 0; i < n; i++)
-                if (s->rowkind[i] == ROW_ALG1) F[i] = (fp[i] - fm[i]) / (2 * dt);
+            if (side == 0) { /* central difference */
+                if ((r = daei_call_res(s, t + dt, y, yp, fp, 0)) != 0 ||
+                    (r = daei_call_res(s, t - dt, y, yp, fm, 0)) != 0)
+                    return cb_fail(s, r, "residual", t);
+                for (int i = 0; i < n; i++)
+                    if (s->rowkind[i] == ROW_ALG1) F[i] = (fp[i] - fm[i]) / (2 * dt);
+            } else { /* one-sided, second order: (-3 F(t) + 4 F(t+d) - F(t+2d)) / (2d) */
+                double d = side * dt;
+                if ((r = daei_call_res(s, t + d, y, yp, fp, 0)) != 0 ||
+                    (r = daei_call_res(s, t + 2 * d, y, yp, fm, 0)) != 0)
+                    return cb_fail(s, r, "residual", t);
+                for (int i = 0; i < n; i++)
+                    if (s->rowkind[i] == ROW_ALG1) F[i] = (-3 * F[i] + 4 * fp[i] - fm[i]) / (2 * d);
+            }
             for (int j = 0; j < n; j++)
                 if (s->kind[j] != DAE_ALG2)
                     for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)

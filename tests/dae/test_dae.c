@@ -1307,6 +1307,55 @@ static void test_fd_jacobian(void)
     }
 }
 
+/* ---- a jump at a breakpoint ----
+ * y' = u(t), z = u(t) with u = 0 before t = 0.5 and 1 after: z is an index-1 unknown that jumps.
+ * At the breakpoint the restart must take the right-hand values (z = 1), and a call of
+ * dae_solve_to with tout = 0.5, the breakpoint itself, must return there and go on afterwards.
+ * Exact: y(t) = max(0, t - 0.5), z(1) = 1. */
+static int jump_res(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user;
+    double u = t > 0.5 ? 1.0 : 0.0;
+    F[0] = yp[0] - u;
+    F[1] = y[1] - u;
+    return 0;
+}
+
+static void test_jump(void)
+{
+    static const int kind[2] = {DAE_DIFF, DAE_ALG};
+    static const double bk[1] = {0.5}, djy[4] = {0, 0, 0, 1}, djyp[4] = {1, 0, 0, 0};
+    sp_csc *jy = sp_csc_from_dense(2, 2, djy, 0.0), *jyp = sp_csc_from_dense(2, 2, djyp, 0.0);
+    dae_problem p = {0};
+    p.n = 2;
+    p.res = jump_res;
+    p.kind = kind;
+    p.jac_y_pattern = jy; /* a DAE needs its patterns: row 2 holds no y' */
+    p.jac_yp_pattern = jyp;
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = 1e-8;
+    o.atol = 1e-10;
+    o.breakpoints = bk;
+    o.nbreakpoints = 1;
+    bg_error err = {0};
+    dae_solver *s = dae_create(&p, &o, &err);
+    double y0[2] = {0, 0}, yp0[2] = {0, 0}, y[2], yp[2], t = 0;
+    int r = s ? dae_init(s, 0, y0, yp0) : -1;
+    if (r == 0) r = dae_solve_to(s, 0.5, &t, y, yp);
+    tap_ok(
+        r == DAE_SUCCESS && t == 0.5 && fabs(y[0]) < 1e-12 && y[1] == 0.0,
+        "jump: tout at the breakpoint returns there with the left values (%s, t = %.17g, z = %g)",
+        dae_return_name(r), t, y[1]);
+    if (r == DAE_SUCCESS) r = dae_solve_to(s, 1.0, &t, y, yp);
+    tap_ok(r == DAE_SUCCESS && fabs(y[0] - 0.5) < 1e-8 && fabs(y[1] - 1.0) < 1e-12,
+           "jump: restarted with the right-hand values, y(1) = %.12g (0.5), z(1) = %.12g (1) (%s)",
+           y[0], y[1], r < 0 && s ? dae_get_error(s)->message : dae_return_name(r));
+    dae_free(&s);
+    sp_csc_free(&jy);
+    sp_csc_free(&jyp);
+}
+
 int main(void)
 {
     /* h for orders 1..5 (index 0 unused), in the asymptotic range (at h = 0.1 BDF5 on lin2 still
@@ -1336,5 +1385,6 @@ int main(void)
     test_hidden_constraint();
     test_classify_table();
     test_fd_jacobian();
+    test_jump();
     return tap_done();
 }

@@ -1,0 +1,56 @@
+/* Helpers shared by the component sources (internal: not installed, not part of the API).
+ *
+ * CMP_DEP declares a partial derivative inside a declare() hook and returns on failure, as the
+ * standard elements do. The smooth functions replace kinks in component laws (the residuals
+ * must stay smooth for the Newton iteration and the error estimate of the BDF method):
+ *
+ *   softplus   sp(z) = eps ln(1 + exp(z / eps)), a smooth max(z, 0):
+ *              0 < sp(z) - max(z, 0) = eps ln(1 + exp(-|z| / eps)) <= eps ln 2,
+ *              the excess decays like eps exp(-|z| / eps) away from z = 0; sp'(z) is the
+ *              logistic function 1 / (1 + exp(-z / eps)), in (0, 1).
+ *   clamp      c(v) = lo + sp(v - lo) - sp(v - hi), a smooth min(max(v, lo), hi):
+ *              |c(v) - min(max(v, lo), hi)| <= eps ln 2 for every v (each of the two softplus
+ *              excesses lies in [0, eps ln 2] and they enter with opposite signs), the largest
+ *              deviation at the corners v = lo and v = hi; lo < c(v) < hi always.
+ * Both are evaluated without overflow: sp(z) = max(z, 0) + eps log1p(exp(-|z| / eps)) is the
+ * same analytic function (the kinks of max and |.| cancel), and the clamp switches to the equal
+ * form hi - sp(hi - v) + sp(lo - v) above the midpoint (sp(z) - sp(-z) = z) so that no large
+ * terms cancel. */
+#ifndef CMP_INTERNAL_H
+#define CMP_INTERNAL_H
+
+#include <math.h>
+
+#include "bgr_model.h"
+
+#define CMP_DEP(el, m, k, var, wrt_yp)                                                             \
+    do {                                                                                           \
+        int st_ = bgr_declare_dep((el), (m), (k), (var), (wrt_yp));                                \
+        if (st_ != BG_OK) return st_;                                                              \
+    } while (0)
+
+#define CMP_TWO_PI 6.283185307179586476925286766559
+
+/* Smooth max(z, 0) with width eps > 0; its derivative into *dz (may be NULL). */
+static inline double cmp_softplus(double z, double eps, double *dz)
+{
+    double e = exp(-fabs(z) / eps); /* in (0, 1] */
+    if (dz) *dz = z >= 0 ? 1.0 / (1.0 + e) : e / (1.0 + e);
+    return (z > 0 ? z : 0.0) + eps * log1p(e);
+}
+
+/* Smooth clamp of v to [lo, hi] (lo < hi) with width eps > 0; derivative into *dv. */
+static inline double cmp_clamp(double v, double lo, double hi, double eps, double *dv)
+{
+    double d1, d2, r;
+    if (v <= 0.5 * (lo + hi)) {
+        r = lo + cmp_softplus(v - lo, eps, &d1) - cmp_softplus(v - hi, eps, &d2);
+        *dv = d1 - d2;
+    } else {
+        r = hi - cmp_softplus(hi - v, eps, &d1) + cmp_softplus(lo - v, eps, &d2);
+        *dv = d1 - d2;
+    }
+    return r;
+}
+
+#endif

@@ -1,0 +1,148 @@
+/* PID controller (equations in ctl_pid.h). */
+#include "ctl_pid.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cmp_internal.h"
+
+typedef struct pid {
+    ctl_pid_spec sp;
+    int I, u, r, y, rd, yd; /* variable ids (rd, yd: -1 when absent) */
+} pid;
+
+static int pid_declare(bgr_element *el, bgr_model *m)
+{
+    static const char *const lab[2] = {"integral", "output"};
+    pid *q = el->params;
+    q->I = bgr_sv(el, 0);
+    q->u = bgr_av(el, 0);
+    q->r = bgr_ref_var(m, q->sp.reference);
+    q->y = bgr_ref_var(m, q->sp.measurement);
+    q->rd = q->sp.use_reference_rate ? bgr_ref_var(m, q->sp.reference_rate) : -1;
+    q->yd = q->sp.use_measurement_rate ? bgr_ref_var(m, q->sp.measurement_rate) : -1;
+    if (q->r < 0 || q->y < 0 || (q->sp.use_reference_rate && q->rd < 0) ||
+        (q->sp.use_measurement_rate && q->yd < 0))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_compile",
+                              "controller %s: its %s refers to no unknown", el->name,
+                              q->r < 0                                ? "reference"
+                              : q->y < 0                              ? "measurement"
+                              : q->sp.use_reference_rate && q->rd < 0 ? "reference rate"
+                                                                      : "measurement rate");
+    int st = bgr_declare_equations(el, m, 2, lab);
+    if (st) return st;
+    CMP_DEP(el, m, 0, q->I, 1);
+    CMP_DEP(el, m, 0, q->r, 0);
+    CMP_DEP(el, m, 0, q->y, 0);
+    CMP_DEP(el, m, 1, q->u, 0);
+    CMP_DEP(el, m, 1, q->r, 0);
+    CMP_DEP(el, m, 1, q->y, 0);
+    CMP_DEP(el, m, 1, q->I, 0);
+    if (q->rd >= 0 && q->sp.kd != 0) CMP_DEP(el, m, 1, q->rd, 0);
+    if (q->yd >= 0 && q->sp.kd != 0) CMP_DEP(el, m, 1, q->yd, 0);
+    return BG_OK;
+}
+
+/* The unlimited law v and the slope g = dsat/dv of the limit at v. */
+static double pid_law(const pid *q, const double *y, double *g)
+{
+    const ctl_pid_spec *s = &q->sp;
+    double err = y[q->r] - y[q->y], v = s->kp * err + s->ki * y[q->I];
+    if (s->kd != 0) {
+        double rate = (q->rd >= 0 ? y[q->rd] : 0.0) - (q->yd >= 0 ? y[q->yd] : 0.0);
+        v += s->kd * rate;
+    }
+    if (!s->limit) {
+        *g = 1.0;
+        return v;
+    }
+    return cmp_clamp(v, s->out_min, s->out_max, s->smoothing, g);
+}
+
+static int pid_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                        double *F)
+{
+    (void)t;
+    const pid *q = el->params;
+    double g;
+    F[0] = yp[q->I] - (y[q->r] - y[q->y]);
+    F[1] = y[q->u] - pid_law(q, y, &g);
+    return 0;
+}
+
+static int pid_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                        double *v)
+{
+    (void)t, (void)yp;
+    const pid *q = el->params;
+    const ctl_pid_spec *s = &q->sp;
+    double g;
+    pid_law(q, y, &g);
+    int n = 0;
+    v[n++] = 1.0;
+    v[n++] = -1.0;
+    v[n++] = 1.0;
+    v[n++] = 1.0;
+    v[n++] = -g * s->kp;
+    v[n++] = g * s->kp;
+    v[n++] = -g * s->ki;
+    if (q->rd >= 0 && s->kd != 0) v[n++] = -g * s->kd;
+    if (q->yd >= 0 && s->kd != 0) v[n++] = g * s->kd;
+    return 0;
+}
+
+static const char *vname(const bgr_model *m, int v, const char *none)
+{
+    const char *s = v >= 0 ? bgr_var_name(m, v) : NULL;
+    return s ? s : none;
+}
+
+static void pid_describe(const bgr_element *el, const bgr_model *m, int k, char *buf, size_t n)
+{
+    const pid *q = el->params;
+    const ctl_pid_spec *s = &q->sp;
+    const char *r = vname(m, q->r, "r"), *y = vname(m, q->y, "y"), *I = vname(m, q->I, "I");
+    if (k == 0)
+        snprintf(buf, n, "%s' = %s - %s", I, r, y);
+    else
+        snprintf(buf, n, "%s = %s(%g * (%s - %s) + %g * (%s - %s) + %g * %s)", vname(m, q->u, "u"),
+                 s->limit ? "sat" : "", s->kp, r, y, s->kd, vname(m, q->rd, "0"),
+                 vname(m, q->yd, "0"), s->ki, I);
+}
+
+const bgr_element_class ctl_class_pid = {.type = "PID",
+                                         .declare = pid_declare,
+                                         .residual = pid_residual,
+                                         .jacobian = pid_jacobian,
+                                         .describe = pid_describe,
+                                         .destroy = free};
+
+int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec)
+{
+    const char *nm = name ? name : "(null)";
+    if (!spec)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
+                              "controller %s: no specification", nm);
+    if (!isfinite(spec->kp) || !isfinite(spec->ki) || !isfinite(spec->kd))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
+                              "controller %s: gains must be finite", nm);
+    if (spec->kd != 0 && !spec->use_measurement_rate)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
+                              "controller %s: Kd = %g needs the measured rate (e.g. a rot_sensor "
+                              "of the acceleration)",
+                              nm, spec->kd);
+    if (spec->limit &&
+        (!isfinite(spec->out_min) || !isfinite(spec->out_max) || !(spec->out_max > spec->out_min) ||
+         !(spec->smoothing > 0) || !isfinite(spec->smoothing)))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
+                              "controller %s: limits need out_min < out_max (got %g, %g) and a "
+                              "smoothing width > 0 (got %g)",
+                              nm, spec->out_min, spec->out_max, spec->smoothing);
+    pid *q = calloc(1, sizeof *q);
+    if (!q)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "ctl_pid", "out of memory");
+    q->sp = *spec;
+    static const char *const sn[1] = {"integral"}, *const an[1] = {"out"};
+    return bgr_element_add(m, c, name, &ctl_class_pid, q, 0, NULL, 1, sn, 1, an);
+}

@@ -1,0 +1,57 @@
+/* PID controller of the crane paper, with optional smooth output limits.
+ *
+ * Control law (shared/crane/PAPER.md, hydraulic drive; the paper's Eq. 7):
+ *   x(t) = Kp err + Kd d(err)/dt + Ki integral(err dt),   err = r - y,
+ * with r the reference (the platform's reference angular velocity omega_r) and y the measured
+ * value (its angular velocity omega). The derivative of the error is not differenced from
+ * samples: it is err' = r' - y', with r' and y' signals of the model, the reference's derivative
+ * given analytically (sig_sources, SIG_RATE) and the measured one algebraic (rot_sensor,
+ * ROT_ACCELERATION: the net torque on the driven inertia over its J). So y' of another element
+ * never enters this element's algebraic equation and the system stays semi-explicit.
+ *
+ * No ports; a state I = integral of err (named "integral", bgr_ref {BGR_STATE, id, 0}, starting
+ * from its initial value, 0 by default) and an algebraic output u (named "out",
+ * {BGR_OWN, id, 0}). Equations:
+ *   I' = r - y                                                          ("integral")
+ *   u  = sat(Kp (r - y) + Kd (r' - y') + Ki I)                          ("output")
+ * sat is the identity without limits. With limits [u_min, u_max] it is the smooth clamp
+ *   sat(v) = u_min + sp(v - u_min) - sp(v - u_max),  sp(z) = eps ln(1 + exp(z / eps)),
+ * which differs from the hard clamp min(max(v, u_min), u_max) by at most eps ln 2 (at the
+ * corners; exponentially less a few eps away from them) and keeps u_min < u < u_max
+ * (cmp_internal.h derives the bound). Without r' (use_reference_rate = 0) the reference is taken
+ * constant (r' = 0), i.e. the derivative acts on the measurement only. No anti-windup: the
+ * integral keeps growing while the output is limited.
+ * Note: with Kd != 0 and r' given, the output jumps where r' jumps (the corners of the
+ * trapezoidal reference): those times are the reference's breakpoints, where the integrator
+ * must restart from the right limits (see the note in sig_sources.h). */
+#ifndef CTL_PID_H
+#define CTL_PID_H
+
+#include "bgr_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct ctl_pid_spec {
+    double kp, ki, kd;
+    bgr_ref reference;      /* r */
+    bgr_ref measurement;    /* y */
+    int use_reference_rate; /* 1: reference_rate holds r'; 0: r' = 0 */
+    bgr_ref reference_rate;
+    int use_measurement_rate; /* 1: measurement_rate holds y'; required when kd != 0 */
+    bgr_ref measurement_rate;
+    int limit; /* 1: smooth limits [out_min, out_max] of width smoothing > 0 */
+    double out_min, out_max, smoothing;
+} ctl_pid_spec;
+
+/* Returns the element id (its output is bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the
+ * model's error record). */
+int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec);
+
+extern const bgr_element_class ctl_class_pid;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

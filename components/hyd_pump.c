@@ -1,0 +1,127 @@
+/* Variable-displacement pump (equations in hyd_pump.h). */
+#include "hyd_pump.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cmp_internal.h"
+
+typedef struct pump {
+    double Dp, Cl;
+    bgr_ref cmd;
+    /* variable ids and orientations, fixed at declaration */
+    int x, T, w, pa, qa, pb, qb;
+    int sw, sa, sb;
+} pump;
+
+static int pump_declare(bgr_element *el, bgr_model *m)
+{
+    static const char *const lab[3] = {"torque", "flow", "continuity"};
+    pump *q = el->params;
+    q->T = bgr_ev(el, m, 0, 0);
+    q->w = bgr_fv(el, m, 0, 0);
+    q->pa = bgr_ev(el, m, 1, 0);
+    q->qa = bgr_fv(el, m, 1, 0);
+    q->pb = bgr_ev(el, m, 2, 0);
+    q->qb = bgr_fv(el, m, 2, 0);
+    q->sw = el->sign[0];
+    q->sa = el->sign[1];
+    q->sb = el->sign[2];
+    q->x = bgr_ref_var(m, q->cmd);
+    if (q->x < 0)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_compile",
+                              "pump %s: its displacement command refers to no unknown", el->name);
+    int st = bgr_declare_equations(el, m, 3, lab);
+    if (st) return st;
+    CMP_DEP(el, m, 0, q->T, 0);
+    CMP_DEP(el, m, 0, q->pa, 0);
+    CMP_DEP(el, m, 0, q->pb, 0);
+    CMP_DEP(el, m, 0, q->x, 0);
+    CMP_DEP(el, m, 1, q->qb, 0);
+    CMP_DEP(el, m, 1, q->w, 0);
+    CMP_DEP(el, m, 1, q->pa, 0);
+    CMP_DEP(el, m, 1, q->pb, 0);
+    CMP_DEP(el, m, 1, q->x, 0);
+    CMP_DEP(el, m, 2, q->qa, 0);
+    CMP_DEP(el, m, 2, q->qb, 0);
+    return BG_OK;
+}
+
+static int pump_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                         double *F)
+{
+    (void)t, (void)yp;
+    const pump *q = el->params;
+    double k = q->Dp / CMP_TWO_PI, x = y[q->x], dp = y[q->pb] - y[q->pa];
+    double w = q->sw * y[q->w], qin = q->sa * y[q->qa], qout = -q->sb * y[q->qb];
+    F[0] = y[q->T] - x * k * dp;
+    F[1] = qout - x * k * w + q->Cl * dp;
+    F[2] = qin - qout;
+    return 0;
+}
+
+static int pump_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                         double *v)
+{
+    (void)t, (void)yp;
+    const pump *q = el->params;
+    double k = q->Dp / CMP_TWO_PI, x = y[q->x], dp = y[q->pb] - y[q->pa];
+    double w = q->sw * y[q->w];
+    int n = 0;
+    v[n++] = 1.0;            /* dF0/dT */
+    v[n++] = x * k;          /* dF0/dp_a */
+    v[n++] = -x * k;         /* dF0/dp_b */
+    v[n++] = -k * dp;        /* dF0/dx */
+    v[n++] = -q->sb;         /* dF1/dq_b */
+    v[n++] = -x * k * q->sw; /* dF1/dw */
+    v[n++] = -q->Cl;         /* dF1/dp_a */
+    v[n++] = q->Cl;          /* dF1/dp_b */
+    v[n++] = -k * w;         /* dF1/dx */
+    v[n++] = q->sa;          /* dF2/dq_a */
+    v[n++] = q->sb;          /* dF2/dq_b */
+    return 0;
+}
+
+static const char *vn(const bgr_model *m, int v)
+{
+    const char *s = bgr_var_name(m, v);
+    return s ? s : "?";
+}
+
+static void pump_describe(const bgr_element *el, const bgr_model *m, int k, char *buf, size_t n)
+{
+    const pump *q = el->params;
+    const char *sa = q->sa > 0 ? "" : "-", *sb = q->sb > 0 ? "-" : "", *sw = q->sw > 0 ? "" : "-";
+    if (k == 0)
+        snprintf(buf, n, "%s = %s * %g/(2 pi) * (%s - %s)", vn(m, q->T), vn(m, q->x), q->Dp,
+                 vn(m, q->pb), vn(m, q->pa));
+    else if (k == 1)
+        snprintf(buf, n, "%s%s = %s * %g/(2 pi) * %s%s - %g * (%s - %s)", sb, vn(m, q->qb),
+                 vn(m, q->x), q->Dp, sw, vn(m, q->w), q->Cl, vn(m, q->pb), vn(m, q->pa));
+    else
+        snprintf(buf, n, "%s%s = %s%s", sa, vn(m, q->qa), sb, vn(m, q->qb));
+}
+
+const bgr_element_class hyd_class_pump = {.type = "pump",
+                                          .declare = pump_declare,
+                                          .residual = pump_residual,
+                                          .jacobian = pump_jacobian,
+                                          .describe = pump_describe,
+                                          .destroy = free};
+
+int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl, bgr_ref command)
+{
+    if (!(Dp > 0) || !isfinite(Dp) || !(Cl >= 0) || !isfinite(Cl))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_pump",
+                              "pump %s: displacement %g must be > 0 and leakage %g >= 0, finite",
+                              name ? name : "(null)", Dp, Cl);
+    pump *q = calloc(1, sizeof *q);
+    if (!q)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "hyd_pump", "out of memory");
+    q->Dp = Dp;
+    q->Cl = Cl;
+    q->cmd = command;
+    static const int dims[3] = {1, 1, 1};
+    return bgr_element_add(m, c, name, &hyd_class_pump, q, 3, dims, 0, NULL, 0, NULL);
+}

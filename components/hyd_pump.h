@@ -1,0 +1,41 @@
+/* Variable-displacement hydraulic pump, driven at its shaft, displacement set by a signal.
+ *
+ * Ports (each of dimension 1; "in"/"out" is the direction of positive power):
+ *   0  shaft   (in)   effort T: the torque the pump draws from its drive; flow w_p: drive speed
+ *   1  inlet a (in)   effort p_a: pressure; flow q_a: volume flow into the pump
+ *   2  outlet b (out) effort p_b: pressure; flow q_b: volume flow out of the pump
+ * Signal x: the displacement command, a fraction of the maximum displacement Dp (usually in
+ * [-1, 1]; negative x reverses the flow), read from any unknown (bgr_ref).
+ * Parameters: Dp, displacement per revolution at x = 1 (m^3/rev); Cl, laminar cross-port leakage
+ * conductance (m^3/(s Pa)), >= 0.
+ *
+ * Equations, with dp = p_b - p_a and the flows counted in the port's power direction:
+ *   T      = x Dp dp / (2 pi)                          torque drawn       ("torque")
+ *   q_bout = x Dp w_p / (2 pi) - Cl dp                 delivered flow     ("flow")
+ *   q_ain  = q_bout                                    the leak returns inside ("continuity")
+ * Power: T w_p + p_a q_ain - p_b q_bout = Cl dp^2 >= 0 (the leakage loss); with Cl = 0 the pump
+ * is a modulated transformer and conserves power exactly.
+ *
+ * Source: the ideal positive-displacement machine with laminar cross-port leakage, as in the
+ * pump-controlled motor of H. E. Merritt, Hydraulic Control Systems (Wiley, 1967), with the
+ * displacement per radian written Dp / (2 pi); the pump of the crane paper (shared/crane/PAPER.md,
+ * hydraulic drive) is this element with x the output of the PID controller. */
+#ifndef HYD_PUMP_H
+#define HYD_PUMP_H
+
+#include "bgr_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Returns the element id or < 0 (message in the model's error record): Dp > 0 and Cl >= 0
+ * finite are required; the command must name an unknown once the model is compiled. */
+int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl, bgr_ref command);
+
+extern const bgr_element_class hyd_class_pump;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

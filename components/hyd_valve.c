@@ -1,0 +1,139 @@
+/* Laminar leakage and relief valve (equations in hyd_valve.h). */
+#include "hyd_valve.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cmp_internal.h"
+
+typedef struct valve {
+    int relief;
+    double G, pc, eps;
+    int pa, qa, pb, qb, sa, sb;
+} valve;
+
+static double valve_flow(const valve *q, double dp, double *dq)
+{
+    if (!q->relief) {
+        *dq = q->G;
+        return q->G * dp;
+    }
+    double d, s = cmp_softplus(dp - q->pc, q->eps, &d);
+    *dq = q->G * d;
+    return q->G * s;
+}
+
+static int valve_declare(bgr_element *el, bgr_model *m)
+{
+    static const char *const lab[2] = {"flow", "continuity"};
+    valve *q = el->params;
+    q->pa = bgr_ev(el, m, 0, 0);
+    q->qa = bgr_fv(el, m, 0, 0);
+    q->pb = bgr_ev(el, m, 1, 0);
+    q->qb = bgr_fv(el, m, 1, 0);
+    q->sa = el->sign[0];
+    q->sb = el->sign[1];
+    int st = bgr_declare_equations(el, m, 2, lab);
+    if (st) return st;
+    CMP_DEP(el, m, 0, q->qa, 0);
+    CMP_DEP(el, m, 0, q->pa, 0);
+    CMP_DEP(el, m, 0, q->pb, 0);
+    CMP_DEP(el, m, 1, q->qb, 0);
+    CMP_DEP(el, m, 1, q->qa, 0);
+    return BG_OK;
+}
+
+static int valve_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *F)
+{
+    (void)t, (void)yp;
+    const valve *q = el->params;
+    double dq, qin = q->sa * y[q->qa], qout = -q->sb * y[q->qb];
+    F[0] = qin - valve_flow(q, y[q->pa] - y[q->pb], &dq);
+    F[1] = qout - qin;
+    return 0;
+}
+
+static int valve_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *v)
+{
+    (void)t, (void)yp;
+    const valve *q = el->params;
+    double dq;
+    valve_flow(q, y[q->pa] - y[q->pb], &dq);
+    v[0] = q->sa;
+    v[1] = -dq;
+    v[2] = dq;
+    v[3] = -q->sb;
+    v[4] = -q->sa;
+    return 0;
+}
+
+static const char *vn(const bgr_model *m, int v)
+{
+    const char *s = bgr_var_name(m, v);
+    return s ? s : "?";
+}
+
+static void valve_describe(const bgr_element *el, const bgr_model *m, int k, char *buf, size_t n)
+{
+    const valve *q = el->params;
+    const char *sa = q->sa > 0 ? "" : "-", *sb = q->sb > 0 ? "-" : "";
+    if (k == 1)
+        snprintf(buf, n, "%s%s = %s%s", sb, vn(m, q->qb), sa, vn(m, q->qa));
+    else if (q->relief)
+        snprintf(buf, n, "%s%s = %g * softplus_%g(%s - %s - %g)", sa, vn(m, q->qa), q->G, q->eps,
+                 vn(m, q->pa), vn(m, q->pb), q->pc);
+    else
+        snprintf(buf, n, "%s%s = %g * (%s - %s)", sa, vn(m, q->qa), q->G, vn(m, q->pa),
+                 vn(m, q->pb));
+}
+
+const bgr_element_class hyd_class_leakage = {.type = "leakage",
+                                             .declare = valve_declare,
+                                             .residual = valve_residual,
+                                             .jacobian = valve_jacobian,
+                                             .describe = valve_describe,
+                                             .destroy = free};
+const bgr_element_class hyd_class_relief = {.type = "relief",
+                                            .declare = valve_declare,
+                                            .residual = valve_residual,
+                                            .jacobian = valve_jacobian,
+                                            .describe = valve_describe,
+                                            .destroy = free};
+
+static int add_valve(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls,
+                     int relief, double G, double pc, double eps, const char *where)
+{
+    valve *q = calloc(1, sizeof *q);
+    if (!q) return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, where, "out of memory");
+    q->relief = relief;
+    q->G = G;
+    q->pc = pc;
+    q->eps = eps;
+    static const int dims[2] = {1, 1};
+    return bgr_element_add(m, c, name, cls, q, 2, dims, 0, NULL, 0, NULL);
+}
+
+int hyd_leakage(bgr_model *m, bgr_comp c, const char *name, double G)
+{
+    if (!(G >= 0) || !isfinite(G))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_leakage",
+                              "leakage %s: conductance %g must be >= 0, finite",
+                              name ? name : "(null)", G);
+    return add_valve(m, c, name, &hyd_class_leakage, 0, G, 0.0, 1.0, "hyd_leakage");
+}
+
+int hyd_relief_valve(bgr_model *m, bgr_comp c, const char *name, double p_crack, double p_full,
+                     double q_rated, double eps)
+{
+    if (!isfinite(p_crack) || !isfinite(p_full) || !(p_full > p_crack) || !(q_rated > 0) ||
+        !isfinite(q_rated) || !(eps > 0) || !isfinite(eps))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_relief_valve",
+                              "relief valve %s: need p_full > p_crack (got p_full = %g, "
+                              "p_crack = %g), rated flow %g > 0 and width %g > 0, all finite",
+                              name ? name : "(null)", p_full, p_crack, q_rated, eps);
+    return add_valve(m, c, name, &hyd_class_relief, 1, q_rated / (p_full - p_crack), p_crack, eps,
+                     "hyd_relief_valve");
+}
