@@ -742,9 +742,9 @@ static int pattern_from_mask(int n, const unsigned char *mask, sp_csc **out)
  *   F[14..20] = M(p) w - f(p, v) + G(p)^T lam,
  *   F[21..23] = G(p) v - (0, 0, Omega)   (velocity form of g(p) = 0 with phi1 = Omega t),
  * where M is the mass matrix, f the Coriolis/centrifugal and elastic forces (- K q), G the
- * constraint Jacobian (the source keeps the derivative of p only in rows 0..13). w and lam occur
- * in no constraint row: all ten are index 2 (README: y15..y24 index 2). The source's sign of
- * rows 14..23 is reversed here, which changes nothing. The term rho qd^T B qd of f2 is left out:
+ * constraint Jacobian; y' appears in rows 0..13 only. w and lam occur in no constraint row: all
+ * ten are index 2 (README: y15..y24 index 2). Rows 14..23 have RESMBS's sign (crankres and
+ * cranki.f RESID negate them, which changes nothing). The term rho qd^T B qd of f2 is left out:
  * B is skew-symmetric, so it is zero (the source adds it in floating point, ~1e-16 relative).
  * The stiffness E = 2e11 makes the elastic modes oscillate with periods of about 2e-4 s (no
  * damping): the problem is stiff and oscillatory. */
@@ -1106,8 +1106,8 @@ static int crank_patterns(sp_csc **jy, sp_csc **jyp)
  *   0 = y6 - Vin(t),
  *   0 = QG(V) - y1,  0 = CS y7 - y2,  0 = QS(V) - y3,  0 = CD y8 - y4,  0 = QD(V) - y5,
  * with V = (y6, y6 - y7, y6 - y8) = (gate-bulk, gate-source, gate-drain voltages) of the MOS
- * transistor's charge model (qgate, qsrc, qdrain of pumpi.f; the rows 4..9 with the source's
- * sign reversed). y9 enters no algebraic row: it is fixed by the derivative of QG(V) - y1 = 0,
+ * transistor's charge model (qgate, qsrc, qdrain of pumpi.f; the rows as in its RESID). y9
+ * enters no algebraic row: it is fixed by the derivative of QG(V) - y1 = 0,
  * i.e. index 2; y6..y8 are index 1 (README: y9 index 2). Vin is a trapezoidal pulse of period
  * 120 ns with kinks at 50, 60, 110 and 120 ns in each period: 40 kinks in [0, 1200 ns], the last
  * one at tend, so 39 breakpoints inside the interval plus t_stop = tend. */
@@ -1367,7 +1367,8 @@ static int transamp_patterns(sp_csc **jy, sp_csc **jyp)
  *   r5 = k4 y6^2 sqrt(y2), Fin = klA (p(O2)/H - y2),
  *   f = (-2 r1 + r2 - r3 - r4, -r1/2 - r4 - r5/2 + Fin, r1 - r2 + r3, -r2 + r3 - 2 r4,
  *        r2 - r3 + r5),
- * t in [0, 180]. A negative y2 (sqrt) is a recoverable failure, as in the source (ierr = -1). */
+ * t in [0, 180] (the last row with the opposite sign of chemakzoi.f RESID). A negative y2
+ * (sqrt) is a recoverable failure, as in the source (ierr = -1). */
 #define AK_K1 18.7
 #define AK_K2 0.58
 #define AK_K3 0.09

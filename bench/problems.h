@@ -17,6 +17,17 @@
  *   smooth_ode  a linear 2x2 ODE with a manufactured smooth solution (order studies).
  *   kinks       y1' = u(t), y2' = y1 with a piecewise-linear forcing u that has kinks at the
  *               problem's breakpoints; exact solution piecewise polynomial.
+ * and, in a second table (bp_testset_get), five problems of the IVP Test Set with the reference
+ * values of shared/testset/reference_solutions.json:
+ *   crank       flexible slider crank (Simeon), n = 24, index 2 (velocity constraints; 10
+ *               index-2 accelerations and multipliers), stiff oscillatory (E = 2e11).
+ *   pump        charge pump, n = 9, index 2 (the current y9), charge-oriented MOS model with
+ *               a singular mass matrix, 39 breakpoints of the pulsed input.
+ *   transamp    transistor amplifier, n = 8, index 1, constant singular mass matrix (all eight
+ *               voltages differential; three current balances as algebraic rows).
+ *   chemakzo    chemical Akzo Nobel, n = 6, index 1 (semi-explicit).
+ *   nand        NAND gate, n = 14, C(y) y' = f with a nonsingular voltage-dependent C, pulsed
+ *               inputs with 15 breakpoints.
  *
  * Accuracy (IVP Test Set, Mazzia, Magherini and Iavernaro, Release 2.4):
  *   scd   = -log10(max_i |y_i - yref_i| / |yref_i|) over the scored components with yref_i != 0,

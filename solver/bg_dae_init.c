@@ -402,7 +402,16 @@ int dae_consistent_init(dae_solver *s)
     if (s->nalg_rows > 0 && (r = stage_a(s, t, y, yp)) != BG_OK) return r;
 
     /* stage B */
-    double dt = cbrt(DBL_EPSILON) * fmax(1.0, fabs(t));
+    /* time step of the differences in t: relative to |t|, or at t = 0 to the span of the run
+     * (stop time or first breakpoint) when known, so that short time scales (a 1e-7 s circuit)
+     * are not differenced across a whole period */
+    double tscale = fabs(s->tn);
+    if (tscale == 0) {
+        tscale = 1.0;
+        if (s->o.has_t_stop && s->o.t_stop != s->tn) tscale = fabs(s->o.t_stop - s->tn);
+        if (s->nbkpt > 0 && s->bkpt[0] > s->tn) tscale = fmin(tscale, s->bkpt[0] - s->tn);
+    }
+    double dt = cbrt(DBL_EPSILON) * tscale;
     double unorm = INFINITY, uprev = INFINITY;
     for (int it = 0; it < INIT_MAX_ITER; it++) {
         if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
