@@ -53,7 +53,7 @@ rm -rf "$dest"
 python3 - "$B/meson-logs/testlog.json" "$extra_pass" "$extra_fail" "$mrc" <<'PY'
 import json, re, sys
 path, xp, xf, mrc = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
-passed = failed = 0
+passed = failed = todo = 0
 try:
     lines = open(path).read().splitlines()
 except OSError:
@@ -62,11 +62,15 @@ for line in lines:
     t = json.loads(line)
     out = t.get("stdout") or ""
     ok = len(re.findall(r"^ok\b", out, re.M))
-    bad = len(re.findall(r"^not ok\b", out, re.M))
+    known = len(re.findall(r"^not ok\b.*#\s*TODO", out, re.M | re.I))
+    bad = len(re.findall(r"^not ok\b", out, re.M)) - known
     passed += ok
     failed += bad
+    todo += known
     if t.get("result") not in ("OK", "EXPECTEDFAIL", "SKIP") and bad == 0:
         failed += 1          # crashed or timed out before reporting a failing point
+if todo:
+    print(f"({todo} known failures marked TODO, listed in the log above, not counted)")
 print(f"{passed + xp} passed, {failed + xf} failed")
 sys.exit(1 if (failed + xf) or mrc else 0)
 PY
