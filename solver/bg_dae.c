@@ -202,7 +202,7 @@ void daei_set_weights(dae_solver *s, const double *y)
             s->werr[i] = s->o.index2 == DAE_I2_EXCLUDE ? 0.0 : w * h;
             s->wnewt[i] = s->o.newton_index2_scale_h ? w * h : w;
         } else {
-            s->werr[i] = w;
+            s->werr[i] = s->kind[i] == DAE_ALG && s->o.exclude_alg ? 0.0 : w;
             s->wnewt[i] = w;
         }
     }

@@ -84,6 +84,11 @@ typedef struct dae_options {
     double h_max;             /* 0: no limit */
     long max_steps;           /* per call of dae_solve_to; default 100000 */
     dae_index2_policy index2; /* default DAE_I2_EXCLUDE */
+    int exclude_alg;          /* 1: index-1 algebraic variables take no part in the local error
+                                 test either (default 0). Right for models whose algebraic
+                                 unknowns are functions of the states, as in bond graphs, where
+                                 a stiff element (an axial bar, EA/L = 1e8 N/m) turns a
+                                 negligible position error into a large force error */
     ls_kind linsol;           /* default LS_KLU */
     int has_t_stop;           /* never integrate past t_stop */
     double t_stop;

@@ -1,0 +1,105 @@
+/* Forward-mode automatic differentiation to second order in a fixed number of variables
+ * (internal, header-only). A value carries its gradient and, when asked (order 2), its Hessian,
+ * so that an element that writes its energy once gets exact first and second derivatives:
+ * forces and their Jacobian without finite differences. Used by the co-rotational beam. */
+#ifndef MECH_AD_H
+#define MECH_AD_H
+
+#include <math.h>
+#include <string.h>
+
+#define AD_N 14
+
+typedef struct ad {
+    double v;
+    double g[AD_N];
+    double h[AD_N * AD_N];
+} ad;
+
+typedef struct ad_ctx {
+    int order; /* 1: gradients only; 2: Hessians too */
+} ad_ctx;
+
+static inline void ad_const(const ad_ctx *c, double v, ad *r)
+{
+    r->v = v;
+    memset(r->g, 0, sizeof r->g);
+    if (c->order > 1) memset(r->h, 0, sizeof r->h);
+}
+
+static inline void ad_var(const ad_ctx *c, double v, int i, ad *r)
+{
+    ad_const(c, v, r);
+    r->g[i] = 1.0;
+}
+
+/* r = a + s b */
+static inline void ad_axpy(const ad_ctx *c, const ad *a, double s, const ad *b, ad *r)
+{
+    r->v = a->v + s * b->v;
+    for (int i = 0; i < AD_N; i++)
+        r->g[i] = a->g[i] + s * b->g[i];
+    if (c->order > 1)
+        for (int i = 0; i < AD_N * AD_N; i++)
+            r->h[i] = a->h[i] + s * b->h[i];
+}
+
+static inline void ad_scale(const ad_ctx *c, double s, const ad *a, ad *r)
+{
+    r->v = s * a->v;
+    for (int i = 0; i < AD_N; i++)
+        r->g[i] = s * a->g[i];
+    if (c->order > 1)
+        for (int i = 0; i < AD_N * AD_N; i++)
+            r->h[i] = s * a->h[i];
+}
+
+/* r = a b (r may alias neither) */
+static inline void ad_mul(const ad_ctx *c, const ad *a, const ad *b, ad *r)
+{
+    r->v = a->v * b->v;
+    for (int i = 0; i < AD_N; i++)
+        r->g[i] = a->g[i] * b->v + a->v * b->g[i];
+    if (c->order > 1)
+        for (int i = 0; i < AD_N; i++)
+            for (int j = 0; j < AD_N; j++)
+                r->h[i * AD_N + j] = a->h[i * AD_N + j] * b->v + a->v * b->h[i * AD_N + j] +
+                                     a->g[i] * b->g[j] + a->g[j] * b->g[i];
+}
+
+/* r = f(a) for a scalar function with f, f', f'' at a->v (r may alias a) */
+static inline void ad_apply(const ad_ctx *c, const ad *a, double f, double fp, double fpp, ad *r)
+{
+    if (c->order > 1)
+        for (int i = 0; i < AD_N; i++)
+            for (int j = 0; j < AD_N; j++)
+                r->h[i * AD_N + j] = fp * a->h[i * AD_N + j] + fpp * a->g[i] * a->g[j];
+    for (int i = 0; i < AD_N; i++)
+        r->g[i] = fp * a->g[i];
+    r->v = f;
+}
+
+static inline void ad_sqrt(const ad_ctx *c, const ad *a, ad *r)
+{
+    double s = sqrt(a->v);
+    ad_apply(c, a, s, 0.5 / s, -0.25 / (s * a->v), r);
+}
+
+static inline void ad_inv(const ad_ctx *c, const ad *a, ad *r)
+{
+    double x = a->v;
+    ad_apply(c, a, 1.0 / x, -1.0 / (x * x), 2.0 / (x * x * x), r);
+}
+
+/* r = a . b for 3-vectors */
+static inline void ad_dot3(const ad_ctx *c, const ad *a, const ad *b, ad *r)
+{
+    ad t;
+    ad_mul(c, &a[0], &b[0], r);
+    ad_mul(c, &a[1], &b[1], &t);
+    ad_axpy(c, r, 1.0, &t, r);
+    ad_mul(c, &a[2], &b[2], &t);
+    ad_axpy(c, r, 1.0, &t, r);
+}
+
+#endif

@@ -1,0 +1,432 @@
+/* The co-rotational beam element and the chain builder (equations in mech_beam.h). The energy W
+ * is written once on second-order automatic-differentiation numbers in the 14 configuration
+ * unknowns (x_a, x_b, q_a, q_b): its gradient gives the port loads, its Hessian their Jacobian. */
+#include "mech_beam.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mech_ad.h"
+#include "mech_body.h"
+#include "mech_util.h"
+
+/* AD scratch of one energy evaluation (about 120 kB with Hessians): allocated once per element
+ * so that residual and Jacobian evaluations allocate nothing. */
+typedef struct beam_work {
+    ad X[14], Ra[9], Rb[9], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6];
+    ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
+} beam_work;
+
+typedef struct beam {
+    mech_section sec;
+    double E0[9], L0;
+    int node_a, node_b;
+    int xa, qa, xb, qb; /* configuration variable ids */
+    int e[2], s[2];     /* first effort id and orientation of each port */
+    beam_work *work;
+} beam;
+
+static void beam_free(void *p)
+{
+    beam *b = p;
+    if (b) free(b->work);
+    free(b);
+}
+
+/* R(q) = N(q)/(q.q) on AD numbers */
+static void quat_R_ad(const ad_ctx *c, const ad *q, ad *R)
+{
+    ad p[4][4], s, is, t;
+    for (int i = 0; i < 4; i++)
+        for (int j = i; j < 4; j++)
+            ad_mul(c, &q[i], &q[j], &p[i][j]);
+    ad_axpy(c, &p[0][0], 1.0, &p[1][1], &s);
+    ad_axpy(c, &s, 1.0, &p[2][2], &s);
+    ad_axpy(c, &s, 1.0, &p[3][3], &s);
+    ad_inv(c, &s, &is);
+    ad N[9];
+    /* diagonal: w2 + x2 - y2 - z2 etc. */
+    ad_axpy(c, &p[0][0], 1.0, &p[1][1], &t);
+    ad_axpy(c, &t, -1.0, &p[2][2], &t);
+    ad_axpy(c, &t, -1.0, &p[3][3], &N[0]);
+    ad_axpy(c, &p[0][0], -1.0, &p[1][1], &t);
+    ad_axpy(c, &t, 1.0, &p[2][2], &t);
+    ad_axpy(c, &t, -1.0, &p[3][3], &N[4]);
+    ad_axpy(c, &p[0][0], -1.0, &p[1][1], &t);
+    ad_axpy(c, &t, -1.0, &p[2][2], &t);
+    ad_axpy(c, &t, 1.0, &p[3][3], &N[8]);
+    /* off-diagonal, column-major */
+    ad_axpy(c, &p[1][2], 1.0, &p[0][3], &t), ad_scale(c, 2.0, &t, &N[1]);  /* 2(xy + wz) */
+    ad_axpy(c, &p[1][3], -1.0, &p[0][2], &t), ad_scale(c, 2.0, &t, &N[2]); /* 2(xz - wy) */
+    ad_axpy(c, &p[1][2], -1.0, &p[0][3], &t), ad_scale(c, 2.0, &t, &N[3]); /* 2(xy - wz) */
+    ad_axpy(c, &p[2][3], 1.0, &p[0][1], &t), ad_scale(c, 2.0, &t, &N[5]);  /* 2(yz + wx) */
+    ad_axpy(c, &p[1][3], 1.0, &p[0][2], &t), ad_scale(c, 2.0, &t, &N[6]);  /* 2(xz + wy) */
+    ad_axpy(c, &p[2][3], -1.0, &p[0][1], &t), ad_scale(c, 2.0, &t, &N[7]); /* 2(yz - wx) */
+    for (int i = 0; i < 9; i++)
+        ad_mul(c, &N[i], &is, &R[i]);
+}
+
+/* t[i] = R E0 e_i: triad vectors (3 x 3 AD numbers, t[3*i + r]) */
+static void triad_ad(const ad_ctx *c, const ad *R, const double *E0, ad *t)
+{
+    for (int i = 0; i < 3; i++)
+        for (int r = 0; r < 3; r++) {
+            ad *o = &t[3 * i + r];
+            ad_scale(c, E0[0 + 3 * i], &R[r], o);
+            ad_axpy(c, o, E0[1 + 3 * i], &R[r + 3], o);
+            ad_axpy(c, o, E0[2 + 3 * i], &R[r + 6], o);
+        }
+}
+
+/* (a.b - c.d)/2 */
+static void half_diff_dots(const ad_ctx *c, const ad *a, const ad *b, const ad *cc, const ad *d,
+                           ad *r)
+{
+    ad u, v;
+    ad_dot3(c, a, b, &u);
+    ad_dot3(c, cc, d, &v);
+    ad_axpy(c, &u, -1.0, &v, r);
+    ad_scale(c, 0.5, r, r);
+}
+
+/* W(x_a, x_b, q_a, q_b) on AD numbers, into k->W. */
+static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_work *k)
+{
+    for (int i = 0; i < 3; i++) {
+        ad_var(c, y[b->xa + i], i, &k->X[i]);
+        ad_var(c, y[b->xb + i], 3 + i, &k->X[3 + i]);
+    }
+    for (int i = 0; i < 4; i++) {
+        ad_var(c, y[b->qa + i], 6 + i, &k->X[6 + i]);
+        ad_var(c, y[b->qb + i], 10 + i, &k->X[10 + i]);
+    }
+    quat_R_ad(c, &k->X[6], k->Ra);
+    quat_R_ad(c, &k->X[10], k->Rb);
+    triad_ad(c, k->Ra, b->E0, k->ta);
+    triad_ad(c, k->Rb, b->E0, k->tb);
+    /* chord */
+    for (int i = 0; i < 3; i++)
+        ad_axpy(c, &k->X[3 + i], -1.0, &k->X[i], &k->d[i]);
+    ad_dot3(c, k->d, k->d, &k->s);
+    ad_sqrt(c, &k->s, &k->L);
+    ad_inv(c, &k->L, &k->iL);
+    for (int i = 0; i < 3; i++)
+        ad_mul(c, &k->d[i], &k->iL, &k->e1[i]);
+    /* e2 from the mean of the nodal t2, made normal to e1 */
+    for (int i = 0; i < 3; i++) {
+        ad_axpy(c, &k->ta[3 + i], 1.0, &k->tb[3 + i], &k->p[i]);
+        ad_scale(c, 0.5, &k->p[i], &k->p[i]);
+    }
+    ad_dot3(c, k->p, k->e1, &k->s);
+    for (int i = 0; i < 3; i++) {
+        ad_mul(c, &k->s, &k->e1[i], &k->t1);
+        ad_axpy(c, &k->p[i], -1.0, &k->t1, &k->w[i]);
+    }
+    ad_dot3(c, k->w, k->w, &k->s);
+    ad_sqrt(c, &k->s, &k->nw);
+    ad_inv(c, &k->nw, &k->inw);
+    for (int i = 0; i < 3; i++)
+        ad_mul(c, &k->w[i], &k->inw, &k->e2[i]);
+    for (int i = 0; i < 3; i++) { /* e3 = e1 x e2 */
+        int j = (i + 1) % 3, l = (i + 2) % 3;
+        ad_mul(c, &k->e1[j], &k->e2[l], &k->t1);
+        ad_mul(c, &k->e1[l], &k->e2[j], &k->t2);
+        ad_axpy(c, &k->t1, -1.0, &k->t2, &k->e3[i]);
+    }
+    /* local rotations of both nodes: theta_x, theta_y, theta_z */
+    const ad *tr[2] = {k->ta, k->tb};
+    for (int n = 0; n < 2; n++) {
+        const ad *t = tr[n];
+        half_diff_dots(c, k->e3, t + 3, k->e2, t + 6, &k->th[3 * n + 0]);
+        half_diff_dots(c, k->e1, t + 6, k->e3, t + 0, &k->th[3 * n + 1]);
+        half_diff_dots(c, k->e2, t + 0, k->e1, t + 3, &k->th[3 * n + 2]);
+    }
+    /* energy */
+    const mech_section *S = &b->sec;
+    double L0 = b->L0;
+    ad_const(c, -L0, &k->t1);
+    ad_axpy(c, &k->L, 1.0, &k->t1, &k->u); /* u = L - L0 */
+    ad_mul(c, &k->u, &k->u, &k->W);
+    ad_scale(c, 0.5 * S->E * S->A / L0, &k->W, &k->W);
+    ad_axpy(c, &k->th[3], -1.0, &k->th[0], &k->t1); /* twist */
+    ad_mul(c, &k->t1, &k->t1, &k->t2);
+    ad_axpy(c, &k->W, 0.5 * S->G * S->J / L0, &k->t2, &k->W);
+    const double EI[2] = {S->Iy * S->E, S->Iz * S->E}; /* about e2 (theta_y), e3 (theta_z) */
+    for (int a = 0; a < 2; a++) {
+        const ad *ta_ = &k->th[1 + a], *tb_ = &k->th[4 + a];
+        ad_mul(c, ta_, ta_, &k->t1);
+        ad_mul(c, ta_, tb_, &k->t2);
+        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
+        ad_mul(c, tb_, tb_, &k->t2);
+        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
+        ad_axpy(c, &k->W, 2.0 * EI[a] / L0, &k->t1, &k->W);
+    }
+}
+
+/* J(q): dq = J(q) dphi for a global rotation dphi, dq = (0, dphi) (x) q / 2; rows j, cols k. */
+static void quat_J(const double *q, double J[4][3])
+{
+    double w = q[0], v0 = q[1], v1 = q[2], v2 = q[3];
+    double T[4][3] = {{-v0, -v1, -v2}, {w, v2, -v1}, {-v2, w, v0}, {v1, -v0, w}};
+    for (int j = 0; j < 4; j++)
+        for (int k = 0; k < 3; k++)
+            J[j][k] = 0.5 * T[j][k];
+}
+
+static int config_var(const beam *b, int c)
+{
+    return c < 3 ? b->xa + c : c < 6 ? b->xb + c - 3 : c < 10 ? b->qa + c - 6 : b->qb + c - 10;
+}
+
+/* Port loads g (12: F_a, M_a, F_b, M_b) and, if dg != NULL, dg[r][c] = d g_r / d X_c. */
+static void beam_loads(const beam *b, const double *y, int order, double *g, double (*dg)[14])
+{
+    beam_work *k = b->work;
+    ad_ctx c = {order};
+    beam_energy(b, y, &c, k);
+    const ad *W = &k->W;
+    const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
+    for (int n = 0; n < 2; n++) {
+        const double *q = y + (n ? b->qb : b->qa);
+        double J[4][3];
+        quat_J(q, J);
+        for (int i = 0; i < 3; i++) {
+            g[6 * n + i] = W->g[xoff[n] + i];
+            double mk = 0;
+            for (int j = 0; j < 4; j++)
+                mk += W->g[qoff[n] + j] * J[j][i];
+            g[6 * n + 3 + i] = mk;
+        }
+        if (!dg) continue;
+        for (int cc = 0; cc < 14; cc++) {
+            for (int i = 0; i < 3; i++) {
+                dg[6 * n + i][cc] = W->h[(xoff[n] + i) * AD_N + cc];
+                double d = 0;
+                for (int j = 0; j < 4; j++)
+                    d += W->h[(qoff[n] + j) * AD_N + cc] * J[j][i];
+                if (cc >= qoff[n] && cc < qoff[n] + 4) { /* J is linear in q */
+                    double e[4] = {0, 0, 0, 0}, Jl[4][3];
+                    e[cc - qoff[n]] = 1.0;
+                    quat_J(e, Jl);
+                    for (int j = 0; j < 4; j++)
+                        d += W->g[qoff[n] + j] * Jl[j][i];
+                }
+                dg[6 * n + 3 + i][cc] = d;
+            }
+        }
+    }
+}
+
+static int beam_declare(bgr_element *el, bgr_model *m)
+{
+    beam *b = el->params;
+    bgr_ref ra = {BGR_STATE, b->node_a, 0}, rb = {BGR_STATE, b->node_b, 0};
+    bgr_element *na = bgr_element_get(m, b->node_a), *nb = bgr_element_get(m, b->node_b);
+    if (!na || !nb || na->nstates != 13 || nb->nstates != 13 || strcmp(na->cls->type, "body") ||
+        strcmp(nb->cls->type, "body"))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_compile",
+                              "beam %s/%s: its nodes must be rigid bodies (mech_body)",
+                              bgr_component_path(m, el->comp), el->name);
+    b->xa = bgr_ref_var(m, ra);
+    b->xb = bgr_ref_var(m, rb);
+    b->qa = b->xa + 9;
+    b->qb = b->xb + 9;
+    for (int k = 0; k < 2; k++) {
+        b->e[k] = bgr_ev(el, m, k, 0);
+        b->s[k] = el->sign[k];
+    }
+    static const char *const lab[12] = {"force_a0",  "force_a1",  "force_a2",  "moment_a0",
+                                        "moment_a1", "moment_a2", "force_b0",  "force_b1",
+                                        "force_b2",  "moment_b0", "moment_b1", "moment_b2"};
+    int st = bgr_declare_equations(el, m, 12, lab);
+    for (int r = 0; st == BG_OK && r < 12; r++) {
+        st = bgr_declare_dep(el, m, r, b->e[r / 6] + r % 6, 0);
+        for (int cc = 0; st == BG_OK && cc < 14; cc++)
+            st = bgr_declare_dep(el, m, r, config_var(b, cc), 0);
+    }
+    return st;
+}
+
+static int beam_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                         double *F)
+{
+    (void)t, (void)yp;
+    const beam *b = el->params;
+    double g[12];
+    beam_loads(b, y, 1, g, NULL);
+    for (int r = 0; r < 12; r++)
+        F[r] = b->s[r / 6] * y[b->e[r / 6] + r % 6] - g[r];
+    for (int r = 0; r < 12; r++)
+        if (!isfinite(F[r])) return 1; /* degenerate configuration: cut the step */
+    return 0;
+}
+
+static int beam_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                         double *v)
+{
+    (void)t, (void)yp;
+    const beam *b = el->params;
+    double g[12], dg[12][14];
+    beam_loads(b, y, 2, g, dg);
+    int n = 0;
+    for (int r = 0; r < 12; r++) {
+        v[n++] = b->s[r / 6];
+        for (int cc = 0; cc < 14; cc++)
+            v[n++] = -dg[r][cc];
+    }
+    return 0;
+}
+
+static const bgr_element_class beam_class = {.type = "beam",
+                                             .declare = beam_declare,
+                                             .residual = beam_residual,
+                                             .jacobian = beam_jacobian,
+                                             .destroy = beam_free};
+
+static int bad_section(bgr_model *m, const char *name, const mech_section *s)
+{
+    if (!s || !(s->E > 0) || !(s->G > 0) || !(s->A > 0) || !(s->Iy > 0) || !(s->Iz > 0) ||
+        !(s->J > 0) || !(s->rho >= 0))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam",
+                              "%s: the section needs E, G, A, Iy, Iz, J > 0 and rho >= 0",
+                              name ? name : "(null)");
+    return BG_OK;
+}
+
+int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
+              const mech_section *sec, const double *E0, double L0)
+{
+    if (bad_section(m, name, sec)) return BG_ERR_ARGUMENT;
+    if (!E0 || !(L0 > 0))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam",
+                              "%s: needs its initial frame and a length > 0",
+                              name ? name : "(null)");
+    beam *b = calloc(1, sizeof *b);
+    if (b && !(b->work = malloc(sizeof *b->work))) {
+        free(b);
+        b = NULL;
+    }
+    if (!b)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "mech_beam", "out of memory");
+    b->sec = *sec;
+    memcpy(b->E0, E0, sizeof b->E0);
+    b->L0 = L0;
+    b->node_a = node_a;
+    b->node_b = node_b;
+    const int dims[2] = {6, 6};
+    return bgr_element_add(m, c, name, &beam_class, b, 2, dims, 0, NULL, 0, NULL);
+}
+
+static int frame(const double *p0, const double *p1, const double *up, double *E0, double *L)
+{
+    double d[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+    *L = sqrt(mech_dot(d, d));
+    if (!(*L > 0) || !up) return 0;
+    for (int i = 0; i < 3; i++)
+        E0[i] = d[i] / *L;
+    double pu = mech_dot(up, E0), w[3];
+    for (int i = 0; i < 3; i++)
+        w[i] = up[i] - pu * E0[i];
+    double nw = sqrt(mech_dot(w, w));
+    if (!(nw > 1e-12 * sqrt(mech_dot(up, up)))) return 0;
+    for (int i = 0; i < 3; i++)
+        E0[3 + i] = w[i] / nw;
+    mech_cross(E0, E0 + 3, E0 + 6);
+    return 1;
+}
+
+static int node_ports(int k, int n, const int *extra)
+{
+    return (k > 0) + (k < n) + (extra ? extra[k] : 0);
+}
+
+int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
+                    const double *p1, const double *up, const mech_section *sec,
+                    const double *gravity, const int *extra, int *nodes, int *elems)
+{
+    bg_error *err = bgr_model_error_mut(m);
+    if (bad_section(m, name, sec)) return BG_ERR_ARGUMENT;
+    double E0[9], L;
+    if (n < 1 || !p0 || !p1 || !frame(p0, p1, up, E0, &L))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "mech_beam_chain",
+                              "%s: needs n >= 1 elements, two distinct end points and an up "
+                              "vector not along the beam",
+                              name ? name : "(null)");
+    bgr_comp cc = bgr_component(m, c, name);
+    if (cc < 0) return cc;
+    double Le = L / n;
+    for (int k = 0; k <= n; k++) {
+        double l = (k == 0 || k == n) ? 0.5 * Le : Le; /* length of rod the node stands for */
+        double mass = sec->rho * sec->A * l;
+        /* rotary inertia of that rod about the node, local frame: torsion, then bending */
+        double Jl[3] = {sec->rho * (sec->Iy + sec->Iz) * l,
+                        sec->rho * (sec->A * l * l * l / 12 + sec->Iy * l),
+                        sec->rho * (sec->A * l * l * l / 12 + sec->Iz * l)};
+        double J[9];
+        for (int i = 0; i < 3; i++) /* E0 diag(Jl) E0^T */
+            for (int j = 0; j < 3; j++) {
+                double sum = 0;
+                for (int a = 0; a < 3; a++)
+                    sum += E0[i + 3 * a] * Jl[a] * E0[j + 3 * a];
+                J[i + 3 * j] = sum;
+            }
+        for (int i = 0; i < 3; i++) /* exact symmetry for the body's check */
+            for (int j = i + 1; j < 3; j++)
+                J[j + 3 * i] = J[i + 3 * j];
+        int np = node_ports(k, n, extra);
+        double *r = calloc((size_t)3 * np + 3, sizeof *r);
+        if (!r) return bg_error_raise(err, BG_ERR_MEMORY, "mech_beam_chain", "out of memory");
+        char nm[32];
+        snprintf(nm, sizeof nm, "node%02d", k);
+        nodes[k] = mech_body(m, cc, nm, mass > 0 ? mass : 1e-12, J, gravity, np, r, NULL);
+        free(r);
+        if (nodes[k] < 0) return nodes[k];
+    }
+    for (int k = 0; k < n; k++) {
+        char nm[32];
+        snprintf(nm, sizeof nm, "el%02d", k);
+        elems[k] = mech_beam(m, cc, nm, nodes[k], nodes[k + 1], sec, E0, Le);
+        if (elems[k] < 0) return elems[k];
+        int pa = k > 0 ? 1 : 0; /* node k: next port; node k+1: prev port (0) */
+        snprintf(nm, sizeof nm, "ba%02d", k);
+        int st = bgr_bond(m, cc, nm, 6, bgr_port_of(m, nodes[k], pa), bgr_port_of(m, elems[k], 0),
+                          NULL, NULL);
+        if (st < 0) return st;
+        snprintf(nm, sizeof nm, "bb%02d", k);
+        st = bgr_bond(m, cc, nm, 6, bgr_port_of(m, nodes[k + 1], 0), bgr_port_of(m, elems[k], 1),
+                      NULL, NULL);
+        if (st < 0) return st;
+    }
+    return cc;
+}
+
+bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra, int k,
+                              int j)
+{
+    bgr_port none = {-1, -1};
+    if (k < 0 || k > n || j < 0 || !extra || j >= extra[k]) return none;
+    return bgr_port_of(m, nodes[k], (k > 0) + (k < n) + j);
+}
+
+int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1)
+{
+    for (int k = 0; k <= n; k++) {
+        double x[3];
+        for (int i = 0; i < 3; i++)
+            x[i] = p0[i] + (p1[i] - p0[i]) * k / n;
+        int st = mech_body_set(m, nodes[k], x, NULL, NULL, NULL);
+        if (st != BG_OK) return st;
+    }
+    return BG_OK;
+}
+
+double mech_beam_energy(const bgr_model *m, int elem, const double *y)
+{
+    bgr_element *el = bgr_element_get((bgr_model *)m, elem);
+    if (!el || el->cls != &beam_class) return NAN;
+    const beam *b = el->params;
+    ad_ctx c = {1};
+    beam_energy(b, y, &c, b->work);
+    return b->work->W.v;
+}

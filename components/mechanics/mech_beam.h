@@ -1,0 +1,69 @@
+/* Co-rotational 3D Euler-Bernoulli beam element, and a builder for chains of them.
+ *
+ * Kinematics (co-rotational, after Crisfield, Non-linear Finite Element Analysis of Solids and
+ * Structures vol. 2, ch. 17, and Battini and Pacoste, CMAME 191 (2002) 1755): the two nodes are
+ * rigid bodies (mech_body) whose positions x_a, x_b and orientations R(q_a), R(q_b) the element
+ * reads. The nodal triads are t_i = R(q) E0 e_i, E0 the beam's initial local frame (e1 along the
+ * beam). The co-rotating element frame follows the rigid motion:
+ *     e1 = (x_b - x_a)/L,   e2 = normalised part of (t2_a + t2_b)/2 normal to e1,   e3 = e1 x e2.
+ * The local deformations left after removing the rigid motion are the elongation u = L - L0
+ * and the small rotations of each nodal triad relative to the element frame, the skew part of
+ * E^T T:  theta_x = (e3.t2 - e2.t3)/2,  theta_y = (e1.t3 - e3.t1)/2,  theta_z = (e2.t1 - e1.t2)/2.
+ * Local elasticity (Euler-Bernoulli, small strain):
+ *     W = EA/(2 L0) u^2 + GJ/(2 L0) (theta_x,b - theta_x,a)^2
+ *         + 2 EI_z/L0 (theta_z,a^2 + theta_z,a theta_z,b + theta_z,b^2)
+ *         + 2 EI_y/L0 (theta_y,a^2 + theta_y,a theta_y,b + theta_y,b^2).
+ * The element is conservative: the forces and moments it takes at its ports are the gradient of
+ * W with respect to the nodal positions and (global) nodal rotations, obtained with their exact
+ * Jacobian by second-order automatic differentiation (mech_ad.h). W is invariant under any rigid
+ * motion, so a rigidly rotating element has no deformation energy, however large the rotation.
+ * Ports 0 (node a) and 1 (node b) are 6D (conventions of mech_body.h).
+ * Mass: lumped into the node bodies by the chain builder, half of each element's mass to each
+ * end node with the rotary inertia of a rod segment of length L0/2 about the node (lumped
+ * because the node bodies carry it without coupling terms; the consistent mass of a co-rotational
+ * element depends on the configuration and would couple the nodes). No damping in the element;
+ * add R elements at the nodes for a damped transient. */
+#ifndef MECH_BEAM_H
+#define MECH_BEAM_H
+
+#include "bgr_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mech_section {
+    double E, G;      /* Young's and shear modulus */
+    double A, Iy, Iz; /* area; second moments about the local y (e2) and z (e3) axes */
+    double J;         /* torsion constant */
+    double rho;       /* density (for the chain builder's lumped masses) */
+} mech_section;
+
+/* One element between node bodies node_a and node_b (element ids of mech_body instances whose
+ * states are set to their initial positions with identity orientation), E0: the initial local
+ * frame (3x3, column-major: e1 along the beam from a to b, e2, e3), L0 the initial length.
+ * Ports 0 and 1 must be bonded to ports of node_a and node_b at their mass centres. */
+int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
+              const mech_section *sec, const double *E0, double L0);
+
+/* A straight chain of n elements from p0 to p1 in component c (created here with the given
+ * name): n + 1 node bodies named node00, node01, ... with lumped masses (gravity may be NULL),
+ * elements el00, el01, ..., bonded together. up: a vector not parallel to the beam giving the
+ * local e2 direction. Node k gets extra[k] additional 6D ports at its centre (extra NULL: none)
+ * for the caller to bond (supports, loads, dampers); their handles come from
+ * mech_beam_chain_port. nodes (n+1) and elems (n) receive the element ids. */
+int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
+                    const double *p1, const double *up, const mech_section *sec,
+                    const double *gravity, const int *extra, int *nodes, int *elems);
+/* The j-th extra port of node k of a chain built with these extra counts. */
+bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra, int k,
+                              int j);
+/* Positions of the chain's nodes into bgr_y0 (after bgr_compile), orientation identity. */
+int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1);
+/* The deformation energy W of an element at a state vector y (after bgr_compile). */
+double mech_beam_energy(const bgr_model *m, int elem, const double *y);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
