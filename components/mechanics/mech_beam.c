@@ -359,10 +359,12 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
     for (int k = 0; k <= n; k++) {
         double l = (k == 0 || k == n) ? 0.5 * Le : Le; /* length of rod the node stands for */
         double mass = sec->rho * sec->A * l;
-        /* rotary inertia of that rod about the node, local frame: torsion, then bending */
-        double Jl[3] = {sec->rho * (sec->Iy + sec->Iz) * l,
-                        sec->rho * (sec->A * l * l * l / 12 + sec->Iy * l),
-                        sec->rho * (sec->A * l * l * l / 12 + sec->Iz * l)};
+        /* rotary inertia of the section over that length, local frame: torsion (polar), then
+         * bending; the rod's own length-wise distribution of mass is carried by the neighbouring
+         * nodes' translation (adding rho A l^3/12 here too lowered the third bending frequency
+         * of a 20-element cantilever by 1.4 %, to 0.6 % without it) */
+        double Jl[3] = {sec->rho * (sec->Iy + sec->Iz) * l, sec->rho * sec->Iy * l,
+                        sec->rho * sec->Iz * l};
         double J[9];
         for (int i = 0; i < 3; i++) /* E0 diag(Jl) E0^T */
             for (int j = 0; j < 3; j++) {

@@ -18,11 +18,11 @@
  * Jacobian by second-order automatic differentiation (mech_ad.h). W is invariant under any rigid
  * motion, so a rigidly rotating element has no deformation energy, however large the rotation.
  * Ports 0 (node a) and 1 (node b) are 6D (conventions of mech_body.h).
- * Mass: lumped into the node bodies by the chain builder, half of each element's mass to each
- * end node with the rotary inertia of a rod segment of length L0/2 about the node (lumped
- * because the node bodies carry it without coupling terms; the consistent mass of a co-rotational
- * element depends on the configuration and would couple the nodes). No damping in the element;
- * add R elements at the nodes for a damped transient. */
+ * Mass: lumped into the node bodies by the chain builder: half of each element's mass to each
+ * end node, with the rotary inertia of the section over that length (rho I l; rho Ip l in
+ * torsion). Lumped because the node bodies carry it without coupling terms; the consistent mass
+ * of a co-rotational element depends on the configuration and would couple the nodes. No damping
+ * in the element; add R elements at the nodes for a damped transient. */
 #ifndef MECH_BEAM_H
 #define MECH_BEAM_H
 

@@ -208,9 +208,116 @@ static void test_cantilever(void)
            dz, want, fabs(dz - want) / fabs(want));
 }
 
+/* ---- natural frequencies of a cantilever from the linearised model ----
+ * At rest (straight, unloaded) the compiled model linearises to Jy dy + Jyp dy' = 0, whose
+ * finite generalised eigenvalues s (Jy v = -s Jyp v; LAPACK dggev) are +-i omega of the modes.
+ * Against Euler-Bernoulli: omega_k = beta_k^2 sqrt(E I/(rho A L^4)), beta = 1.8751, 4.6941,
+ * 7.8548 (bending in both planes), axial (pi/2) sqrt(E/rho)/L, torsion (pi/2) sqrt(G J/(rho
+ * Ip))/L with Ip = Iy + Iz. */
+void dggev_(const char *jobvl, const char *jobvr, const int *n, double *a, const int *lda,
+            double *b, const int *ldb, double *alphar, double *alphai, double *beta, double *vl,
+            const int *ldvl, double *vr, const int *ldvr, double *work, const int *lwork, int *info,
+            size_t l1, size_t l2);
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static int near(const double *w, int nw, double target, double *found)
+{
+    double best = INFINITY;
+    for (int i = 0; i < nw; i++)
+        if (fabs(w[i] - target) < fabs(best - target)) best = w[i];
+    *found = best;
+    return isfinite(best);
+}
+
+static void test_frequencies(void)
+{
+    const int n = 20;
+    const double L = 1.0, p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0}, up[3] = {0, 0, 1};
+    int nodes[32], elems[32], extra[32] = {1};
+    bgr_model *m = bgr_model_create("modes");
+    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, extra, nodes, elems);
+    int clamp = mech_support(m, 0, "clamp", 6);
+    bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
+             mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);
+    if (bgr_compile(m) != BG_OK) {
+        tap_ok(0, "modes: compile (%s)", bgr_model_error(m)->message);
+        bgr_model_free(&m);
+        return;
+    }
+    mech_beam_chain_set(m, nodes, n, p0, p1);
+    dae_problem p;
+    bgr_dae_problem(m, &p);
+    int N = bgr_n(m);
+    sp_csc *Jy = sp_csc_copy(p.jac_y_pattern), *Jyp = sp_csc_copy(p.jac_yp_pattern);
+    double *yp = calloc((size_t)N, sizeof *yp);
+    bgr_jacobian(m, 0.0, bgr_y0(m), yp, Jy, Jyp);
+    double *A = malloc((size_t)N * N * sizeof *A), *B = malloc((size_t)N * N * sizeof *B);
+    double *ar = malloc((size_t)N * sizeof *ar), *ai = malloc((size_t)N * sizeof *ai),
+           *be = malloc((size_t)N * sizeof *be), *om = malloc((size_t)N * sizeof *om);
+    sp_csc_to_dense(Jy, A);
+    sp_csc_to_dense(Jyp, B);
+    for (long i = 0; i < (long)N * N; i++)
+        B[i] = -B[i];
+    int lwork = -1, info = 0, one = 1;
+    double wq;
+    dggev_("N", "N", &N, A, &N, B, &N, ar, ai, be, NULL, &one, NULL, &one, &wq, &lwork, &info, 1,
+           1);
+    lwork = (int)wq;
+    double *work = malloc((size_t)lwork * sizeof *work);
+    dggev_("N", "N", &N, A, &N, B, &N, ar, ai, be, NULL, &one, NULL, &one, work, &lwork, &info, 1,
+           1);
+    int nw = 0;
+    for (int i = 0; i < N; i++)
+        if (info == 0 && fabs(be[i]) > 1e-12 * (fabs(ar[i]) + fabs(ai[i])) && ai[i] / be[i] > 1.0)
+            om[nw++] = ai[i] / be[i];
+    qsort(om, (size_t)nw, sizeof *om, cmp_dbl);
+    tap_diag("modes: %d unknowns, %d oscillatory modes, lowest %.4f %.4f %.4f %.4f rad/s", N, nw,
+             nw > 0 ? om[0] : NAN, nw > 1 ? om[1] : NAN, nw > 2 ? om[2] : NAN,
+             nw > 3 ? om[3] : NAN);
+    const double beta[3] = {1.8751, 4.6941, 7.8548};
+    const double I2[2] = {steel.Iz, steel.Iy};
+    const char *plane[2] = {"in the e1-e2 plane (Iz)", "out of it (Iy)"};
+    for (int a = 0; a < 2; a++)
+        for (int k = 0; k < 3; k++) {
+            double w = beta[k] * beta[k] *
+                       sqrt(steel.E * I2[a] / (steel.rho * steel.A * L * L * L * L)),
+                   got;
+            near(om, nw, w, &got);
+            tap_ok(fabs(got - w) / w < 1e-2,
+                   "modes: bending %d %s: %.4f rad/s against %.4f (rel %.2g)", k + 1, plane[a], got,
+                   w, fabs(got - w) / w);
+        }
+    double wa = 0.5 * 3.14159265358979 * sqrt(steel.E / steel.rho) / L, got;
+    near(om, nw, wa, &got);
+    tap_ok(fabs(got - wa) / wa < 1e-2, "modes: first axial %.2f rad/s against %.2f (rel %.2g)", got,
+           wa, fabs(got - wa) / wa);
+    double wt =
+        0.5 * 3.14159265358979 * sqrt(steel.G * steel.J / (steel.rho * (steel.Iy + steel.Iz))) / L;
+    near(om, nw, wt, &got);
+    tap_ok(fabs(got - wt) / wt < 1e-2, "modes: first torsional %.2f rad/s against %.2f (rel %.2g)",
+           got, wt, fabs(got - wt) / wt);
+    free(A);
+    free(B);
+    free(ar);
+    free(ai);
+    free(be);
+    free(om);
+    free(work);
+    free(yp);
+    sp_csc_free(&Jy);
+    sp_csc_free(&Jyp);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_rigid_motion_and_jacobian();
     test_cantilever();
+    test_frequencies();
     return tap_done();
 }
