@@ -412,7 +412,7 @@ int dae_consistent_init(dae_solver *s)
         if (s->nbkpt > 0 && s->bkpt[0] > s->tn) tscale = fmin(tscale, s->bkpt[0] - s->tn);
     }
     double dt = cbrt(DBL_EPSILON) * tscale;
-    double unorm = INFINITY, uprev = INFINITY;
+    double unorm = INFINITY, uprev = INFINITY, rnorm = INFINITY;
     for (int it = 0; it < INIT_MAX_ITER; it++) {
         if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
         if (s->nalg1_rows > 0) { /* differentiated rows: dF_i/dt + sum_j dF_i/dy_j y'_j */
@@ -442,6 +442,13 @@ int dae_consistent_init(dae_solver *s)
             if (s->kslot_y[p] >= 0) s->K->val[s->kslot_y[p]] = s->Jy->val[p];
         for (int p = 0; p < s->Jyp->nnz; p++)
             if (s->kslot_yp[p] >= 0) s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
+        /* the stage-B residual, scaled by the size of its terms: at round-off level the
+         * values are consistent whatever the last correction looked like */
+        row_scales(s, y, yp, s->tmp2);
+        rnorm = 0;
+        for (int i = 0; i < n; i++)
+            rnorm = fmax(rnorm, fabs(F[i]) / s->tmp2[i]);
+        if (it > 0 && rnorm <= 1e-13) break;
         memcpy(u, F, (size_t)n * sizeof *u);
         if ((r = factor_solve(s, s->kls, s->K, u)) != BG_OK) {
             int c = ls_singular_col(s->kls);
@@ -476,7 +483,10 @@ int dae_consistent_init(dae_solver *s)
     memcpy(s->phi[0], y, (size_t)n * sizeof *y);
     memcpy(s->phi[1], yp, (size_t)n * sizeof *yp);
     s->need_setup = 1;
-    if (unorm >= 1 || m > 1e-8)
+    /* the derivatives may stay inconsistent at the level the linear algebra reaches on an
+     * ill-conditioned system (stiff bars next to tiny rotary inertias: 1e-7 of the terms); the
+     * first steps correct that, so only a gross failure is reported */
+    if ((unorm >= 1 && rnorm > 1e-6) || m > 1e-8)
         return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                               "Newton iteration for consistent values did not converge at t = %g "
                               "(scaled residual %.3g)",
