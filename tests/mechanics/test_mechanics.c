@@ -11,6 +11,7 @@
 #include "mech_axial.h"
 #include "mech_body.h"
 #include "mech_parts.h"
+#include "mech_sensor.h"
 #include "tap.h"
 
 static tap_rng rng;
@@ -182,6 +183,8 @@ typedef struct axis_ctx {
     int body;
     double maxerr_w, maxerr_th, I, T;
     double theta_prev, turns;
+    int s_th, s_w; /* sensor outputs */
+    double maxerr_s;
 } axis_ctx;
 
 static void axis_probe(void *c, double t, const double *y)
@@ -196,6 +199,9 @@ static void axis_probe(void *c, double t, const double *y)
     double thx = a->T * t * t / (2 * a->I);
     a->maxerr_w = fmax(a->maxerr_w, fabs(w[2] - a->T * t / a->I) / (a->T * t / a->I));
     a->maxerr_th = fmax(a->maxerr_th, fabs(th - thx) / thx);
+    /* the sensor's angle keeps counting past pi */
+    a->maxerr_s = fmax(a->maxerr_s, fabs(y[a->s_th] - thx) / thx);
+    a->maxerr_s = fmax(a->maxerr_s, fabs(y[a->s_w] - a->T * t / a->I) / (a->T * t / a->I));
 }
 
 static void test_driven_axis(void)
@@ -211,6 +217,7 @@ static void test_driven_axis(void)
     bgr_bond(m, 0, "b_ground", 6, bgr_port_of(m, gnd, 0), bgr_port_of(m, jnt, 0), NULL, NULL);
     bgr_bond(m, 0, "b_rotor", 6, bgr_port_of(m, jnt, 1), bgr_port_of(m, body, 0), NULL, NULL);
     bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, src, 0), bgr_port_of(m, jnt, 2), NULL, NULL);
+    int sens = mech_rotation_sensor(m, 0, "encoder", body, z);
     int st = bgr_compile(m);
     tap_ok(st == BG_OK, "driven axis: compile (%s)", bgr_model_error(m)->message);
     if (st != BG_OK) {
@@ -221,14 +228,21 @@ static void test_driven_axis(void)
     bgr_get_stats(m, &bs);
     tap_diag("driven axis: %d equations, %d index-2 unknowns", bs.equations, bs.index2);
     mech_body_set(m, body, NULL, NULL, NULL, NULL);
-    axis_ctx a = {m, body, 0, 0, 2.0, tau, 0, 0};
-    double tout[40];
-    for (int k = 0; k < 40; k++)
+    axis_ctx a = {m, body, 0, 0, 2.0, tau, 0, 0, 0, 0, 0};
+    a.s_th = bgr_ref_var(m, (bgr_ref){BGR_STATE, sens, 0});
+    a.s_w = bgr_ref_var(m, (bgr_ref){BGR_OWN, sens, 0});
+    double tout[50];
+    for (int k = 0; k < 50; k++)
         tout[k] = 0.05 * (k + 1);
-    int r = integrate(m, 1e-9, tout, 40, axis_probe, &a, NULL);
+    int r = integrate(m, 1e-9, tout, 50, axis_probe, &a, NULL);
     tap_ok(r == 0 && a.maxerr_w < 1e-7 && a.maxerr_th < 1e-6,
-           "driven axis: w = T t/I (rel err %.2g) and theta = T t^2/(2 I) (rel err %.2g) to t = 2",
+           "driven axis: w = T t/I (rel err %.2g) and theta = T t^2/(2 I) (rel err %.2g) to t = "
+           "2.5",
            a.maxerr_w, a.maxerr_th);
+    tap_ok(r == 0 && a.maxerr_s < 1e-6,
+           "rotation sensor: angle (past pi: 4.69 rad at t = 2.5) and rate against the closed "
+           "form (rel err %.2g)",
+           a.maxerr_s);
     tap_ok(bs.index2 >= 5, "driven axis: the joint reactions are index 2 (%d)", bs.index2);
     tap_ok(check(m, "driven axis"), "driven axis: Jacobian matches finite differences");
     bgr_model_free(&m);
