@@ -154,13 +154,17 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
     ad_axpy(c, &k->W, 0.5 * S->G * S->J / L0, &k->t2, &k->W);
     const double EI[2] = {S->Iy * S->E, S->Iz * S->E}; /* about e2 (theta_y), e3 (theta_z) */
     for (int a = 0; a < 2; a++) {
+        /* EI/(2 L0 (1 + P)) [(4 + P)(ta^2 + tb^2) + 2 (2 - P) ta tb], P the shear parameter
+         * 12 EI/(kappa G A L0^2) (0: Euler-Bernoulli, W = 2 EI/L0 (ta^2 + ta tb + tb^2)) */
+        double P = S->kappa > 0 ? 12 * EI[a] / (S->kappa * S->G * S->A * L0 * L0) : 0.0;
+        double f = EI[a] / (2 * L0 * (1 + P));
         const ad *ta_ = &k->th[1 + a], *tb_ = &k->th[4 + a];
         ad_mul(c, ta_, ta_, &k->t1);
-        ad_mul(c, ta_, tb_, &k->t2);
-        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
         ad_mul(c, tb_, tb_, &k->t2);
         ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
-        ad_axpy(c, &k->W, 2.0 * EI[a] / L0, &k->t1, &k->W);
+        ad_axpy(c, &k->W, f * (4 + P), &k->t1, &k->W);
+        ad_mul(c, ta_, tb_, &k->t2);
+        ad_axpy(c, &k->W, f * 2 * (2 - P), &k->t2, &k->W);
     }
 }
 
@@ -287,7 +291,7 @@ static const bgr_element_class beam_class = {.type = "beam",
 static int bad_section(bgr_model *m, const char *name, const mech_section *s)
 {
     if (!s || !(s->E > 0) || !(s->G > 0) || !(s->A > 0) || !(s->Iy > 0) || !(s->Iz > 0) ||
-        !(s->J > 0) || !(s->rho >= 0))
+        !(s->J > 0) || !(s->rho >= 0) || !(s->kappa >= 0))
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam",
                               "%s: the section needs E, G, A, Iy, Iz, J > 0 and rho >= 0",
                               name ? name : "(null)");

@@ -13,6 +13,10 @@
  *     W = EA/(2 L0) u^2 + GJ/(2 L0) (theta_x,b - theta_x,a)^2
  *         + 2 EI_z/L0 (theta_z,a^2 + theta_z,a theta_z,b + theta_z,b^2)
  *         + 2 EI_y/L0 (theta_y,a^2 + theta_y,a theta_y,b + theta_y,b^2).
+ * Timoshenko as an option (kappa > 0): with the shear parameter P = 12 EI/(kappa G A L0^2) each
+ * bending term becomes EI/(2 L0 (1 + P)) [(4 + P)(theta_a^2 + theta_b^2) + 2 (2 - P) theta_a
+ * theta_b], the two-node shear-flexible element's end-rotation stiffness (Przemieniecki,
+ * Theory of Matrix Structural Analysis, 1968, sec. 5.6); P = 0 gives back Euler-Bernoulli.
  * The element is conservative: the forces and moments it takes at its ports are the gradient of
  * W with respect to the nodal positions and (global) nodal rotations, obtained with their exact
  * Jacobian by second-order automatic differentiation (mech_ad.h). W is invariant under any rigid
@@ -37,6 +41,7 @@ typedef struct mech_section {
     double A, Iy, Iz; /* area; second moments about the local y (e2) and z (e3) axes */
     double J;         /* torsion constant */
     double rho;       /* density (for the chain builder's lumped masses) */
+    double kappa;     /* shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko */
 } mech_section;
 
 /* One element between node bodies node_a and node_b (element ids of mech_body instances whose

@@ -12,7 +12,10 @@ typedef struct sensor {
     int th, wa, w, q; /* ids: angle, rate output, body angular velocity, body quaternion */
 } sensor;
 
-static void sensor_free(void *p) { free(p); }
+static void sensor_free(void *p)
+{
+    free(p);
+}
 
 /* s = (R w).a and its partial derivatives with respect to w (3) and q (4) */
 static double rate_about(const sensor *p, const double *y, double *dw, double *dq)
@@ -40,8 +43,10 @@ static void sensor_partials(const bgr_element *el, const double *y, mech_emit *E
             mech_dep(E, r, p->th, 1, 1.0);
         else
             mech_dep(E, r, p->wa, 0, 1.0);
-        for (int c = 0; c < 3; c++) mech_dep(E, r, p->w + c, 0, -dw[c]);
-        for (int j = 0; j < 4; j++) mech_dep(E, r, p->q + j, 0, -dq[j]);
+        for (int c = 0; c < 3; c++)
+            mech_dep(E, r, p->w + c, 0, -dw[c]);
+        for (int j = 0; j < 4; j++)
+            mech_dep(E, r, p->q + j, 0, -dq[j]);
     }
 }
 
@@ -109,7 +114,8 @@ int mech_rotation_sensor(bgr_model *m, bgr_comp c, const char *name, int body, c
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "mech_rotation_sensor",
                               "out of memory");
     p->body = body;
-    for (int i = 0; i < 3; i++) p->a[i] = axis[i] / n;
+    for (int i = 0; i < 3; i++)
+        p->a[i] = axis[i] / n;
     static const char *const sn[1] = {"angle"}, *const an[1] = {"rate"};
     return bgr_element_add(m, c, name, &sensor_class, p, 0, NULL, 1, sn, 1, an);
 }

@@ -15,8 +15,7 @@
 extern "C" {
 #endif
 
-int mech_rotation_sensor(bgr_model *m, bgr_comp c, const char *name, int body,
-                         const double *axis);
+int mech_rotation_sensor(bgr_model *m, bgr_comp c, const char *name, int body, const double *axis);
 
 #ifdef __cplusplus
 }

@@ -114,7 +114,15 @@ static void test_rigid_motion_and_jacobian(void)
 
 /* Cantilever along x, clamped at node 0, dampers at every node; tip load P (along -z) and/or
  * gravity. Returns the tip deflection along z after settling. */
+static double cantilever_sec(const mech_section *sec, int n, double L, double P,
+                             const double *gravity, int *status);
 static double cantilever(int n, double L, double P, const double *gravity, int *status)
+{
+    return cantilever_sec(&steel, n, L, P, gravity, status);
+}
+
+static double cantilever_sec(const mech_section *sec, int n, double L, double P,
+                             const double *gravity, int *status)
 {
     static const double p0[3] = {0, 0, 0}, up[3] = {0, 0, 1};
     double p1[3] = {L, 0, 0};
@@ -122,15 +130,15 @@ static double cantilever(int n, double L, double P, const double *gravity, int *
     for (int k = 0; k <= n; k++)
         extra[k] = k == 0 ? 1 : k == n ? 2 : 1;
     bgr_model *m = bgr_model_create("cant");
-    int c = mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, gravity, extra, nodes, elems);
+    int c = mech_beam_chain(m, 0, "beam", n, p0, p1, up, sec, gravity, extra, nodes, elems);
     *status = -1;
     if (c < 0) {
         tap_diag("cantilever: %s", bgr_model_error(m)->message);
         bgr_model_free(&m);
         return NAN;
     }
-    double mnode = steel.rho * steel.A * L / n;
-    double w1 = 3.516 * sqrt(steel.E * steel.Iz / (steel.rho * steel.A * L * L * L * L));
+    double mnode = sec->rho * sec->A * L / n;
+    double w1 = 3.516 * sqrt(sec->E * sec->Iz / (sec->rho * sec->A * L * L * L * L));
     double cdamp = 2 * w1 * mnode; /* about critical for the first mode */
     int clamp = mech_support(m, 0, "clamp", 6);
     bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
@@ -198,6 +206,20 @@ static void test_cantilever(void)
            "(rel %.2g)",
            dz, want, fabs(dz - want) / fabs(want));
     const double g[3] = {0, 0, -9.81};
+    /* Timoshenko option: a short, thick cantilever, tip load: P L^3/(3 E I) + P L/(kappa G A) */
+    mech_section thick = steel;
+    thick.A = 4e-2; /* 0.2 m square */
+    thick.Iy = thick.Iz = 0.2 * 0.2 * 0.2 * 0.2 / 12;
+    thick.J = 0.1406 * 0.2 * 0.2 * 0.2 * 0.2;
+    thick.kappa = 5.0 / 6.0;
+    double Lt = 0.5, Pt = 1e5;
+    dz = cantilever_sec(&thick, 4, Lt, Pt, NULL, &st);
+    double wb = Pt * Lt * Lt * Lt / (3 * thick.E * thick.Iz),
+           ws = Pt * Lt / (thick.kappa * thick.G * thick.A);
+    tap_ok(st == 0 && fabs(-dz - (wb + ws)) / (wb + ws) < 1e-3,
+           "Timoshenko cantilever (L/h = 2.5): deflection %.6e against bending %.4e + shear %.4e "
+           "(rel %.2g)",
+           -dz, wb, ws, fabs(-dz - (wb + ws)) / (wb + ws));
     dz = cantilever(16, L, 0.0, g, &st);
     double q = steel.rho * steel.A * 9.81;
     want = -q * L * L * L * L / (8 * steel.E * steel.Iz);
