@@ -892,8 +892,16 @@ int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp
         sp_csc_free(&Jyp);
         return r < 0 ? r : BG_ERR_CALLBACK;
     }
-    int ny = sp_jac_check(Jy, ck_res_y, m, m->n, y, 1e-6, tol, &wy, 1, &ey);
-    int nyp = ny < 0 ? 0 : sp_jac_check(Jyp, ck_res_yp, m, m->n, yp, 1e-6, tol, &wyp, 1, &eyp);
+    /* floor of the relative error: 1e-6, or 1e-9 of the largest entry for stiff models (finite
+     * differences of residuals with 1e9-sized terms cannot resolve smaller entries) */
+    double jmax = 0;
+    for (int p = 0; p < Jy->nnz; p++)
+        jmax = fmax(jmax, fabs(Jy->val[p]));
+    for (int p = 0; p < Jyp->nnz; p++)
+        jmax = fmax(jmax, fabs(Jyp->val[p]));
+    double floor_ = fmax(1e-6, 1e-9 * jmax);
+    int ny = sp_jac_check(Jy, ck_res_y, m, m->n, y, floor_, tol, &wy, 1, &ey);
+    int nyp = ny < 0 ? 0 : sp_jac_check(Jyp, ck_res_yp, m, m->n, yp, floor_, tol, &wyp, 1, &eyp);
     sp_csc_free(&Jy);
     sp_csc_free(&Jyp);
     if (ny < 0) return ny;

@@ -192,7 +192,8 @@ int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max
 int bgr_list_equations(const bgr_model *m, FILE *f);
 
 /* Check mode: every element's analytic partial derivatives against central differences of the
- * whole residual at (t, y, yp), entries missing from the declarations included. Returns the
+ * whole residual at (t, y, yp), entries missing from the declarations included. Errors are
+ * relative to |finite difference| + max(1e-6, 1e-9 * largest entry). Returns the
  * number of mismatches (> tol relative), or < 0 on failure; the worst is described in report
  * (element, equation, variable, analytic, finite difference). */
 int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp, double tol,

@@ -16,6 +16,7 @@
 typedef struct beam_work {
     ad X[14], Ra[9], Rb[9], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6];
     ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
+    double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
 } beam_work;
 
 typedef struct beam {
@@ -24,6 +25,7 @@ typedef struct beam {
     int node_a, node_b;
     int xa, qa, xb, qb; /* configuration variable ids */
     int e[2], s[2];     /* first effort id and orientation of each port */
+    int f[2];           /* first flow id of each port (damping) */
     beam_work *work;
 } beam;
 
@@ -183,43 +185,136 @@ static int config_var(const beam *b, int c)
     return c < 3 ? b->xa + c : c < 6 ? b->xb + c - 3 : c < 10 ? b->qa + c - 6 : b->qb + c - 10;
 }
 
-/* Port loads g (12: F_a, M_a, F_b, M_b) and, if dg != NULL, dg[r][c] = d g_r / d X_c. */
-static void beam_loads(const beam *b, const double *y, int order, double *g, double (*dg)[14])
+/* The gradient of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b, phi_b) of the
+ * ports (phi: global rotation increments, through dq = J(q) dphi), and, if dgv != NULL, its
+ * derivatives with respect to the 14 configuration unknowns. */
+static void velocity_gradient(const ad *a, const double *qa, const double *qb, double *gv,
+                              double (*dgv)[14])
 {
-    beam_work *k = b->work;
-    ad_ctx c = {order};
-    beam_energy(b, y, &c, k);
-    const ad *W = &k->W;
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
-        const double *q = y + (n ? b->qb : b->qa);
         double J[4][3];
-        quat_J(q, J);
+        quat_J(n ? qb : qa, J);
         for (int i = 0; i < 3; i++) {
-            g[6 * n + i] = W->g[xoff[n] + i];
+            gv[6 * n + i] = a->g[xoff[n] + i];
             double mk = 0;
             for (int j = 0; j < 4; j++)
-                mk += W->g[qoff[n] + j] * J[j][i];
-            g[6 * n + 3 + i] = mk;
+                mk += a->g[qoff[n] + j] * J[j][i];
+            gv[6 * n + 3 + i] = mk;
         }
-        if (!dg) continue;
+        if (!dgv) continue;
         for (int cc = 0; cc < 14; cc++) {
             for (int i = 0; i < 3; i++) {
-                dg[6 * n + i][cc] = W->h[(xoff[n] + i) * AD_N + cc];
+                dgv[6 * n + i][cc] = a->h[(xoff[n] + i) * AD_N + cc];
                 double d = 0;
                 for (int j = 0; j < 4; j++)
-                    d += W->h[(qoff[n] + j) * AD_N + cc] * J[j][i];
+                    d += a->h[(qoff[n] + j) * AD_N + cc] * J[j][i];
                 if (cc >= qoff[n] && cc < qoff[n] + 4) { /* J is linear in q */
                     double e[4] = {0, 0, 0, 0}, Jl[4][3];
                     e[cc - qoff[n]] = 1.0;
                     quat_J(e, Jl);
                     for (int j = 0; j < 4; j++)
-                        d += W->g[qoff[n] + j] * Jl[j][i];
+                        d += a->g[qoff[n] + j] * Jl[j][i];
                 }
-                dg[6 * n + 3 + i][cc] = d;
+                dgv[6 * n + 3 + i][cc] = d;
             }
         }
     }
+}
+
+/* Local stiffness K (7 x 7) of the deformations (u, theta_a, theta_b): W = d^T K d / 2. */
+static void local_stiffness(const beam *b, double K[7][7])
+{
+    const mech_section *S = &b->sec;
+    double L0 = b->L0;
+    memset(K, 0, 49 * sizeof(double));
+    K[0][0] = S->E * S->A / L0;
+    double kt = S->G * S->J / L0;
+    K[1][1] = K[4][4] = kt;
+    K[1][4] = K[4][1] = -kt;
+    const double EI[2] = {S->Iy * S->E, S->Iz * S->E};
+    for (int a = 0; a < 2; a++) {
+        double P = S->kappa > 0 ? 12 * EI[a] / (S->kappa * S->G * S->A * L0 * L0) : 0.0;
+        double f = EI[a] / (2 * L0 * (1 + P));
+        int ia = 2 + a, ib = 5 + a;
+        K[ia][ia] = K[ib][ib] = 2 * f * (4 + P);
+        K[ia][ib] = K[ib][ia] = 2 * f * (2 - P);
+    }
+}
+
+/* Port loads g (12: F_a, M_a, F_b, M_b) and, if dg != NULL, dg[r][c] = d g_r / d X_c (14
+ * configuration unknowns) and dgw[r][m] = d g_r / d w_m (12 port flows, damping only).
+ * Elastic loads: the gradient of W. Stiffness-proportional damping (beta > 0): the gradient of
+ * the dissipation function D = beta/2 d'^T K d' with d' = Jd w (Jd: the gradients of the local
+ * deformations in the velocity coordinates, w: the port flows), i.e. beta Jd^T K Jd w. */
+static void beam_loads(const beam *b, const double *y, int order, double *g, double (*dg)[14],
+                       double (*dgw)[12])
+{
+    beam_work *k = b->work;
+    ad_ctx c = {order};
+    beam_energy(b, y, &c, k);
+    const double *qa = y + b->qa, *qb = y + b->qb;
+    velocity_gradient(&k->W, qa, qb, g, dg);
+    if (dgw) memset(dgw, 0, 144 * sizeof(double));
+    double beta = b->sec.beta;
+    if (!(beta > 0)) return;
+    const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
+    double Jd[7][12], (*dJ)[12][14] = k->dJ, K[7][7], w[12], dd[7] = {0}, z[7] = {0};
+    for (int r = 0; r < 7; r++)
+        velocity_gradient(dl[r], qa, qb, Jd[r], dg ? dJ[r] : NULL);
+    local_stiffness(b, K);
+    for (int m = 0; m < 6; m++) {
+        w[m] = y[b->f[0] + m];
+        w[6 + m] = y[b->f[1] + m];
+    }
+    for (int r = 0; r < 7; r++)
+        for (int m = 0; m < 12; m++)
+            dd[r] += Jd[r][m] * w[m];
+    for (int r = 0; r < 7; r++)
+        for (int s2 = 0; s2 < 7; s2++)
+            z[r] += K[r][s2] * dd[s2];
+    for (int kk = 0; kk < 12; kk++) {
+        double sum = 0;
+        for (int r = 0; r < 7; r++)
+            sum += Jd[r][kk] * z[r];
+        g[kk] += beta * sum;
+    }
+    if (!dg) return;
+    double KJ[7][12]; /* K Jd */
+    for (int r = 0; r < 7; r++)
+        for (int m = 0; m < 12; m++) {
+            double sum = 0;
+            for (int s2 = 0; s2 < 7; s2++)
+                sum += K[r][s2] * Jd[s2][m];
+            KJ[r][m] = sum;
+        }
+    for (int kk = 0; kk < 12; kk++)
+        for (int m = 0; m < 12; m++) {
+            double sum = 0;
+            for (int r = 0; r < 7; r++)
+                sum += Jd[r][kk] * KJ[r][m];
+            dgw[kk][m] = beta * sum;
+        }
+    /* d dd_s / dc = sum_m dJ[s][m][c] w_m */
+    double ddc[7][14];
+    for (int s2 = 0; s2 < 7; s2++)
+        for (int cc = 0; cc < 14; cc++) {
+            double sum = 0;
+            for (int m = 0; m < 12; m++)
+                sum += dJ[s2][m][cc] * w[m];
+            ddc[s2][cc] = sum;
+        }
+    for (int kk = 0; kk < 12; kk++)
+        for (int cc = 0; cc < 14; cc++) {
+            double sum = 0;
+            for (int r = 0; r < 7; r++) {
+                double kz = 0;
+                for (int s2 = 0; s2 < 7; s2++)
+                    kz += K[r][s2] * ddc[s2][cc];
+                sum += dJ[r][kk][cc] * z[r] + Jd[r][kk] * kz;
+            }
+            dg[kk][cc] += beta * sum;
+        }
 }
 
 static int beam_declare(bgr_element *el, bgr_model *m)
@@ -238,6 +333,7 @@ static int beam_declare(bgr_element *el, bgr_model *m)
     b->qb = b->xb + 9;
     for (int k = 0; k < 2; k++) {
         b->e[k] = bgr_ev(el, m, k, 0);
+        b->f[k] = bgr_fv(el, m, k, 0);
         b->s[k] = el->sign[k];
     }
     static const char *const lab[12] = {"force_a0",  "force_a1",  "force_a2",  "moment_a0",
@@ -248,6 +344,8 @@ static int beam_declare(bgr_element *el, bgr_model *m)
         st = bgr_declare_dep(el, m, r, b->e[r / 6] + r % 6, 0);
         for (int cc = 0; st == BG_OK && cc < 14; cc++)
             st = bgr_declare_dep(el, m, r, config_var(b, cc), 0);
+        for (int mm = 0; st == BG_OK && b->sec.beta > 0 && mm < 12; mm++)
+            st = bgr_declare_dep(el, m, r, b->f[mm / 6] + mm % 6, 0);
     }
     return st;
 }
@@ -258,7 +356,7 @@ static int beam_residual(const bgr_element *el, double t, const double *y, const
     (void)t, (void)yp;
     const beam *b = el->params;
     double g[12];
-    beam_loads(b, y, 1, g, NULL);
+    beam_loads(b, y, 1, g, NULL, NULL);
     for (int r = 0; r < 12; r++)
         F[r] = b->s[r / 6] * y[b->e[r / 6] + r % 6] - g[r];
     for (int r = 0; r < 12; r++)
@@ -271,13 +369,15 @@ static int beam_jacobian(const bgr_element *el, double t, const double *y, const
 {
     (void)t, (void)yp;
     const beam *b = el->params;
-    double g[12], dg[12][14];
-    beam_loads(b, y, 2, g, dg);
+    double g[12], dg[12][14], dgw[12][12];
+    beam_loads(b, y, 2, g, dg, dgw);
     int n = 0;
     for (int r = 0; r < 12; r++) {
         v[n++] = b->s[r / 6];
         for (int cc = 0; cc < 14; cc++)
             v[n++] = -dg[r][cc];
+        for (int mm = 0; b->sec.beta > 0 && mm < 12; mm++)
+            v[n++] = -dgw[r][mm];
     }
     return 0;
 }
@@ -291,7 +391,7 @@ static const bgr_element_class beam_class = {.type = "beam",
 static int bad_section(bgr_model *m, const char *name, const mech_section *s)
 {
     if (!s || !(s->E > 0) || !(s->G > 0) || !(s->A > 0) || !(s->Iy > 0) || !(s->Iz > 0) ||
-        !(s->J > 0) || !(s->rho >= 0) || !(s->kappa >= 0))
+        !(s->J > 0) || !(s->rho >= 0) || !(s->kappa >= 0) || !(s->beta >= 0))
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam",
                               "%s: the section needs E, G, A, Iy, Iz, J > 0 and rho >= 0",
                               name ? name : "(null)");

@@ -26,7 +26,10 @@
  * end node, with the rotary inertia of the section over that length (rho I l; rho Ip l in
  * torsion). Lumped because the node bodies carry it without coupling terms; the consistent mass
  * of a co-rotational element depends on the configuration and would couple the nodes. No damping
- * in the element; add R elements at the nodes for a damped transient. */
+ * in the element unless beta > 0: stiffness-proportional (Rayleigh) damping, the gradient with
+ * respect to the port velocities of D = beta/2 d'^T K d', d' the rates of the local deformations
+ * and K the local stiffness, so that it acts on deformation only (a rigid motion is not damped)
+ * and mode i of the linearised structure gets the damping ratio beta w_i / 2. */
 #ifndef MECH_BEAM_H
 #define MECH_BEAM_H
 
@@ -42,6 +45,7 @@ typedef struct mech_section {
     double J;         /* torsion constant */
     double rho;       /* density (for the chain builder's lumped masses) */
     double kappa;     /* shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko */
+    double beta;      /* stiffness-proportional damping (s): modal damping ratio beta w/2 */
 } mech_section;
 
 /* One element between node bodies node_a and node_b (element ids of mech_body instances whose
