@@ -440,14 +440,15 @@ static int frame(const double *p0, const double *p1, const double *up, double *E
     return 1;
 }
 
-static int node_ports(int k, int n, const int *extra)
+static int node_ports(int k, int n, const int *extra, const int *extra3)
 {
-    return (k > 0) + (k < n) + (extra ? extra[k] : 0);
+    return (k > 0) + (k < n) + (extra ? extra[k] : 0) + (extra3 ? extra3[k] : 0);
 }
 
 int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
                     const double *p1, const double *up, const mech_section *sec,
-                    const double *gravity, const int *extra, int *nodes, int *elems)
+                    const double *gravity, const int *extra, const int *extra3, int *nodes,
+                    int *elems)
 {
     bg_error *err = bgr_model_error_mut(m);
     if (bad_section(m, name, sec)) return BG_ERR_ARGUMENT;
@@ -480,13 +481,21 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
         for (int i = 0; i < 3; i++) /* exact symmetry for the body's check */
             for (int j = i + 1; j < 3; j++)
                 J[j + 3 * i] = J[i + 3 * j];
-        int np = node_ports(k, n, extra);
+        int np = node_ports(k, n, extra, extra3);
         double *r = calloc((size_t)3 * np + 3, sizeof *r);
-        if (!r) return bg_error_raise(err, BG_ERR_MEMORY, "mech_beam_chain", "out of memory");
+        int *dims = malloc(((size_t)np + 1) * sizeof *dims);
+        if (!r || !dims) {
+            free(r);
+            free(dims);
+            return bg_error_raise(err, BG_ERR_MEMORY, "mech_beam_chain", "out of memory");
+        }
+        for (int j = 0; j < np; j++)
+            dims[j] = j < np - (extra3 ? extra3[k] : 0) ? 6 : 3;
         char nm[32];
         snprintf(nm, sizeof nm, "node%02d", k);
-        nodes[k] = mech_body(m, cc, nm, mass > 0 ? mass : 1e-12, J, gravity, np, r, NULL);
+        nodes[k] = mech_body(m, cc, nm, mass > 0 ? mass : 1e-12, J, gravity, np, r, dims);
         free(r);
+        free(dims);
         if (nodes[k] < 0) return nodes[k];
     }
     for (int k = 0; k < n; k++) {
@@ -511,8 +520,9 @@ bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const
                               int j)
 {
     bgr_port none = {-1, -1};
-    if (k < 0 || k > n || j < 0 || !extra || j >= extra[k]) return none;
-    return bgr_port_of(m, nodes[k], (k > 0) + (k < n) + j);
+    (void)extra;
+    if (k < 0 || k > n || j < 0) return none;
+    return bgr_port_of(m, nodes[k], (k > 0) + (k < n) + j); /* 6D extras, then 3D ones */
 }
 
 int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1)

@@ -58,13 +58,15 @@ int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b
 /* A straight chain of n elements from p0 to p1 in component c (created here with the given
  * name): n + 1 node bodies named node00, node01, ... with lumped masses (gravity may be NULL),
  * elements el00, el01, ..., bonded together. up: a vector not parallel to the beam giving the
- * local e2 direction. Node k gets extra[k] additional 6D ports at its centre (extra NULL: none)
- * for the caller to bond (supports, loads, dampers); their handles come from
- * mech_beam_chain_port. nodes (n+1) and elems (n) receive the element ids. */
+ * local e2 direction. Node k gets extra[k] additional 6D ports, then extra3[k] 3D (force only)
+ * ports, at its centre (NULL: none) for the caller to bond (supports, loads, dampers, ties,
+ * ropes); their handles come from mech_beam_chain_port. nodes (n+1) and elems (n) receive the
+ * element ids. */
 int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
                     const double *p1, const double *up, const mech_section *sec,
-                    const double *gravity, const int *extra, int *nodes, int *elems);
-/* The j-th extra port of node k of a chain built with these extra counts. */
+                    const double *gravity, const int *extra, const int *extra3, int *nodes,
+                    int *elems);
+/* The j-th extra port of node k (the 6D ones first, then the 3D ones). */
 bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra, int k,
                               int j);
 /* Positions of the chain's nodes into bgr_y0 (after bgr_compile), orientation identity. */

@@ -31,7 +31,7 @@ static bgr_model *free_chain(int n, double L, int *nodes, int *elems)
     static const double p0[3] = {0, 0, 0}, up[3] = {0, 0.3, 1};
     double p1[3] = {L, 0.2 * L, -0.1 * L};
     bgr_model *m = bgr_model_create("free");
-    int c = mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, NULL, nodes, elems);
+    int c = mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, NULL, NULL, nodes, elems);
     if (c < 0 || bgr_compile(m) != BG_OK) {
         tap_diag("free chain: %s", bgr_model_error(m)->message);
         bgr_model_free(&m);
@@ -130,7 +130,7 @@ static double cantilever_sec(const mech_section *sec, int n, double L, double P,
     for (int k = 0; k <= n; k++)
         extra[k] = k == 0 ? 1 : k == n ? 2 : 1;
     bgr_model *m = bgr_model_create("cant");
-    int c = mech_beam_chain(m, 0, "beam", n, p0, p1, up, sec, gravity, extra, nodes, elems);
+    int c = mech_beam_chain(m, 0, "beam", n, p0, p1, up, sec, gravity, extra, NULL, nodes, elems);
     *status = -1;
     if (c < 0) {
         tap_diag("cantilever: %s", bgr_model_error(m)->message);
@@ -262,7 +262,7 @@ static void test_frequencies(void)
     const double L = 1.0, p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0}, up[3] = {0, 0, 1};
     int nodes[32], elems[32], extra[32] = {1};
     bgr_model *m = bgr_model_create("modes");
-    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, extra, nodes, elems);
+    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, extra, NULL, nodes, elems);
     int clamp = mech_support(m, 0, "clamp", 6);
     bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
              mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);
@@ -349,7 +349,7 @@ static void test_spinning(void)
     int nodes[32], elems[32], extra[32] = {1};
     bgr_model *m = bgr_model_create("spin");
     const double p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0}, z[3] = {0, 0, 1};
-    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, extra, nodes, elems);
+    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, extra, NULL, nodes, elems);
     int gnd = mech_support(m, 0, "ground", 6), hub = mech_revolute(m, 0, "hub", -1, z, 1);
     double rate = W;
     int drive = bgr_Sf(m, 0, "drive", 1, &rate);
@@ -428,7 +428,7 @@ static void test_damping(void)
     sec.beta = 2e-4;
     int nodes[16], elems[16], extra[16] = {1};
     bgr_model *m = bgr_model_create("damped");
-    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, NULL, extra, nodes, elems);
+    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, NULL, extra, NULL, nodes, elems);
     int clamp = mech_support(m, 0, "clamp", 6);
     bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
              mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);

@@ -1,0 +1,95 @@
+/* The rotary crane of shared/crane/PAPER.md as a bond-graph model: scene parameters, the builder,
+ * and the quantities the program writes.
+ *
+ * Parts (each built only if the scene asks for it): rotary platform (rigid body on a revolute
+ * joint about Z0 at A, driven through the joint's drive port), boom (a chain of co-rotational
+ * beam elements, or one rigid body when boom_elements = 0) hinged to the platform at B about the
+ * platform's y axis, suspension ties (truss) from the boom tip to a gantry top on the platform,
+ * rope (tension only) from the boom tip to the load, load and counterweight point masses, gravity,
+ * and the drive: PID -> variable-displacement pump -> closed circuit (two line volumes, leakage)
+ * -> hydraulic motor -> motor inertia -> gear -> platform, following the paper's trapezoidal
+ * reference (Eq. 8); or, without hydraulics, the platform's rotation rate prescribed as the
+ * reference itself.
+ *
+ * Units: SI (m, kg, s, N, Pa). Frames: global Z0 up; the platform frame coincides with the global
+ * one at theta = 0. */
+#ifndef CRANE_MODEL_H
+#define CRANE_MODEL_H
+
+#include <stdio.h>
+
+#include "bg_dae.h"
+#include "bgr_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct crane_scene {
+    char name[64];
+    /* gravity */
+    double g;
+    /* platform */
+    double platform_mass, platform_inertia[3]; /* principal, about its mass centre (kg m^2) */
+    double platform_com[3];                    /* mass centre in the platform frame */
+    double joint_A[3];                         /* slewing joint on the axis, global */
+    /* boom */
+    int boom_elements;           /* 0: one rigid body */
+    double boom_foot[3];         /* B in the platform frame */
+    double boom_length, boom_tip_radius; /* luffing angle from the tip's distance to the axis */
+    double boom_E, boom_G, boom_A, boom_I_luff, boom_I_side, boom_J, boom_rho, boom_beta;
+    /* ties */
+    int ties;                    /* 0 / 1 */
+    double gantry_top[3];        /* in the platform frame */
+    double tie_E, tie_A;
+    /* rope and load */
+    int rope;
+    double rope_length, rope_E, rope_A, rope_damping;
+    double load_mass;
+    /* counterweight */
+    int counterweight;
+    double cw_mass, cw_pos[3];   /* in the platform frame */
+    /* drive */
+    int hydraulics;              /* 0: the platform's rate is prescribed (reference) */
+    double pump_speed, pump_disp, pump_leak; /* rad/s, m^3/rev at x = 1, m^3/(s Pa) */
+    double motor_disp, motor_leak, motor_inertia, gear_ratio;
+    double line_volume, bulk_modulus, charge_pressure;
+    double kp, kd, ki;           /* the paper's PID (x = fraction of the pump's displacement) */
+    double x_limit;              /* |x| <= x_limit (smooth); 0: none */
+    /* reference (Eq. 8): ramp time, plateau end, stop time, plateau rate */
+    double ref_t1, ref_t2, ref_t3, ref_rate;
+    /* equilibrium */
+    int static_start;            /* 1: start from the static equilibrium under gravity */
+    /* solver and output */
+    double t_end, rtol, atol, output_step;
+} crane_scene;
+
+/* The paper scene's defaults (shared/crane/PAPER.md, with the choices stated in
+ * crane/scenes/paper.ini). */
+void crane_scene_default(crane_scene *s);
+
+typedef struct crane crane;
+
+/* Builds and compiles the model; NULL with the reason in err. */
+crane *crane_build(const crane_scene *s, bg_error *err);
+void crane_free(crane **c);
+bgr_model *crane_model(crane *c);
+/* Breakpoints of the reference in (0, t_end] (at most max), count returned. */
+int crane_breakpoints(const crane *c, double *t, int max);
+
+/* Static equilibrium under gravity at theta = 0 with the platform held: writes the settled
+ * state into the model's initial values (bgr_y0). Returns BG_OK or a status with err. */
+int crane_settle(crane *c, bg_error *err);
+
+/* The output quantities, in the order of crane_output_names. */
+#define CRANE_NOUT 20
+extern const char *const crane_output_names[CRANE_NOUT]; /* "t [s]", "theta [rad]", ... */
+void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out);
+
+/* Model statistics beside the paper's Table 2, and the counts by component. */
+int crane_stats_print(const crane *c, FILE *f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
