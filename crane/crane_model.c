@@ -1,0 +1,616 @@
+/* The rotary crane builder (see crane_model.h): the parts of a scene as bond-graph components,
+ * the static equilibrium under gravity, and the output quantities. */
+#include "crane_model.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bgr_elements.h"
+#include "ctl_pid.h"
+#include "hyd_motor.h"
+#include "hyd_pump.h"
+#include "hyd_source.h"
+#include "hyd_valve.h"
+#include "hyd_volume.h"
+#include "mech_axial.h"
+#include "mech_beam.h"
+#include "mech_body.h"
+#include "mech_parts.h"
+#include "mech_sensor.h"
+#include "mech_util.h"
+#include "rot_gear.h"
+#include "rot_inertia.h"
+#include "sensors.h"
+#include "sig_sources.h"
+
+#define MAXEL 512
+
+struct crane {
+    crane_scene s;
+    bgr_model *m;
+    int settle;      /* built for the equilibrium: drive held, extra damping */
+    int platform, slew, hinge, sensor;
+    int n, nodes[MAXEL + 1], elems[MAXEL], boom; /* beam chain, or rigid boom body */
+    int tie, rope, load, cw;
+    int ref_value, ref_rate, ref_int, pid, vol_h, vol_l, motor_acc;
+    double tip0[3], e2[3], e3[3]; /* undeformed tip, boom's transverse directions (theta = 0) */
+    double tip_r[3];              /* rigid boom: tip in its body frame */
+    double foot_r[3];             /* rigid boom: foot in its body frame */
+    /* variable ids of the outputs */
+    int v_theta, v_omega, v_theta_ref, v_omega_ref, v_alpha_ref, v_alpha, v_x, v_ph, v_pl;
+    int v_tip, v_tipq, v_load, v_plat_x, v_plat_q, v_node0;
+};
+
+void crane_scene_default(crane_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    strcpy(s->name, "paper");
+    s->g = 9.81;
+    s->platform_mass = 53e3; /* Table 1: 53, read in tonnes */
+    s->platform_inertia[0] = 3e5;
+    s->platform_inertia[1] = 3e5;
+    s->platform_inertia[2] = 4e5;
+    s->platform_com[2] = 1.0;
+    s->boom_elements = 16;
+    s->boom_foot[0] = 1.5;
+    s->boom_foot[2] = 2.5;
+    s->boom_length = 76.0;
+    s->boom_tip_radius = 12.0;
+    s->boom_E = 1.08e11;
+    s->boom_G = 4.15e10;
+    s->boom_A = 0.0443;
+    s->boom_I_luff = 0.0836;
+    s->boom_I_side = 0.0665;
+    s->boom_J = 0.0836 + 0.0665; /* equivalent lattice boom: polar of the two */
+    s->boom_rho = 7850;
+    s->ties = 1;
+    s->gantry_top[0] = -3.0;
+    s->gantry_top[2] = 12.0;
+    s->tie_E = 2.1e11;
+    s->tie_A = 0.0084;
+    s->rope = 1;
+    s->rope_length = 71.51;
+    s->rope_E = 1.0e11;
+    s->rope_A = 0.0004;
+    s->load_mass = 60.526e3;
+    s->counterweight = 1;
+    s->cw_mass = 150e3;
+    s->cw_pos[0] = -6.0;
+    s->cw_pos[2] = 1.5;
+    s->hydraulics = 1;
+    s->pump_speed = 150.0;    /* rad/s, about 1430 rpm */
+    s->pump_disp = 0.05;      /* m^3/rev at x = 1 */
+    s->pump_leak = 1e-11;
+    s->motor_disp = 5e-3;     /* m^3/rev */
+    s->motor_leak = 1e-11;
+    s->motor_inertia = 2.0;   /* kg m^2 */
+    s->gear_ratio = 300.0;
+    s->line_volume = 0.05;    /* m^3 each side */
+    s->bulk_modulus = 1.4e9;
+    s->charge_pressure = 2e6; /* Pa */
+    s->kp = 5;
+    s->kd = 50;
+    s->ki = 2;
+    s->x_limit = 0;
+    s->ref_t1 = 2;
+    s->ref_t2 = 10;
+    s->ref_t3 = 12;
+    s->ref_rate = 0.5;
+    s->static_start = 1;
+    s->t_end = 20;
+    s->rtol = 1e-6;
+    s->atol = 1e-6;
+    s->output_step = 1e-3;
+}
+
+static int fail_here(bg_error *err, const char *what, bgr_model *m)
+{
+    return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_build", "%s: %s", what,
+                          m ? bgr_model_error(m)->message : "out of memory");
+}
+
+#define TRY(x, what)                                                                             \
+    do {                                                                                         \
+        if ((x) < 0) {                                                                           \
+            fail_here(err, what, c->m);                                                          \
+            goto fail;                                                                           \
+        }                                                                                        \
+    } while (0)
+
+static void sub3(const double *a, const double *b, double *r)
+{
+    for (int i = 0; i < 3; i++)
+        r[i] = a[i] - b[i];
+}
+
+static int set_initial(crane *c);
+
+static crane *build(const crane_scene *sc, int settle, bg_error *err)
+{
+    crane *c = calloc(1, sizeof *c);
+    if (!c) {
+        bg_error_raise(err, BG_ERR_MEMORY, "crane_build", "out of memory");
+        return NULL;
+    }
+    c->s = *sc;
+    c->settle = settle;
+    const crane_scene *s = &c->s;
+    if (s->boom_elements < 0 || s->boom_elements > MAXEL) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, "crane_build", "boom_elements %d outside 0..%d",
+                       s->boom_elements, MAXEL);
+        free(c);
+        return NULL;
+    }
+    c->m = bgr_model_create("crane");
+    if (!c->m) {
+        bg_error_raise(err, BG_ERR_MEMORY, "crane_build", "out of memory");
+        free(c);
+        return NULL;
+    }
+    bgr_model *m = c->m;
+    const double g[3] = {0, 0, -s->g}, z[3] = {0, 0, 1}, yax[3] = {0, 1, 0};
+    /* geometry: boom from B to a tip at the stated radius */
+    double B[3], tip[3], d[3];
+    memcpy(B, s->boom_foot, sizeof B);
+    double dx = s->boom_tip_radius - B[0], dz2 = s->boom_length * s->boom_length - dx * dx;
+    if (!(dz2 > 0)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, "crane_build",
+                       "boom of length %g cannot reach a tip radius of %g from the foot at x = %g",
+                       s->boom_length, s->boom_tip_radius, B[0]);
+        goto fail;
+    }
+    tip[0] = s->boom_tip_radius;
+    tip[1] = B[1];
+    tip[2] = B[2] + sqrt(dz2);
+    memcpy(c->tip0, tip, sizeof tip);
+    sub3(tip, B, d);
+    for (int i = 0; i < 3; i++)
+        c->e2[i] = 0; /* e2: in the luffing plane, normal to the boom, pointing up-outwards */
+    c->e2[0] = -d[2] / s->boom_length;
+    c->e2[2] = d[0] / s->boom_length;
+    if (c->e2[2] < 0)
+        for (int i = 0; i < 3; i++)
+            c->e2[i] = -c->e2[i];
+    c->e3[1] = 1; /* out of the luffing plane */
+
+    /* platform: ports 0 slewing joint (6D), 1 boom hinge (6D), then ties (3D), counterweight */
+    {
+        double r[4 * 3];
+        int dims[4], np = 0;
+        sub3(s->joint_A, s->platform_com, r + 3 * np), dims[np++] = 6;
+        sub3(B, s->platform_com, r + 3 * np), dims[np++] = 6;
+        if (s->ties) sub3(s->gantry_top, s->platform_com, r + 3 * np), dims[np++] = 3;
+        if (s->counterweight) sub3(s->cw_pos, s->platform_com, r + 3 * np), dims[np++] = 3;
+        double J[9] = {s->platform_inertia[0], 0, 0, 0, s->platform_inertia[1], 0, 0, 0,
+                       s->platform_inertia[2]};
+        TRY(c->platform = mech_body(m, 0, "platform", s->platform_mass, J, g, np, r, dims),
+            "platform");
+    }
+    int pport = 2; /* next free platform port */
+    int ground = mech_support(m, 0, "base", 6);
+    TRY(ground, "base");
+    TRY(c->slew = mech_revolute(m, 0, "slewing_joint", -1, z, 1), "slewing joint");
+    TRY(bgr_bond(m, 0, "b_base", 6, bgr_port_of(m, ground, 0), bgr_port_of(m, c->slew, 0), NULL,
+                 NULL),
+        "bond base");
+    TRY(bgr_bond(m, 0, "b_slew", 6, bgr_port_of(m, c->slew, 1), bgr_port_of(m, c->platform, 0),
+                 NULL, NULL),
+        "bond slewing joint");
+    TRY(c->sensor = mech_rotation_sensor(m, 0, "platform_sensor", c->platform, z), "sensor");
+
+    /* boom, hinged at B about the platform's y axis */
+    TRY(c->hinge = mech_revolute(m, 0, "boom_hinge", c->platform, yax, 0), "boom hinge");
+    TRY(bgr_bond(m, 0, "b_hinge_a", 6, bgr_port_of(m, c->hinge, 0),
+                 bgr_port_of(m, c->platform, 1), NULL, NULL),
+        "bond hinge");
+    bgr_port foot, tip_ports[2];
+    int ntip = s->ties + s->rope;
+    c->n = s->boom_elements;
+    if (c->n > 0) {
+        mech_section sec = {.E = s->boom_E,
+                            .G = s->boom_G,
+                            .A = s->boom_A,
+                            .Iy = s->boom_I_side,
+                            .Iz = s->boom_I_luff,
+                            .J = s->boom_J,
+                            .rho = s->boom_rho,
+                            .beta = settle ? 0.05 : s->boom_beta};
+        int extra[MAXEL + 1] = {0}, extra3[MAXEL + 1] = {0};
+        extra[0] = 1;
+        extra3[c->n] = ntip;
+        const double up[3] = {0, 0, 1};
+        TRY(mech_beam_chain(m, 0, "boom", c->n, B, tip, up, &sec, g, extra, extra3, c->nodes,
+                            c->elems),
+            "boom");
+        foot = mech_beam_chain_port(m, c->nodes, c->n, extra, 0, 0);
+        for (int j = 0; j < ntip; j++)
+            tip_ports[j] = mech_beam_chain_port(m, c->nodes, c->n, extra, c->n, j);
+    } else { /* one rigid body */
+        double mass = s->boom_rho * s->boom_A * s->boom_length, L = s->boom_length;
+        double u[3];
+        for (int i = 0; i < 3; i++)
+            u[i] = d[i] / L;
+        /* rod about its centre: m L^2/12 across, small about the axis */
+        double Jax = s->boom_rho * (s->boom_I_luff + s->boom_I_side) * L, Jtr = mass * L * L / 12;
+        double J[9];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                J[i + 3 * k] = Jtr * ((i == k) - u[i] * u[k]) + Jax * u[i] * u[k];
+        for (int i = 0; i < 3; i++)
+            for (int k = i + 1; k < 3; k++)
+                J[k + 3 * i] = J[i + 3 * k];
+        double r[3 * 3];
+        int dims[3] = {6, 3, 3};
+        for (int i = 0; i < 3; i++) {
+            c->foot_r[i] = r[i] = -0.5 * d[i];
+            c->tip_r[i] = r[3 + i] = r[6 + i] = 0.5 * d[i];
+        }
+        TRY(c->boom = mech_body(m, 0, "boom", mass, J, g, 1 + ntip, r, dims), "rigid boom");
+        foot = bgr_port_of(m, c->boom, 0);
+        for (int j = 0; j < ntip; j++)
+            tip_ports[j] = bgr_port_of(m, c->boom, 1 + j);
+    }
+    TRY(bgr_bond(m, 0, "b_hinge_b", 6, bgr_port_of(m, c->hinge, 1), foot, NULL, NULL),
+        "bond hinge boom");
+    int tp = 0;
+    if (s->ties) {
+        double gt[3], L0;
+        memcpy(gt, s->gantry_top, sizeof gt);
+        sub3(tip, gt, d);
+        L0 = sqrt(mech_dot(d, d));
+        TRY(c->tie = mech_truss(m, 0, "ties", s->tie_E, s->tie_A, L0, settle ? 1e6 : 0), "ties");
+        TRY(bgr_bond(m, 0, "b_tie_gantry", 3, bgr_port_of(m, c->platform, pport++),
+                     bgr_port_of(m, c->tie, 0), NULL, NULL),
+            "bond tie gantry");
+        TRY(bgr_bond(m, 0, "b_tie_tip", 3, tip_ports[tp++], bgr_port_of(m, c->tie, 1), NULL, NULL),
+            "bond tie tip");
+    }
+    if (s->rope) {
+        double k = s->rope_E * s->rope_A / s->rope_length;
+        double damp = settle ? 2 * sqrt(k * s->load_mass) : s->rope_damping;
+        TRY(c->rope = mech_rope(m, 0, "rope", k, damp, s->rope_length, 0), "rope");
+        TRY(c->load = mech_point_mass(m, 0, "load", s->load_mass, g), "load");
+        TRY(bgr_bond(m, 0, "b_rope_tip", 3, tip_ports[tp++], bgr_port_of(m, c->rope, 0), NULL,
+                     NULL),
+            "bond rope tip");
+        if (settle) { /* the load swings as a 71 m pendulum: damp it to rest */
+            int j = bgr_one(m, 0, "load_node", 3, 3), r;
+            TRY(j, "load node");
+            TRY(r = bgr_R(m, 0, "load_damper", 3, 2 * s->load_mass * sqrt(s->g / s->rope_length)),
+                "load damper");
+            TRY(bgr_bond(m, 0, "b_rope_load", 3, bgr_port_of(m, c->rope, 1), bgr_port_of(m, j, 0),
+                         NULL, NULL),
+                "bond rope load");
+            TRY(bgr_bond(m, 0, "b_load", 3, bgr_port_of(m, j, 1), bgr_port_of(m, c->load, 0), NULL,
+                         NULL),
+                "bond load");
+            TRY(bgr_bond(m, 0, "b_load_damper", 3, bgr_port_of(m, j, 2), bgr_port_of(m, r, 0), NULL,
+                         NULL),
+                "bond load damper");
+        } else {
+            TRY(bgr_bond(m, 0, "b_rope_load", 3, bgr_port_of(m, c->rope, 1),
+                         bgr_port_of(m, c->load, 0), NULL, NULL),
+                "bond rope load");
+        }
+    }
+    if (s->counterweight) {
+        TRY(c->cw = mech_point_mass(m, 0, "counterweight", s->cw_mass, g), "counterweight");
+        TRY(bgr_bond(m, 0, "b_cw", 3, bgr_port_of(m, c->platform, pport++),
+                     bgr_port_of(m, c->cw, 0), NULL, NULL),
+            "bond counterweight");
+    }
+
+    /* reference (Eq. 8): value, rate, integral (not in the settling model: the platform is held) */
+    if (!settle) {
+        TRY(c->ref_value = sig_trapezoid(m, 0, "omega_ref", 0, s->ref_t1, s->ref_t2, s->ref_t3,
+                                         s->ref_rate, SIG_VALUE),
+            "reference");
+        TRY(c->ref_rate = sig_trapezoid(m, 0, "alpha_ref", 0, s->ref_t1, s->ref_t2, s->ref_t3,
+                                        s->ref_rate, SIG_RATE),
+            "reference rate");
+        TRY(c->ref_int = sig_trapezoid(m, 0, "theta_ref", 0, s->ref_t1, s->ref_t2, s->ref_t3,
+                                       s->ref_rate, SIG_INTEGRAL),
+            "reference angle");
+    }
+
+    /* drive */
+    bgr_port drive = bgr_port_of(m, c->slew, 2);
+    if (settle) {
+        double zero = 0;
+        int hold;
+        TRY(hold = bgr_Sf(m, 0, "hold", 1, &zero), "hold");
+        TRY(bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, hold, 0), drive, NULL, NULL), "bond hold");
+    } else if (!s->hydraulics) {
+        int pres;
+        TRY(pres = bgr_Sf_signal(m, 0, "prescribed_rate", (bgr_ref){BGR_OWN, c->ref_value, 0}),
+            "prescribed rate");
+        TRY(bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, pres, 0), drive, NULL, NULL),
+            "bond drive");
+    } else {
+        bgr_comp hy = bgr_component(m, 0, "hydraulics");
+        TRY(hy, "hydraulics");
+        double w = s->pump_speed;
+        int prime, pump, motor, vh, vl, tank, charge, jm, inertia, gear, acc;
+        /* motor shaft, its acceleration (the platform's through the gear) and the PID first:
+         * the pump's command refers to the PID's output */
+        TRY(jm = bgr_one(m, hy, "motor_shaft", 3, 1), "shaft");
+        TRY(inertia = rot_inertia(m, hy, "motor_inertia", s->motor_inertia), "motor inertia");
+        TRY(gear = rot_gear(m, hy, "gear", s->gear_ratio), "gear");
+        TRY(acc = rot_sensor(m, hy, "motor_acceleration", inertia, ROT_ACCELERATION), "sensor");
+        TRY(c->motor_acc = bgr_gain(m, hy, "platform_acceleration", (bgr_ref){BGR_OWN, acc, 0},
+                                    1.0 / s->gear_ratio),
+            "gain");
+        ctl_pid_spec spec = {.kp = s->kp,
+                             .ki = s->ki,
+                             .kd = s->kd,
+                             .reference = {BGR_OWN, c->ref_value, 0},
+                             .measurement = {BGR_OWN, c->sensor, 0},
+                             .use_reference_rate = 1,
+                             .reference_rate = {BGR_OWN, c->ref_rate, 0},
+                             .use_measurement_rate = 1,
+                             .measurement_rate = {BGR_OWN, c->motor_acc, 0},
+                             .limit = s->x_limit > 0,
+                             .out_min = -s->x_limit,
+                             .out_max = s->x_limit,
+                             .smoothing = 0.01 * (s->x_limit > 0 ? s->x_limit : 1)};
+        TRY(c->pid = ctl_pid(m, hy, "pid", &spec), "pid");
+        TRY(prime = bgr_Sf(m, hy, "prime_mover", 1, &w), "prime mover");
+        TRY(pump = hyd_pump(m, hy, "pump", s->pump_disp, s->pump_leak,
+                            (bgr_ref){BGR_OWN, c->pid, 0}),
+            "pump");
+        TRY(motor = hyd_motor(m, hy, "motor", s->motor_disp, s->motor_leak, 0), "motor");
+        TRY(vh = hyd_volume(m, hy, "line_high", 2, s->line_volume, s->bulk_modulus), "line");
+        TRY(vl = hyd_volume(m, hy, "line_low", 3, s->line_volume, s->bulk_modulus), "line");
+        TRY(tank = hyd_tank(m, hy, "charge_pump", s->charge_pressure), "charge");
+        TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-6), "charge valve");
+        c->vol_h = vh;
+        c->vol_l = vl;
+        const struct {
+            const char *name;
+            int a, pa, b, pb;
+        } hb[] = {{"b_prime", prime, 0, pump, 0},    {"b_pump_in", vl, 0, pump, 1},
+                  {"b_pump_out", pump, 2, vh, 0},    {"b_motor_in", vh, 1, motor, 0},
+                  {"b_motor_out", motor, 1, vl, 1},  {"b_tank", tank, 0, charge, 0},
+                  {"b_charge", charge, 1, vl, 2},    {"b_shaft", motor, 2, jm, 0},
+                  {"b_inertia", jm, 1, inertia, 0},  {"b_gear_in", jm, 2, gear, 0}};
+        for (size_t i = 0; i < sizeof hb / sizeof hb[0]; i++)
+            TRY(bgr_bond(m, hy, hb[i].name, 1, bgr_port_of(m, hb[i].a, hb[i].pa),
+                         bgr_port_of(m, hb[i].b, hb[i].pb), NULL, NULL),
+                hb[i].name);
+        TRY(bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, gear, 1), drive, NULL, NULL), "bond drive");
+    }
+    if (bgr_compile(m) != BG_OK) {
+        fail_here(err, "compile", m);
+        goto fail;
+    }
+    if (set_initial(c) != 0) {
+        fail_here(err, "initial values", m);
+        goto fail;
+    }
+    return c;
+fail:
+    crane_free(&c);
+    return NULL;
+}
+
+/* A point of a body (mass centre x, orientation q) given in its body frame, in the global frame. */
+static void body_point(const double *y, int ix, int iq, const double *r, double *p)
+{
+    double R[9], Rr[3];
+    mech_quat_R(y + iq, R, NULL);
+    mech_mv(R, r, Rr);
+    for (int i = 0; i < 3; i++)
+        p[i] = y[ix + i] + Rr[i];
+}
+
+/* Boom tip and boom foot (global) at the state y. */
+static void boom_ends(const crane *c, const double *y, double *tip, double *foot)
+{
+    if (c->n > 0) {
+        memcpy(tip, y + c->v_tip, 3 * sizeof(double));
+        memcpy(foot, y + c->v_node0, 3 * sizeof(double));
+    } else {
+        body_point(y, c->v_tip, c->v_tipq, c->tip_r, tip);
+        body_point(y, c->v_tip, c->v_tipq, c->foot_r, foot);
+    }
+}
+
+static int set_initial(crane *c)
+{
+    bgr_model *m = c->m;
+    const crane_scene *s = &c->s;
+    double *y0 = bgr_y0(m), tip[3], B[3], gantry[3], load[3];
+    memcpy(tip, c->tip0, sizeof tip);
+    memcpy(B, s->boom_foot, sizeof B);
+    memcpy(gantry, s->gantry_top, sizeof gantry);
+    if (mech_body_set(m, c->platform, s->platform_com, NULL, NULL, NULL) != BG_OK) return -1;
+    if (c->n > 0) {
+        if (mech_beam_chain_set(m, c->nodes, c->n, B, tip) != BG_OK) return -1;
+        c->v_tip = mech_body_var(m, c->nodes[c->n], 'x');
+        c->v_node0 = mech_body_var(m, c->nodes[0], 'x');
+    } else {
+        double mid[3];
+        for (int i = 0; i < 3; i++)
+            mid[i] = 0.5 * (B[i] + tip[i]);
+        if (mech_body_set(m, c->boom, mid, NULL, NULL, NULL) != BG_OK) return -1;
+        c->v_tip = mech_body_var(m, c->boom, 'x');
+        c->v_tipq = mech_body_var(m, c->boom, 'q');
+    }
+    c->v_plat_x = mech_body_var(m, c->platform, 'x');
+    c->v_plat_q = mech_body_var(m, c->platform, 'q');
+    if (s->ties && mech_axial_set(m, c->tie, gantry, tip) != BG_OK) return -1;
+    c->v_load = -1;
+    if (s->rope) {
+        memcpy(load, tip, sizeof load);
+        load[2] -= s->rope_length;
+        if (mech_axial_set(m, c->rope, tip, load) != BG_OK ||
+            mech_point_mass_set(m, c->load, load, NULL) != BG_OK)
+            return -1;
+        c->v_load = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->load, 0});
+    }
+    if (s->counterweight && mech_point_mass_set(m, c->cw, s->cw_pos, NULL) != BG_OK) return -1;
+    c->v_theta = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->sensor, 0});
+    c->v_omega = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->sensor, 0});
+    if (!c->settle) {
+        c->v_theta_ref = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->ref_int, 0});
+        c->v_omega_ref = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->ref_value, 0});
+        c->v_alpha_ref = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->ref_rate, 0});
+    }
+    c->v_x = c->v_ph = c->v_pl = c->v_alpha = -1;
+    if (s->hydraulics && !c->settle) {
+        c->v_x = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->pid, 0});
+        c->v_ph = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->vol_h, 0});
+        c->v_pl = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->vol_l, 0});
+        c->v_alpha = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->motor_acc, 0});
+        y0[c->v_ph] = y0[c->v_pl] = s->charge_pressure;
+    }
+    /* the undeformed tip at theta = 0 until crane_settle puts the static one here */
+    memcpy(c->tip0, tip, sizeof tip);
+    return 0;
+}
+
+crane *crane_build(const crane_scene *s, bg_error *err)
+{
+    return build(s, 0, err);
+}
+
+void crane_free(crane **c)
+{
+    if (!c || !*c) return;
+    bgr_model_free(&(*c)->m);
+    free(*c);
+    *c = NULL;
+}
+
+bgr_model *crane_model(crane *c)
+{
+    return c ? c->m : NULL;
+}
+
+int crane_breakpoints(const crane *c, double *t, int max)
+{
+    return bgr_breakpoints(c->m, 0.0, c->s.t_end, t, max);
+}
+
+/* Settling: the platform held (drive rate 0), extra damping in the boom, ties, rope and on the
+ * load; integrated until the motion has died out, then the states are copied by name. */
+#define SETTLE_TIME 60.0
+
+int crane_settle(crane *c, bg_error *err)
+{
+    crane *sc = build(&c->s, 1, err);
+    if (!sc) return err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
+    int status = BG_OK, n = bgr_n(sc->m);
+    dae_problem p;
+    dae_options o;
+    dae_solver *sol = NULL;
+    double *y = malloc(2 * (size_t)(n > 0 ? n : 1) * sizeof *y), *yp = y ? y + n : NULL, tret;
+    if (!y || bgr_dae_problem(sc->m, &p) != BG_OK) {
+        status = bg_error_raise(err, BG_ERR_MEMORY, "crane_settle", "out of memory");
+        goto done;
+    }
+    dae_options_default(&o);
+    o.rtol = 1e-6;
+    o.atol = 1e-6;
+    o.max_steps = 200000;
+    sol = dae_create(&p, &o, err);
+    if (!sol) {
+        status = err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
+        goto done;
+    }
+    if ((status = dae_init(sol, 0.0, bgr_y0(sc->m), bgr_yp0(sc->m))) != BG_OK ||
+        (status = dae_consistent_init(sol)) != BG_OK ||
+        (status = dae_solve_to(sol, SETTLE_TIME, &tret, y, yp)) < 0) {
+        bg_error_raise(err, status < 0 ? status : BG_ERR_ARGUMENT, "crane_settle",
+                       "static equilibrium: %s", dae_get_error(sol)->message);
+        status = status < 0 ? status : BG_ERR_ARGUMENT;
+        goto done;
+    }
+    status = BG_OK;
+    /* copy the states by name (velocities and momenta are ~0 after the damping) */
+    {
+        const int *kinds = bgr_kinds(sc->m);
+        double *y0 = bgr_y0(c->m);
+        for (int i = 0; i < n; i++) {
+            if (kinds[i] != DAE_DIFF) continue;
+            int j = bgr_find_var(c->m, bgr_var_name(sc->m, i));
+            if (j >= 0) y0[j] = y[i];
+        }
+        double foot[3];
+        boom_ends(c, y0, c->tip0, foot);
+    }
+done:
+    dae_free(&sol);
+    free(y);
+    crane_free(&sc);
+    return status;
+}
+
+const char *const crane_output_names[CRANE_NOUT] = {
+    "t [s]",           "theta [rad]",        "theta_ref [rad]",  "omega [rad/s]",
+    "omega_ref [rad/s]", "alpha [rad/s^2]",  "alpha_ref [rad/s^2]", "tip_x [m]",
+    "tip_y [m]",       "tip_z [m]",          "defl_luff [m]",    "defl_side [m]",
+    "load_x [m]",      "load_y [m]",         "load_z [m]",       "rope_tension [N]",
+    "pump_x [-]",      "p_high [Pa]",        "p_low [Pa]",       "hinge_drift [m]"};
+
+void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out)
+{
+    const crane_scene *s = &c->s;
+    double tip[3], foot[3], hinge[3];
+    out[0] = t;
+    out[1] = y[c->v_theta];
+    out[2] = y[c->v_theta_ref];
+    out[3] = y[c->v_omega];
+    out[4] = y[c->v_omega_ref];
+    out[5] = c->v_alpha >= 0 ? y[c->v_alpha] : yp[c->v_omega];
+    out[6] = y[c->v_alpha_ref];
+    boom_ends(c, y, tip, foot);
+    memcpy(out + 7, tip, sizeof tip);
+    /* deflection: the tip against the static tip carried round by the platform's angle */
+    double th = y[c->v_theta], cs = cos(th), sn = sin(th), r[3], e2[3], e3[3], d[3];
+    const double *A = s->joint_A;
+    r[0] = A[0] + cs * (c->tip0[0] - A[0]) - sn * (c->tip0[1] - A[1]);
+    r[1] = A[1] + sn * (c->tip0[0] - A[0]) + cs * (c->tip0[1] - A[1]);
+    r[2] = c->tip0[2];
+    e2[0] = cs * c->e2[0] - sn * c->e2[1];
+    e2[1] = sn * c->e2[0] + cs * c->e2[1];
+    e2[2] = c->e2[2];
+    e3[0] = cs * c->e3[0] - sn * c->e3[1];
+    e3[1] = sn * c->e3[0] + cs * c->e3[1];
+    e3[2] = c->e3[2];
+    sub3(tip, r, d);
+    out[10] = mech_dot(d, e2);
+    out[11] = mech_dot(d, e3);
+    for (int i = 0; i < 3; i++)
+        out[12 + i] = c->v_load >= 0 ? y[c->v_load + i] : NAN;
+    out[15] = s->rope ? mech_axial_tension(c->m, c->rope, y) : NAN;
+    out[16] = c->v_x >= 0 ? y[c->v_x] : NAN;
+    out[17] = c->v_ph >= 0 ? y[c->v_ph] : NAN;
+    out[18] = c->v_pl >= 0 ? y[c->v_pl] : NAN;
+    /* the hinge's position mismatch: B on the platform against the boom's foot */
+    double rB[3];
+    sub3(s->boom_foot, s->platform_com, rB);
+    body_point(y, c->v_plat_x, c->v_plat_q, rB, hinge);
+    sub3(hinge, foot, d);
+    out[19] = sqrt(mech_dot(d, d));
+}
+
+int crane_stats_print(const crane *c, FILE *f)
+{
+    bgr_stats st;
+    int rc = bgr_get_stats(c->m, &st);
+    if (rc != BG_OK) return rc;
+    fprintf(f, "%-34s %10s %10s\n", "model statistics", "this", "paper");
+    fprintf(f, "%-34s %10d %10d\n", "equations (= unknowns)", st.equations, 3544);
+    fprintf(f, "%-34s %10d %10d\n", "partial derivative matrix nnz", st.nnz_dy, 11303);
+    fprintf(f, "%-34s %10d %10d\n", "time-rate matrix nnz", st.nnz_dyp, 438);
+    fprintf(f, "%-34s %10d\n", "differential", st.differential);
+    fprintf(f, "%-34s %10d\n", "algebraic (index 1)", st.algebraic);
+    fprintf(f, "%-34s %10d\n", "algebraic (index 2)", st.index2);
+    fprintf(f, "%-34s %10d\n", "elements", st.elements);
+    fprintf(f, "%-34s %10d\n", "bonds", st.bonds);
+    fprintf(f, "%-34s %10d\n", "components", st.components);
+    fprintf(f, "%-34s %10d\n", "boom beam elements", c->n);
+    return BG_OK;
+}
