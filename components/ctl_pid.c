@@ -10,13 +10,15 @@
 typedef struct pid {
     ctl_pid_spec sp;
     int I, u, r, y, rd, yd; /* variable ids (rd, yd: -1 when absent) */
+    int z;                  /* filter state, -1 without a derivative filter */
 } pid;
 
 static int pid_declare(bgr_element *el, bgr_model *m)
 {
-    static const char *const lab[2] = {"integral", "output"};
+    static const char *const lab[3] = {"integral", "output", "filter"};
     pid *q = el->params;
     q->I = bgr_sv(el, 0);
+    q->z = q->sp.derivative_filter > 0 ? bgr_sv(el, 1) : -1;
     q->u = bgr_av(el, 0);
     q->r = bgr_ref_var(m, q->sp.reference);
     q->y = bgr_ref_var(m, q->sp.measurement);
@@ -30,7 +32,7 @@ static int pid_declare(bgr_element *el, bgr_model *m)
                               : q->y < 0                              ? "measurement"
                               : q->sp.use_reference_rate && q->rd < 0 ? "reference rate"
                                                                       : "measurement rate");
-    int st = bgr_declare_equations(el, m, 2, lab);
+    int st = bgr_declare_equations(el, m, q->z >= 0 ? 3 : 2, lab);
     if (st) return st;
     CMP_DEP(el, m, 0, q->I, 1);
     CMP_DEP(el, m, 0, q->r, 0);
@@ -41,6 +43,12 @@ static int pid_declare(bgr_element *el, bgr_model *m)
     CMP_DEP(el, m, 1, q->I, 0);
     if (q->rd >= 0 && q->sp.kd != 0) CMP_DEP(el, m, 1, q->rd, 0);
     if (q->yd >= 0 && q->sp.kd != 0) CMP_DEP(el, m, 1, q->yd, 0);
+    if (q->z >= 0) {
+        CMP_DEP(el, m, 1, q->z, 0);
+        CMP_DEP(el, m, 2, q->z, 1);
+        CMP_DEP(el, m, 2, q->y, 0);
+        CMP_DEP(el, m, 2, q->z, 0);
+    }
     return BG_OK;
 }
 
@@ -50,7 +58,10 @@ static double pid_law(const pid *q, const double *y, double *g)
     const ctl_pid_spec *s = &q->sp;
     double err = y[q->r] - y[q->y], v = s->kp * err + s->ki * y[q->I];
     if (s->kd != 0) {
-        double rate = (q->rd >= 0 ? y[q->rd] : 0.0) - (q->yd >= 0 ? y[q->yd] : 0.0);
+        double ydot = q->z >= 0 ? (y[q->y] - y[q->z]) / s->derivative_filter
+                      : q->yd >= 0 ? y[q->yd]
+                                   : 0.0;
+        double rate = (q->rd >= 0 ? y[q->rd] : 0.0) - ydot;
         v += s->kd * rate;
     }
     if (!s->limit) {
@@ -68,6 +79,7 @@ static int pid_residual(const bgr_element *el, double t, const double *y, const 
     double g;
     F[0] = yp[q->I] - (y[q->r] - y[q->y]);
     F[1] = y[q->u] - pid_law(q, y, &g);
+    if (q->z >= 0) F[2] = yp[q->z] - (y[q->y] - y[q->z]) / q->sp.derivative_filter;
     return 0;
 }
 
@@ -84,11 +96,20 @@ static int pid_jacobian(const bgr_element *el, double t, const double *y, const 
     v[n++] = -1.0;
     v[n++] = 1.0;
     v[n++] = 1.0;
+    /* filtered: y enters the output through kp and through kd (y - z) / tau */
+    double dy = q->z >= 0 ? s->kp + s->kd / s->derivative_filter : s->kp;
     v[n++] = -g * s->kp;
-    v[n++] = g * s->kp;
+    v[n++] = g * dy;
     v[n++] = -g * s->ki;
     if (q->rd >= 0 && s->kd != 0) v[n++] = -g * s->kd;
     if (q->yd >= 0 && s->kd != 0) v[n++] = g * s->kd;
+    if (q->z >= 0) {
+        double tau = s->derivative_filter;
+        v[n++] = -g * s->kd / tau;
+        v[n++] = 1.0;
+        v[n++] = -1.0 / tau;
+        v[n++] = 1.0 / tau;
+    }
     return 0;
 }
 
@@ -105,6 +126,13 @@ static void pid_describe(const bgr_element *el, const bgr_model *m, int k, char 
     const char *r = vname(m, q->r, "r"), *y = vname(m, q->y, "y"), *I = vname(m, q->I, "I");
     if (k == 0)
         snprintf(buf, n, "%s' = %s - %s", I, r, y);
+    else if (k == 2)
+        snprintf(buf, n, "%s' = (%s - %s) / %g", vname(m, q->z, "z"), y, vname(m, q->z, "z"),
+                 s->derivative_filter);
+    else if (q->z >= 0)
+        snprintf(buf, n, "%s = %s(%g * (%s - %s) + %g * (%s - (%s - %s) / %g) + %g * %s)",
+                 vname(m, q->u, "u"), s->limit ? "sat" : "", s->kp, r, y, s->kd,
+                 vname(m, q->rd, "0"), y, vname(m, q->z, "z"), s->derivative_filter, s->ki, I);
     else
         snprintf(buf, n, "%s = %s(%g * (%s - %s) + %g * (%s - %s) + %g * %s)", vname(m, q->u, "u"),
                  s->limit ? "sat" : "", s->kp, r, y, s->kd, vname(m, q->rd, "0"),
@@ -127,10 +155,19 @@ int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec
     if (!isfinite(spec->kp) || !isfinite(spec->ki) || !isfinite(spec->kd))
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
                               "controller %s: gains must be finite", nm);
-    if (spec->kd != 0 && !spec->use_measurement_rate)
+    if (!(spec->derivative_filter >= 0) || !isfinite(spec->derivative_filter))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
+                              "controller %s: derivative_filter must be finite and >= 0 (got %g)",
+                              nm, spec->derivative_filter);
+    if (spec->derivative_filter > 0 && spec->use_measurement_rate)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
+                              "controller %s: give the measured rate or a derivative filter, not "
+                              "both",
+                              nm);
+    if (spec->kd != 0 && !spec->use_measurement_rate && !(spec->derivative_filter > 0))
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
                               "controller %s: Kd = %g needs the measured rate (e.g. a rot_sensor "
-                              "of the acceleration)",
+                              "of the acceleration) or a derivative filter",
                               nm, spec->kd);
     if (spec->limit &&
         (!isfinite(spec->out_min) || !isfinite(spec->out_max) || !(spec->out_max > spec->out_min) ||
@@ -143,6 +180,7 @@ int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec
     if (!q)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "ctl_pid", "out of memory");
     q->sp = *spec;
-    static const char *const sn[1] = {"integral"}, *const an[1] = {"out"};
-    return bgr_element_add(m, c, name, &ctl_class_pid, q, 0, NULL, 1, sn, 1, an);
+    static const char *const sn[2] = {"integral", "filter"}, *const an[1] = {"out"};
+    return bgr_element_add(m, c, name, &ctl_class_pid, q, 0, NULL,
+                           spec->derivative_filter > 0 ? 2 : 1, sn, 1, an);
 }

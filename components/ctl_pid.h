@@ -21,6 +21,15 @@
  * (cmp_internal.h derives the bound). Without r' (use_reference_rate = 0) the reference is taken
  * constant (r' = 0), i.e. the derivative acts on the measurement only. No anti-windup: the
  * integral keeps growing while the output is limited.
+ * Derivative filter (derivative_filter = tau > 0): the measured rate is not read from a signal
+ * but estimated by a first-order filter of the measurement, the usual practical PID form
+ * Kd s / (1 + tau s) on y (K. J. Astrom, T. Hagglund, PID Controllers: Theory, Design and Tuning,
+ * ISA 1995, the derivative term with limited high-frequency gain). A second state z ("filter",
+ * {BGR_STATE, id, 1}; start it at the measurement's initial value) with
+ *   z' = (y - z) / tau                                                  ("filter")
+ * and y' replaced by (y - z) / tau in the output. Use it when the measured acceleration would be
+ * an index-2 quantity (a constraint reaction over an inertia): the output then depends on states
+ * only, and the error control sees no index-2 noise through it.
  * Note: with Kd != 0 and r' given, the output jumps where r' jumps (the corners of the
  * trapezoidal reference): those times are the reference's breakpoints, where the integrator
  * must restart from the right limits (see the note in sig_sources.h). */
@@ -39,8 +48,9 @@ typedef struct ctl_pid_spec {
     bgr_ref measurement;    /* y */
     int use_reference_rate; /* 1: reference_rate holds r'; 0: r' = 0 */
     bgr_ref reference_rate;
-    int use_measurement_rate; /* 1: measurement_rate holds y'; required when kd != 0 */
+    int use_measurement_rate; /* 1: measurement_rate holds y'; kd != 0 needs it or a filter */
     bgr_ref measurement_rate;
+    double derivative_filter; /* tau > 0: y' estimated by the filter (y - z) / tau; 0: none */
     int limit; /* 1: smooth limits [out_min, out_max] of width smoothing > 0 */
     double out_min, out_max, smoothing;
 } ctl_pid_spec;

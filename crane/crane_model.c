@@ -92,6 +92,7 @@ void crane_scene_default(crane_scene *s)
     s->kp = 5;
     s->kd = 50;
     s->ki = 2;
+    s->kd_filter = 0.01;
     s->x_limit = 0;
     s->ref_t1 = 2;
     s->ref_t2 = 10;
@@ -337,10 +338,6 @@ static crane *build(const crane_scene *sc, int settle, bg_error *err)
         TRY(jm = bgr_one(m, hy, "motor_shaft", 3, 1), "shaft");
         TRY(inertia = rot_inertia(m, hy, "motor_inertia", s->motor_inertia), "motor inertia");
         TRY(gear = rot_gear(m, hy, "gear", s->gear_ratio), "gear");
-        TRY(acc = rot_sensor(m, hy, "motor_acceleration", inertia, ROT_ACCELERATION), "sensor");
-        TRY(c->motor_acc = bgr_gain(m, hy, "platform_acceleration", (bgr_ref){BGR_OWN, acc, 0},
-                                    1.0 / s->gear_ratio),
-            "gain");
         ctl_pid_spec spec = {.kp = s->kp,
                              .ki = s->ki,
                              .kd = s->kd,
@@ -348,12 +345,21 @@ static crane *build(const crane_scene *sc, int settle, bg_error *err)
                              .measurement = {BGR_OWN, c->sensor, 0},
                              .use_reference_rate = 1,
                              .reference_rate = {BGR_OWN, c->ref_rate, 0},
-                             .use_measurement_rate = 1,
-                             .measurement_rate = {BGR_OWN, c->motor_acc, 0},
+                             .derivative_filter = s->kd_filter,
                              .limit = s->x_limit > 0,
                              .out_min = -s->x_limit,
                              .out_max = s->x_limit,
                              .smoothing = 0.01 * (s->x_limit > 0 ? s->x_limit : 1)};
+        c->motor_acc = -1;
+        if (s->kd_filter == 0) { /* the measured acceleration: the motor's, through the gear */
+            TRY(acc = rot_sensor(m, hy, "motor_acceleration", inertia, ROT_ACCELERATION),
+                "sensor");
+            TRY(c->motor_acc = bgr_gain(m, hy, "platform_acceleration",
+                                        (bgr_ref){BGR_OWN, acc, 0}, 1.0 / s->gear_ratio),
+                "gain");
+            spec.use_measurement_rate = 1;
+            spec.measurement_rate = (bgr_ref){BGR_OWN, c->motor_acc, 0};
+        }
         TRY(c->pid = ctl_pid(m, hy, "pid", &spec), "pid");
         TRY(prime = bgr_Sf(m, hy, "prime_mover", 1, &w), "prime mover");
         TRY(pump = hyd_pump(m, hy, "pump", s->pump_disp, s->pump_leak,
@@ -363,7 +369,7 @@ static crane *build(const crane_scene *sc, int settle, bg_error *err)
         TRY(vh = hyd_volume(m, hy, "line_high", 2, s->line_volume, s->bulk_modulus), "line");
         TRY(vl = hyd_volume(m, hy, "line_low", 3, s->line_volume, s->bulk_modulus), "line");
         TRY(tank = hyd_tank(m, hy, "charge_pump", s->charge_pressure), "charge");
-        TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-6), "charge valve");
+        TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-9), "charge valve");
         c->vol_h = vh;
         c->vol_l = vl;
         const struct {
@@ -462,7 +468,7 @@ static int set_initial(crane *c)
         c->v_x = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->pid, 0});
         c->v_ph = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->vol_h, 0});
         c->v_pl = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->vol_l, 0});
-        c->v_alpha = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->motor_acc, 0});
+        if (c->motor_acc >= 0) c->v_alpha = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->motor_acc, 0});
         y0[c->v_ph] = y0[c->v_pl] = s->charge_pressure;
     }
     /* the undeformed tip at theta = 0 until crane_settle puts the static one here */
@@ -513,7 +519,8 @@ int crane_settle(crane *c, bg_error *err)
     dae_options_default(&o);
     o.rtol = 1e-6;
     o.atol = 1e-6;
-    o.max_steps = 200000;
+    o.exclude_alg = 1;
+    o.max_steps = 1000000;
     sol = dae_create(&p, &o, err);
     if (!sol) {
         status = err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;

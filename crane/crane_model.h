@@ -55,6 +55,9 @@ typedef struct crane_scene {
     double motor_disp, motor_leak, motor_inertia, gear_ratio;
     double line_volume, bulk_modulus, charge_pressure;
     double kp, kd, ki;           /* the paper's PID (x = fraction of the pump's displacement) */
+    double kd_filter;            /* s; > 0: the derivative term acts on a filtered rate
+                                  * (ctl_pid derivative_filter); 0: on the measured acceleration
+                                  * (the paper's law, an index-2 quantity) */
     double x_limit;              /* |x| <= x_limit (smooth); 0: none */
     /* reference (Eq. 8): ramp time, plateau end, stop time, plateau rate */
     double ref_t1, ref_t2, ref_t3, ref_rate;

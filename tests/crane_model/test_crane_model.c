@@ -1,0 +1,315 @@
+/* The crane model against statics, kinematics and the hydraulic flow balance:
+ *   - a boom that cannot reach its tip radius is refused with a message;
+ *   - static equilibrium (rigid boom): rope tension = load weight, the load hangs under the tip,
+ *     the ties' tension from their stretch balances the moments about the boom hinge;
+ *   - static equilibrium (beam boom): rope tension = load weight;
+ *   - analytic derivatives of the whole crane against central differences;
+ *   - prescribed rate: the platform's angle follows the integral of the trapezoid (Eq. 8);
+ *   - hydraulic drive: pump flow = motor flow + leakage + compression of the high-pressure line,
+ *     and the rate tracks the reference on the plateau. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "crane_model.h"
+#include "tap.h"
+
+static const double PI = 3.14159265358979323846;
+
+/* the paper's tolerances */
+#define RTOL 1e-6
+
+enum { O_T, O_TH, O_THR, O_W, O_WR, O_A, O_AR, O_TIP, O_DL = 10, O_DS, O_LOAD, O_TEN = 15, O_X,
+       O_PH, O_PL, O_DRIFT };
+
+typedef struct run {
+    crane *c;
+    dae_solver *s;
+    int n;
+    double *y, *yp, out[CRANE_NOUT];
+} run;
+
+static int start_tol(run *r, const crane_scene *sc, int settle, double tol)
+{
+    bg_error err = {0};
+    memset(r, 0, sizeof *r);
+    r->c = crane_build(sc, &err);
+    if (!r->c) {
+        tap_diag("build: %s", err.message);
+        return -1;
+    }
+    if (settle && crane_settle(r->c, &err) != BG_OK) {
+        tap_diag("settle: %s", err.message);
+        return -1;
+    }
+    bgr_model *m = crane_model(r->c);
+    static double bp[32];
+    dae_problem p;
+    dae_options o;
+    bgr_dae_problem(m, &p);
+    dae_options_default(&o);
+    o.rtol = tol;
+    o.atol = tol;
+    o.exclude_alg = 1; /* as the crane program: forces follow the states they are functions of */
+    o.max_steps = 1000000;
+    o.nbreakpoints = crane_breakpoints(r->c, bp, 32);
+    o.breakpoints = bp;
+    r->n = bgr_n(m);
+    r->y = calloc(2 * (size_t)r->n, sizeof(double));
+    r->yp = r->y + r->n;
+    r->s = dae_create(&p, &o, &err);
+    if (!r->s) {
+        tap_diag("create: %s", err.message);
+        return -1;
+    }
+    if (dae_init(r->s, 0, bgr_y0(m), bgr_yp0(m)) != BG_OK || dae_consistent_init(r->s) != BG_OK) {
+        tap_diag("init: %s", dae_get_error(r->s)->message);
+        return -1;
+    }
+    memcpy(r->y, bgr_y0(m), (size_t)r->n * sizeof(double));
+    crane_outputs(r->c, 0, r->y, r->yp, r->out);
+    return 0;
+}
+
+static int start(run *r, const crane_scene *sc, int settle)
+{
+    return start_tol(r, sc, settle, RTOL);
+}
+
+static int advance(run *r, double t)
+{
+    double tr;
+    int rc = dae_solve_to(r->s, t, &tr, r->y, r->yp);
+    if (rc < 0) {
+        tap_diag("t = %g: %s", t, dae_get_error(r->s)->message);
+        return -1;
+    }
+    crane_outputs(r->c, tr, r->y, r->yp, r->out);
+    return 0;
+}
+
+/* Steps (no interpolation) until t is passed: y, y' of an accepted step satisfy the equations to
+ * the Newton tolerance. */
+static int step_past(run *r, double t)
+{
+    double tr = 0;
+    while (tr < t) {
+        if (dae_step(r->s, 2 * t, &tr, r->y, r->yp) < 0) {
+            tap_diag("step: %s", dae_get_error(r->s)->message);
+            return -1;
+        }
+    }
+    crane_outputs(r->c, tr, r->y, r->yp, r->out);
+    return 0;
+}
+
+static void finish(run *r)
+{
+    dae_free(&r->s);
+    free(r->y);
+    crane_free(&r->c);
+}
+
+static void rigid_scene(crane_scene *s)
+{
+    crane_scene_default(s);
+    s->boom_elements = 0;
+}
+
+static void test_unreachable(void)
+{
+    crane_scene s;
+    bg_error err = {0};
+    crane_scene_default(&s);
+    s.boom_length = 5;
+    crane *c = crane_build(&s, &err);
+    tap_ok(c == NULL && strstr(err.message, "cannot reach") != NULL,
+           "a boom too short for its tip radius is refused (%s)", err.message);
+    crane_free(&c);
+}
+
+/* y-component of (r x F) */
+static double moment_y(const double *r, const double *F)
+{
+    return r[2] * F[0] - r[0] * F[2];
+}
+
+static void test_statics_rigid(void)
+{
+    crane_scene s;
+    run r;
+    rigid_scene(&s);
+    s.hydraulics = 0;
+    if (start(&r, &s, 1) != 0) {
+        tap_ok(0, "rigid crane settles");
+        finish(&r);
+        return;
+    }
+    const double *o = r.out, W = s.load_mass * s.g;
+    tap_close(o[O_TEN], W, 1e-6, 0, "rigid boom at rest: rope tension %.6g N = load weight",
+              o[O_TEN]);
+    tap_ok(fabs(o[O_LOAD] - o[O_TIP]) < 1e-6 && fabs(o[O_LOAD + 1] - o[O_TIP + 1]) < 1e-6,
+           "the load hangs under the tip (dx %.2e, dy %.2e m)", o[O_LOAD] - o[O_TIP],
+           o[O_LOAD + 1] - o[O_TIP + 1]);
+    /* moments about the hinge B of boom weight (at the middle), rope and ties (at the tip) */
+    double rt[3], rm[3], u[3], L = 0, L0 = 0, Fw[3] = {0, 0, 0}, Fr[3] = {0, 0, -W};
+    double d0[3];
+    Fw[2] = -s.boom_rho * s.boom_A * s.boom_length * s.g;
+    double tip0[3] = {s.boom_tip_radius, s.boom_foot[1], 0};
+    tip0[2] = s.boom_foot[2] + sqrt(s.boom_length * s.boom_length -
+                                     pow(s.boom_tip_radius - s.boom_foot[0], 2));
+    for (int i = 0; i < 3; i++) {
+        rt[i] = o[O_TIP + i] - s.boom_foot[i];
+        rm[i] = 0.5 * rt[i];
+        u[i] = s.gantry_top[i] - o[O_TIP + i];
+        d0[i] = s.gantry_top[i] - tip0[i];
+        L += u[i] * u[i];
+        L0 += d0[i] * d0[i];
+    }
+    L = sqrt(L);
+    L0 = sqrt(L0);
+    for (int i = 0; i < 3; i++)
+        u[i] /= L;
+    double T_stretch = s.tie_E * s.tie_A * (L - L0) / L0;
+    double T_statics = -(moment_y(rm, Fw) + moment_y(rt, Fr)) / moment_y(rt, u);
+    tap_close(T_stretch, T_statics, 1e-5, 0,
+              "ties: tension from the stretch %.6g N balances the moments about B (%.6g N)",
+              T_stretch, T_statics);
+    tap_ok(o[O_DRIFT] < RTOL * s.boom_length,
+           "velocity-level hinge: position mismatch after settling %.2e m < rtol x boom length",
+           o[O_DRIFT]);
+    finish(&r);
+}
+
+static void test_statics_beam(void)
+{
+    crane_scene s;
+    run r;
+    crane_scene_default(&s);
+    s.boom_elements = 4;
+    s.hydraulics = 0;
+    if (start(&r, &s, 1) != 0) {
+        tap_ok(0, "beam crane settles");
+        finish(&r);
+        return;
+    }
+    tap_close(r.out[O_TEN], s.load_mass * s.g, 1e-6, 0,
+              "beam boom at rest: rope tension %.6g N = load weight", r.out[O_TEN]);
+    tap_ok(fabs(r.out[O_DL]) < 1e-12 && fabs(r.out[O_DS]) < 1e-12,
+           "deflections are measured from the static tip (%.1e, %.1e)", r.out[O_DL], r.out[O_DS]);
+    finish(&r);
+}
+
+static void test_jacobian(void)
+{
+    crane_scene s;
+    bg_error err = {0};
+    crane_scene_default(&s);
+    s.boom_elements = 3;
+    crane *c = crane_build(&s, &err);
+    if (!c || crane_settle(c, &err) != BG_OK) { /* settled: the rope away from its slack kink */
+        tap_ok(0, "build and settle: %s", err.message);
+        crane_free(&c);
+        return;
+    }
+    bgr_model *m = crane_model(c);
+    int n = bgr_n(m);
+    double *y = malloc(2 * (size_t)n * sizeof(double)), *yp = y + n;
+    tap_rng g = tap_rng_seed(7);
+    memcpy(y, bgr_y0(m), (size_t)n * sizeof(double));
+    for (int i = 0; i < n; i++) {
+        y[i] *= 1 + 1e-3 * (tap_rng_unif(&g) - 0.5);
+        y[i] += 1e-3 * (tap_rng_unif(&g) - 0.5);
+        yp[i] = 1e-2 * (tap_rng_unif(&g) - 0.5);
+    }
+    char rep[512] = "";
+    /* tolerance: forces of 1e6 N differenced over steps of 1e-8 m carry round-off of 1e-2 N
+     * against cross terms of 10..100; a wrong derivative is off by O(1) */
+    int bad = bgr_check_jacobian(m, 1.0, y, yp, 1e-3, rep, sizeof rep);
+    tap_ok(bad == 0, "crane (3 beam elements, hydraulics, filtered PID): analytic Jacobian = central "
+                     "differences (%d mismatches) %s", bad, bad ? rep : "");
+    free(y);
+    crane_free(&c);
+}
+
+static void test_prescribed(void)
+{
+    crane_scene s;
+    run r;
+    rigid_scene(&s);
+    s.hydraulics = 0;
+    s.rope = 0;
+    if (start(&r, &s, 0) != 0) {
+        tap_ok(0, "prescribed-rate crane starts");
+        finish(&r);
+        return;
+    }
+    const double a = s.ref_rate / s.ref_t1;
+    const double t[3] = {1.0, 2.0, 3.0};
+    for (int k = 0; k < 3; k++) {
+        if (advance(&r, t[k]) != 0) break;
+        double want = t[k] <= s.ref_t1 ? 0.5 * a * t[k] * t[k]
+                                       : 0.5 * a * s.ref_t1 * s.ref_t1 +
+                                             s.ref_rate * (t[k] - s.ref_t1);
+        tap_close(r.out[O_TH], want, 1e-6, 1e-9,
+                  "prescribed rate: theta(%g) = %.9g, integral of the trapezoid %.9g", t[k],
+                  r.out[O_TH], want);
+    }
+    tap_close(r.out[O_W], s.ref_rate, 1e-7, 0, "plateau rate %.9g rad/s", r.out[O_W]);
+    double drift6 = r.out[O_DRIFT];
+    finish(&r);
+    /* the joints hold at velocity level: the hinge's position mismatch is integration error and
+     * must vanish with the tolerance */
+    if (start_tol(&r, &s, 0, 1e-2 * RTOL) != 0 || advance(&r, 3.0) != 0) {
+        tap_ok(0, "prescribed rate at rtol %g", 1e-2 * RTOL);
+        finish(&r);
+        return;
+    }
+    tap_ok(r.out[O_DRIFT] < 0.1 * drift6 && drift6 < RTOL * s.boom_length,
+           "hinge position mismatch after 3 s: %.2e m at rtol %g, %.2e m at rtol %g", drift6,
+           RTOL, r.out[O_DRIFT], 1e-2 * RTOL);
+    finish(&r);
+}
+
+static void test_hydraulic_balance(void)
+{
+    crane_scene s;
+    run r;
+    rigid_scene(&s);
+    if (start(&r, &s, 1) != 0) {
+        tap_ok(0, "hydraulic crane starts");
+        finish(&r);
+        return;
+    }
+    bgr_model *m = crane_model(r.c);
+    int iph = bgr_find_var(m, "crane/hydraulics/line_high/p");
+    int iw = bgr_find_var(m, "crane/hydraulics/motor_inertia/p");
+    tap_ok(iph >= 0 && iw >= 0, "line and motor states are found by name");
+    if (iph < 0 || iw < 0 || step_past(&r, 6.0) != 0) {
+        finish(&r);
+        return;
+    }
+    double dp = r.out[O_PH] - r.out[O_PL], wm = r.y[iw] / s.motor_inertia;
+    double qp = r.out[O_X] * s.pump_disp * s.pump_speed / (2 * PI) - s.pump_leak * dp;
+    double qm = s.motor_disp * wm / (2 * PI) + s.motor_leak * dp;
+    double qc = s.line_volume / s.bulk_modulus * r.yp[iph];
+    tap_close(qp, qm + qc, 1e-6, 0,
+              "high-pressure line at %.4f s: pump flow %.6g = motor flow %.6g + compression %.3g "
+              "m^3/s", r.out[O_T], qp, qm, qc);
+    tap_close(wm, s.gear_ratio * r.out[O_W], 1e-9, 0,
+              "motor speed %.6g rad/s = gear ratio x platform rate", wm);
+    tap_close(r.out[O_W], s.ref_rate, 2e-2, 0, "plateau: rate %.5g tracks the reference %.5g",
+              r.out[O_W], s.ref_rate);
+    finish(&r);
+}
+
+int main(void)
+{
+    test_unreachable();
+    test_statics_rigid();
+    test_statics_beam();
+    test_jacobian();
+    test_prescribed();
+    test_hydraulic_balance();
+    return tap_done();
+}
