@@ -33,6 +33,7 @@ struct crane {
     int platform, slew, hinge, sensor;
     int n, nodes[MAXEL + 1], elems[MAXEL], boom; /* beam chain, or rigid boom body */
     int tie, rope, load, cw;
+    double tie_L0;   /* unstretched tie length */
     int ref_value, ref_rate, ref_int, pid, vol_h, vol_l, motor_acc;
     double tip0[3], e2[3], e3[3]; /* undeformed tip, boom's transverse directions (theta = 0) */
     double tip_r[3];              /* rigid boom: tip in its body frame */
@@ -127,7 +128,7 @@ static void sub3(const double *a, const double *b, double *r)
 
 static int set_initial(crane *c);
 
-static crane *build(const crane_scene *sc, int settle, bg_error *err)
+static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *err)
 {
     crane *c = calloc(1, sizeof *c);
     if (!c) {
@@ -259,7 +260,8 @@ static crane *build(const crane_scene *sc, int settle, bg_error *err)
         double gt[3], L0;
         memcpy(gt, s->gantry_top, sizeof gt);
         sub3(tip, gt, d);
-        L0 = sqrt(mech_dot(d, d));
+        L0 = tie_L0 > 0 ? tie_L0 : sqrt(mech_dot(d, d));
+        c->tie_L0 = L0;
         TRY(c->tie = mech_truss(m, 0, "ties", s->tie_E, s->tie_A, L0, settle ? 1e6 : 0), "ties");
         TRY(bgr_bond(m, 0, "b_tie_gantry", 3, bgr_port_of(m, c->platform, pport++),
                      bgr_port_of(m, c->tie, 0), NULL, NULL),
@@ -478,7 +480,7 @@ static int set_initial(crane *c)
 
 crane *crane_build(const crane_scene *s, bg_error *err)
 {
-    return build(s, 0, err);
+    return build(s, 0, 0.0, err);
 }
 
 void crane_free(crane **c)
@@ -494,27 +496,31 @@ bgr_model *crane_model(crane *c)
     return c ? c->m : NULL;
 }
 
+double crane_tie_length(const crane *c)
+{
+    return c->s.ties ? c->tie_L0 : 0.0;
+}
+
 int crane_breakpoints(const crane *c, double *t, int max)
 {
     return bgr_breakpoints(c->m, 0.0, c->s.t_end, t, max);
 }
 
 /* Settling: the platform held (drive rate 0), extra damping in the boom, ties, rope and on the
- * load; integrated until the motion has died out, then the states are copied by name. */
+ * load; integrated until the motion has died out. */
 #define SETTLE_TIME 60.0
 
-int crane_settle(crane *c, bg_error *err)
+/* Settles the model sc; y receives its final state (bgr_n(sc->m) values). */
+static int settle_run(crane *sc, double *y, bg_error *err)
 {
-    crane *sc = build(&c->s, 1, err);
-    if (!sc) return err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
-    int status = BG_OK, n = bgr_n(sc->m);
+    int n = bgr_n(sc->m), status;
+    double *yp = malloc((size_t)(n > 0 ? n : 1) * sizeof *yp), tret;
     dae_problem p;
     dae_options o;
     dae_solver *sol = NULL;
-    double *y = malloc(2 * (size_t)(n > 0 ? n : 1) * sizeof *y), *yp = y ? y + n : NULL, tret;
-    if (!y || bgr_dae_problem(sc->m, &p) != BG_OK) {
-        status = bg_error_raise(err, BG_ERR_MEMORY, "crane_settle", "out of memory");
-        goto done;
+    if (!yp || bgr_dae_problem(sc->m, &p) != BG_OK) {
+        free(yp);
+        return bg_error_raise(err, BG_ERR_MEMORY, "crane_settle", "out of memory");
     }
     dae_options_default(&o);
     o.rtol = 1e-6;
@@ -523,43 +529,94 @@ int crane_settle(crane *c, bg_error *err)
     o.max_steps = 1000000;
     sol = dae_create(&p, &o, err);
     if (!sol) {
-        status = err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
-        goto done;
+        free(yp);
+        return err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
     }
     if ((status = dae_init(sol, 0.0, bgr_y0(sc->m), bgr_yp0(sc->m))) != BG_OK ||
         (status = dae_consistent_init(sol)) != BG_OK ||
         (status = dae_solve_to(sol, SETTLE_TIME, &tret, y, yp)) < 0) {
-        bg_error_raise(err, status < 0 ? status : BG_ERR_ARGUMENT, "crane_settle",
-                       "static equilibrium: %s", dae_get_error(sol)->message);
         status = status < 0 ? status : BG_ERR_ARGUMENT;
-        goto done;
+        bg_error_raise(err, status, "crane_settle", "static equilibrium: %s",
+                       dae_get_error(sol)->message);
+    } else {
+        status = BG_OK;
     }
-    status = BG_OK;
+    dae_free(&sol);
+    free(yp);
+    return status;
+}
+
+/* The tip's distance from the slewing axis. */
+static double tip_radius(const crane *c, const double *y, double *tip)
+{
+    double foot[3];
+    boom_ends(c, y, tip, foot);
+    return hypot(tip[0] - c->s.joint_A[0], tip[1] - c->s.joint_A[1]);
+}
+
+int crane_settle(crane *c, bg_error *err)
+{
+    crane *sc = NULL;
+    double *y = NULL, L0 = c->tie_L0, R = c->s.boom_tip_radius;
+    int status = BG_OK;
+    /* The ties stretch under load and the boom bends: the unstretched tie length is corrected
+     * until the settled tip is at the scene's radius (a rigid rotation about the hinge gives the
+     * change of tie length per change of radius). */
+    for (int it = 0; it < 8; it++) {
+        crane_free(&sc);
+        free(y);
+        y = NULL;
+        sc = build(&c->s, 1, L0, err);
+        if (!sc) return err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
+        y = malloc((size_t)(bgr_n(sc->m) > 0 ? bgr_n(sc->m) : 1) * sizeof *y);
+        if (!y) {
+            status = bg_error_raise(err, BG_ERR_MEMORY, "crane_settle", "out of memory");
+            goto done;
+        }
+        if ((status = settle_run(sc, y, err)) != BG_OK) goto done;
+        if (!c->s.ties) break;
+        double tip[3], r = tip_radius(sc, y, tip);
+        if (fabs(r - R) <= 1e-5 * R) break;
+        double dx = tip[0] - c->s.boom_foot[0], dz = tip[2] - c->s.boom_foot[2], u[3], L;
+        sub3(tip, c->s.gantry_top, u);
+        L = sqrt(mech_dot(u, u));
+        /* rotation dphi about the hinge's y axis: d tip = dphi (dz, 0, -dx) */
+        double dLdr = (u[0] * dz - u[2] * dx) / (L * dz);
+        L0 += dLdr * (R - r);
+    }
+    if (L0 != c->tie_L0) { /* rebuild with the corrected ties */
+        crane *nc = build(&c->s, 0, L0, err);
+        if (!nc) {
+            status = err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
+            goto done;
+        }
+        bgr_model_free(&c->m);
+        *c = *nc;
+        free(nc);
+    }
     /* copy the states by name (velocities and momenta are ~0 after the damping) */
     {
         const int *kinds = bgr_kinds(sc->m);
         double *y0 = bgr_y0(c->m);
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i < bgr_n(sc->m); i++) {
             if (kinds[i] != DAE_DIFF) continue;
             int j = bgr_find_var(c->m, bgr_var_name(sc->m, i));
             if (j >= 0) y0[j] = y[i];
         }
-        double foot[3];
-        boom_ends(c, y0, c->tip0, foot);
+        tip_radius(c, y0, c->tip0);
     }
 done:
-    dae_free(&sol);
     free(y);
     crane_free(&sc);
     return status;
 }
 
 const char *const crane_output_names[CRANE_NOUT] = {
-    "t [s]",           "theta [rad]",        "theta_ref [rad]",  "omega [rad/s]",
-    "omega_ref [rad/s]", "alpha [rad/s^2]",  "alpha_ref [rad/s^2]", "tip_x [m]",
-    "tip_y [m]",       "tip_z [m]",          "defl_luff [m]",    "defl_side [m]",
-    "load_x [m]",      "load_y [m]",         "load_z [m]",       "rope_tension [N]",
-    "pump_x [-]",      "p_high [Pa]",        "p_low [Pa]",       "hinge_drift [m]"};
+    "t [s]",          "theta [rad]",       "theta_ref [rad]",     "omega [rad/s]",
+    "omega_ref [rad/s]", "omega_err [rad/s]", "alpha_err [rad/s^2]", "tip_x [m]",
+    "tip_y [m]",      "tip_z [m]",         "tip_defl_1 [m]",      "tip_defl_2 [m]",
+    "load_x [m]",     "load_y [m]",        "load_z [m]",          "rope_force [N]",
+    "pump_x [-]",     "p_high [Pa]",       "p_low [Pa]",          "constraint_drift [m]"};
 
 void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out)
 {
@@ -570,8 +627,9 @@ void crane_outputs(const crane *c, double t, const double *y, const double *yp, 
     out[2] = y[c->v_theta_ref];
     out[3] = y[c->v_omega];
     out[4] = y[c->v_omega_ref];
-    out[5] = c->v_alpha >= 0 ? y[c->v_alpha] : yp[c->v_omega];
-    out[6] = y[c->v_alpha_ref];
+    /* errors ref - value; the acceleration: the measured one (paper's PID law) or omega' */
+    out[5] = y[c->v_omega_ref] - y[c->v_omega];
+    out[6] = y[c->v_alpha_ref] - (c->v_alpha >= 0 ? y[c->v_alpha] : yp[c->v_omega]);
     boom_ends(c, y, tip, foot);
     memcpy(out + 7, tip, sizeof tip);
     /* deflection: the tip against the static tip carried round by the platform's angle */

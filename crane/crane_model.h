@@ -80,12 +80,24 @@ bgr_model *crane_model(crane *c);
 /* Breakpoints of the reference in (0, t_end] (at most max), count returned. */
 int crane_breakpoints(const crane *c, double *t, int max);
 
-/* Static equilibrium under gravity at theta = 0 with the platform held: writes the settled
- * state into the model's initial values (bgr_y0). Returns BG_OK or a status with err. */
+/* Static equilibrium under gravity at theta = 0 with the platform held (drive rate 0; extra
+ * damping in boom, ties, rope and on the load, 60 s of simulated settling): the ties' unstretched
+ * length is corrected until the settled boom tip is at boom_tip_radius from the axis (to 1e-5
+ * relative), the model is rebuilt with it (call crane_model again afterwards) and the settled
+ * state becomes its initial values (bgr_y0). The deflection outputs are measured from this
+ * static tip. Returns BG_OK or a status with err. */
 int crane_settle(crane *c, bg_error *err);
+/* Unstretched length of the ties (geometric until crane_settle corrects it); 0 without ties. */
+double crane_tie_length(const crane *c);
 
 /* The output quantities, in the order of crane_output_names. */
 #define CRANE_NOUT 20
+/* t, theta, theta_ref, omega, omega_ref, omega_err = omega_ref - omega, alpha_err = alpha_ref -
+ * alpha, tip_x/y/z, tip_defl_1/2 (tip displacement from the static tip carried round by theta,
+ * along the boom's transverse directions in and out of the luffing plane), load_x/y/z,
+ * rope_force, pump_x (PID output, fraction of the pump's displacement), p_high, p_low,
+ * constraint_drift (distance between the hinge point on the platform and the boom's foot: the
+ * joints hold at velocity level). NaN for parts a scene lacks. */
 extern const char *const crane_output_names[CRANE_NOUT]; /* "t [s]", "theta [rad]", ... */
 void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out);
 

@@ -170,6 +170,10 @@ static void test_statics_rigid(void)
     L0 = sqrt(L0);
     for (int i = 0; i < 3; i++)
         u[i] /= L;
+    tap_ok(fabs(hypot(o[O_TIP], o[O_TIP + 1]) - s.boom_tip_radius) <= 1e-5 * s.boom_tip_radius,
+           "settled tip at the scene's radius %.6f m (ties' length corrected from %.4f to %.4f "
+           "m)", hypot(o[O_TIP], o[O_TIP + 1]), L0, crane_tie_length(r.c));
+    L0 = crane_tie_length(r.c);
     double T_stretch = s.tie_E * s.tie_A * (L - L0) / L0;
     double T_statics = -(moment_y(rm, Fw) + moment_y(rt, Fr)) / moment_y(rt, u);
     tap_close(T_stretch, T_statics, 1e-5, 0,
