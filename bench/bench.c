@@ -28,6 +28,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_util.h"
 #include "problems.h"
 
 #ifdef BENCH_HAVE_IDA
@@ -80,13 +81,6 @@ typedef struct run_out {
     int max_order;
     double cpu_min, cpu_med;
 } run_out;
-
-static double cpu_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* ---------------------------------------------------------------- ours ---- */
 
@@ -154,45 +148,6 @@ static void run_ours(const bp_problem *p, const solver_def *sd, double rtol, dou
 /* ----------------------------------------------------------------- IDA ---- */
 
 #ifdef BENCH_HAVE_IDA
-typedef struct ida_ctx {
-    const bp_problem *p;
-    sp_csc *jy, *jyp;
-    sp_union *u;
-} ida_ctx;
-
-static int ida_res(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *user)
-{
-    ida_ctx *c = user;
-    return c->p->res(NULL, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp),
-                     N_VGetArrayPointer(rr));
-}
-
-static int ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
-                   void *user, N_Vector t1, N_Vector t2, N_Vector t3)
-{
-    (void)rr, (void)t1, (void)t2, (void)t3;
-    ida_ctx *c = user;
-    int r = c->p->jac(NULL, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp), c->jy, c->jyp);
-    if (r != 0) return r;
-    sp_union_combine(c->u, c->jy, 1.0, c->jyp, cj);
-    const sp_csc *M = c->u->M;
-    if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
-        sunindextype *cp = SM_INDEXPTRS_S(J), *ri = SM_INDEXVALS_S(J);
-        realtype *v = SM_DATA_S(J);
-        for (int j = 0; j <= M->ncol; j++) cp[j] = M->colptr[j];
-        for (int k = 0; k < M->nnz; k++) {
-            ri[k] = M->rowind[k];
-            v[k] = M->val[k];
-        }
-    } else {
-        SUNMatZero(J);
-        for (int j = 0; j < M->ncol; j++)
-            for (int k = M->colptr[j]; k < M->colptr[j + 1]; k++)
-                SM_ELEMENT_D(J, M->rowind[k], j) = M->val[k];
-    }
-    return 0;
-}
-
 static void run_ida(const bp_problem *p, const solver_def *sd, double rtol, double atol,
                     const double *y0, const double *yp0, run_out *out)
 {
@@ -203,7 +158,7 @@ static void run_ida(const bp_problem *p, const solver_def *sd, double rtol, doub
         snprintf(out->msg, sizeof out->msg, "SUNContext_Create failed");
         return;
     }
-    ida_ctx c = {p, NULL, NULL, NULL};
+    bench_ida_ctx c = {p, NULL, NULL, NULL};
     p->patterns(&c.jy, &c.jyp);
     c.u = c.jy && c.jyp ? sp_union_create(c.jy, c.jyp) : NULL;
     N_Vector yy = N_VNew_Serial(n, ctx), yp = N_VNew_Serial(n, ctx), id = N_VNew_Serial(n, ctx);
@@ -225,9 +180,10 @@ static void run_ida(const bp_problem *p, const solver_def *sd, double rtol, doub
         NV_Ith_S(yp, i) = yp0[i];
         NV_Ith_S(id, i) = p->kind[i] == DAE_DIFF ? 1.0 : 0.0;
     }
-    if (IDAInit(mem, ida_res, p->t0, yy, yp) || IDASStolerances(mem, rtol, atol) ||
-        IDASetUserData(mem, &c) || IDASetLinearSolver(mem, LS, A) || IDASetJacFn(mem, ida_jac) ||
-        IDASetId(mem, id) || IDASetSuppressAlg(mem, SUNTRUE) || IDASetMaxNumSteps(mem, 2000000)) {
+    if (IDAInit(mem, bench_ida_res, p->t0, yy, yp) || IDASStolerances(mem, rtol, atol) ||
+        IDASetUserData(mem, &c) || IDASetLinearSolver(mem, LS, A) ||
+        IDASetJacFn(mem, bench_ida_jac) || IDASetId(mem, id) || IDASetSuppressAlg(mem, SUNTRUE) ||
+        IDASetMaxNumSteps(mem, 2000000)) {
         snprintf(out->msg, sizeof out->msg, "IDA set-up failed");
         goto done;
     }
@@ -277,12 +233,6 @@ done:
 }
 #endif
 
-static int cmpd(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Warm-up, then K timed runs: CPU minimum and median. */
 static void timed(const bp_problem *p, const solver_def *sd, double rtol, double atol,
                   const double *y0, const double *yp0, int K, run_out *out)
@@ -291,23 +241,22 @@ static void timed(const bp_problem *p, const solver_def *sd, double rtol, double
     if (K > 64) K = 64;
     int done = 0;
     for (int k = -1; k < K; k++) {
-        double t0 = cpu_now();
+        double t0 = bench_cpu_now();
 #ifdef BENCH_HAVE_IDA
         if (sd->ida)
             run_ida(p, sd, rtol, atol, y0, yp0, out);
         else
 #endif
             run_ours(p, sd, rtol, atol, y0, yp0, out);
-        double t1 = cpu_now();
+        double t1 = bench_cpu_now();
         if (k >= 0) ts[done++] = t1 - t0;
         if (out->status < 0) { /* a failure is not timed further */
             if (done == 0) ts[done++] = t1 - t0;
             break;
         }
     }
-    qsort(ts, (size_t)done, sizeof *ts, cmpd);
+    out->cpu_med = bench_median(ts, done);
     out->cpu_min = ts[0];
-    out->cpu_med = done % 2 ? ts[done / 2] : 0.5 * (ts[done / 2 - 1] + ts[done / 2]);
 }
 
 /* Consistent start shared by every solver. */

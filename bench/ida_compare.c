@@ -21,6 +21,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "bench_util.h"
 #include "bg_dae.h"
 #include "problems.h"
 
@@ -30,19 +31,6 @@ typedef struct run_result {
     long steps, rejected, jac, factors, res;
     double tmed, tmin;
 } run_result;
-
-static double cpu_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int cmpd(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* ---- ours ---- */
 static int run_ours(const bp_problem *p, double rtol, double atol, ls_kind ls, double *y,
@@ -88,43 +76,15 @@ static int run_ours(const bp_problem *p, double rtol, double atol, ls_kind ls, d
 }
 
 /* ---- IDA ---- */
-typedef struct ida_ctx {
-    const bp_problem *p;
-    sp_csc *jy, *jyp;
-} ida_ctx;
-
-static int ida_res(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *u)
-{
-    ida_ctx *c = u;
-    return c->p->res(NULL, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp),
-                     N_VGetArrayPointer(rr));
-}
-
-static int ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
-                   void *u, N_Vector t1, N_Vector t2, N_Vector t3)
-{
-    (void)rr, (void)t1, (void)t2, (void)t3;
-    ida_ctx *c = u;
-    int r = c->p->jac(NULL, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp), c->jy, c->jyp);
-    if (r != 0) return r;
-    SUNMatZero(J);
-    for (int j = 0; j < c->jy->ncol; j++) {
-        for (int q = c->jy->colptr[j]; q < c->jy->colptr[j + 1]; q++)
-            SM_ELEMENT_D(J, c->jy->rowind[q], j) += c->jy->val[q];
-        for (int q = c->jyp->colptr[j]; q < c->jyp->colptr[j + 1]; q++)
-            SM_ELEMENT_D(J, c->jyp->rowind[q], j) += cj * c->jyp->val[q];
-    }
-    return 0;
-}
-
 static int run_ida(const bp_problem *p, double rtol, double atol, int suppress, double *y,
                    run_result *rr, char *msg, size_t msz)
 {
     int n = p->n, r = -1;
     SUNContext ctx = NULL;
     if (SUNContext_Create(NULL, &ctx) != 0) return -1;
-    ida_ctx c = {p, NULL, NULL};
+    bench_ida_ctx c = {p, NULL, NULL, NULL};
     p->patterns(&c.jy, &c.jyp);
+    c.u = c.jy && c.jyp ? sp_union_create(c.jy, c.jyp) : NULL;
     N_Vector yy = N_VNew_Serial(n, ctx), yp = N_VNew_Serial(n, ctx), id = N_VNew_Serial(n, ctx);
     SUNMatrix A = SUNDenseMatrix(n, n, ctx);
     SUNLinearSolver LS = SUNLinSol_Dense(yy, A, ctx);
@@ -134,10 +94,11 @@ static int run_ida(const bp_problem *p, double rtol, double atol, int suppress, 
         NV_Ith_S(yp, i) = p->yp0[i];
         NV_Ith_S(id, i) = p->kind[i] == DAE_DIFF ? 1.0 : 0.0;
     }
-    if (IDAInit(mem, ida_res, p->t0, yy, yp) || IDASStolerances(mem, rtol, atol) ||
-        IDASetUserData(mem, &c) || IDASetLinearSolver(mem, LS, A) || IDASetJacFn(mem, ida_jac) ||
-        IDASetId(mem, id) || IDASetSuppressAlg(mem, suppress ? SUNTRUE : SUNFALSE) ||
-        IDASetStopTime(mem, p->tend) || IDASetMaxNumSteps(mem, 500000)) {
+    if (!c.u || IDAInit(mem, bench_ida_res, p->t0, yy, yp) || IDASStolerances(mem, rtol, atol) ||
+        IDASetUserData(mem, &c) || IDASetLinearSolver(mem, LS, A) ||
+        IDASetJacFn(mem, bench_ida_jac) || IDASetId(mem, id) ||
+        IDASetSuppressAlg(mem, suppress ? SUNTRUE : SUNFALSE) || IDASetStopTime(mem, p->tend) ||
+        IDASetMaxNumSteps(mem, 500000)) {
         snprintf(msg, msz, "IDA set-up failed");
         goto done;
     }
@@ -170,6 +131,7 @@ done:
     N_VDestroy(yy);
     N_VDestroy(yp);
     N_VDestroy(id);
+    sp_union_free(&c.u);
     sp_csc_free(&c.jy);
     sp_csc_free(&c.jyp);
     SUNContext_Free(&ctx);
@@ -181,10 +143,10 @@ static void timed(int which, const bp_problem *p, double rtol, double atol, ls_k
 {
     double *ts = malloc((size_t)reps * sizeof *ts);
     for (int k = -1; k < reps; k++) { /* k = -1: warm-up */
-        double t0 = cpu_now();
+        double t0 = bench_cpu_now();
         rr->status = which ? run_ida(p, rtol, atol, suppress, rr->y, rr, msg, msz)
                            : run_ours(p, rtol, atol, ls, rr->y, rr, msg, msz);
-        double t1 = cpu_now();
+        double t1 = bench_cpu_now();
         if (k >= 0) ts[k] = t1 - t0;
         if (rr->status < 0) {
             reps = k + 1 > 0 ? k + 1 : 1;
@@ -192,9 +154,8 @@ static void timed(int which, const bp_problem *p, double rtol, double atol, ls_k
             break;
         }
     }
-    qsort(ts, (size_t)reps, sizeof *ts, cmpd);
+    rr->tmed = bench_median(ts, reps);
     rr->tmin = ts[0];
-    rr->tmed = reps % 2 ? ts[reps / 2] : 0.5 * (ts[reps / 2 - 1] + ts[reps / 2]);
     free(ts);
 }
 

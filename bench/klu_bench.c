@@ -12,6 +12,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
 #include "bg_linsol.h"
 
 static double now(void)
@@ -48,18 +49,6 @@ static sp_csc *block_banded(int n, int b)
     sp_csc *A = sp_builder_finish(bl, NULL);
     sp_builder_free(&bl);
     return A;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 int main(int argc, char **argv)
@@ -159,8 +148,8 @@ int main(int argc, char **argv)
             ls_free(&s);
         }
         if (!status) {
-            double ma = median(ta, reps), mf = median(tf, reps), mr = median(tr, reps),
-                   ms = median(ts, reps);
+            double ma = bench_median(ta, reps), mf = bench_median(tf, reps),
+                   mr = bench_median(tr, reps), ms = bench_median(ts, reps);
             if (csv)
                 printf("%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%.3g\n", n, A->nnz, b, reps, ma, mf, mr, ms,
                        resid);

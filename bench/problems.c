@@ -55,6 +55,15 @@ static int patterns_pair(int n, const int (*iy)[2], int ny, const int (*iyp)[2],
     return st;
 }
 
+/* dF/dy from (row, column) pairs and dF/dy' the identity on the first m diagonal entries (y' - f
+ * with m differential rows); on failure jy is freed. */
+static int patterns_diag(int n, const int (*iy)[2], int ny, int m, sp_csc **jy, sp_csc **jyp)
+{
+    int st = pattern_from_pairs(n, n, iy, ny, jy);
+    if (st == 0 && (st = pattern_diag(n, m, jyp)) != 0) sp_csc_free(jy);
+    return st;
+}
+
 /* J(i,j) = v; entries outside the pattern are a programming error and are ignored. */
 static void set(sp_csc *J, int i, int j, double v)
 {
@@ -229,9 +238,7 @@ static int rober_jac(void *user, double t, const double *y, const double *yp, sp
 static int rober_patterns(sp_csc **jy, sp_csc **jyp)
 {
     static const int iy[][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 0}, {1, 1}, {1, 2}, {2, 1}};
-    int st = pattern_from_pairs(3, 3, iy, 7, jy);
-    if (st == 0 && (st = pattern_diag(3, 3, jyp)) != 0) sp_csc_free(jy);
-    return st;
+    return patterns_diag(3, iy, 7, 3, jy, jyp);
 }
 
 static const double rober_y0[] = {1.0, 0.0, 0.0};
@@ -276,9 +283,7 @@ static int vdp_jac(void *user, double t, const double *y, const double *yp, sp_c
 static int vdp_patterns(sp_csc **jy, sp_csc **jyp)
 {
     static const int iy[][2] = {{0, 1}, {1, 0}, {1, 1}};
-    int st = pattern_from_pairs(2, 2, iy, 3, jy);
-    if (st == 0 && (st = pattern_diag(2, 2, jyp)) != 0) sp_csc_free(jy);
-    return st;
+    return patterns_diag(2, iy, 3, 2, jy, jyp);
 }
 
 static const double vdp_y0[] = {2.0, 0.0};
@@ -367,9 +372,7 @@ static int hires_jac(void *user, double t, const double *y, const double *yp, sp
 
 static int hires_patterns(sp_csc **jy, sp_csc **jyp)
 {
-    int st = pattern_from_pairs(8, 8, hires_ij, 25, jy);
-    if (st == 0 && (st = pattern_diag(8, 8, jyp)) != 0) sp_csc_free(jy);
-    return st;
+    return patterns_diag(8, hires_ij, 25, 8, jy, jyp);
 }
 
 static const double hires_y0[] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057};
@@ -435,9 +438,7 @@ static int lin2_jac(void *user, double t, const double *y, const double *yp, sp_
 static int lin2_patterns(sp_csc **jy, sp_csc **jyp)
 {
     static const int iy[][2] = {{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}};
-    int st = pattern_from_pairs(3, 3, iy, 6, jy);
-    if (st == 0 && (st = pattern_diag(3, 2, jyp)) != 0) sp_csc_free(jy);
-    return st;
+    return patterns_diag(3, iy, 6, 2, jy, jyp);
 }
 
 static const double lin2_y0[] = {0.0, 1.0, 1.0};
@@ -485,9 +486,7 @@ static int smooth_jac(void *user, double t, const double *y, const double *yp, s
 static int smooth_patterns(sp_csc **jy, sp_csc **jyp)
 {
     static const int iy[][2] = {{0, 0}, {0, 1}, {1, 0}, {1, 1}};
-    int st = pattern_from_pairs(2, 2, iy, 4, jy);
-    if (st == 0 && (st = pattern_diag(2, 2, jyp)) != 0) sp_csc_free(jy);
-    return st;
+    return patterns_diag(2, iy, 4, 2, jy, jyp);
 }
 
 static const double smooth_y0[] = {1.0, 2.0};
@@ -566,9 +565,7 @@ static int kinks_jac(void *user, double t, const double *y, const double *yp, sp
 static int kinks_patterns(sp_csc **jy, sp_csc **jyp)
 {
     static const int iy[][2] = {{1, 0}};
-    int st = pattern_from_pairs(2, 2, iy, 1, jy);
-    if (st == 0 && (st = pattern_diag(2, 2, jyp)) != 0) sp_csc_free(jy);
-    return st;
+    return patterns_diag(2, iy, 1, 2, jy, jyp);
 }
 
 static const double kinks_y0[] = {0.0, 0.0};
@@ -577,19 +574,20 @@ static const int kinks_kind[] = {DAE_DIFF, DAE_DIFF};
 static const char *const kinks_names[] = {"y1", "y2"};
 
 /* ==== the table ==== */
+
+/* The fields every problem names after its prefix: prefix_y0, prefix_yp0, prefix_kind,
+ * prefix_names, prefix_res, prefix_jac, prefix_patterns. */
+#define BP_PARTS(prefix)                                                                           \
+    .y0 = prefix##_y0, .yp0 = prefix##_yp0, .kind = prefix##_kind, .names = prefix##_names,        \
+    .res = prefix##_res, .jac = prefix##_jac, .patterns = prefix##_patterns
+
 static const bp_problem problems[] = {
     {.name = "ap102",
      .title = "Ascher-Petzold Ex. 10.2 (linear index 2, exact solution)",
      .n = 2,
      .t0 = 0.0,
      .tend = 1.0,
-     .y0 = ap102_y0,
-     .yp0 = ap102_yp0,
-     .kind = ap102_kind,
-     .names = ap102_names,
-     .res = ap102_res,
-     .jac = ap102_jac,
-     .patterns = ap102_patterns,
+     BP_PARTS(ap102),
      .exact = ap102_exact,
      .ref_source = "exact solution x1 = e^t, x2 = e^t/(t-2)"},
     {.name = "pendulum2",
@@ -597,13 +595,7 @@ static const bp_problem problems[] = {
      .n = 5,
      .t0 = 0.0,
      .tend = 1.0,
-     .y0 = pend_y0,
-     .yp0 = pend_yp0,
-     .kind = pend_kind,
-     .names = pend_names,
-     .res = pend_res,
-     .jac = pend_jac,
-     .patterns = pend_patterns,
+     BP_PARTS(pend),
      .yref = pend_yref,
      .ref_source = "reference_solutions.json pendulum_index2.reference_recomputed_30digits",
      .ncons = 1,
@@ -614,13 +606,7 @@ static const bp_problem problems[] = {
      .n = 3,
      .t0 = 0.0,
      .tend = 1.0e11,
-     .y0 = rober_y0,
-     .yp0 = rober_yp0,
-     .kind = rober_kind,
-     .names = rober_names,
-     .res = rober_res,
-     .jac = rober_jac,
-     .patterns = rober_patterns,
+     BP_PARTS(rober),
      .yref = rober_yref,
      .ref_source = "reference_solutions.json rober (deTestSet ex_reference.R)"},
     {.name = "vdp_scaled",
@@ -628,13 +614,7 @@ static const bp_problem problems[] = {
      .n = 2,
      .t0 = 0.0,
      .tend = 2.0,
-     .y0 = vdp_y0,
-     .yp0 = vdp_yp0,
-     .kind = vdp_kind,
-     .names = vdp_names,
-     .res = vdp_res,
-     .jac = vdp_jac,
-     .patterns = vdp_patterns,
+     BP_PARTS(vdp),
      .yref = vdp_yref,
      .ref_source = "IVP Test Set 2.4 vdpol.f solut (RADAU, rtol = atol = 1.1e-18); not in "
                    "shared/testset"},
@@ -643,13 +623,7 @@ static const bp_problem problems[] = {
      .n = 8,
      .t0 = 0.0,
      .tend = 321.8122,
-     .y0 = hires_y0,
-     .yp0 = hires_yp0,
-     .kind = hires_kind,
-     .names = hires_names,
-     .res = hires_res,
-     .jac = hires_jac,
-     .patterns = hires_patterns,
+     BP_PARTS(hires),
      .yref = hires_yref,
      .ref_source = "reference_solutions.json hires (deTestSet ex_reference.R)"},
     {.name = "lin2",
@@ -657,13 +631,7 @@ static const bp_problem problems[] = {
      .n = 3,
      .t0 = 0.0,
      .tend = 2.0,
-     .y0 = lin2_y0,
-     .yp0 = lin2_yp0,
-     .kind = lin2_kind,
-     .names = lin2_names,
-     .res = lin2_res,
-     .jac = lin2_jac,
-     .patterns = lin2_patterns,
+     BP_PARTS(lin2),
      .exact = lin2_exact,
      .ref_source = "exact solution"},
     {.name = "smooth_ode",
@@ -671,13 +639,7 @@ static const bp_problem problems[] = {
      .n = 2,
      .t0 = 0.0,
      .tend = 2.0,
-     .y0 = smooth_y0,
-     .yp0 = smooth_yp0,
-     .kind = smooth_kind,
-     .names = smooth_names,
-     .res = smooth_res,
-     .jac = smooth_jac,
-     .patterns = smooth_patterns,
+     BP_PARTS(smooth),
      .exact = smooth_exact,
      .ref_source = "exact solution"},
     {.name = "kinks",
@@ -685,13 +647,7 @@ static const bp_problem problems[] = {
      .n = 2,
      .t0 = 0.0,
      .tend = 1.0,
-     .y0 = kinks_y0,
-     .yp0 = kinks_yp0,
-     .kind = kinks_kind,
-     .names = kinks_names,
-     .res = kinks_res,
-     .jac = kinks_jac,
-     .patterns = kinks_patterns,
+     BP_PARTS(kinks),
      .exact = kinks_exact,
      .ref_source = "exact solution (piecewise polynomial)",
      .nbreakpoints = 3,
@@ -1449,9 +1405,7 @@ static int chemakzo_patterns(sp_csc **jy, sp_csc **jyp)
                                 {1, 3}, {1, 5}, {2, 0}, {2, 1}, {2, 2}, {2, 3}, {2, 4},
                                 {3, 0}, {3, 2}, {3, 3}, {3, 4}, {4, 0}, {4, 1}, {4, 2},
                                 {4, 3}, {4, 4}, {4, 5}, {5, 0}, {5, 3}, {5, 5}};
-    int st = pattern_from_pairs(6, 6, iy, 27, jy);
-    if (st == 0 && (st = pattern_diag(6, 5, jyp)) != 0) sp_csc_free(jy);
-    return st;
+    return patterns_diag(6, iy, 27, 5, jy, jyp);
 }
 
 /* ==== nand: the NAND gate of G. Denk and M. Guenther (IVP Test Set "nand",
@@ -2020,13 +1974,7 @@ static const bp_problem testset_problems[] = {
      .n = 24,
      .t0 = 0.0,
      .tend = 0.1,
-     .y0 = crank_y0,
-     .yp0 = crank_yp0,
-     .kind = crank_kind,
-     .names = crank_names,
-     .res = crank_res,
-     .jac = crank_jac,
-     .patterns = crank_patterns,
+     BP_PARTS(crank),
      .yref = crank_yref,
      .ref_source = "reference_solutions.json crank (deTestSet Ex_crank.f cranksoln, MEBDFI 1e-14)",
      .scored = crank_scored,
@@ -2037,13 +1985,7 @@ static const bp_problem testset_problems[] = {
      .n = 9,
      .t0 = 0.0,
      .tend = 1.2e-6,
-     .y0 = pump_y0,
-     .yp0 = pump_yp0,
-     .kind = pump_kind,
-     .names = pump_names,
-     .res = pump_res,
-     .jac = pump_jac,
-     .patterns = pump_patterns,
+     BP_PARTS(pump),
      .yref = pump_yref,
      .ref_source = "reference_solutions.json pump, GAMD quadruple precision",
      .scored = pump_scored,
@@ -2054,13 +1996,7 @@ static const bp_problem testset_problems[] = {
      .n = 8,
      .t0 = 0.0,
      .tend = 0.2,
-     .y0 = transamp_y0,
-     .yp0 = transamp_yp0,
-     .kind = transamp_kind,
-     .names = transamp_names,
-     .res = transamp_res,
-     .jac = transamp_jac,
-     .patterns = transamp_patterns,
+     BP_PARTS(transamp),
      .yref = transamp_yref,
      .ref_source = "reference_solutions.json transamp (Ex_transistor.f transsoln, PSIDE 1e-14)"},
     {.name = "chemakzo",
@@ -2068,13 +2004,7 @@ static const bp_problem testset_problems[] = {
      .n = 6,
      .t0 = 0.0,
      .tend = 180.0,
-     .y0 = chemakzo_y0,
-     .yp0 = chemakzo_yp0,
-     .kind = chemakzo_kind,
-     .names = chemakzo_names,
-     .res = chemakzo_res,
-     .jac = chemakzo_jac,
-     .patterns = chemakzo_patterns,
+     BP_PARTS(chemakzo),
      .yref = chemakzo_yref,
      .ref_source = "reference_solutions.json chemakzo (chemakzoi.f SOLN, PSIDE 1e-19)"},
     {.name = "nand",
@@ -2082,13 +2012,7 @@ static const bp_problem testset_problems[] = {
      .n = 14,
      .t0 = 0.0,
      .tend = 80.0,
-     .y0 = nand_y0,
-     .yp0 = nand_yp0,
-     .kind = nand_kind,
-     .names = nand_names,
-     .res = nand_res,
-     .jac = nand_jac,
-     .patterns = nand_patterns,
+     BP_PARTS(nand),
      .yref = nand_yref,
      .ref_source = "reference_solutions.json nand (Ex_nand.f nandsoln, PSIDE 1e-16)",
      .scored = nand_scored,

@@ -13,22 +13,6 @@
 
 /* ---- helpers ---- */
 
-static sp_csc *random_pattern(tap_rng *r, int nrow, int ncol, double density)
-{
-    size_t n = (size_t)nrow * ncol, k;
-    unsigned char *mask = calloc(n + 1, 1);
-    double *vals = calloc(n + 1, sizeof(double));
-    sp_csc *A;
-    for (k = 0; k < n; k++) {
-        mask[k] = tap_rng_unif(r) < density;
-        vals[k] = tap_rng_range(r, 0.5, 2.0) * (tap_rng_unif(r) < 0.5 ? -1.0 : 1.0);
-    }
-    A = tu_csc_from_mask(nrow, ncol, mask, vals);
-    free(mask);
-    free(vals);
-    return A;
-}
-
 /* Full band: A(i,j) present iff -q <= j - i <= p... i.e. i - j <= p (lower) and j - i <= q
  * (upper). */
 static sp_csc *band_pattern(int n, int p, int q)
@@ -164,7 +148,7 @@ static int my_colouring_ok(const sp_colouring *c, const sp_csc *P, char *why, si
 
 static void test_colour_random(tap_rng *r, int m, int n, double density)
 {
-    sp_csc *P = random_pattern(r, m, n, density);
+    sp_csc *P = tu_random_csc(r, m, n, density, 0.5, 2.0, 1);
     sp_colouring *c = P ? sp_colour(P) : NULL;
     int *mine = malloc(sizeof(int) * (n + 1));
     char why[160] = "";
@@ -448,7 +432,7 @@ static int sinfun_f(void *user, const double *x, double *f)
 
 static void test_fdjac_rect(tap_rng *r, int m, int n, double density)
 {
-    sp_csc *A = random_pattern(r, m, n, density), *J = NULL;
+    sp_csc *A = tu_random_csc(r, m, n, density, 0.5, 2.0, 1), *J = NULL;
     sinfun s = {A, 0};
     double *x = malloc(sizeof(double) * n), *f0 = malloc(sizeof(double) * m);
     int *grp = malloc(sizeof(int) * (n + 1));
@@ -645,7 +629,7 @@ out:
 /* The checker on a rectangular Jacobian. */
 static void test_jac_check_rect(tap_rng *r, int m, int n)
 {
-    sp_csc *A = random_pattern(r, m, n, 0.2), *J = NULL;
+    sp_csc *A = tu_random_csc(r, m, n, 0.2, 0.5, 2.0, 1), *J = NULL;
     sinfun s = {A, 0};
     double *x = malloc(sizeof(double) * n), max_err = -1.0;
     sp_jac_entry worst[3];

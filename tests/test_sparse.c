@@ -40,23 +40,6 @@ static int structure_ok(const sp_csc *A)
     return 1;
 }
 
-/* A random nrow x ncol matrix with about density*nrow*ncol entries of random values in [-1,1]. */
-static sp_csc *random_csc(tap_rng *r, int nrow, int ncol, double density)
-{
-    size_t n = (size_t)nrow * ncol, k;
-    unsigned char *mask = calloc(n ? n : 1, 1);
-    double *vals = calloc(n ? n : 1, sizeof(double));
-    sp_csc *A;
-    for (k = 0; k < n; k++) {
-        mask[k] = tap_rng_unif(r) < density;
-        vals[k] = tap_rng_range(r, -1.0, 1.0);
-    }
-    A = tu_csc_from_mask(nrow, ncol, mask, vals);
-    free(mask);
-    free(vals);
-    return A;
-}
-
 /* a == b entry by entry (== on doubles: +0 and -0 are equal). */
 static int dense_equal(const double *a, const double *b, size_t n)
 {
@@ -524,8 +507,9 @@ out:
 
 static void test_union_shapes(tap_rng *r)
 {
-    sp_csc *A = random_csc(r, 3, 4, 0.5), *B = random_csc(r, 4, 3, 0.5),
-           *C = random_csc(r, 3, 5, 0.5);
+    sp_csc *A = tu_random_csc(r, 3, 4, 0.5, -1.0, 1.0, 0),
+           *B = tu_random_csc(r, 4, 3, 0.5, -1.0, 1.0, 0),
+           *C = tu_random_csc(r, 3, 5, 0.5, -1.0, 1.0, 0);
     sp_union *u = sp_union_create(A, B), *v = sp_union_create(A, C), *w = sp_union_create(A, A);
     tap_ok(u == NULL, "sp_union_create 3x4 with 4x3 returns NULL");
     tap_ok(v == NULL, "sp_union_create 3x4 with 3x5 returns NULL");
@@ -547,7 +531,7 @@ static void test_union_shapes(tap_rng *r)
 
 static void test_matvec(tap_rng *r, int nrow, int ncol, double density)
 {
-    sp_csc *A = random_csc(r, nrow, ncol, density);
+    sp_csc *A = tu_random_csc(r, nrow, ncol, density, -1.0, 1.0, 0);
     double *D = malloc(sizeof(double) * ((size_t)nrow * ncol + 1));
     int nmax = nrow > ncol ? nrow : ncol;
     double *x = malloc(sizeof(double) * nmax), *y = malloc(sizeof(double) * nmax);
@@ -607,7 +591,7 @@ out:
 
 static void test_transpose(tap_rng *r, int nrow, int ncol, double density)
 {
-    sp_csc *A = random_csc(r, nrow, ncol, density), *T = NULL;
+    sp_csc *A = tu_random_csc(r, nrow, ncol, density, -1.0, 1.0, 0), *T = NULL;
     double *DA = malloc(sizeof(double) * ((size_t)nrow * ncol + 1));
     double *DT = malloc(sizeof(double) * ((size_t)nrow * ncol + 1));
     int i, j, ok = 1;
@@ -674,7 +658,8 @@ static void test_dense_round_trip(tap_rng *r, int nrow, int ncol)
 
 static void test_copy_same_pattern(tap_rng *r)
 {
-    sp_csc *A = random_csc(r, 9, 7, 0.4), *C = sp_csc_copy(A), *T = NULL, *M = NULL;
+    sp_csc *A = tu_random_csc(r, 9, 7, 0.4, -1.0, 1.0, 0), *C = sp_csc_copy(A), *T = NULL,
+           *M = NULL;
     double keep;
     int p;
     if (!tap_ok(A && C, "copy: not NULL")) goto out;
@@ -799,7 +784,7 @@ static void check_mm(FILE *f, const sp_csc *A, const char *tag)
 
 static void test_mm(tap_rng *r)
 {
-    sp_csc *A = random_csc(r, 9, 6, 0.5), *E = sp_csc_alloc(3, 2, 0);
+    sp_csc *A = tu_random_csc(r, 9, 6, 0.5, -1.0, 1.0, 0), *E = sp_csc_alloc(3, 2, 0);
     FILE *f;
     bg_error err;
     char path[] = "/tmp/bg_test_sparse_XXXXXX";

@@ -4,9 +4,11 @@
 #define BG_TESTS_TESTUTIL_H
 
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bg_sparse.h"
+#include "tap.h"
 
 /* CSC from a column-major nrow x ncol array: entries where mask != 0 (mask NULL: where
  * vals != 0), with the values of vals (vals NULL: 1.0). */
@@ -31,6 +33,27 @@ static inline sp_csc *tu_csc_from_mask(int nrow, int ncol, const unsigned char *
     }
     A->colptr[ncol] = p;
     A->nnz = p;
+    return A;
+}
+
+/* A random nrow x ncol matrix with about density*nrow*ncol entries (tu_csc_from_mask): entry by
+ * entry in column-major order, present if a uniform draw is below density, then its value uniform
+ * in [lo, hi), then (random_sign) a draw that negates it with probability 1/2. */
+static inline sp_csc *tu_random_csc(tap_rng *r, int nrow, int ncol, double density, double lo,
+                                    double hi, int random_sign)
+{
+    size_t n = (size_t)nrow * ncol, k;
+    unsigned char *mask = calloc(n + 1, 1);
+    double *vals = calloc(n + 1, sizeof(double));
+    sp_csc *A;
+    for (k = 0; k < n; k++) {
+        mask[k] = tap_rng_unif(r) < density;
+        vals[k] = tap_rng_range(r, lo, hi);
+        if (random_sign && tap_rng_unif(r) < 0.5) vals[k] = -vals[k];
+    }
+    A = tu_csc_from_mask(nrow, ncol, mask, vals);
+    free(mask);
+    free(vals);
     return A;
 }
 

@@ -271,26 +271,17 @@ static int part_jacobian(const bgr_element *el, double t, const double *y, const
     return 0;
 }
 
-static const bgr_element_class mass_class = {.type = "point mass",
-                                             .declare = part_declare,
-                                             .residual = part_residual,
-                                             .jacobian = part_jacobian,
-                                             .destroy = part_free};
-static const bgr_element_class support_class = {.type = "support",
-                                                .declare = part_declare,
-                                                .residual = part_residual,
-                                                .jacobian = part_jacobian,
-                                                .destroy = part_free};
-static const bgr_element_class spherical_class = {.type = "spherical joint",
-                                                  .declare = part_declare,
-                                                  .residual = part_residual,
-                                                  .jacobian = part_jacobian,
-                                                  .destroy = part_free};
-static const bgr_element_class revolute_class = {.type = "revolute joint",
-                                                 .declare = part_declare,
-                                                 .residual = part_residual,
-                                                 .jacobian = part_jacobian,
-                                                 .destroy = part_free};
+/* The four kinds share one implementation and differ in the type name only. */
+#define PART_CLASS(type_name)                                                                      \
+    {                                                                                              \
+        .type = type_name, .declare = part_declare, .residual = part_residual,                     \
+        .jacobian = part_jacobian, .destroy = part_free                                            \
+    }
+static const bgr_element_class mass_class = PART_CLASS("point mass");
+static const bgr_element_class support_class = PART_CLASS("support");
+static const bgr_element_class spherical_class = PART_CLASS("spherical joint");
+static const bgr_element_class revolute_class = PART_CLASS("revolute joint");
+#undef PART_CLASS
 
 static part *part_new(bgr_model *m, int kind, int dim)
 {

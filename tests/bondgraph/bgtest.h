@@ -21,6 +21,7 @@
 
 #include "bgr_elements.h"
 #include "bgr_model.h"
+#include "modeltest.h"
 #include "tap.h"
 
 #define BGT_PATH 256
@@ -47,12 +48,6 @@ TAP_PRINTF(2, 3) static int eqid(const bgr_model *m, const char *fmt, ...)
     int e = bgr_find_eq(m, path);
     if (e < 0) tap_diag("no equation named %s", path);
     return e;
-}
-
-/* y[v], NaN for v < 0 (so that a missing name fails every comparison). */
-TAP_UNUSED static double at(const double *y, int v)
-{
-    return v >= 0 ? y[v] : NAN;
 }
 
 /* ---- bond registry ---- */
@@ -150,34 +145,11 @@ TAP_UNUSED static double power_sum(const bgr_model *m, const bond_reg *r, int el
 TAP_UNUSED static dae_solver *start_solver(bgr_model *m, double rtol, double atol, double t0,
                                            dae_root_fn roots)
 {
-    dae_problem p;
     dae_options o;
-    bg_error err;
-    memset(&err, 0, sizeof err);
-    if (bgr_dae_problem(m, &p) != BG_OK) {
-        tap_diag("bgr_dae_problem: %s", bgr_model_error(m)->message);
-        return NULL;
-    }
-    if (roots) {
-        p.nroots = 1;
-        p.roots = roots;
-    }
     dae_options_default(&o);
     o.rtol = rtol;
     o.atol = atol;
-    dae_solver *s = dae_create(&p, &o, &err);
-    if (!s) {
-        tap_diag("dae_create: %s", err.message);
-        return NULL;
-    }
-    int r = dae_init(s, t0, bgr_y0(m), bgr_yp0(m));
-    if (r == BG_OK) r = dae_consistent_init(s);
-    if (r != BG_OK) {
-        tap_diag("dae_init/dae_consistent_init: %s: %s", dae_return_name(r),
-                 dae_get_error(s)->message);
-        dae_free(&s);
-    }
-    return s;
+    return model_solver(m, &o, roots, t0);
 }
 
 /* A point that satisfies the element equations to rounding near the solver's output (t, y, yp):

@@ -20,6 +20,7 @@
 #include "bg_dae.h"
 #include "bgr_elements.h"
 #include "bgr_model.h"
+#include "modeltest.h"
 #include "tap.h"
 
 #define PI 3.14159265358979323846
@@ -45,11 +46,6 @@ TAP_UNUSED static int V(const bgr_model *m, const char *path)
     return v;
 }
 
-TAP_UNUSED static double at(const double *y, int v)
-{
-    return v >= 0 ? y[v] : NAN;
-}
-
 /* Compiles m; one test point. */
 TAP_UNUSED static int compile_ok(bgr_model *m, const char *what)
 {
@@ -63,14 +59,7 @@ TAP_UNUSED static dae_solver *solver_new(bgr_model *m, double rtol, double atol,
                                          const double *atol_vec, const double *bkpt, int nbkpt,
                                          double t0)
 {
-    dae_problem p;
     dae_options o;
-    bg_error err;
-    memset(&err, 0, sizeof err);
-    if (bgr_dae_problem(m, &p) != BG_OK) {
-        tap_diag("bgr_dae_problem: %s", bgr_model_error(m)->message);
-        return NULL;
-    }
     dae_options_default(&o);
     o.rtol = rtol;
     o.atol = atol;
@@ -78,19 +67,7 @@ TAP_UNUSED static dae_solver *solver_new(bgr_model *m, double rtol, double atol,
     o.breakpoints = bkpt;
     o.nbreakpoints = nbkpt;
     o.h_init = ct_h_init;
-    dae_solver *s = dae_create(&p, &o, &err);
-    if (!s) {
-        tap_diag("dae_create: %s", err.message);
-        return NULL;
-    }
-    int r = dae_init(s, t0, bgr_y0(m), bgr_yp0(m));
-    if (r == BG_OK) r = dae_consistent_init(s);
-    if (r != BG_OK) {
-        tap_diag("dae_init/dae_consistent_init: %s: %s", dae_return_name(r),
-                 dae_get_error(s)->message);
-        dae_free(&s);
-    }
-    return s;
+    return model_solver(m, &o, NULL, t0);
 }
 
 /* Integrates to tout; diagnostic on failure. */

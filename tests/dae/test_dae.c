@@ -525,66 +525,76 @@ static void test_reference_problem(const char *name, double atol_over_rtol)
  * (pendulum at rtol 1e-7), so they agree within 100 tolerances in the differential variables and
  * within 1000 rtol (relative) in the index-2 variables, which EXCLUDE does not control at all. */
 
+/* One run pair of p (options a, then b) compared at the end in tolerances w = rtol |yref| + atol
+ * of a: d the largest difference in the variables that are not index 2, dref the first run's
+ * largest error there, d2 the largest difference relative to |yref| in the index-2 variables. */
+typedef struct run_pair {
+    int r1, r2;
+    dae_stats s1, s2;
+    double d, dref, d2;
+} run_pair;
+
+static void compare_runs(const bp_problem *p, const dae_options *a, const dae_options *b,
+                         run_pair *rp)
+{
+    double y1[MAXN], y2[MAXN], yref[MAXN];
+    bp_reference(p, yref);
+    rp->r1 = run_to(p, a, p->tend, y1, NULL, &rp->s1);
+    rp->r2 = run_to(p, b, p->tend, y2, NULL, &rp->s2);
+    rp->d = rp->dref = rp->d2 = 0;
+    for (int j = 0; j < p->n; j++) {
+        double w = a->rtol * fabs(yref[j]) + a->atol;
+        if (p->kind[j] == DAE_ALG2) {
+            rp->d2 = fmax(rp->d2, fabs(y1[j] - y2[j]) / fabs(yref[j]));
+        } else {
+            rp->d = fmax(rp->d, fabs(y1[j] - y2[j]) / w);
+            rp->dref = fmax(rp->dref, fabs(y1[j] - yref[j]) / w);
+        }
+    }
+}
+
 static void test_agreement(void)
 {
     static const char *const names[3] = {"pendulum2", "hires", "lin2"};
     for (int i = 0; i < 3; i++) {
         const bp_problem *p = bp_find(names[i]);
-        dae_options o;
-        dae_stats s1, s2;
-        double y1[MAXN], y2[MAXN], yref[MAXN];
-        bp_reference(p, yref);
-        dae_options_default(&o);
-        o.rtol = 1e-7;
-        o.atol = i == 1 ? 1e-11 : 1e-9;
-        int r1 = run_to(p, &o, p->tend, y1, NULL, &s1);
-        o.linsol = LS_DENSE;
-        int r2 = run_to(p, &o, p->tend, y2, NULL, &s2);
-        double d = 0, dref = 0;
-        for (int j = 0; j < p->n; j++) {
-            double w = o.rtol * fabs(yref[j]) + o.atol;
-            if (p->kind[j] == DAE_ALG2) continue;
-            d = fmax(d, fabs(y1[j] - y2[j]) / w);
-            dref = fmax(dref, fabs(y1[j] - yref[j]) / w);
-        }
+        dae_options a, b;
+        run_pair rp;
+        dae_options_default(&a);
+        a.rtol = 1e-7;
+        a.atol = i == 1 ? 1e-11 : 1e-9;
+        b = a;
+        b.linsol = LS_DENSE;
+        compare_runs(p, &a, &b, &rp);
         tap_diag("%s KLU vs dense: max diff %.3g tolerances (KLU error %.3g tolerances); steps "
                  "%ld / %ld",
-                 p->name, d, dref, s1.steps, s2.steps);
-        tap_ok(r1 == DAE_SUCCESS && r2 == DAE_SUCCESS && d <= 10.0,
-               "%s: KLU and dense LU agree within 10 tolerances (%.3g)", p->name, d);
+                 p->name, rp.d, rp.dref, rp.s1.steps, rp.s2.steps);
+        tap_ok(rp.r1 == DAE_SUCCESS && rp.r2 == DAE_SUCCESS && rp.d <= 10.0,
+               "%s: KLU and dense LU agree within 10 tolerances (%.3g)", p->name, rp.d);
     }
     static const char *const i2names[3] = {"pendulum2", "lin2", "ap102"};
     for (int i = 0; i < 3; i++) {
         const bp_problem *p = bp_find(i2names[i]);
-        dae_options o;
-        dae_stats s1, s2;
-        double y1[MAXN], y2[MAXN], yref[MAXN];
-        bp_reference(p, yref);
-        dae_options_default(&o);
-        o.rtol = 1e-7;
-        o.atol = 1e-9;
-        o.index2 = DAE_I2_EXCLUDE;
-        int r1 = run_to(p, &o, p->tend, y1, NULL, &s1);
-        o.index2 = DAE_I2_SCALE_H;
-        int r2 = run_to(p, &o, p->tend, y2, NULL, &s2);
-        double d = 0, d2 = 0;
-        for (int j = 0; j < p->n; j++) {
-            double w = o.rtol * fabs(yref[j]) + o.atol;
-            if (p->kind[j] == DAE_ALG2)
-                d2 = fmax(d2, fabs(y1[j] - y2[j]) / fabs(yref[j]));
-            else
-                d = fmax(d, fabs(y1[j] - y2[j]) / w);
-        }
+        dae_options a, b;
+        run_pair rp;
+        dae_options_default(&a);
+        a.rtol = 1e-7;
+        a.atol = 1e-9;
+        a.index2 = DAE_I2_EXCLUDE;
+        b = a;
+        b.index2 = DAE_I2_SCALE_H;
+        compare_runs(p, &a, &b, &rp);
         tap_diag("%s EXCLUDE vs SCALE_H: differential max diff %.3g tolerances, index-2 rel diff "
                  "%.3g; steps %ld / %ld, rejected %ld / %ld",
-                 p->name, d, d2, s1.steps, s2.steps, s1.rejected_error, s2.rejected_error);
-        tap_ok(r1 == DAE_SUCCESS && r2 == DAE_SUCCESS && d <= 100.0,
+                 p->name, rp.d, rp.d2, rp.s1.steps, rp.s2.steps, rp.s1.rejected_error,
+                 rp.s2.rejected_error);
+        tap_ok(rp.r1 == DAE_SUCCESS && rp.r2 == DAE_SUCCESS && rp.d <= 100.0,
                "%s: EXCLUDE and SCALE_H agree in the differential variables (%.3g <= 100 "
                "tolerances)",
-               p->name, d);
-        tap_ok(r1 == DAE_SUCCESS && r2 == DAE_SUCCESS && d2 <= 1000 * o.rtol,
+               p->name, rp.d);
+        tap_ok(rp.r1 == DAE_SUCCESS && rp.r2 == DAE_SUCCESS && rp.d2 <= 1000 * a.rtol,
                "%s: EXCLUDE and SCALE_H agree in the index-2 variables (rel %.3g <= 1000 rtol)",
-               p->name, d2);
+               p->name, rp.d2);
     }
 }
 

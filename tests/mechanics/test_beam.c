@@ -256,31 +256,41 @@ static int near(const double *w, int nw, double target, double *found)
     return isfinite(best);
 }
 
-static void test_frequencies(void)
+/* The model "name": a chain of n elements of section sec from (0,0,0) to (L,0,0), clamped at its
+ * foot (6 dof support), compiled and set straight; NULL on failure (a failed test point "what:
+ * compile"). */
+static bgr_model *clamped_chain(const char *name, const char *what, int n, double L,
+                                const mech_section *sec, int *nodes, int *elems, int *extra)
 {
-    const int n = 20;
-    const double L = 1.0, p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0}, up[3] = {0, 0, 1};
-    int nodes[32], elems[32], extra[32] = {1};
-    bgr_model *m = bgr_model_create("modes");
-    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &steel, NULL, extra, NULL, nodes, elems);
+    const double p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0}, up[3] = {0, 0, 1};
+    bgr_model *m = bgr_model_create(name);
+    mech_beam_chain(m, 0, "beam", n, p0, p1, up, sec, NULL, extra, NULL, nodes, elems);
     int clamp = mech_support(m, 0, "clamp", 6);
     bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
              mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);
     if (bgr_compile(m) != BG_OK) {
-        tap_ok(0, "modes: compile (%s)", bgr_model_error(m)->message);
+        tap_ok(0, "%s: compile (%s)", what, bgr_model_error(m)->message);
         bgr_model_free(&m);
-        return;
+        return NULL;
     }
     mech_beam_chain_set(m, nodes, n, p0, p1);
+    return m;
+}
+
+/* The generalised eigenvalues s = (ar + i ai) / be of the linearisation of the compiled model m
+ * at (bgr_y0, yp): dF/dy v = s (-dF/dy') v, by LAPACK dggev. ar, ai, be get N = bgr_n(m) values
+ * each in arrays the caller frees; returns dggev's info. */
+static int pencil_eigs(bgr_model *m, const double *yp, double **ar_out, double **ai_out,
+                       double **be_out)
+{
     dae_problem p;
     bgr_dae_problem(m, &p);
     int N = bgr_n(m);
     sp_csc *Jy = sp_csc_copy(p.jac_y_pattern), *Jyp = sp_csc_copy(p.jac_yp_pattern);
-    double *yp = calloc((size_t)N, sizeof *yp);
     bgr_jacobian(m, 0.0, bgr_y0(m), yp, Jy, Jyp);
     double *A = malloc((size_t)N * N * sizeof *A), *B = malloc((size_t)N * N * sizeof *B);
     double *ar = malloc((size_t)N * sizeof *ar), *ai = malloc((size_t)N * sizeof *ai),
-           *be = malloc((size_t)N * sizeof *be), *om = malloc((size_t)N * sizeof *om);
+           *be = malloc((size_t)N * sizeof *be);
     sp_csc_to_dense(Jy, A);
     sp_csc_to_dense(Jyp, B);
     for (long i = 0; i < (long)N * N; i++)
@@ -293,6 +303,28 @@ static void test_frequencies(void)
     double *work = malloc((size_t)lwork * sizeof *work);
     dggev_("N", "N", &N, A, &N, B, &N, ar, ai, be, NULL, &one, NULL, &one, work, &lwork, &info, 1,
            1);
+    free(A);
+    free(B);
+    free(work);
+    sp_csc_free(&Jy);
+    sp_csc_free(&Jyp);
+    *ar_out = ar;
+    *ai_out = ai;
+    *be_out = be;
+    return info;
+}
+
+static void test_frequencies(void)
+{
+    const int n = 20;
+    const double L = 1.0;
+    int nodes[32], elems[32], extra[32] = {1};
+    bgr_model *m = clamped_chain("modes", "modes", n, L, &steel, nodes, elems, extra);
+    if (!m) return;
+    int N = bgr_n(m);
+    double *yp = calloc((size_t)N, sizeof *yp), *ar, *ai, *be;
+    int info = pencil_eigs(m, yp, &ar, &ai, &be);
+    double *om = malloc((size_t)N * sizeof *om);
     int nw = 0;
     for (int i = 0; i < N; i++)
         if (info == 0 && fabs(be[i]) > 1e-12 * (fabs(ar[i]) + fabs(ai[i])) && ai[i] / be[i] > 1.0)
@@ -323,16 +355,11 @@ static void test_frequencies(void)
     near(om, nw, wt, &got);
     tap_ok(fabs(got - wt) / wt < 1e-2, "modes: first torsional %.2f rad/s against %.2f (rel %.2g)",
            got, wt, fabs(got - wt) / wt);
-    free(A);
-    free(B);
     free(ar);
     free(ai);
     free(be);
     free(om);
-    free(work);
     free(yp);
-    sp_csc_free(&Jy);
-    sp_csc_free(&Jyp);
     bgr_model_free(&m);
 }
 
@@ -423,21 +450,12 @@ static void test_spinning(void)
 static void test_damping(void)
 {
     const int n = 10;
-    const double L = 1.0, p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0}, up[3] = {0, 0, 1};
+    const double L = 1.0;
     mech_section sec = steel;
     sec.beta = 2e-4;
     int nodes[16], elems[16], extra[16] = {1};
-    bgr_model *m = bgr_model_create("damped");
-    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, NULL, extra, NULL, nodes, elems);
-    int clamp = mech_support(m, 0, "clamp", 6);
-    bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
-             mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);
-    if (bgr_compile(m) != BG_OK) {
-        tap_ok(0, "damping: compile (%s)", bgr_model_error(m)->message);
-        bgr_model_free(&m);
-        return;
-    }
-    mech_beam_chain_set(m, nodes, n, p0, p1);
+    bgr_model *m = clamped_chain("damped", "damping", n, L, &sec, nodes, elems, extra);
+    if (!m) return;
     int N = bgr_n(m);
     /* Jacobian at perturbed states with velocities */
     double *z = malloc((size_t)N * sizeof *z), *zp = calloc((size_t)N, sizeof *zp);
@@ -460,25 +478,8 @@ static void test_damping(void)
     }
     tap_ok(!bad, "damping: Jacobian with the velocity terms matches finite differences: %s", rep);
     /* eigenvalues at rest */
-    dae_problem p;
-    bgr_dae_problem(m, &p);
-    sp_csc *Jy = sp_csc_copy(p.jac_y_pattern), *Jyp = sp_csc_copy(p.jac_yp_pattern);
-    bgr_jacobian(m, 0.0, bgr_y0(m), zp, Jy, Jyp);
-    double *A = malloc((size_t)N * N * sizeof *A), *B = malloc((size_t)N * N * sizeof *B);
-    double *ar = malloc((size_t)N * sizeof *ar), *ai = malloc((size_t)N * sizeof *ai),
-           *be = malloc((size_t)N * sizeof *be);
-    sp_csc_to_dense(Jy, A);
-    sp_csc_to_dense(Jyp, B);
-    for (long i = 0; i < (long)N * N; i++)
-        B[i] = -B[i];
-    int lwork = -1, info = 0, one = 1;
-    double wq;
-    dggev_("N", "N", &N, A, &N, B, &N, ar, ai, be, NULL, &one, NULL, &one, &wq, &lwork, &info, 1,
-           1);
-    lwork = (int)wq;
-    double *work = malloc((size_t)lwork * sizeof *work);
-    dggev_("N", "N", &N, A, &N, B, &N, ar, ai, be, NULL, &one, NULL, &one, work, &lwork, &info, 1,
-           1);
+    double *ar, *ai, *be;
+    int info = pencil_eigs(m, zp, &ar, &ai, &be);
     const double beta_[2] = {1.8751, 4.6941};
     for (int k = 0; k < 2; k++) {
         double w = beta_[k] * beta_[k] * sqrt(sec.E * sec.Iz / (sec.rho * sec.A * L * L * L * L));
@@ -496,16 +497,11 @@ static void test_damping(void)
                "damping: bending mode %d: Re(s) = %.6f against -beta w^2/2 = %.6f (w = %.3f)",
                k + 1, re, want, im);
     }
-    free(A);
-    free(B);
     free(ar);
     free(ai);
     free(be);
-    free(work);
     free(z);
     free(zp);
-    sp_csc_free(&Jy);
-    sp_csc_free(&Jyp);
     bgr_model_free(&m);
 }
 
