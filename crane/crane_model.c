@@ -677,5 +677,32 @@ int crane_stats_print(const crane *c, FILE *f)
     fprintf(f, "%-34s %10d\n", "bonds", st.bonds);
     fprintf(f, "%-34s %10d\n", "components", st.components);
     fprintf(f, "%-34s %10d\n", "boom beam elements", c->n);
+    /* unknowns by part (the first path segment under the model; bonds between parts together) */
+    enum { MAXPART = 64 };
+    char part[MAXPART][48];
+    int cnt[MAXPART][3] = {{0}}, np = 0;
+    const int *kinds = bgr_kinds(c->m);
+    for (int i = 0; i < bgr_n(c->m); i++) {
+        const char *nm = bgr_var_name(c->m, i), *a = nm ? strchr(nm, '/') : NULL;
+        char key[48] = "(other)";
+        if (a) {
+            size_t len = strcspn(a + 1, "/");
+            if (strncmp(a + 1, "b_", 2) == 0)
+                strcpy(key, "(bonds between parts)");
+            else
+                snprintf(key, sizeof key, "%.*s", (int)(len < 47 ? len : 47), a + 1);
+        }
+        int k = 0;
+        while (k < np && strcmp(part[k], key) != 0)
+            k++;
+        if (k == np) {
+            if (np == MAXPART) k = np - 1; /* the last row collects the rest */
+            else strcpy(part[np++], key);
+        }
+        cnt[k][kinds[i]]++;
+    }
+    fprintf(f, "\n%-34s %10s %10s %10s\n", "unknowns by part", "diff", "alg", "index 2");
+    for (int k = 0; k < np; k++)
+        fprintf(f, "%-34s %10d %10d %10d\n", part[k], cnt[k][0], cnt[k][1], cnt[k][2]);
     return BG_OK;
 }
