@@ -94,7 +94,7 @@ void crane_scene_default(crane_scene *s)
     s->kd = 50;
     s->ki = 2;
     s->kd_filter = 0.01;
-    s->x_limit = 0;
+    s->x_limit = 1; /* the pump's full displacement */
     s->ref_t1 = 2;
     s->ref_t2 = 10;
     s->ref_t3 = 12;

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the main job: the benchmark harness (every problem,
+# Installs what is missing, builds, and runs the main job: the crane's paper scene (results,
+# statistics and the paper's Fig. 5 in results/paper/), then the benchmark harness (every problem,
 # our solver and IDA, rtol 1e-4 .. 1e-10, stability suite; report in results/bench/report.md)
-# and the KLU timings on block-banded matrices. The crane scene takes its place once it lands.
+# and the KLU timings on block-banded matrices.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
 [ -d build ] || meson setup build --buildtype=release >/dev/null
 ninja -C build >/dev/null
+./build/crane/program/crane paper --out results/paper
 ./build/bench/bench --stability --out results/bench "$@"
 echo "report: results/bench/report.md"
 ./build/bench/klu_bench

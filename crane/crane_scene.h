@@ -1,0 +1,142 @@
+/* Scene files of the rotary crane: INI text (parsed with inih) -> crane_scene.
+ *
+ * A scene file starts from crane_scene_default() (the paper scene) and changes what it states;
+ * every key is optional and may appear at most once. Lines are "key = value", "[section]",
+ * blank, or comments starting with ';' or '#'; an inline comment starts with " ;" (a ';' after
+ * white space). Keys and section names are matched without regard to case. Values:
+ *   number   a finite decimal number, e.g. 76, 0.0443, 1.08e11
+ *   integer  decimal digits with an optional sign
+ *   boolean  true/false, yes/no, on/off, 1/0
+ *   vector   three numbers "x, y, z"
+ *   name     1 to 63 characters of [A-Za-z0-9_.-] (it names the output folder)
+ * The sections and keys mirror the fields of crane_scene (crane_model.h); the key is the field's
+ * name without the section's prefix. Units are SI: m, kg, s, N, Pa, rad.
+ *
+ *   [scene]          name             name           results go to results/<name>/
+ *   [environment]    g                number >= 0    m/s^2, gravity along -Z0
+ *   [platform]       mass             number > 0     kg
+ *                    inertia          vector > 0     kg m^2, principal, about the mass centre
+ *                    com              vector         m, mass centre (platform frame)
+ *                    joint_A          vector         m, slewing joint A on the axis (global)
+ *   [boom]           elements         0..512         beam elements; 0: one rigid body
+ *                    foot             vector         m, hinge B (platform frame)
+ *                    length           number > 0     m
+ *                    tip_radius       number >= 0    m, tip's distance to the slewing axis
+ *                    E, G             number > 0     Pa, Young's and shear moduli
+ *                    A                number > 0     m^2, cross-section area
+ *                    I_luff, I_side   number > 0     m^4, second moments (bending in / out of
+ *                                                    the luffing plane)
+ *                    J                number > 0     m^4, torsion constant
+ *                    rho              number > 0     kg/m^3, density
+ *                    beta             number >= 0    s, stiffness-proportional damping
+ *   [ties]           enabled          boolean        build the suspension ties
+ *                    gantry_top       vector         m, upper end on the platform (platform frame)
+ *                    E                number > 0     Pa
+ *                    A                number > 0     m^2
+ *   [rope]           enabled          boolean        build the rope and the load
+ *                    length           number > 0     m, unstretched
+ *                    E                number > 0     Pa (stiffness E A / length)
+ *                    A                number > 0     m^2
+ *                    damping          number >= 0    N s/m
+ *   [load]           mass             number > 0     kg (load with hook; built with the rope)
+ *   [counterweight]  enabled          boolean
+ *                    mass             number > 0     kg
+ *                    pos              vector         m (platform frame)
+ *   [hydraulics]     enabled          boolean        false: the platform's rate is prescribed
+ *                    pump_speed       number > 0     rad/s, drive speed of the pump
+ *                    pump_disp        number > 0     m^3/rev at x = 1
+ *                    pump_leak        number >= 0    m^3/(s Pa)
+ *                    motor_disp       number > 0     m^3/rev
+ *                    motor_leak       number >= 0    m^3/(s Pa)
+ *                    motor_inertia    number > 0     kg m^2
+ *                    gear_ratio       number > 0     motor turns per platform turn
+ *                    line_volume      number > 0     m^3, each line
+ *                    bulk_modulus     number > 0     Pa
+ *                    charge_pressure  number >= 0    Pa
+ *   [controller]     kp, kd, ki       number >= 0    PID gains (x = fraction of the pump's
+ *                                                    displacement; kp 1/(rad/s), kd 1/(rad/s^2),
+ *                                                    ki 1/rad)
+ *                    kd_filter        number >= 0    s, time constant of the rate filter of the
+ *                                                    derivative term; 0: the measured acceleration
+ *                    x_limit          number >= 0    |x| <= x_limit (smooth); 0: no limit
+ *   [reference]      t1, t2, t3       number >= 0    s, end of the ramp up, end of the plateau,
+ *                                                    stop time (0 < t1 <= t2 < t3)
+ *                    rate             number         rad/s, plateau rate
+ *   [initial]        static_start     boolean        start from the static equilibrium
+ *   [solver]         t_end            number > 0     s, end time
+ *                    rtol             number in (0, 1)  relative tolerance
+ *                    atol             number > 0     absolute tolerance
+ *                    output_step      number > 0     s, output interval (<= t_end)
+ *
+ * Besides the ranges above, a scene must be consistent: the boom must reach its tip radius
+ * (|tip_radius - foot.x| < length) and the reference's times must be ordered.
+ *
+ * Errors (the library never prints): every function returns BG_OK or a status (BG_ERR_IO: the
+ * file cannot be read; BG_ERR_ARGUMENT: the text is wrong; BG_ERR_MEMORY) and writes the
+ * message into err, in the form
+ *   FILE:LINE: key 'x' in [section]: expected a number > 0 (m), got '-3'
+ *   FILE:LINE: unknown key 'lenght' in [boom]; did you mean 'length'?
+ *   FILE:LINE: unknown section [bom]; did you mean [boom]?
+ * so that an editor can jump to it. The scene is left partly changed on error. */
+#ifndef CRANE_SCENE_H
+#define CRANE_SCENE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "bg_status.h"
+#include "crane_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* crane_scene_default(s), then the file at path. */
+int crane_scene_load(crane_scene *s, const char *path, bg_error *err);
+/* Apply a scene file's text to s (not reset first); filename is used in messages. */
+int crane_scene_parse_file(crane_scene *s, FILE *f, const char *filename, bg_error *err);
+int crane_scene_parse_string(crane_scene *s, const char *text, const char *filename, bg_error *err);
+
+/* Set one key from its text, with the same checks as in a file (not the consistency checks:
+ * call crane_scene_check afterwards). origin starts the message (e.g. "--t-end"; NULL: none). */
+int crane_scene_set(crane_scene *s, const char *section, const char *key, const char *value,
+                    const char *origin, bg_error *err);
+
+/* The ranges of every field and the consistency of the scene; origin starts the message. */
+int crane_scene_check(const crane_scene *s, const char *origin, bg_error *err);
+
+/* Write s as a complete scene file (every key, with its unit and meaning as a comment); parsing
+ * it gives s back exactly. Returns BG_OK or BG_ERR_IO. */
+int crane_scene_write(const crane_scene *s, FILE *f);
+
+/* Number of keys whose values differ between a and b; the first is named in what
+ * ("[boom] length"; what may be NULL). */
+int crane_scene_compare(const crane_scene *a, const crane_scene *b, char *what, size_t size);
+
+/* The keys, for listings and tests. */
+typedef enum crane_key_type {
+    CRANE_KEY_NUMBER,
+    CRANE_KEY_INTEGER,
+    CRANE_KEY_BOOLEAN,
+    CRANE_KEY_VECTOR,
+    CRANE_KEY_NAME
+} crane_key_type;
+typedef struct crane_scene_key {
+    const char *section, *key;
+    crane_key_type type;
+    const char *unit;     /* "m", "Pa", ... ("" if none) */
+    const char *expected; /* the range in words: "a number > 0", ... */
+    const char *meaning;
+} crane_scene_key;
+int crane_scene_nkeys(void);
+/* Key i (0 .. crane_scene_nkeys()-1), or NULL. */
+const crane_scene_key *crane_scene_key_at(int i);
+
+/* Edit distance (optimal string alignment: insertions, deletions, substitutions, transpositions
+ * of neighbours), case-insensitive; used for the suggestions. */
+int crane_scene_edit_distance(const char *a, const char *b);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
