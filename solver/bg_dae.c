@@ -191,11 +191,15 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
 
 /* ------------------------------------------------------------------- norms ---- */
 
+#define TOL_FLOOR 1e-100
+
 void daei_set_weights(dae_solver *s, const double *y)
 {
     double h = fabs(s->hh);
     for (int i = 0; i < s->n; i++) {
-        double w = 1.0 / (s->o.rtol * fabs(y[i]) + s->atol[i]);
+        /* tolerances below TOL_FLOOR act as TOL_FLOOR: the weights and their squares in the
+         * norms stay finite (atol = 0 with y_i = 0, or a denormal atol) */
+        double w = 1.0 / fmax(s->o.rtol * fabs(y[i]) + s->atol[i], TOL_FLOOR);
         s->ewt[i] = w;
         s->wdiff[i] = s->kind[i] == DAE_ALG2 ? 0.0 : w;
         if (s->kind[i] == DAE_ALG2) {
@@ -307,6 +311,12 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
                        o->atol);
         return NULL;
     }
+    if (!(o->rtol < 1) || (!o->atol_vec && !isfinite(o->atol))) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "rtol must be below 1 and atol finite (rtol %g, atol %g)", o->rtol,
+                       o->atol);
+        return NULL;
+    }
     if (o->max_order < 1 || o->max_order > MAXORD) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "max_order must be 1..5 (got %d)", o->max_order);
         return NULL;
@@ -345,7 +355,7 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
             return NULL;
         }
         s->atol[i] = o->atol_vec ? o->atol_vec[i] : o->atol;
-        if (!(s->atol[i] >= 0) || (s->atol[i] == 0 && o->rtol == 0)) {
+        if (!(s->atol[i] >= 0) || !isfinite(s->atol[i]) || (s->atol[i] == 0 && o->rtol == 0)) {
             bg_error_raise(err, BG_ERR_ARGUMENT, w,
                            "atol[%d] = %g: must be >= 0 (and > 0 if rtol = 0)", i, s->atol[i]);
             dae_free(&s);

@@ -991,6 +991,44 @@ static void test_failures(void)
 
 /* ---- 11. statistics output ---- */
 
+/* Tolerances at the edges: rtol >= 1 and an infinite atol are refused with a message; a tiny
+ * atol (1e-300, weights that would overflow) runs on the smooth problem to its exact solution. */
+static void test_tolerance_extremes(void)
+{
+    const bp_problem *p = bp_find("lin2"); /* x1 = sin t starts at 0 */
+    bp_instance in;
+    if (bp_instance_init(&in, p) != 0) {
+        tap_ok(0, "tolerance extremes: instance");
+        return;
+    }
+    const double bad[2][2] = {{2.0, 1e-8}, {1e-6, INFINITY}};
+    for (int k = 0; k < 2; k++) {
+        dae_options o;
+        bg_error err = {0};
+        dae_options_default(&o);
+        o.rtol = bad[k][0];
+        o.atol = bad[k][1];
+        dae_solver *s = dae_create(&in.dp, &o, &err);
+        tap_ok(s == NULL && strstr(err.message, "rtol") != NULL,
+               "rtol %g, atol %g refused: %s", o.rtol, o.atol, err.message);
+        dae_free(&s);
+    }
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = 1e-6;
+    o.atol = 1e-300;
+    dae_solver *s = dae_create(&in.dp, &o, NULL);
+    double y[MAXN] = {0}, yp[MAXN], ex[MAXN], t = 0;
+    int ret = s ? dae_init(s, p->t0, p->y0, p->yp0) : -1000;
+    if (ret == 0) ret = dae_solve_to(s, p->tend, &t, y, yp);
+    p->exact(p->tend, ex, NULL);
+    double e = fmax(fabs(y[0] - ex[0]), fabs(y[1] - ex[1])); /* x1, x2 */
+    tap_ok(ret == DAE_SUCCESS && e <= 1e-4, "atol = 1e-300: completes (%s), error %.3g",
+           dae_return_name(ret), e);
+    dae_free(&s);
+    bp_instance_free(&in);
+}
+
 static void test_stats_output(void)
 {
     const bp_problem *p = bp_find("hires");
@@ -1389,6 +1427,7 @@ int main(void)
     test_consistent_init();
     test_breakpoints();
     test_failures();
+    test_tolerance_extremes();
     test_stats_output();
     test_roots();
     test_conditioning();
