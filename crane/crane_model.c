@@ -473,9 +473,7 @@ static int set_initial(crane *c)
         if (c->motor_acc >= 0) c->v_alpha = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->motor_acc, 0});
         y0[c->v_ph] = y0[c->v_pl] = s->charge_pressure;
     }
-    /* the undeformed tip at theta = 0 until crane_settle puts the static one here */
-    memcpy(c->tip0, tip, sizeof tip);
-    return 0;
+    return 0; /* c->tip0: the undeformed tip until crane_settle puts the static one there */
 }
 
 crane *crane_build(const crane_scene *s, bg_error *err)
@@ -632,21 +630,15 @@ void crane_outputs(const crane *c, double t, const double *y, const double *yp, 
     out[6] = y[c->v_alpha_ref] - (c->v_alpha >= 0 ? y[c->v_alpha] : yp[c->v_omega]);
     boom_ends(c, y, tip, foot);
     memcpy(out + 7, tip, sizeof tip);
-    /* deflection: the tip against the static tip carried round by the platform's angle */
-    double th = y[c->v_theta], cs = cos(th), sn = sin(th), r[3], e2[3], e3[3], d[3];
+    /* deflection: the tip turned back by the platform's angle (about the axis through A)
+     * against the static tip, along the boom's transverse directions */
+    double th = y[c->v_theta], cs = cos(th), sn = sin(th), d[3];
     const double *A = s->joint_A;
-    r[0] = A[0] + cs * (c->tip0[0] - A[0]) - sn * (c->tip0[1] - A[1]);
-    r[1] = A[1] + sn * (c->tip0[0] - A[0]) + cs * (c->tip0[1] - A[1]);
-    r[2] = c->tip0[2];
-    e2[0] = cs * c->e2[0] - sn * c->e2[1];
-    e2[1] = sn * c->e2[0] + cs * c->e2[1];
-    e2[2] = c->e2[2];
-    e3[0] = cs * c->e3[0] - sn * c->e3[1];
-    e3[1] = sn * c->e3[0] + cs * c->e3[1];
-    e3[2] = c->e3[2];
-    sub3(tip, r, d);
-    out[10] = mech_dot(d, e2);
-    out[11] = mech_dot(d, e3);
+    d[0] = A[0] + cs * (tip[0] - A[0]) + sn * (tip[1] - A[1]) - c->tip0[0];
+    d[1] = A[1] - sn * (tip[0] - A[0]) + cs * (tip[1] - A[1]) - c->tip0[1];
+    d[2] = tip[2] - c->tip0[2];
+    out[10] = mech_dot(d, c->e2);
+    out[11] = mech_dot(d, c->e3);
     for (int i = 0; i < 3; i++)
         out[12 + i] = c->v_load >= 0 ? y[c->v_load + i] : NAN;
     out[15] = s->rope ? mech_axial_tension(c->m, c->rope, y) : NAN;
