@@ -33,6 +33,7 @@ struct crane {
     int platform, slew, hinge, sensor;
     int n, nodes[MAXEL + 1], elems[MAXEL], boom; /* beam chain, or rigid boom body */
     int tie, rope, load, cw;
+    int drive_bond;  /* into the slewing joint's drive port */
     double tie_L0;   /* unstretched tie length */
     int ref_value, ref_rate, ref_int, pid, vol_h, vol_l, motor_acc;
     double tip0[3], e2[3], e3[3]; /* undeformed tip, boom's transverse directions (theta = 0) */
@@ -323,12 +324,13 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         double zero = 0;
         int hold;
         TRY(hold = bgr_Sf(m, 0, "hold", 1, &zero), "hold");
-        TRY(bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, hold, 0), drive, NULL, NULL), "bond hold");
+        TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, hold, 0), drive, NULL, NULL),
+            "bond hold");
     } else if (!s->hydraulics) {
         int pres;
         TRY(pres = bgr_Sf_signal(m, 0, "prescribed_rate", (bgr_ref){BGR_OWN, c->ref_value, 0}),
             "prescribed rate");
-        TRY(bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, pres, 0), drive, NULL, NULL),
+        TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, pres, 0), drive, NULL, NULL),
             "bond drive");
     } else {
         bgr_comp hy = bgr_component(m, 0, "hydraulics");
@@ -386,7 +388,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
             TRY(bgr_bond(m, hy, hb[i].name, 1, bgr_port_of(m, hb[i].a, hb[i].pa),
                          bgr_port_of(m, hb[i].b, hb[i].pb), NULL, NULL),
                 hb[i].name);
-        TRY(bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, gear, 1), drive, NULL, NULL), "bond drive");
+        TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, gear, 1), drive, NULL, NULL),
+            "bond drive");
     }
     if (bgr_compile(m) != BG_OK) {
         fail_here(err, "compile", m);
@@ -497,6 +500,42 @@ bgr_model *crane_model(crane *c)
 double crane_tie_length(const crane *c)
 {
     return c->s.ties ? c->tie_L0 : 0.0;
+}
+
+int crane_energy(const crane *c, const double *y, double *kinetic, double *potential,
+                 double *elastic)
+{
+    const bgr_model *m = c->m;
+    double T = 0, V = 0, U = 0, t, v;
+    int bodies[MAXEL + 3], nb = 0, st = BG_OK;
+    bodies[nb++] = c->platform;
+    if (c->n > 0)
+        for (int k = 0; k <= c->n; k++)
+            bodies[nb++] = c->nodes[k];
+    else
+        bodies[nb++] = c->boom;
+    for (int k = 0; k < nb && st == BG_OK; k++)
+        if ((st = mech_body_energy(m, bodies[k], y, &t, &v)) == BG_OK) T += t, V += v;
+    if (c->s.rope && st == BG_OK && (st = mech_point_mass_energy(m, c->load, y, &t, &v)) == BG_OK)
+        T += t, V += v;
+    if (c->s.counterweight && st == BG_OK &&
+        (st = mech_point_mass_energy(m, c->cw, y, &t, &v)) == BG_OK)
+        T += t, V += v;
+    for (int k = 0; k < c->n; k++)
+        U += mech_beam_energy(m, c->elems[k], y);
+    if (c->s.ties) U += mech_axial_energy(m, c->tie, y);
+    if (c->s.rope) U += mech_axial_energy(m, c->rope, y);
+    *kinetic = T;
+    *potential = V;
+    *elastic = U;
+    return st;
+}
+
+double crane_drive_power(const crane *c, const double *y)
+{
+    int e = bgr_ref_var(c->m, (bgr_ref){BGR_EFFORT, c->drive_bond, 0});
+    int f = bgr_ref_var(c->m, (bgr_ref){BGR_FLOW, c->drive_bond, 0});
+    return e >= 0 && f >= 0 ? y[e] * y[f] : NAN;
 }
 
 int crane_breakpoints(const crane *c, double *t, int max)

@@ -101,6 +101,14 @@ double crane_tie_length(const crane *c);
 extern const char *const crane_output_names[CRANE_NOUT]; /* "t [s]", "theta [rad]", ... */
 void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out);
 
+/* Mechanical energies at a state y: kinetic (platform, boom nodes or rigid boom, load,
+ * counterweight), potential of gravity, elastic (beam elements, ties, rope). The hydraulic
+ * drive's energies (motor inertia, oil compression) are not included. BG_OK or a status. */
+int crane_energy(const crane *c, const double *y, double *kinetic, double *potential,
+                 double *elastic);
+/* Power delivered into the slewing joint's drive port (torque times relative rate). */
+double crane_drive_power(const crane *c, const double *y);
+
 /* Model statistics beside the paper's Table 2, and the counts by component. */
 int crane_stats_print(const crane *c, FILE *f);
 

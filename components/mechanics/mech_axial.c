@@ -198,3 +198,32 @@ double mech_axial_tension(const bgr_model *m, int id, const double *y)
     double TL, TLd;
     return tension(a, L, mech_dot(d, dv) / L, &TL, &TLd);
 }
+
+/* -Li2(-u) for 0 <= u <= 1: the alternating series sum (-1)^(n+1) u^n / n^2. */
+static double neg_li2_neg(double u)
+{
+    double sum = 0, un = 1;
+    for (int n = 1; n < 200000; n++) {
+        un *= u;
+        double term = un / ((double)n * n);
+        sum += n % 2 ? term : -term;
+        if (term < 1e-17 * sum) break;
+    }
+    return sum;
+}
+
+double mech_axial_energy(const bgr_model *m, int id, const double *y)
+{
+    bgr_element *el = bgr_element_get((bgr_model *)m, id);
+    if (!el || el->cls != &axial_class) return NAN;
+    const axial *a = el->params;
+    const double *d = y + a->d;
+    double x = sqrt(mech_dot(d, d)) - a->L0;
+    if (!a->rope) return 0.5 * a->k * x * x;
+    /* k times the integral of softplus from -inf: eps^2 (-Li2(-e^z)), z = x / eps, written with
+     * -Li2(-e^z) = z^2/2 + pi^2/6 - (-Li2(-e^-z)) for z > 0 */
+    const double pi = 3.14159265358979323846;
+    double z = x / a->eps;
+    double F = z > 0 ? 0.5 * z * z + pi * pi / 6 - neg_li2_neg(exp(-z)) : neg_li2_neg(exp(z));
+    return a->k * a->eps * a->eps * F;
+}

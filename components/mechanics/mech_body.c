@@ -363,3 +363,17 @@ int mech_body_set(bgr_model *m, int body_id, const double *x, const double *v, c
         y0[i0 + 9 + i] = q ? q[i] : qi[i];
     return BG_OK;
 }
+
+int mech_body_energy(const bgr_model *m, int body_id, const double *y, double *kinetic,
+                     double *potential)
+{
+    const bgr_element *el = bgr_element_get((bgr_model *)m, body_id);
+    if (!el || el->cls != &body_class || !bgr_nvars(m)) return BG_ERR_ARGUMENT;
+    const body *b = el->params;
+    const double *x = y + el->state0, *v = x + 3, *w = x + 6;
+    double Jw[3];
+    mech_mv(b->J, w, Jw);
+    *kinetic = 0.5 * b->m * mech_dot(v, v) + 0.5 * mech_dot(w, Jw);
+    *potential = -b->m * mech_dot(b->g, x);
+    return BG_OK;
+}

@@ -40,6 +40,11 @@ int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const dou
 int mech_body_set(bgr_model *m, int body, const double *x, const double *v, const double *w,
                   const double *q);
 
+/* Kinetic energy (1/2 m v.v + 1/2 w.J w) and the potential of gravity (-m g.x) at a state y;
+ * BG_OK or BG_ERR_ARGUMENT if body is not a body of a compiled model. */
+int mech_body_energy(const bgr_model *m, int body, const double *y, double *kinetic,
+                     double *potential);
+
 /* Variable ids of the states (after bgr_compile): first of x, v, w, q. */
 int mech_body_var(const bgr_model *m, int body, char which);
 

@@ -328,6 +328,18 @@ int mech_point_mass_set(bgr_model *m, int id, const double *x, const double *v)
     return BG_OK;
 }
 
+int mech_point_mass_energy(const bgr_model *m, int id, const double *y, double *kinetic,
+                           double *potential)
+{
+    const bgr_element *el = bgr_element_get((bgr_model *)m, id);
+    if (!el || el->cls != &mass_class || !bgr_nvars(m)) return BG_ERR_ARGUMENT;
+    const part *p = el->params;
+    const double *x = y + el->state0, *v = x + 3;
+    *kinetic = 0.5 * p->m * mech_dot(v, v);
+    *potential = -p->m * mech_dot(p->g, x);
+    return BG_OK;
+}
+
 int mech_support(bgr_model *m, bgr_comp c, const char *name, int dim)
 {
     if (dim != 3 && dim != 6) return bad(m, ": support dimension must be 3 or 6", name);

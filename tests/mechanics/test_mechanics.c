@@ -497,6 +497,66 @@ static void test_jacobians(void)
     bgr_model_free(&m);
 }
 
+/* Energies: the rope's elastic energy differentiates to its tension (central differences in the
+ * stretch, slack through taut), and tends to k x^2 / 2 + k eps^2 pi^2 / 6 when taut and to 0 when
+ * slack; point mass and body energies against hand-computed values. */
+static void test_energies(void)
+{
+    const double k = 100, L0 = 0.5, eps = 0.01, g[3] = {0, 0, -9.81}, pi = 3.14159265358979323846;
+    bgr_model *m = bgr_model_create("en");
+    int a = mech_point_mass(m, 0, "a", 2.0, g), b = mech_point_mass(m, 0, "b", 3.0, g);
+    int rope = mech_rope(m, 0, "rope", k, 0, L0, eps);
+    double J[9] = {1, 0, 0, 0, 2, 0, 0, 0, 3}, r[3] = {0, 0, 0};
+    int dims[1] = {3}, body = mech_body(m, 0, "body", 4.0, J, g, 1, r, dims);
+    int sup = mech_support(m, 0, "ground", 3);
+    bgr_bond(m, 0, "ra", 3, bgr_port_of(m, a, 0), bgr_port_of(m, rope, 0), NULL, NULL);
+    bgr_bond(m, 0, "rb", 3, bgr_port_of(m, rope, 1), bgr_port_of(m, b, 0), NULL, NULL);
+    bgr_bond(m, 0, "bs", 3, bgr_port_of(m, body, 0), bgr_port_of(m, sup, 0), NULL, NULL);
+    if (bgr_compile(m) != BG_OK) {
+        tap_ok(0, "energy model compiles: %s", bgr_model_error(m)->message);
+        bgr_model_free(&m);
+        return;
+    }
+    int n = bgr_n(m), id = bgr_find_var(m, "en/rope/d2");
+    double *y = calloc((size_t)n, sizeof *y), worst = 0;
+    const double x[6] = {-0.05, -0.01, 0.0, 0.004, 0.02, 0.2};
+    for (int i = 0; i < 6; i++) {
+        double h = 1e-5;
+        y[id] = L0 + x[i] + h;
+        double up = mech_axial_energy(m, rope, y);
+        y[id] = L0 + x[i] - h;
+        double dn = mech_axial_energy(m, rope, y);
+        y[id] = L0 + x[i];
+        double T = mech_axial_tension(m, rope, y), fd = (up - dn) / (2 * h);
+        worst = fmax(worst, fabs(fd - T) / (fabs(T) + 1e-6 * k * eps));
+    }
+    tap_ok(worst < 1e-6, "rope: dU/dL = tension from slack to taut (worst relative %.2e)", worst);
+    y[id] = L0 + 0.5; /* z = x / eps = 50: the correction e^-z is below round-off */
+    tap_close(mech_axial_energy(m, rope, y), 0.5 * k * 0.25 + k * eps * eps * pi * pi / 6, 1e-12,
+              0, "taut rope: U = k x^2/2 + k eps^2 pi^2/6");
+    y[id] = L0 - 0.5;
+    double Us = mech_axial_energy(m, rope, y);
+    tap_ok(Us >= 0 && Us < 1e-15, "slack rope: U = %.3g ~ 0", Us);
+    double T, V;
+    int ia = bgr_find_var(m, "en/a/x0");
+    const double xa[6] = {1, 2, 3, 1, 0, 2};
+    memcpy(y + ia, xa, sizeof xa);
+    int st = mech_point_mass_energy(m, a, y, &T, &V);
+    tap_ok(st == BG_OK && fabs(T - 5.0) < 1e-14 && fabs(V - 2.0 * 9.81 * 3) < 1e-12,
+           "point mass: T = m v.v/2 = 5, V = m g z = 58.86 (got %g, %g)", T, V);
+    int ib = mech_body_var(m, body, 'x');
+    const double xb[9] = {0, 0, -1, 0, 1, 0, 1, 1, 1};
+    memcpy(y + ib, xb, sizeof xb);
+    st = mech_body_energy(m, body, y, &T, &V);
+    tap_ok(st == BG_OK && fabs(T - (2.0 + 3.0)) < 1e-14 && fabs(V + 4.0 * 9.81) < 1e-12,
+           "body: T = m v.v/2 + w.Jw/2 = 2 + 3, V = -39.24 (got %g, %g)", T, V);
+    tap_ok(mech_body_energy(m, a, y, &T, &V) == BG_ERR_ARGUMENT &&
+               isnan(mech_axial_energy(m, body, y)),
+           "energy of the wrong kind of element refused");
+    free(y);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     rng = tap_rng_seed(20261122);
@@ -505,5 +565,6 @@ int main(void)
     test_driven_axis();
     test_pendulum();
     test_truss_rope();
+    test_energies();
     return tap_done();
 }
