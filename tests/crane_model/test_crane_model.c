@@ -365,6 +365,63 @@ static void test_energy_balance(void)
            e6, RTOL, e8, 1e-2 * RTOL);
 }
 
+/* The paper scene over the ramp and the start of the plateau (0..3 s), sampled every 0.05 s:
+ * theta, tip_defl_1, tip_defl_2. Returns the number of samples, or -1. */
+#define NSAMP 61
+static int paper_samples(int elements, double tol, double out[NSAMP][3])
+{
+    crane_scene s;
+    run r;
+    crane_scene_default(&s);
+    s.boom_elements = elements;
+    int k = -1;
+    if (start_tol(&r, &s, 1, tol) == 0) {
+        for (k = 0; k < NSAMP; k++) {
+            if (k > 0 && advance(&r, 0.05 * k) != 0) break;
+            out[k][0] = r.out[O_TH];
+            out[k][1] = r.out[O_DL];
+            out[k][2] = r.out[O_DS];
+        }
+    }
+    finish(&r);
+    return k;
+}
+
+static double peak(double v[NSAMP][3], int j)
+{
+    double p = 0;
+    for (int k = 0; k < NSAMP; k++)
+        p = fmax(p, fabs(v[k][j]));
+    return p;
+}
+
+/* The crane issue's convergence checks, on the first 3 s (ramp, corner, plateau): rtol 1e-6
+ * against 1e-9 agree on theta to 1e-5 rad and on the tip deflections to 1 % of their peaks; the
+ * peak deflections change by less than 2 % from 16 to 32 elements. */
+static void test_convergence(void)
+{
+    static double a[NSAMP][3], b[NSAMP][3], c[NSAMP][3];
+    int na = paper_samples(16, RTOL, a), nb = paper_samples(16, 1e-9, b);
+    int nc = paper_samples(32, RTOL, c);
+    tap_ok(na == NSAMP && nb == NSAMP && nc == NSAMP, "paper scene, 0..3 s: three runs complete");
+    if (na != NSAMP || nb != NSAMP || nc != NSAMP) return;
+    double dth = 0, d1 = 0, d2 = 0;
+    for (int k = 0; k < NSAMP; k++) {
+        dth = fmax(dth, fabs(a[k][0] - b[k][0]));
+        d1 = fmax(d1, fabs(a[k][1] - b[k][1]));
+        d2 = fmax(d2, fabs(a[k][2] - b[k][2]));
+    }
+    tap_ok(dth <= 1e-5, "rtol 1e-6 against 1e-9: theta within %.2e rad", dth);
+    tap_ok(d1 <= 0.01 * peak(b, 1) && d2 <= 0.01 * peak(b, 2),
+           "rtol 1e-6 against 1e-9: tip deflections within %.2e, %.2e of their peaks %.3g, %.3g m",
+           d1 / peak(b, 1), d2 / peak(b, 2), peak(b, 1), peak(b, 2));
+    double r1 = fabs(peak(a, 1) - peak(c, 1)) / peak(c, 1);
+    double r2 = fabs(peak(a, 2) - peak(c, 2)) / peak(c, 2);
+    tap_ok(r1 < 0.02 && r2 < 0.02,
+           "16 against 32 elements: peak tip deflections change by %.2e, %.2e (%.4g, %.4g m)", r1,
+           r2, peak(c, 1), peak(c, 2));
+}
+
 int main(void)
 {
     test_unreachable();
@@ -374,5 +431,6 @@ int main(void)
     test_prescribed();
     test_hydraulic_balance();
     test_energy_balance();
+    test_convergence();
     return tap_done();
 }
