@@ -91,6 +91,7 @@ void crane_scene_default(crane_scene *s)
     s->line_volume = 0.05;    /* m^3 each side */
     s->bulk_modulus = 1.4e9;
     s->charge_pressure = 2e6; /* Pa */
+    s->relief_pressure = 3e7; /* Pa */
     s->kp = 5;
     s->kd = 50;
     s->ki = 2;
@@ -370,8 +371,11 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
                             (bgr_ref){BGR_OWN, c->pid, 0}),
             "pump");
         TRY(motor = hyd_motor(m, hy, "motor", s->motor_disp, s->motor_leak, 0), "motor");
-        TRY(vh = hyd_volume(m, hy, "line_high", 2, s->line_volume, s->bulk_modulus), "line");
-        TRY(vl = hyd_volume(m, hy, "line_low", 3, s->line_volume, s->bulk_modulus), "line");
+        int valves = s->relief_pressure > 0; /* two reliefs and two check valves */
+        TRY(vh = hyd_volume(m, hy, "line_high", 2 + 3 * valves, s->line_volume, s->bulk_modulus),
+            "line");
+        TRY(vl = hyd_volume(m, hy, "line_low", 3 + 3 * valves, s->line_volume, s->bulk_modulus),
+            "line");
         TRY(tank = hyd_tank(m, hy, "charge_pump", s->charge_pressure), "charge");
         TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-9), "charge valve");
         c->vol_h = vh;
@@ -388,6 +392,32 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
             TRY(bgr_bond(m, hy, hb[i].name, 1, bgr_port_of(m, hb[i].a, hb[i].pa),
                          bgr_port_of(m, hb[i].b, hb[i].pb), NULL, NULL),
                 hb[i].name);
+        if (valves) {
+            /* Cross-port relief valves (full flow at 5 MPa above cracking) and anti-cavitation
+             * check valves from the charge pressure into each line (cracking at 0.1 MPa, full
+             * flow at 0.5 MPa), all rated for twice the pump's full flow: the most that pump
+             * and motor can drive through them together at the plateau's motor speed. */
+            double qmax = s->pump_disp * s->pump_speed / 3.14159265358979323846;
+            double pc = s->relief_pressure;
+            int rhl, rlh, ch, cl, th, tl;
+            TRY(rhl = hyd_relief_valve(m, hy, "relief_hl", pc, pc + 5e6, qmax, 5e4), "relief");
+            TRY(rlh = hyd_relief_valve(m, hy, "relief_lh", pc, pc + 5e6, qmax, 5e4), "relief");
+            TRY(ch = hyd_relief_valve(m, hy, "check_high", 1e5, 5e5, qmax, 1e4), "check valve");
+            TRY(cl = hyd_relief_valve(m, hy, "check_low", 1e5, 5e5, qmax, 1e4), "check valve");
+            TRY(th = hyd_tank(m, hy, "charge_high", s->charge_pressure), "charge");
+            TRY(tl = hyd_tank(m, hy, "charge_low", s->charge_pressure), "charge");
+            const struct {
+                const char *name;
+                int a, pa, b, pb;
+            } vb[] = {{"b_rhl_in", vh, 2, rhl, 0}, {"b_rhl_out", rhl, 1, vl, 3},
+                      {"b_rlh_in", vl, 4, rlh, 0}, {"b_rlh_out", rlh, 1, vh, 3},
+                      {"b_chh_in", th, 0, ch, 0},  {"b_chh_out", ch, 1, vh, 4},
+                      {"b_chl_in", tl, 0, cl, 0},  {"b_chl_out", cl, 1, vl, 5}};
+            for (size_t i = 0; i < sizeof vb / sizeof vb[0]; i++)
+                TRY(bgr_bond(m, hy, vb[i].name, 1, bgr_port_of(m, vb[i].a, vb[i].pa),
+                             bgr_port_of(m, vb[i].b, vb[i].pb), NULL, NULL),
+                    vb[i].name);
+        }
         TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, gear, 1), drive, NULL, NULL),
             "bond drive");
     }

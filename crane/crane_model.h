@@ -54,6 +54,9 @@ typedef struct crane_scene {
     double pump_speed, pump_disp, pump_leak; /* rad/s, m^3/rev at x = 1, m^3/(s Pa) */
     double motor_disp, motor_leak, motor_inertia, gear_ratio;
     double line_volume, bulk_modulus, charge_pressure;
+    double relief_pressure;      /* Pa, cross-port relief valves crack at this pressure
+                                  * difference (full flow 5 MPa above); with them, check valves
+                                  * from the charge pressure keep both lines above it. 0: none */
     double kp, kd, ki;           /* the paper's PID (x = fraction of the pump's displacement) */
     double kd_filter;            /* s; > 0: the derivative term acts on a filtered rate
                                   * (ctl_pid derivative_filter); 0: on the measured acceleration

@@ -122,6 +122,8 @@ static const key_def KEYS[] = {
     KNUM("hydraulics", "bulk_modulus", bulk_modulus, R_POS, EXP_POS, "Pa", "oil bulk modulus"),
     KNUM("hydraulics", "charge_pressure", charge_pressure, R_NONNEG, EXP_NONNEG, "Pa",
          "charge (boost) pressure of the low side"),
+    KNUM("hydraulics", "relief_pressure", relief_pressure, R_NONNEG, EXP_NONNEG, "Pa",
+         "cracking pressure difference of the cross-port relief valves (0: none)"),
     KNUM("controller", "kp", kp, R_NONNEG, EXP_NONNEG, "1/(rad/s)", "proportional gain"),
     KNUM("controller", "kd", kd, R_NONNEG, EXP_NONNEG, "1/(rad/s^2)", "derivative gain"),
     KNUM("controller", "ki", ki, R_NONNEG, EXP_NONNEG, "1/rad", "integral gain"),

@@ -53,6 +53,8 @@
  *                    line_volume      number > 0     m^3, each line
  *                    bulk_modulus     number > 0     Pa
  *                    charge_pressure  number >= 0    Pa
+ *                    relief_pressure  number >= 0    Pa, cross-port relief cracking (0: none;
+ *                                                    with it, anti-cavitation check valves)
  *   [controller]     kp, kd, ki       number >= 0    PID gains (x = fraction of the pump's
  *                                                    displacement; kp 1/(rad/s), kd 1/(rad/s^2),
  *                                                    ki 1/rad)

@@ -27,6 +27,7 @@ typedef struct run {
     dae_solver *s;
     int n;
     double *y, *yp, out[CRANE_NOUT];
+    double pmin, pmax; /* line pressures over the steps of step_past */
 } run;
 
 static int start_tol(run *r, const crane_scene *sc, int settle, double tol)
@@ -96,13 +97,17 @@ static int advance(run *r, double t)
 static int step_past(run *r, double t)
 {
     double tr = 0;
+    r->pmin = INFINITY;
+    r->pmax = -INFINITY;
     while (tr < t) {
         if (dae_step(r->s, 2 * t, &tr, r->y, r->yp) < 0) {
             tap_diag("step: %s", dae_get_error(r->s)->message);
             return -1;
         }
+        crane_outputs(r->c, tr, r->y, r->yp, r->out);
+        r->pmin = fmin(r->pmin, fmin(r->out[O_PH], r->out[O_PL]));
+        r->pmax = fmax(r->pmax, fmax(r->out[O_PH], r->out[O_PL]));
     }
-    crane_outputs(r->c, tr, r->y, r->yp, r->out);
     return 0;
 }
 
@@ -300,9 +305,24 @@ static void test_hydraulic_balance(void)
     double qp = r.out[O_X] * s.pump_disp * s.pump_speed / (2 * PI) - s.pump_leak * dp;
     double qm = s.motor_disp * wm / (2 * PI) + s.motor_leak * dp;
     double qc = s.line_volume / s.bulk_modulus * r.yp[iph];
-    tap_close(qp, qm + qc, 1e-6, 0,
+    /* the valves on the high line (closed here, but counted): relief out, relief and check in */
+    int iv[3] = {bgr_find_var(m, "crane/hydraulics/b_rhl_in/f"),
+                 bgr_find_var(m, "crane/hydraulics/b_rlh_out/f"),
+                 bgr_find_var(m, "crane/hydraulics/b_chh_out/f")};
+    tap_ok(iv[0] >= 0 && iv[1] >= 0 && iv[2] >= 0, "relief and check valve flows found by name");
+    double qv = iv[0] >= 0 && iv[1] >= 0 && iv[2] >= 0 ? r.y[iv[0]] - r.y[iv[1]] - r.y[iv[2]] : 0;
+    tap_close(qp, qm + qc + qv, 1e-6, 0,
               "high-pressure line at %.4f s: pump flow %.6g = motor flow %.6g + compression %.3g "
-              "m^3/s", r.out[O_T], qp, qm, qc);
+              "+ valves %.3g m^3/s",
+              r.out[O_T], qp, qm, qc, qv);
+    /* through the corner at 2 s (the derivative kick): the check valves hold the lines above
+     * the charge pressure less their 0.5 MPa full-flow drop, the relief valves hold the
+     * difference below relief + 5 MPa */
+    tap_ok(r.pmin >= s.charge_pressure - 5e5 &&
+               r.pmax <= s.relief_pressure + 5e6 + s.charge_pressure + 5e5,
+           "0..6 s: line pressures within [%.3g, %.3g] MPa (valve bounds %.3g, %.3g)",
+           r.pmin / 1e6, r.pmax / 1e6, (s.charge_pressure - 5e5) / 1e6,
+           (s.relief_pressure + 5e6 + s.charge_pressure + 5e5) / 1e6);
     tap_close(wm, s.gear_ratio * r.out[O_W], 1e-9, 0,
               "motor speed %.6g rad/s = gear ratio x platform rate", wm);
     tap_close(r.out[O_W], s.ref_rate, 2e-2, 0, "plateau: rate %.5g tracks the reference %.5g",
