@@ -82,7 +82,7 @@ void crane_scene_default(crane_scene *s)
     s->cw_pos[2] = 1.5;
     s->hydraulics = 1;
     s->pump_speed = 150.0;    /* rad/s, about 1430 rpm */
-    s->pump_disp = 0.05;      /* m^3/rev at x = 1 */
+    s->pump_disp = 0.1;       /* m^3/rev at x = 1: x = 0.05 on the plateau */
     s->pump_leak = 1e-11;
     s->motor_disp = 5e-3;     /* m^3/rev */
     s->motor_leak = 1e-11;
