@@ -130,6 +130,23 @@ static void sub3(const double *a, const double *b, double *r)
 
 static int set_initial(crane *c);
 
+/* A one-dimensional bond from port pa of element a to port pb of element b. */
+typedef struct bond1 {
+    const char *name;
+    int a, pa, b, pb;
+} bond1;
+
+/* Bonds a table in component comp; < 0 at the first failure, its bond named in err. */
+static int bonds1(bgr_model *m, bgr_comp comp, const bond1 *t, size_t n, bg_error *err)
+{
+    for (size_t i = 0; i < n; i++)
+        if (bgr_bond(m, comp, t[i].name, 1, bgr_port_of(m, t[i].a, t[i].pa),
+                     bgr_port_of(m, t[i].b, t[i].pb), NULL, NULL) < 0)
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_build", "bond %s: %s",
+                                  t[i].name, bgr_model_error(m)->message);
+    return BG_OK;
+}
+
 static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *err)
 {
     crane *c = calloc(1, sizeof *c);
@@ -380,18 +397,12 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-9), "charge valve");
         c->vol_h = vh;
         c->vol_l = vl;
-        const struct {
-            const char *name;
-            int a, pa, b, pb;
-        } hb[] = {{"b_prime", prime, 0, pump, 0},    {"b_pump_in", vl, 0, pump, 1},
-                  {"b_pump_out", pump, 2, vh, 0},    {"b_motor_in", vh, 1, motor, 0},
-                  {"b_motor_out", motor, 1, vl, 1},  {"b_tank", tank, 0, charge, 0},
-                  {"b_charge", charge, 1, vl, 2},    {"b_shaft", motor, 2, jm, 0},
-                  {"b_inertia", jm, 1, inertia, 0},  {"b_gear_in", jm, 2, gear, 0}};
-        for (size_t i = 0; i < sizeof hb / sizeof hb[0]; i++)
-            TRY(bgr_bond(m, hy, hb[i].name, 1, bgr_port_of(m, hb[i].a, hb[i].pa),
-                         bgr_port_of(m, hb[i].b, hb[i].pb), NULL, NULL),
-                hb[i].name);
+        const bond1 hb[] = {{"b_prime", prime, 0, pump, 0},   {"b_pump_in", vl, 0, pump, 1},
+                            {"b_pump_out", pump, 2, vh, 0},   {"b_motor_in", vh, 1, motor, 0},
+                            {"b_motor_out", motor, 1, vl, 1}, {"b_tank", tank, 0, charge, 0},
+                            {"b_charge", charge, 1, vl, 2},   {"b_shaft", motor, 2, jm, 0},
+                            {"b_inertia", jm, 1, inertia, 0}, {"b_gear_in", jm, 2, gear, 0}};
+        if (bonds1(m, hy, hb, sizeof hb / sizeof hb[0], err) < 0) goto fail;
         if (valves) {
             /* Cross-port relief valves (full flow at 5 MPa above cracking) and anti-cavitation
              * check valves from the charge pressure into each line (cracking at 0.1 MPa, full
@@ -406,17 +417,11 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
             TRY(cl = hyd_relief_valve(m, hy, "check_low", 1e5, 5e5, qmax, 1e4), "check valve");
             TRY(th = hyd_tank(m, hy, "charge_high", s->charge_pressure), "charge");
             TRY(tl = hyd_tank(m, hy, "charge_low", s->charge_pressure), "charge");
-            const struct {
-                const char *name;
-                int a, pa, b, pb;
-            } vb[] = {{"b_rhl_in", vh, 2, rhl, 0}, {"b_rhl_out", rhl, 1, vl, 3},
-                      {"b_rlh_in", vl, 4, rlh, 0}, {"b_rlh_out", rlh, 1, vh, 3},
-                      {"b_chh_in", th, 0, ch, 0},  {"b_chh_out", ch, 1, vh, 4},
-                      {"b_chl_in", tl, 0, cl, 0},  {"b_chl_out", cl, 1, vl, 5}};
-            for (size_t i = 0; i < sizeof vb / sizeof vb[0]; i++)
-                TRY(bgr_bond(m, hy, vb[i].name, 1, bgr_port_of(m, vb[i].a, vb[i].pa),
-                             bgr_port_of(m, vb[i].b, vb[i].pb), NULL, NULL),
-                    vb[i].name);
+            const bond1 vb[] = {{"b_rhl_in", vh, 2, rhl, 0}, {"b_rhl_out", rhl, 1, vl, 3},
+                                {"b_rlh_in", vl, 4, rlh, 0}, {"b_rlh_out", rlh, 1, vh, 3},
+                                {"b_chh_in", th, 0, ch, 0},  {"b_chh_out", ch, 1, vh, 4},
+                                {"b_chl_in", tl, 0, cl, 0},  {"b_chl_out", cl, 1, vl, 5}};
+            if (bonds1(m, hy, vb, sizeof vb / sizeof vb[0], err) < 0) goto fail;
         }
         TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, gear, 1), drive, NULL, NULL),
             "bond drive");
