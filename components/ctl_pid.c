@@ -58,7 +58,7 @@ static double pid_law(const pid *q, const double *y, double *g)
     const ctl_pid_spec *s = &q->sp;
     double err = y[q->r] - y[q->y], v = s->kp * err + s->ki * y[q->I];
     if (s->kd != 0) {
-        double ydot = q->z >= 0 ? (y[q->y] - y[q->z]) / s->derivative_filter
+        double ydot = q->z >= 0    ? (y[q->y] - y[q->z]) / s->derivative_filter
                       : q->yd >= 0 ? y[q->yd]
                                    : 0.0;
         double rate = (q->rd >= 0 ? y[q->rd] : 0.0) - ydot;

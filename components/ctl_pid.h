@@ -51,7 +51,7 @@ typedef struct ctl_pid_spec {
     int use_measurement_rate; /* 1: measurement_rate holds y'; kd != 0 needs it or a filter */
     bgr_ref measurement_rate;
     double derivative_filter; /* tau > 0: y' estimated by the filter (y - z) / tau; 0: none */
-    int limit; /* 1: smooth limits [out_min, out_max] of width smoothing > 0 */
+    int limit;                /* 1: smooth limits [out_min, out_max] of width smoothing > 0 */
     double out_min, out_max, smoothing;
 } ctl_pid_spec;
 

@@ -29,12 +29,12 @@
 struct crane {
     crane_scene s;
     bgr_model *m;
-    int settle;      /* built for the equilibrium: drive held, extra damping */
+    int settle; /* built for the equilibrium: drive held, extra damping */
     int platform, slew, hinge, sensor;
     int n, nodes[MAXEL + 1], elems[MAXEL], boom; /* beam chain, or rigid boom body */
     int tie, rope, load, cw;
-    int drive_bond;  /* into the slewing joint's drive port */
-    double tie_L0;   /* unstretched tie length */
+    int drive_bond; /* into the slewing joint's drive port */
+    double tie_L0;  /* unstretched tie length */
     int ref_value, ref_rate, ref_int, pid, vol_h, vol_l, motor_acc;
     double tip0[3], e2[3], e3[3]; /* undeformed tip, boom's transverse directions (theta = 0) */
     double tip_r[3];              /* rigid boom: tip in its body frame */
@@ -81,14 +81,14 @@ void crane_scene_default(crane_scene *s)
     s->cw_pos[0] = -6.0;
     s->cw_pos[2] = 1.5;
     s->hydraulics = 1;
-    s->pump_speed = 150.0;    /* rad/s, about 1430 rpm */
-    s->pump_disp = 0.1;       /* m^3/rev at x = 1: x = 0.05 on the plateau */
+    s->pump_speed = 150.0; /* rad/s, about 1430 rpm */
+    s->pump_disp = 0.1;    /* m^3/rev at x = 1: x = 0.05 on the plateau */
     s->pump_leak = 1e-11;
-    s->motor_disp = 5e-3;     /* m^3/rev */
+    s->motor_disp = 5e-3; /* m^3/rev */
     s->motor_leak = 1e-11;
-    s->motor_inertia = 2.0;   /* kg m^2 */
+    s->motor_inertia = 2.0; /* kg m^2 */
     s->gear_ratio = 300.0;
-    s->line_volume = 0.05;    /* m^3 each side */
+    s->line_volume = 0.05; /* m^3 each side */
     s->bulk_modulus = 1.4e9;
     s->charge_pressure = 2e6; /* Pa */
     s->relief_pressure = 3e7; /* Pa */
@@ -114,12 +114,12 @@ static int fail_here(bg_error *err, const char *what, bgr_model *m)
                           m ? bgr_model_error(m)->message : "out of memory");
 }
 
-#define TRY(x, what)                                                                             \
-    do {                                                                                         \
-        if ((x) < 0) {                                                                           \
-            fail_here(err, what, c->m);                                                          \
-            goto fail;                                                                           \
-        }                                                                                        \
+#define TRY(x, what)                                                                               \
+    do {                                                                                           \
+        if ((x) < 0) {                                                                             \
+            fail_here(err, what, c->m);                                                            \
+            goto fail;                                                                             \
+        }                                                                                          \
     } while (0)
 
 static void sub3(const double *a, const double *b, double *r)
@@ -142,8 +142,8 @@ static int bonds1(bgr_model *m, bgr_comp comp, const bond1 *t, size_t n, bg_erro
     for (size_t i = 0; i < n; i++)
         if (bgr_bond(m, comp, t[i].name, 1, bgr_port_of(m, t[i].a, t[i].pa),
                      bgr_port_of(m, t[i].b, t[i].pb), NULL, NULL) < 0)
-            return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_build", "bond %s: %s",
-                                  t[i].name, bgr_model_error(m)->message);
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_build", "bond %s: %s", t[i].name,
+                                  bgr_model_error(m)->message);
     return BG_OK;
 }
 
@@ -222,8 +222,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
 
     /* boom, hinged at B about the platform's y axis */
     TRY(c->hinge = mech_revolute(m, 0, "boom_hinge", c->platform, yax, 0), "boom hinge");
-    TRY(bgr_bond(m, 0, "b_hinge_a", 6, bgr_port_of(m, c->hinge, 0),
-                 bgr_port_of(m, c->platform, 1), NULL, NULL),
+    TRY(bgr_bond(m, 0, "b_hinge_a", 6, bgr_port_of(m, c->hinge, 0), bgr_port_of(m, c->platform, 1),
+                 NULL, NULL),
         "bond hinge");
     bgr_port foot, tip_ports[2];
     int ntip = s->ties + s->rope;
@@ -342,13 +342,15 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         double zero = 0;
         int hold;
         TRY(hold = bgr_Sf(m, 0, "hold", 1, &zero), "hold");
-        TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, hold, 0), drive, NULL, NULL),
+        TRY(c->drive_bond =
+                bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, hold, 0), drive, NULL, NULL),
             "bond hold");
     } else if (!s->hydraulics) {
         int pres;
         TRY(pres = bgr_Sf_signal(m, 0, "prescribed_rate", (bgr_ref){BGR_OWN, c->ref_value, 0}),
             "prescribed rate");
-        TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, pres, 0), drive, NULL, NULL),
+        TRY(c->drive_bond =
+                bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, pres, 0), drive, NULL, NULL),
             "bond drive");
     } else {
         bgr_comp hy = bgr_component(m, 0, "hydraulics");
@@ -374,18 +376,17 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
                              .smoothing = 0.01 * (s->x_limit > 0 ? s->x_limit : 1)};
         c->motor_acc = -1;
         if (s->kd_filter == 0) { /* the measured acceleration: the motor's, through the gear */
-            TRY(acc = rot_sensor(m, hy, "motor_acceleration", inertia, ROT_ACCELERATION),
-                "sensor");
-            TRY(c->motor_acc = bgr_gain(m, hy, "platform_acceleration",
-                                        (bgr_ref){BGR_OWN, acc, 0}, 1.0 / s->gear_ratio),
+            TRY(acc = rot_sensor(m, hy, "motor_acceleration", inertia, ROT_ACCELERATION), "sensor");
+            TRY(c->motor_acc = bgr_gain(m, hy, "platform_acceleration", (bgr_ref){BGR_OWN, acc, 0},
+                                        1.0 / s->gear_ratio),
                 "gain");
             spec.use_measurement_rate = 1;
             spec.measurement_rate = (bgr_ref){BGR_OWN, c->motor_acc, 0};
         }
         TRY(c->pid = ctl_pid(m, hy, "pid", &spec), "pid");
         TRY(prime = bgr_Sf(m, hy, "prime_mover", 1, &w), "prime mover");
-        TRY(pump = hyd_pump(m, hy, "pump", s->pump_disp, s->pump_leak,
-                            (bgr_ref){BGR_OWN, c->pid, 0}),
+        TRY(pump =
+                hyd_pump(m, hy, "pump", s->pump_disp, s->pump_leak, (bgr_ref){BGR_OWN, c->pid, 0}),
             "pump");
         TRY(motor = hyd_motor(m, hy, "motor", s->motor_disp, s->motor_leak, 0), "motor");
         int valves = s->relief_pressure > 0; /* two reliefs and two check valves */
@@ -423,7 +424,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
                                 {"b_chl_in", tl, 0, cl, 0},  {"b_chl_out", cl, 1, vl, 5}};
             if (bonds1(m, hy, vb, sizeof vb / sizeof vb[0], err) < 0) goto fail;
         }
-        TRY(c->drive_bond = bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, gear, 1), drive, NULL, NULL),
+        TRY(c->drive_bond =
+                bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, gear, 1), drive, NULL, NULL),
             "bond drive");
     }
     if (bgr_compile(m) != BG_OK) {
@@ -683,12 +685,26 @@ done:
     return status;
 }
 
-const char *const crane_output_names[CRANE_NOUT] = {
-    "t [s]",          "theta [rad]",       "theta_ref [rad]",     "omega [rad/s]",
-    "omega_ref [rad/s]", "omega_err [rad/s]", "alpha_err [rad/s^2]", "tip_x [m]",
-    "tip_y [m]",      "tip_z [m]",         "tip_defl_1 [m]",      "tip_defl_2 [m]",
-    "load_x [m]",     "load_y [m]",        "load_z [m]",          "rope_force [N]",
-    "pump_x [-]",     "p_high [Pa]",       "p_low [Pa]",          "constraint_drift [m]"};
+const char *const crane_output_names[CRANE_NOUT] = {"t [s]",
+                                                    "theta [rad]",
+                                                    "theta_ref [rad]",
+                                                    "omega [rad/s]",
+                                                    "omega_ref [rad/s]",
+                                                    "omega_err [rad/s]",
+                                                    "alpha_err [rad/s^2]",
+                                                    "tip_x [m]",
+                                                    "tip_y [m]",
+                                                    "tip_z [m]",
+                                                    "tip_defl_1 [m]",
+                                                    "tip_defl_2 [m]",
+                                                    "load_x [m]",
+                                                    "load_y [m]",
+                                                    "load_z [m]",
+                                                    "rope_force [N]",
+                                                    "pump_x [-]",
+                                                    "p_high [Pa]",
+                                                    "p_low [Pa]",
+                                                    "constraint_drift [m]"};
 
 void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out)
 {
@@ -762,8 +778,10 @@ int crane_stats_print(const crane *c, FILE *f)
         while (k < np && strcmp(part[k], key) != 0)
             k++;
         if (k == np) {
-            if (np == MAXPART) k = np - 1; /* the last row collects the rest */
-            else strcpy(part[np++], key);
+            if (np == MAXPART)
+                k = np - 1; /* the last row collects the rest */
+            else
+                strcpy(part[np++], key);
         }
         cnt[k][kinds[i]]++;
     }

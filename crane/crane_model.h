@@ -34,13 +34,13 @@ typedef struct crane_scene {
     double platform_com[3];                    /* mass centre in the platform frame */
     double joint_A[3];                         /* slewing joint on the axis, global */
     /* boom */
-    int boom_elements;           /* 0: one rigid body */
-    double boom_foot[3];         /* B in the platform frame */
+    int boom_elements;                   /* 0: one rigid body */
+    double boom_foot[3];                 /* B in the platform frame */
     double boom_length, boom_tip_radius; /* luffing angle from the tip's distance to the axis */
     double boom_E, boom_G, boom_A, boom_I_luff, boom_I_side, boom_J, boom_rho, boom_beta;
     /* ties */
-    int ties;                    /* 0 / 1 */
-    double gantry_top[3];        /* in the platform frame */
+    int ties;             /* 0 / 1 */
+    double gantry_top[3]; /* in the platform frame */
     double tie_E, tie_A;
     /* rope and load */
     int rope;
@@ -48,24 +48,24 @@ typedef struct crane_scene {
     double load_mass;
     /* counterweight */
     int counterweight;
-    double cw_mass, cw_pos[3];   /* in the platform frame */
+    double cw_mass, cw_pos[3]; /* in the platform frame */
     /* drive */
-    int hydraulics;              /* 0: the platform's rate is prescribed (reference) */
+    int hydraulics;                          /* 0: the platform's rate is prescribed (reference) */
     double pump_speed, pump_disp, pump_leak; /* rad/s, m^3/rev at x = 1, m^3/(s Pa) */
     double motor_disp, motor_leak, motor_inertia, gear_ratio;
     double line_volume, bulk_modulus, charge_pressure;
-    double relief_pressure;      /* Pa, cross-port relief valves crack at this pressure
-                                  * difference (full flow 5 MPa above); with them, check valves
-                                  * from the charge pressure keep both lines above it. 0: none */
-    double kp, kd, ki;           /* the paper's PID (x = fraction of the pump's displacement) */
-    double kd_filter;            /* s; > 0: the derivative term acts on a filtered rate
-                                  * (ctl_pid derivative_filter); 0: on the measured acceleration
-                                  * (the paper's law, an index-2 quantity) */
-    double x_limit;              /* |x| <= x_limit (smooth); 0: none */
+    double relief_pressure; /* Pa, cross-port relief valves crack at this pressure
+                             * difference (full flow 5 MPa above); with them, check valves
+                             * from the charge pressure keep both lines above it. 0: none */
+    double kp, kd, ki;      /* the paper's PID (x = fraction of the pump's displacement) */
+    double kd_filter;       /* s; > 0: the derivative term acts on a filtered rate
+                             * (ctl_pid derivative_filter); 0: on the measured acceleration
+                             * (the paper's law, an index-2 quantity) */
+    double x_limit;         /* |x| <= x_limit (smooth); 0: none */
     /* reference (Eq. 8): ramp time, plateau end, stop time, plateau rate */
     double ref_t1, ref_t2, ref_t3, ref_rate;
     /* equilibrium */
-    int static_start;            /* 1: start from the static equilibrium under gravity */
+    int static_start; /* 1: start from the static equilibrium under gravity */
     /* solver and output */
     double t_end, rtol, atol, output_step;
 } crane_scene;

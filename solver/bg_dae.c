@@ -313,8 +313,7 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     }
     if (!(o->rtol < 1) || (!o->atol_vec && !isfinite(o->atol))) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                       "rtol must be below 1 and atol finite (rtol %g, atol %g)", o->rtol,
-                       o->atol);
+                       "rtol must be below 1 and atol finite (rtol %g, atol %g)", o->rtol, o->atol);
         return NULL;
     }
     if (o->max_order < 1 || o->max_order > MAXORD) {

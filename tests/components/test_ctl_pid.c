@@ -278,8 +278,8 @@ static void test_derivative_filter(void)
     int rr = s ? 0 : -1;
     while (s && rr >= 0 && t < 3.0) {
         rr = dae_step(s, 3.0, &t, yv, ypv);
-        double z = (sin(w * t) - w * tau * cos(w * t) + w * tau * exp(-t / tau)) /
-                   (1 + w * w * tau * tau);
+        double z =
+            (sin(w * t) - w * tau * cos(w * t) + w * tau * exp(-t / tau)) / (1 + w * w * tau * tau);
         dev = fmax(dev, fabs(at(yv, vz) - z) + fabs(at(yv, vu) + (sin(w * t) - z) / tau));
     }
     tap_ok(rr >= 0 && t >= 3.0, "derivative filter: integrated to t = 3");

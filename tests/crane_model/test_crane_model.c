@@ -19,8 +19,24 @@ static const double PI = 3.14159265358979323846;
 /* the paper's tolerances */
 #define RTOL 1e-6
 
-enum { O_T, O_TH, O_THR, O_W, O_WR, O_A, O_AR, O_TIP, O_DL = 10, O_DS, O_LOAD, O_TEN = 15, O_X,
-       O_PH, O_PL, O_DRIFT };
+enum {
+    O_T,
+    O_TH,
+    O_THR,
+    O_W,
+    O_WR,
+    O_A,
+    O_AR,
+    O_TIP,
+    O_DL = 10,
+    O_DS,
+    O_LOAD,
+    O_TEN = 15,
+    O_X,
+    O_PH,
+    O_PL,
+    O_DRIFT
+};
 
 typedef struct run {
     crane *c;
@@ -164,8 +180,8 @@ static void test_statics_rigid(void)
     double d0[3];
     Fw[2] = -s.boom_rho * s.boom_A * s.boom_length * s.g;
     double tip0[3] = {s.boom_tip_radius, s.boom_foot[1], 0};
-    tip0[2] = s.boom_foot[2] + sqrt(s.boom_length * s.boom_length -
-                                     pow(s.boom_tip_radius - s.boom_foot[0], 2));
+    tip0[2] = s.boom_foot[2] +
+              sqrt(s.boom_length * s.boom_length - pow(s.boom_tip_radius - s.boom_foot[0], 2));
     for (int i = 0; i < 3; i++) {
         rt[i] = o[O_TIP + i] - s.boom_foot[i];
         rm[i] = 0.5 * rt[i];
@@ -180,7 +196,8 @@ static void test_statics_rigid(void)
         u[i] /= L;
     tap_ok(fabs(hypot(o[O_TIP], o[O_TIP + 1]) - s.boom_tip_radius) <= 1e-5 * s.boom_tip_radius,
            "settled tip at the scene's radius %.6f m (ties' length corrected from %.4f to %.4f "
-           "m)", hypot(o[O_TIP], o[O_TIP + 1]), L0, crane_tie_length(r.c));
+           "m)",
+           hypot(o[O_TIP], o[O_TIP + 1]), L0, crane_tie_length(r.c));
     L0 = crane_tie_length(r.c);
     double T_stretch = s.tie_E * s.tie_A * (L - L0) / L0;
     double T_statics = -(moment_y(rm, Fw) + moment_y(rt, Fr)) / moment_y(rt, u);
@@ -238,8 +255,10 @@ static void test_jacobian(void)
     /* tolerance: forces of 1e6 N differenced over steps of 1e-8 m carry round-off of 1e-2 N
      * against cross terms of 10..100; a wrong derivative is off by O(1) */
     int bad = bgr_check_jacobian(m, 1.0, y, yp, 1e-3, rep, sizeof rep);
-    tap_ok(bad == 0, "crane (3 beam elements, hydraulics, filtered PID): analytic Jacobian = central "
-                     "differences (%d mismatches) %s", bad, bad ? rep : "");
+    tap_ok(bad == 0,
+           "crane (3 beam elements, hydraulics, filtered PID): analytic Jacobian = central "
+           "differences (%d mismatches) %s",
+           bad, bad ? rep : "");
     free(y);
     crane_free(&c);
 }
@@ -260,9 +279,9 @@ static void test_prescribed(void)
     const double t[3] = {1.0, 2.0, 3.0};
     for (int k = 0; k < 3; k++) {
         if (advance(&r, t[k]) != 0) break;
-        double want = t[k] <= s.ref_t1 ? 0.5 * a * t[k] * t[k]
-                                       : 0.5 * a * s.ref_t1 * s.ref_t1 +
-                                             s.ref_rate * (t[k] - s.ref_t1);
+        double want = t[k] <= s.ref_t1
+                          ? 0.5 * a * t[k] * t[k]
+                          : 0.5 * a * s.ref_t1 * s.ref_t1 + s.ref_rate * (t[k] - s.ref_t1);
         tap_close(r.out[O_TH], want, 1e-6, 1e-9,
                   "prescribed rate: theta(%g) = %.9g, integral of the trapezoid %.9g", t[k],
                   r.out[O_TH], want);
@@ -278,8 +297,8 @@ static void test_prescribed(void)
         return;
     }
     tap_ok(r.out[O_DRIFT] < 0.1 * drift6 && drift6 < RTOL * s.boom_length,
-           "hinge position mismatch after 3 s: %.2e m at rtol %g, %.2e m at rtol %g", drift6,
-           RTOL, r.out[O_DRIFT], 1e-2 * RTOL);
+           "hinge position mismatch after 3 s: %.2e m at rtol %g, %.2e m at rtol %g", drift6, RTOL,
+           r.out[O_DRIFT], 1e-2 * RTOL);
     finish(&r);
 }
 
@@ -320,8 +339,8 @@ static void test_hydraulic_balance(void)
      * difference below relief + 5 MPa */
     tap_ok(r.pmin >= s.charge_pressure - 5e5 &&
                r.pmax <= s.relief_pressure + 5e6 + s.charge_pressure + 5e5,
-           "0..6 s: line pressures within [%.3g, %.3g] MPa (valve bounds %.3g, %.3g)",
-           r.pmin / 1e6, r.pmax / 1e6, (s.charge_pressure - 5e5) / 1e6,
+           "0..6 s: line pressures within [%.3g, %.3g] MPa (valve bounds %.3g, %.3g)", r.pmin / 1e6,
+           r.pmax / 1e6, (s.charge_pressure - 5e5) / 1e6,
            (s.relief_pressure + 5e6 + s.charge_pressure + 5e5) / 1e6);
     tap_close(wm, s.gear_ratio * r.out[O_W], 1e-9, 0,
               "motor speed %.6g rad/s = gear ratio x platform rate", wm);
@@ -368,7 +387,8 @@ static double energy_mismatch(double tol)
     }
     ok = ok && crane_energy(r.c, r.y, &T, &V, &U) == BG_OK;
     double dE = (T - T0) + (V - V0) + (U - U0);
-    tap_diag("rtol %g, energy balance over 3 s: work %.6g J, kinetic %+.6g, potential %+.6g, elastic %+.6g "
+    tap_diag("rtol %g, energy balance over 3 s: work %.6g J, kinetic %+.6g, potential %+.6g, "
+             "elastic %+.6g "
              "(peak drive power %.3g W)",
              tol, W, T - T0, V - V0, U - U0, Pmax);
     free(ym);

@@ -1009,8 +1009,8 @@ static void test_tolerance_extremes(void)
         o.rtol = bad[k][0];
         o.atol = bad[k][1];
         dae_solver *s = dae_create(&in.dp, &o, &err);
-        tap_ok(s == NULL && strstr(err.message, "rtol") != NULL,
-               "rtol %g, atol %g refused: %s", o.rtol, o.atol, err.message);
+        tap_ok(s == NULL && strstr(err.message, "rtol") != NULL, "rtol %g, atol %g refused: %s",
+               o.rtol, o.atol, err.message);
         dae_free(&s);
     }
     dae_options o;

@@ -532,8 +532,8 @@ static void test_energies(void)
     }
     tap_ok(worst < 1e-6, "rope: dU/dL = tension from slack to taut (worst relative %.2e)", worst);
     y[id] = L0 + 0.5; /* z = x / eps = 50: the correction e^-z is below round-off */
-    tap_close(mech_axial_energy(m, rope, y), 0.5 * k * 0.25 + k * eps * eps * pi * pi / 6, 1e-12,
-              0, "taut rope: U = k x^2/2 + k eps^2 pi^2/6");
+    tap_close(mech_axial_energy(m, rope, y), 0.5 * k * 0.25 + k * eps * eps * pi * pi / 6, 1e-12, 0,
+              "taut rope: U = k x^2/2 + k eps^2 pi^2/6");
     y[id] = L0 - 0.5;
     double Us = mech_axial_energy(m, rope, y);
     tap_ok(Us >= 0 && Us < 1e-15, "slack rope: U = %.3g ~ 0", Us);
