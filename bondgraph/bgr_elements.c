@@ -149,6 +149,14 @@ static int check_d(bgr_model *m, const char *name, int d)
     return BG_OK;
 }
 
+/* BG_ERR_ARGUMENT with a message if something the element needs is not given (a NULL pointer). */
+static int check_given(bgr_model *m, const char *name, int given, const char *what)
+{
+    if (given) return BG_OK;
+    return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_element_add",
+                          "element %s: %s is NULL", name ? name : "(null)", what);
+}
+
 static void vname2(const bgr_model *m, int v, char *buf, size_t n)
 {
     const char *s = bgr_var_name(m, v);
@@ -298,7 +306,8 @@ int bgr_I(bgr_model *m, bgr_comp c, const char *name, int d, double mass)
 
 int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double *M)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    if (check_d(m, name, d) || check_given(m, name, M != NULL, "the mass matrix"))
+        return BG_ERR_ARGUMENT;
     par *q = par_new(d, LAW_MATRIX, 0);
     if (q && !(q->vec = malloc((size_t)d * d * sizeof *q->vec))) {
         par_free(q);
@@ -310,6 +319,7 @@ int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double
 
 int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
 {
+    if (check_given(m, name, phi != NULL, "the function")) return BG_ERR_ARGUMENT;
     par *q = par_new(1, LAW_FN, 0);
     if (q) {
         q->fn = phi;
@@ -405,6 +415,7 @@ int bgr_C(bgr_model *m, bgr_comp c, const char *name, int d, double stiffness)
 
 int bgr_C_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn psi, void *user)
 {
+    if (check_given(m, name, psi != NULL, "the function")) return BG_ERR_ARGUMENT;
     par *q = par_new(1, LAW_FN, 0);
     if (q) {
         q->fn = psi;
@@ -488,6 +499,7 @@ int bgr_R(bgr_model *m, bgr_comp c, const char *name, int d, double resistance)
 
 int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
 {
+    if (check_given(m, name, phi != NULL, "the function")) return BG_ERR_ARGUMENT;
     par *q = par_new(1, LAW_FN, 0);
     if (q) {
         q->fn = phi;
@@ -665,6 +677,7 @@ int bgr_Se(bgr_model *m, bgr_comp c, const char *name, int d, const double *valu
 
 int bgr_Se_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user)
 {
+    if (check_given(m, name, fn != NULL, "the function")) return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_Se, src_time(fn, user), 1, 0, NULL, 0, NULL);
 }
 
@@ -681,6 +694,7 @@ int bgr_Sf(bgr_model *m, bgr_comp c, const char *name, int d, const double *valu
 
 int bgr_Sf_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user)
 {
+    if (check_given(m, name, fn != NULL, "the function")) return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_Sf, src_time(fn, user), 1, 0, NULL, 0, NULL);
 }
 

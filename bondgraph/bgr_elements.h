@@ -17,7 +17,11 @@
  * TF, GY and the junctions conserve power exactly: sum of e.f over their ports is zero.
  *
  * Every constructor returns the element id (>= 0) or a negative status with the message in the
- * model's error record; ports are numbered 0, 1, ... as listed. */
+ * model's error record; ports are numbered 0, 1, ... as listed. Statuses: those of
+ * bgr_element_add (BG_ERR_ARGUMENT for a NULL model or name, BG_ERR_STATE once the model is
+ * compiled), and BG_ERR_ARGUMENT for a dimension d < 1 (I, C: above 16 as well), a NULL mass
+ * matrix or function, a junction with fewer than 2 ports. A signal that refers to no unknown is
+ * reported by bgr_compile. */
 #ifndef BGR_ELEMENTS_H
 #define BGR_ELEMENTS_H
 

@@ -45,6 +45,7 @@ struct bgr_model {
     char **state_names, **alg_names; /* per element, flattened later */
     /* compiled */
     int compiled, n, neq_declared;
+    int compiling; /* inside the declare() hooks of bgr_compile */
     char **vname, **ename;
     int *eq_owner;
     int *kind, *declared_i2;
@@ -63,11 +64,34 @@ struct bgr_model {
 
 static int fail(bgr_model *m, int status, const char *where, const char *fmt, ...)
 {
+    if (!m) return status;
     va_list ap;
     va_start(ap, fmt);
     bg_error_vraise(&m->err, status, where, fmt, ap);
     va_end(ap);
     return status;
+}
+
+/* The same for queries that take the model const: the error record is the only thing they
+ * write (the model is always allocated by bgr_model_create, never a const object). */
+static int fail_c(const bgr_model *m, int status, const char *where, const char *fmt, ...)
+{
+    if (!m) return status;
+    va_list ap;
+    va_start(ap, fmt);
+    bg_error_vraise((bg_error *)&m->err, status, where, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+/* BG_OK if the model is compiled, else BG_ERR_STATE with a message. */
+static int need_compiled(const bgr_model *m, const char *where)
+{
+    if (m->compiled > 0) return BG_OK;
+    return fail_c(m, BG_ERR_STATE, where,
+                  m->compiled < 0 ? "the compilation of model %s failed: build it again"
+                                  : "model %s is not compiled: call bgr_compile first",
+                  m->comp[0].path);
 }
 
 static char *dupstr(const char *s)
@@ -179,24 +203,31 @@ void bgr_model_free(bgr_model **mp)
 
 const bg_error *bgr_model_error(const bgr_model *m)
 {
-    return &m->err;
+    return m ? &m->err : NULL;
 }
 bg_error *bgr_model_error_mut(bgr_model *m)
 {
-    return &m->err;
+    return m ? &m->err : NULL;
 }
 
+/* BG_OK while the model may be changed: BG_ERR_ARGUMENT for a NULL model, BG_ERR_STATE once it
+ * is compiled (or its compilation failed). */
 static int check_building(bgr_model *m, const char *where)
 {
-    if (m->compiled != 0)
-        return fail(m, BG_ERR_ARGUMENT, where, "the model is compiled: no more changes");
+    if (!m) return BG_ERR_ARGUMENT;
+    if (m->compiled > 0)
+        return fail(m, BG_ERR_STATE, where, "the model is compiled: no more changes");
+    if (m->compiled < 0)
+        return fail(m, BG_ERR_STATE, where,
+                    "an earlier compilation failed: no more changes (build the model again)");
     return BG_OK;
 }
 
 bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name)
 {
     const char *w = "bgr_component";
-    if (check_building(m, w)) return BG_ERR_ARGUMENT;
+    int st = check_building(m, w);
+    if (st) return st;
     if (parent < 0 || parent >= m->ncomp)
         return fail(m, BG_ERR_ARGUMENT, w, "parent component %d does not exist", parent);
     if (!valid_name(name))
@@ -222,7 +253,7 @@ bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name)
 
 const char *bgr_component_path(const bgr_model *m, bgr_comp c)
 {
-    return c >= 0 && c < m->ncomp ? m->comp[c].path : NULL;
+    return m && c >= 0 && c < m->ncomp ? m->comp[c].path : NULL;
 }
 
 static char **copy_names(const char *const *src, int n, const char *prefix)
@@ -257,6 +288,10 @@ int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_elemen
                   name);
     if (!st && (nports < 0 || nstates < 0 || nalg < 0))
         st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: negative count", m->comp[c].path, name);
+    for (int k = 0; !st && dims && k < nports; k++)
+        if (dims[k] < 0)
+            st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: port %d has dimension %d",
+                      m->comp[c].path, name, k, dims[k]);
     for (int i = 0; !st && i < m->nel; i++)
         if (m->el[i]->comp == c && !strcmp(m->el[i]->name, name))
             st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s exists already", m->comp[c].path, name);
@@ -318,7 +353,7 @@ int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_elemen
 bgr_port bgr_port_of(const bgr_model *m, int elem, int port)
 {
     bgr_port p = {-1, -1};
-    if (elem >= 0 && elem < m->nel && port >= 0 && port < m->el[elem]->nports) {
+    if (m && elem >= 0 && elem < m->nel && port >= 0 && port < m->el[elem]->nports) {
         p.elem = elem;
         p.port = port;
     }
@@ -327,7 +362,7 @@ bgr_port bgr_port_of(const bgr_model *m, int elem, int port)
 
 bgr_element *bgr_element_get(bgr_model *m, int elem)
 {
-    return elem >= 0 && elem < m->nel ? m->el[elem] : NULL;
+    return m && elem >= 0 && elem < m->nel ? m->el[elem] : NULL;
 }
 
 static char *elem_path(const bgr_model *m, const bgr_element *el)
@@ -338,11 +373,13 @@ static char *elem_path(const bgr_model *m, const bgr_element *el)
 int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner)
 {
     const char *w = "bgr_export";
-    if (check_building(m, w)) return BG_ERR_ARGUMENT;
+    int st = check_building(m, w);
+    if (st) return st;
     if (c < 0 || c >= m->ncomp || !valid_name(name))
         return fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or port name '%s'", c,
                     name ? name : "(null)");
-    if (inner.elem < 0)
+    if (inner.elem < 0 || inner.elem >= m->nel || inner.port < 0 ||
+        inner.port >= m->el[inner.elem]->nports)
         return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s: the inner port is invalid", m->comp[c].path,
                     name);
     for (int e = 0; e < m->nexp; e++)
@@ -360,7 +397,7 @@ int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner)
 bgr_port bgr_comp_port(const bgr_model *m, bgr_comp c, const char *name)
 {
     bgr_port none = {-1, -1};
-    for (int e = 0; e < m->nexp; e++)
+    for (int e = 0; m && e < m->nexp; e++)
         if (m->exp[e].comp == c && name && !strcmp(m->exp[e].name, name)) return m->exp[e].port;
     return none;
 }
@@ -381,7 +418,8 @@ int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_
 {
     const char *w = "bgr_bond";
     char ba[256], bb[256];
-    if (check_building(m, w)) return BG_ERR_ARGUMENT;
+    int st = check_building(m, w);
+    if (st) return st;
     if (c < 0 || c >= m->ncomp || !valid_name(name))
         return fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or bond name '%s'", c,
                     name ? name : "(null)");
@@ -442,20 +480,31 @@ int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_
 
 /* ---- used by the element classes ---- */
 
+/* The bond at port k of el, or NULL (no model, no element, port out of range or unconnected,
+ * unknowns not numbered yet). */
+static const bond_rec *port_bond(const bgr_element *el, const bgr_model *m, int k)
+{
+    if (!el || !m || m->n == 0 || m->compiled < 0 || k < 0 || k >= el->nports || el->bond[k] < 0 ||
+        el->bond[k] >= m->nbond)
+        return NULL;
+    return &m->bond[el->bond[k]];
+}
+
 int bgr_ev(const bgr_element *el, const bgr_model *m, int k, int i)
 {
-    return m->bond[el->bond[k]].var0 + i;
+    const bond_rec *b = port_bond(el, m, k);
+    return b && i >= 0 && i < b->d ? b->var0 + i : -1;
 }
 
 int bgr_fv(const bgr_element *el, const bgr_model *m, int k, int i)
 {
-    const bond_rec *b = &m->bond[el->bond[k]];
-    return b->var0 + b->d + i;
+    const bond_rec *b = port_bond(el, m, k);
+    return b && i >= 0 && i < b->d ? b->var0 + b->d + i : -1;
 }
 
 int bgr_ref_var(const bgr_model *m, bgr_ref r)
 {
-    if (m->n == 0 || m->compiled < 0) return -1; /* not numbered yet, or compilation failed */
+    if (!m || m->n == 0 || m->compiled < 0) return -1; /* not numbered yet, or failed */
     switch (r.type) {
     case BGR_EFFORT:
     case BGR_FLOW:
@@ -473,11 +522,32 @@ int bgr_ref_var(const bgr_model *m, bgr_ref r)
 
 int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k)
 {
-    return el->bond[k] >= 0 ? m->bond[el->bond[k]].d : el->dim[k];
+    if (!el || !m || k < 0 || k >= el->nports) return BG_ERR_ARGUMENT;
+    return el->bond[k] >= 0 && el->bond[k] < m->nbond ? m->bond[el->bond[k]].d : el->dim[k];
+}
+
+/* The checks of the bgr_declare_* functions: a model in compilation and one of its elements. */
+static int check_declare(const bgr_element *el, bgr_model *m, const char *what)
+{
+    if (!m) return BG_ERR_ARGUMENT;
+    if (!el || el->id < 0 || el->id >= m->nel || m->el[el->id] != el)
+        return fail(m, BG_ERR_ARGUMENT, what, "the element is not one of model %s",
+                    m->comp[0].path);
+    if (!m->compiling)
+        return fail(m, BG_ERR_STATE, what,
+                    "element %s/%s: %s is called only from the element's declare() during "
+                    "bgr_compile",
+                    m->comp[el->comp].path, el->name, what);
+    return BG_OK;
 }
 
 int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels)
 {
+    int st = check_declare(el, m, "bgr_declare_equations");
+    if (st) return st;
+    if (neq < 0)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_compile", "element %s/%s declares %d equations",
+                    m->comp[el->comp].path, el->name, neq);
     char *path = elem_path(m, el);
     if (!path) return fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
     el->neq = neq;
@@ -506,6 +576,8 @@ int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *co
 
 int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp)
 {
+    int st = check_declare(el, m, "bgr_declare_dep");
+    if (st) return st;
     if (k < 0 || k >= el->neq || var < 0 || var >= m->n)
         return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
                     "element %s/%s declares a dependency of equation %d on variable %d: out of "
@@ -523,6 +595,8 @@ int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp)
 
 int bgr_declare_index2(bgr_element *el, bgr_model *m, int var)
 {
+    int st = check_declare(el, m, "bgr_declare_index2");
+    if (st) return st;
     if (var < el->alg0 || var >= el->alg0 + el->nalg)
         return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
                     "element %s/%s: only its own algebraic unknowns can be declared index 2",
@@ -585,12 +659,14 @@ static int compile(bgr_model *m);
 
 int bgr_compile(bgr_model *m)
 {
+    if (!m) return BG_ERR_ARGUMENT;
     if (m->compiled > 0)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_compile", "the model is compiled already");
+        return fail(m, BG_ERR_STATE, "bgr_compile", "the model is compiled already");
     if (m->compiled < 0)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+        return fail(m, BG_ERR_STATE, "bgr_compile",
                     "an earlier compilation failed; build the model again");
     int st = compile(m);
+    m->compiling = 0;
     m->compiled = st == BG_OK ? 1 : -1;
     return st;
 }
@@ -630,7 +706,9 @@ static int compile(bgr_model *m)
             expect += bgr_port_dim(el, m, k);
         el->dep0 = m->ndep;
         el->ndep = 0;
+        m->compiling = 1;
         int st = el->cls->declare(el, m);
+        m->compiling = 0;
         if (st != BG_OK) return st;
         if (el->neq != expect)
             return fail(m, BG_ERR_PATTERN, w,
@@ -682,36 +760,36 @@ static int compile(bgr_model *m)
 
 int bgr_nvars(const bgr_model *m)
 {
-    return m->compiled >= 0 ? m->n : 0;
+    return m && m->compiled >= 0 ? m->n : 0;
 }
 int bgr_n(const bgr_model *m)
 {
-    return m->compiled > 0 ? m->n : 0;
+    return m && m->compiled > 0 ? m->n : 0;
 }
 const char *bgr_var_name(const bgr_model *m, int v)
 {
-    return m->compiled > 0 && v >= 0 && v < m->n ? m->vname[v] : NULL;
+    return m && m->compiled > 0 && v >= 0 && v < m->n ? m->vname[v] : NULL;
 }
 const char *bgr_eq_name(const bgr_model *m, int e)
 {
-    return m->compiled > 0 && e >= 0 && e < m->n ? m->ename[e] : NULL;
+    return m && m->compiled > 0 && e >= 0 && e < m->n ? m->ename[e] : NULL;
 }
 const int *bgr_kinds(const bgr_model *m)
 {
-    return m->compiled > 0 ? m->kind : NULL;
+    return m && m->compiled > 0 ? m->kind : NULL;
 }
 double *bgr_y0(bgr_model *m)
 {
-    return m->compiled > 0 ? m->y0 : NULL;
+    return m && m->compiled > 0 ? m->y0 : NULL;
 }
 double *bgr_yp0(bgr_model *m)
 {
-    return m->compiled > 0 ? m->yp0 : NULL;
+    return m && m->compiled > 0 ? m->yp0 : NULL;
 }
 
 int bgr_find_var(const bgr_model *m, const char *path)
 {
-    if (m->compiled <= 0 || !path) return -1;
+    if (!m || m->compiled <= 0 || !path) return -1;
     for (int v = 0; v < m->n; v++)
         if (!strcmp(m->vname[v], path)) return v;
     return -1;
@@ -719,7 +797,7 @@ int bgr_find_var(const bgr_model *m, const char *path)
 
 int bgr_find_eq(const bgr_model *m, const char *path)
 {
-    if (m->compiled <= 0 || !path) return -1;
+    if (!m || m->compiled <= 0 || !path) return -1;
     for (int e = 0; e < m->n; e++)
         if (!strcmp(m->ename[e], path)) return e;
     return -1;
@@ -730,6 +808,10 @@ int bgr_find_eq(const bgr_model *m, const char *path)
 int bgr_residual(void *model, double t, const double *y, const double *yp, double *F)
 {
     bgr_model *m = model;
+    if (!m) return BG_ERR_ARGUMENT;
+    if (m->compiled <= 0) return need_compiled(m, "bgr_residual");
+    if (!y || !yp || !F)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_residual", "y, yp and F must be given");
     for (int e = 0; e < m->nel; e++) {
         const bgr_element *el = m->el[e];
         int r = el->cls->residual(el, t, y, yp, F + el->eq0);
@@ -741,6 +823,15 @@ int bgr_residual(void *model, double t, const double *y, const double *yp, doubl
 int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp)
 {
     bgr_model *m = model;
+    if (!m) return BG_ERR_ARGUMENT;
+    if (m->compiled <= 0) return need_compiled(m, "bgr_jacobian");
+    if (!y || !yp || !Jy || !Jyp)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_jacobian", "y, yp, Jy and Jyp must be given");
+    if (Jy->nrow != m->n || Jy->ncol != m->n || Jy->nnz != m->Jy->nnz || Jyp->nrow != m->n ||
+        Jyp->ncol != m->n || Jyp->nnz != m->Jyp->nnz)
+        return fail(m, BG_ERR_PATTERN, "bgr_jacobian",
+                    "Jy and Jyp must have the model's patterns (%d x %d with %d and %d entries)",
+                    m->n, m->n, m->Jy->nnz, m->Jyp->nnz);
     for (int e = 0; e < m->nel; e++) {
         const bgr_element *el = m->el[e];
         int r = el->cls->jacobian(el, t, y, yp, m->vals + el->dep0);
@@ -755,8 +846,10 @@ int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_cs
 
 int bgr_dae_problem(bgr_model *m, dae_problem *p)
 {
+    if (!m) return BG_ERR_ARGUMENT;
+    if (!p) return fail(m, BG_ERR_ARGUMENT, "bgr_dae_problem", "the problem pointer is NULL");
     if (m->compiled <= 0)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_dae_problem", "compile the model first");
+        return fail(m, BG_ERR_STATE, "bgr_dae_problem", "compile the model first");
     memset(p, 0, sizeof *p);
     p->n = m->n;
     p->res = bgr_residual;
@@ -765,6 +858,7 @@ int bgr_dae_problem(bgr_model *m, dae_problem *p)
     p->jac_yp_pattern = m->Jyp;
     p->kind = m->kind;
     p->names = (const char *const *)m->vname;
+    p->eq_names = (const char *const *)m->ename;
     p->user = m;
     return BG_OK;
 }
@@ -777,6 +871,11 @@ static int cmp_dbl(const void *a, const void *b)
 
 int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max)
 {
+    if (!m) return BG_ERR_ARGUMENT;
+    if (max < 0 || (max > 0 && !t) || isnan(t0) || isnan(t1))
+        return fail_c(m, BG_ERR_ARGUMENT, "bgr_breakpoints",
+                      "needs max >= 0, room for max times and t0, t1 not NaN (max %d, t %s)", max,
+                      t ? "given" : "NULL");
     int total = 0;
     for (int e = 0; e < m->nel; e++)
         if (m->el[e]->cls->breakpoints)
@@ -803,11 +902,12 @@ int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max
 
 int bgr_get_stats(const bgr_model *m, bgr_stats *st)
 {
+    if (!m || !st) return fail_c(m, BG_ERR_ARGUMENT, "bgr_get_stats", "the stats pointer is NULL");
     memset(st, 0, sizeof *st);
     st->elements = m->nel;
     st->bonds = m->nbond;
     st->components = m->ncomp;
-    if (m->compiled <= 0) return BG_ERR_ARGUMENT;
+    if (m->compiled <= 0) return need_compiled(m, "bgr_get_stats");
     st->equations = m->n;
     st->nnz_dy = m->Jy->nnz;
     st->nnz_dyp = m->Jyp->nnz;
@@ -822,7 +922,9 @@ int bgr_get_stats(const bgr_model *m, bgr_stats *st)
 int bgr_stats_print(const bgr_model *m, FILE *f)
 {
     bgr_stats st;
-    if (bgr_get_stats(m, &st) != BG_OK) return BG_ERR_ARGUMENT;
+    if (!m || !f) return fail_c(m, BG_ERR_ARGUMENT, "bgr_stats_print", "the file is NULL");
+    int r = bgr_get_stats(m, &st);
+    if (r != BG_OK) return r;
     fprintf(f,
             "model %s: %d components, %d elements, %d bonds\n"
             "  equations (= unknowns)                    %d\n"
@@ -836,7 +938,8 @@ int bgr_stats_print(const bgr_model *m, FILE *f)
 
 int bgr_list_equations(const bgr_model *m, FILE *f)
 {
-    if (m->compiled <= 0) return BG_ERR_ARGUMENT;
+    if (!m || !f) return fail_c(m, BG_ERR_ARGUMENT, "bgr_list_equations", "the file is NULL");
+    if (m->compiled <= 0) return need_compiled(m, "bgr_list_equations");
     static const char *kname[3] = {"differential", "algebraic", "index 2"};
     fprintf(f, "# unknowns\n");
     for (int v = 0; v < m->n; v++)
@@ -874,7 +977,13 @@ static int ck_res_yp(void *u, const double *yp, double *F)
 int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp, double tol,
                        char *report, size_t size)
 {
-    if (m->compiled <= 0) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_check_jacobian";
+    if (!m) return BG_ERR_ARGUMENT;
+    if (m->compiled <= 0) return need_compiled(m, w);
+    if (!y || !yp || !(tol > 0) || (!report && size > 0))
+        return fail(m, BG_ERR_ARGUMENT, w,
+                    "needs y, yp, tol > 0 and room for the report (y %s, yp %s, tol %g)",
+                    y ? "given" : "NULL", yp ? "given" : "NULL", tol);
     sp_csc *Jy = sp_csc_copy(m->Jy), *Jyp = sp_csc_copy(m->Jyp);
     if (!Jy || !Jyp) {
         sp_csc_free(&Jy);

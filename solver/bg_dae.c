@@ -48,6 +48,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,14 +67,36 @@ double daei_seconds(void)
 
 const char *daei_vname(const dae_solver *s, int i, char *buf, size_t sz)
 {
-    if (i < 0) return "(none)";
+    if (i < 0 || i >= s->n) return "(none)";
     if (s->names && s->names[i]) return s->names[i];
     snprintf(buf, sz, "y[%d]", i);
     return buf;
 }
 
-void dae_options_default(dae_options *o)
+const char *daei_ename(const dae_solver *s, int i, char *buf, size_t sz)
 {
+    if (i < 0 || i >= s->n) return "(no equation)";
+    if (s->enames && s->enames[i]) return s->enames[i];
+    char nb[32];
+    int v = s->rowvar ? s->rowvar[i] : -1;
+    if (v >= 0)
+        snprintf(buf, sz, "equation %d (the row of %s)", i, daei_vname(s, v, nb, sizeof nb));
+    else
+        snprintf(buf, sz, "equation %d", i);
+    return buf;
+}
+
+void daei_note(dae_solver *s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->note, sizeof s->note, fmt, ap);
+    va_end(ap);
+}
+
+int dae_options_default(dae_options *o)
+{
+    if (!o) return BG_ERR_ARGUMENT;
     memset(o, 0, sizeof *o);
     o->rtol = 1e-6;
     o->atol = 1e-8;
@@ -82,6 +105,7 @@ void dae_options_default(dae_options *o)
     o->index2 = DAE_I2_EXCLUDE;
     o->linsol = LS_KLU;
     o->max_newton = 4;
+    return BG_OK;
 }
 
 const char *dae_return_name(int code)
@@ -118,19 +142,19 @@ const char *dae_return_name(int code)
 
 /* ---------------------------------------------------------------- callbacks ---- */
 
-static int is_finite_vec(const double *v, int n, int *bad)
+/* First entry of v[0..n) that is not finite, -1 if none. */
+static int first_nonfinite(const double *v, int n)
 {
     for (int i = 0; i < n; i++)
-        if (!isfinite(v[i])) {
-            *bad = i;
-            return 0;
-        }
-    return 1;
+        if (!isfinite(v[i])) return i;
+    return -1;
 }
 
-/* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. */
+/* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. A failure
+ * is described in s->note: the status, the time and the first equation that is NaN or Inf. */
 int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd)
 {
+    memset(F, 0, (size_t)s->n * sizeof *F); /* rows left NaN by a failing residual name it */
     double t0 = daei_seconds();
     int r = s->p.res(s->p.user, t, y, yp, F);
     s->st.t_res += daei_seconds() - t0;
@@ -138,11 +162,33 @@ int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, do
         s->st.res_evals_fd++;
     else
         s->st.res_evals++;
-    if (r < 0) return r;
-    if (r > 0) return r;
-    int bad;
-    if (!is_finite_vec(F, s->n, &bad)) return BG_RECOVERABLE;
-    return 0;
+    int bad = first_nonfinite(F, s->n);
+    if (r == 0 && bad < 0) return 0;
+    char eb[192];
+    if (r != 0 && bad >= 0)
+        daei_note(s, "the residual function returned the %s status %d at t = %.17g, %s is %g",
+                  r < 0 ? "fatal" : "recoverable", r, t, daei_ename(s, bad, eb, sizeof eb), F[bad]);
+    else if (r != 0)
+        daei_note(s, "the residual function returned the %s status %d at t = %.17g",
+                  r < 0 ? "fatal" : "recoverable", r, t);
+    else
+        daei_note(s, "the residual of %s is %g at t = %.17g", daei_ename(s, bad, eb, sizeof eb),
+                  F[bad], t);
+    return r != 0 ? r : BG_RECOVERABLE;
+}
+
+/* Column of entry p of A (binary search in colptr). */
+static int column_of(const sp_csc *A, int p)
+{
+    int lo = 0, hi = A->ncol - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo + 1) / 2;
+        if (A->colptr[mid] <= p)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
 }
 
 static int fd_res_y(void *u, const double *x, double *f)
@@ -180,11 +226,21 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
         }
     }
     s->st.t_jac += daei_seconds() - t0;
+    if (r != 0 && s->p.jac)
+        daei_note(s, "the Jacobian function returned the %s status %d at t = %.17g",
+                  r < 0 ? "fatal" : "recoverable", r, t);
     if (r == 0) {
-        int bad;
-        if (!is_finite_vec(s->Jy->val, s->Jy->nnz, &bad) ||
-            !is_finite_vec(s->Jyp->val, s->Jyp->nnz, &bad))
-            r = BG_RECOVERABLE;
+        for (int m = 0; m < 2 && r == 0; m++) {
+            const sp_csc *J = m ? s->Jyp : s->Jy;
+            int p = first_nonfinite(J->val, J->nnz);
+            if (p >= 0) {
+                char eb[192], nb[32];
+                daei_note(s, "the Jacobian entry dF/d%s%s of %s is %g at t = %.17g",
+                          daei_vname(s, column_of(J, p), nb, sizeof nb), m ? "'" : "",
+                          daei_ename(s, J->rowind[p], eb, sizeof eb), J->val[p], t);
+                r = BG_RECOVERABLE;
+            }
+        }
     }
     return r;
 }
@@ -248,6 +304,12 @@ void dae_free(dae_solver **sp)
             free(s->names[i]);
         free(s->names);
     }
+    if (s->enames) {
+        for (int i = 0; i < s->n; i++)
+            free(s->enames[i]);
+        free(s->enames);
+    }
+    free(s->rowvar);
     free(s->atol);
     free(s->bkpt);
     sp_csc_free(&s->Jy);
@@ -291,6 +353,125 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The checks of dae_create that need no allocation: sizes, options, patterns. */
+static int check_problem(const dae_problem *p, const dae_options *o, bg_error *err)
+{
+    const char *w = "dae_create";
+    int n = p->n;
+    bg_error perr = {0};
+    const char *hname[3] = {"h_init", "h_min", "h_max"};
+    const double hval[3] = {o->h_init, o->h_min, o->h_max};
+    for (int k = 0; k < 3; k++)
+        if (!(hval[k] >= 0) || !isfinite(hval[k]))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, w, "%s = %g: must be finite and >= 0",
+                                  hname[k], hval[k]);
+    if (o->index2 != DAE_I2_EXCLUDE && o->index2 != DAE_I2_SCALE_H)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "index2 = %d is not a dae_index2_policy",
+                              (int)o->index2);
+    if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "linsol = %d is not LS_KLU or LS_DENSE",
+                              (int)o->linsol);
+    if (o->has_t_stop && !isfinite(o->t_stop))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "t_stop = %g is not finite", o->t_stop);
+    if (o->nbreakpoints < 0 || (o->nbreakpoints > 0 && !o->breakpoints))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "nbreakpoints = %d needs that many breakpoints (array %s)",
+                              o->nbreakpoints, o->breakpoints ? "given" : "NULL");
+    for (int k = 0; k < o->nbreakpoints; k++)
+        if (!isfinite(o->breakpoints[k]))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, w, "breakpoint %d is %g", k,
+                                  o->breakpoints[k]);
+    if (p->ncons < 0 || p->nroots < 0)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "ncons = %d and nroots = %d must be >= 0",
+                              p->ncons, p->nroots);
+    if (p->ncons > 0 && (!p->cons || !p->cons_pattern))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "ncons = %d needs a constraint function and its pattern (cons %s, "
+                              "cons_pattern %s)",
+                              p->ncons, p->cons ? "given" : "NULL",
+                              p->cons_pattern ? "given" : "NULL");
+    if (p->nroots > 0 && !p->roots)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "nroots = %d but no root function",
+                              p->nroots);
+    const sp_csc *pat[2] = {p->jac_y_pattern, p->jac_yp_pattern};
+    for (int k = 0; k < 2; k++) {
+        if (!pat[k]) continue;
+        if (sp_csc_check(pat[k], &perr) != BG_OK)
+            return bg_error_raise(err, BG_ERR_PATTERN, w, "the pattern of dF/dy%s: %s",
+                                  k ? "'" : "", perr.message);
+        if (pat[k]->nrow != n || pat[k]->ncol != n)
+            return bg_error_raise(err, BG_ERR_PATTERN, w,
+                                  "the pattern of dF/dy%s is %d x %d, the problem has n = %d",
+                                  k ? "'" : "", pat[k]->nrow, pat[k]->ncol, n);
+    }
+    if (p->ncons > 0) {
+        if (sp_csc_check(p->cons_pattern, &perr) != BG_OK)
+            return bg_error_raise(err, BG_ERR_PATTERN, w, "the constraint pattern: %s",
+                                  perr.message);
+        if (p->cons_pattern->nrow != p->ncons || p->cons_pattern->ncol != n)
+            return bg_error_raise(err, BG_ERR_PATTERN, w,
+                                  "the constraint pattern is %d x %d, expected ncons x n = %d x %d",
+                                  p->cons_pattern->nrow, p->cons_pattern->ncol, p->ncons, n);
+    }
+    return BG_OK;
+}
+
+/* rowvar[i]: the unknown matched to equation i in a maximum matching of the rows and columns of
+ * the pattern M, diagonal entries first, then augmenting paths (depth first, explicit stack);
+ * -1 for rows left unmatched. Only for naming equations in messages. */
+static int match_rows(const sp_csc *M, int *rowvar)
+{
+    int n = M->ncol, ok = 0;
+    int *colrow = malloc(((size_t)n + 1) * sizeof *colrow);
+    int *stamp = calloc((size_t)n + 1, sizeof *stamp);
+    int *svar = malloc(((size_t)n + 1) * sizeof *svar), *sp = malloc(((size_t)n + 1) * sizeof *sp);
+    int *srow = malloc(((size_t)n + 1) * sizeof *srow);
+    if (!colrow || !stamp || !svar || !sp || !srow) goto done;
+    for (int i = 0; i < n; i++)
+        rowvar[i] = colrow[i] = -1;
+    for (int j = 0; j < n; j++)
+        if (sp_csc_find(M, j, j) >= 0) rowvar[j] = colrow[j] = j;
+    for (int j0 = 0; j0 < n; j0++) {
+        if (colrow[j0] >= 0) continue;
+        int top = 0, found = 0;
+        svar[0] = j0;
+        sp[0] = M->colptr[j0];
+        while (top >= 0 && !found) {
+            int v = svar[top], pushed = 0;
+            while (sp[top] < M->colptr[v + 1]) {
+                int i = M->rowind[sp[top]++];
+                if (stamp[i] == j0 + 1) continue;
+                stamp[i] = j0 + 1;
+                srow[top] = i;
+                if (rowvar[i] < 0) {
+                    found = 1;
+                } else {
+                    svar[top + 1] = rowvar[i];
+                    sp[top + 1] = M->colptr[rowvar[i]];
+                    top++;
+                    pushed = 1;
+                }
+                break;
+            }
+            if (found) break;
+            if (!pushed && sp[top] >= M->colptr[v + 1]) top--;
+        }
+        if (found)
+            for (int k = top; k >= 0; k--) {
+                rowvar[srow[k]] = svar[k];
+                colrow[svar[k]] = srow[k];
+            }
+    }
+    ok = 1;
+done:
+    free(colrow);
+    free(stamp);
+    free(svar);
+    free(sp);
+    free(srow);
+    return ok;
+}
+
 dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err)
 {
     const char *w = "dae_create";
@@ -304,6 +485,7 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         return NULL;
     }
     int n = p->n;
+    if (check_problem(p, o, err) != BG_OK) return NULL;
     if (!(o->rtol >= 0) || (!o->atol_vec && !(o->atol >= 0)) ||
         (o->rtol == 0 && o->atol == 0 && !o->atol_vec)) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w,
@@ -323,6 +505,11 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     if (o->projection && (!p->cons || p->ncons < 1 || !p->cons_pattern)) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w,
                        "projection needs position constraints (cons, ncons, cons_pattern)");
+        return NULL;
+    }
+    if (o->h_max > 0 && o->h_min > o->h_max) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "h_min = %g exceeds h_max = %g", o->h_min,
+                       o->h_max);
         return NULL;
     }
     if (o->fixed_step && !(o->h_init > 0)) {
@@ -367,7 +554,13 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         for (int i = 0; i < n; i++)
             if (p->names[i] && !(s->names[i] = strdup(p->names[i]))) goto nomem;
     }
-    if (o->nbreakpoints > 0 && o->breakpoints) {
+    if (p->eq_names) {
+        s->enames = calloc((size_t)n, sizeof *s->enames);
+        if (!s->enames) goto nomem;
+        for (int i = 0; i < n; i++)
+            if (p->eq_names[i] && !(s->enames[i] = strdup(p->eq_names[i]))) goto nomem;
+    }
+    if (o->nbreakpoints > 0) {
         s->bkpt = malloc((size_t)o->nbreakpoints * sizeof *s->bkpt);
         if (!s->bkpt) goto nomem;
         memcpy(s->bkpt, o->breakpoints, (size_t)o->nbreakpoints * sizeof *s->bkpt);
@@ -378,19 +571,14 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     s->Jy = p->jac_y_pattern ? sp_csc_copy(p->jac_y_pattern) : dense_pattern(n, NULL);
     s->Jyp = p->jac_yp_pattern ? sp_csc_copy(p->jac_yp_pattern) : dense_pattern(n, p->kind);
     if (!s->Jy || !s->Jyp) goto nomem;
-    if (s->Jy->nrow != n || s->Jy->ncol != n || s->Jyp->nrow != n || s->Jyp->ncol != n ||
-        sp_csc_check(s->Jy, &s->err) || sp_csc_check(s->Jyp, &s->err)) {
-        bg_error_raise(err, BG_ERR_PATTERN, w, "Jacobian patterns must be valid %d x %d: %s", n, n,
-                       s->err.message);
-        dae_free(&s);
-        return NULL;
-    }
     /* no kinds given: classify from the structure */
     if (!p->kind && dae_classify(s->Jy, s->Jyp, s->kind) < 0) goto nomem;
     sp_csc_zero(s->Jy);
     sp_csc_zero(s->Jyp);
     s->U = sp_union_create(s->Jy, s->Jyp);
     if (!s->U) goto nomem;
+    s->rowvar = malloc((size_t)n * sizeof *s->rowvar);
+    if (!s->rowvar || !match_rows(s->U->M, s->rowvar)) goto nomem;
     if (!p->jac) {
         s->fdy = sp_fdjac_create(s->Jy);
         s->fdyp = sp_fdjac_create(s->Jyp);
@@ -408,11 +596,6 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         return NULL;
     }
     if (p->cons && p->ncons > 0) {
-        if (!p->cons_pattern || p->cons_pattern->nrow != p->ncons || p->cons_pattern->ncol != n) {
-            bg_error_raise(err, BG_ERR_PATTERN, w, "cons_pattern must be %d x %d", p->ncons, n);
-            dae_free(&s);
-            return NULL;
-        }
         s->G = sp_csc_copy(p->cons_pattern);
         s->gv = malloc((size_t)p->ncons * sizeof *s->gv);
         s->gw = malloc((size_t)p->ncons * sizeof *s->gw);
@@ -430,11 +613,6 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
         if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
     if (p->nroots > 0) {
-        if (!p->roots) {
-            bg_error_raise(err, BG_ERR_ARGUMENT, w, "nroots = %d but no root function", p->nroots);
-            dae_free(&s);
-            return NULL;
-        }
         s->glo = calloc((size_t)p->nroots, sizeof(double));
         s->ghi = calloc((size_t)p->nroots, sizeof(double));
         s->gmid = calloc((size_t)p->nroots, sizeof(double));
@@ -450,15 +628,15 @@ nomem:
 
 bg_error *dae_get_error(dae_solver *s)
 {
-    return &s->err;
+    return s ? &s->err : NULL;
 }
 double dae_current_time(const dae_solver *s)
 {
-    return s->tn;
+    return s && s->initialized ? s->tn : NAN;
 }
 const dae_stats *dae_get_stats(const dae_solver *s)
 {
-    return &s->st;
+    return s ? &s->st : NULL;
 }
 
 void daei_sync_stats(dae_solver *s)
@@ -478,7 +656,8 @@ void daei_sync_stats(dae_solver *s)
 
 int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
 {
-    if (!s || !y0) return BG_ERR_ARGUMENT;
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!y0) return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_init", "y0 is NULL");
     if (!isfinite(t0))
         return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_init", "t0 = %g is not finite", t0);
     char nb[32];
@@ -510,6 +689,8 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->tlo = t0;
     s->need_setup = 1;
     s->initialized = 1;
+    s->failed = 0;
+    s->note[0] = '\0';
     bg_error_clear(&s->err);
     if (s->p.nroots > 0) {
         int r = s->p.roots(s->p.user, t0, y0, s->phi[1], s->glo);
@@ -522,6 +703,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
 
 int dae_reinit(dae_solver *s, double t, const double *y, const double *yp)
 {
+    if (!s) return BG_ERR_ARGUMENT;
     dae_stats keep = s->st;
     int r = dae_init(s, t, y, yp);
     if (r == BG_OK) s->st = keep;
@@ -623,11 +805,15 @@ static void predict(dae_solver *s)
         }
 }
 
-/* Jacobian, scaled Newton matrix, factorization. */
+enum { SU_OK = 0, SU_RECOVER = 1, SU_SINGULAR = 2, SU_LSFAIL = 3 };
+
+/* Jacobian, scaled Newton matrix, factorization: SU_*, or the fatal (< 0) status of a callback.
+ * A failure is described in s->note. */
 static int setup(dae_solver *s, double t, const double *F)
 {
     int r = daei_eval_jac(s, t, s->y, s->yp, F);
-    if (r != 0) return r;
+    if (r < 0) return r;
+    if (r > 0) return SU_RECOVER;
     double t0 = daei_seconds();
     double cj = s->cj;
     sp_union_combine(s->U, s->Jy, 1.0, s->Jyp, cj);
@@ -644,9 +830,19 @@ static int setup(dae_solver *s, double t, const double *F)
     s->jac_current = 1;
     s->need_setup = 0;
     s->ss = 20.0;
-    if (r == BG_ERR_SINGULAR) return BG_ERR_SINGULAR;
-    if (r != BG_OK) return r < 0 ? r : BG_ERR_LIBRARY;
-    return 0;
+    if (r == BG_OK) return SU_OK;
+    if (r == BG_ERR_SINGULAR) {
+        char nb[32];
+        int c = ls_singular_col(s->ls);
+        daei_note(s,
+                  "the Newton matrix is singular at t = %.17g: nothing determines %s (column %d; "
+                  "%s)",
+                  t, daei_vname(s, c, nb, sizeof nb), c, ls_get_error(s->ls)->message);
+        return SU_SINGULAR;
+    }
+    daei_note(s, "the Newton matrix could not be factored at t = %.17g: %s", t,
+              ls_get_error(s->ls)->message);
+    return r == BG_ERR_NONFINITE ? SU_RECOVER : SU_LSFAIL;
 }
 
 /* delta = M^-1 F with the scaling of the factored matrix. */
@@ -669,9 +865,40 @@ static int lsolve(dae_solver *s, double *v)
     return r;
 }
 
-enum { NL_OK = 0, NL_RECOVER = 1, NL_RES_RECOVER = 2, NL_SINGULAR = 3 };
+enum { NL_OK = 0, NL_RECOVER = 1, NL_RES_RECOVER = 2, NL_SINGULAR = 3, NL_LSFAIL = 4 };
 
-/* Newton corrector; y, yp, ee hold the result. Returns NL_* or < 0 fatal. */
+/* The unknown with the largest |v_i w_i|, -1 if all are zero. */
+static int largest_weighted(const dae_solver *s, const double *v, const double *w)
+{
+    int im = -1;
+    double m = 0;
+    for (int i = 0; i < s->n; i++) {
+        double e = fabs(v[i] * w[i]);
+        if (e > m || (im < 0 && isnan(e))) {
+            m = e;
+            im = i;
+        }
+    }
+    return im;
+}
+
+/* Describes a Newton failure by the unknown with the largest weighted correction. */
+static void note_newton(dae_solver *s, double t, double rate)
+{
+    char nb[32];
+    int i = largest_weighted(s, s->delta, s->wnewt);
+    if (i < 0) {
+        daei_note(s, "the Newton iteration did not converge at t = %.17g", t);
+        return;
+    }
+    daei_note(s,
+              "the Newton iteration did not converge at t = %.17g (rate %.3g): the largest "
+              "weighted correction is in %s (%.3g against the tolerance %.3g)",
+              t, rate, daei_vname(s, i, nb, sizeof nb), fabs(s->delta[i]), 1.0 / s->wnewt[i]);
+}
+
+/* Newton corrector; y, yp, ee hold the result. Returns NL_* or < 0 fatal (a callback's status).
+ * A failure is described in s->note. */
 static int newton(dae_solver *s, double t)
 {
     int n = s->n;
@@ -683,19 +910,24 @@ static int newton(dae_solver *s, double t)
     /* a rate measured at another cj says little about this one: start cautious */
     if (s->cj != s->cjold) s->ss = 100.0;
     s->jac_current = 0;
-    double oldnrm = 0;
+    double oldnrm = 0, rate = 0;
     for (int m = 0; m < s->o.max_newton; m++) {
         int r = daei_call_res(s, t, s->y, s->yp, s->res, 0);
         if (r < 0) return r;
         if (r > 0) return NL_RES_RECOVER;
         if (s->need_setup) {
             r = setup(s, t, s->res);
-            if (r == BG_ERR_SINGULAR) return NL_SINGULAR;
             if (r < 0) return r;
-            if (r > 0) return NL_RES_RECOVER;
+            if (r == SU_SINGULAR) return NL_SINGULAR;
+            if (r == SU_LSFAIL) return NL_LSFAIL;
+            if (r == SU_RECOVER) return NL_RES_RECOVER;
         }
         memcpy(s->delta, s->res, (size_t)n * sizeof(double));
-        if (lsolve(s, s->delta) != BG_OK) return NL_SINGULAR;
+        if (lsolve(s, s->delta) != BG_OK) {
+            daei_note(s, "the linear solve failed at t = %.17g: %s", t,
+                      ls_get_error(s->ls)->message);
+            return NL_LSFAIL;
+        }
         s->st.newton_iters++;
         for (int i = 0; i < n; i++) {
             s->y[i] -= s->delta[i];
@@ -703,7 +935,13 @@ static int newton(dae_solver *s, double t)
             s->ee[i] -= s->delta[i];
         }
         double dn = daei_wrms(s, s->delta, s->wnewt);
-        if (!isfinite(dn)) return NL_RES_RECOVER;
+        if (!isfinite(dn)) {
+            char nb[32];
+            int i = first_nonfinite(s->delta, n);
+            daei_note(s, "the Newton correction of %s is %g at t = %.17g",
+                      daei_vname(s, i, nb, sizeof nb), i >= 0 ? s->delta[i] : dn, t);
+            return NL_RES_RECOVER;
+        }
         if (m == 0) {
             oldnrm = dn;
             if (dn <= 1e-4 * EPS_NEWT) return NL_OK;
@@ -713,12 +951,16 @@ static int newton(dae_solver *s, double t)
              * decreasing while everything else has converged. Once the corrections of the
              * differential and index-1 unknowns are far below the tolerance, accept. */
             if (s->has_alg2 && daei_wrms(s, s->delta, s->wdiff) <= 1e-6) return NL_OK;
-            double rate = pow(dn / oldnrm, 1.0 / m);
-            if (rate > RATE_MAX) return NL_RECOVER;
+            rate = pow(dn / oldnrm, 1.0 / m);
+            if (rate > RATE_MAX) {
+                note_newton(s, t, rate);
+                return NL_RECOVER;
+            }
             s->ss = rate / (1.0 - rate);
         }
         if (s->ss * dn <= EPS_NEWT) return NL_OK;
     }
+    note_newton(s, t, rate);
     return NL_RECOVER;
 }
 
@@ -825,6 +1067,8 @@ static void complete_step(dae_solver *s)
 
 int dae_dense(const dae_solver *s, double t, double *y, double *yp)
 {
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!s->initialized) return BG_ERR_STATE;
     int n = s->n;
     if (s->first || s->hused == 0) {
         if (y) memcpy(y, s->phi[0], (size_t)n * sizeof *y);
@@ -921,18 +1165,40 @@ static int first_step(dae_solver *s, double tout, double hpref)
     return BG_OK;
 }
 
-static int largest_error_var(const dae_solver *s)
+/* Describes an error-test failure by the unknown with the largest weighted local error. */
+static void note_error_test(dae_solver *s, double t)
 {
-    int im = -1;
-    double m = -1;
-    for (int i = 0; i < s->n; i++) {
-        double e = fabs(s->ee[i] * s->werr[i]);
-        if (e > m) {
-            m = e;
-            im = i;
-        }
+    char nb[32];
+    int i = largest_weighted(s, s->ee, s->werr);
+    if (i < 0) {
+        daei_note(s, "the error test failed at t = %.17g", t);
+        return;
     }
-    return im;
+    daei_note(s,
+              "the error test failed at t = %.17g: the largest weighted local error is in %s "
+              "(estimate %.3g against the tolerance %.3g)",
+              t, daei_vname(s, i, nb, sizeof nb), s->ck * fabs(s->ee[i]), 1.0 / s->werr[i]);
+}
+
+/* Describes what limits a step that is too small although it has not failed: the local error
+ * of the last step, or the derivative that sized the first step. */
+static void note_step_limit(dae_solver *s)
+{
+    char nb[32];
+    int first = s->nst_local == 0;
+    int i = largest_weighted(s, first ? s->phi[1] : s->ee, s->werr);
+    if (i < 0) {
+        s->note[0] = '\0';
+        return;
+    }
+    if (first)
+        daei_note(s, "the first step is sized by the derivative of %s (y' = %.3g, tolerance %.3g)",
+                  daei_vname(s, i, nb, sizeof nb), fabs(s->phi[1][i] / s->hh), 1.0 / s->werr[i]);
+    else
+        daei_note(s,
+                  "the step size is limited by the local error of %s (%.3g in the last step, "
+                  "tolerance %.3g)",
+                  daei_vname(s, i, nb, sizeof nb), s->ck * fabs(s->ee[i]), 1.0 / s->werr[i]);
 }
 
 /* Minimum-norm Gauss-Newton correction of y onto g(t, y) = 0 (at most 3 iterations). */
@@ -996,7 +1262,7 @@ static int restart_at_breakpoint(dae_solver *s, double tout)
     memcpy(s->phi[1], s->yp, (size_t)s->n * sizeof(double));
     double keep = s->st.init_residual;
     s->init_side = s->hused >= 0 ? 1 : -1; /* the right-hand values past the breakpoint */
-    int r = dae_consistent_init(s);
+    int r = daei_consistent_init(s);
     s->init_side = 0;
     s->st.init_residual = keep;
     if (r != BG_OK) return r;
@@ -1012,11 +1278,16 @@ static int step_once(dae_solver *s)
     clip_to_stop(s);
     daei_set_weights(s, s->phi[0]);
     double tolsf = DBL_EPSILON * daei_wrms(s, s->phi[0], s->ewt);
-    if (tolsf > 1)
+    if (tolsf > 1) {
+        int i = largest_weighted(s, s->phi[0], s->ewt);
         return bg_error_raise(&s->err, DAE_TOO_MUCH_ACC, w,
-                              "at t = %g the tolerances are below round-off: increase them by a "
-                              "factor of at least %.3g",
-                              s->tn, tolsf);
+                              "at t = %.17g the tolerances are below round-off: increase them by "
+                              "a factor of at least %.3g (the largest weighted value is %s = "
+                              "%.3g against the tolerance %.3g)",
+                              s->tn, tolsf, daei_vname(s, i, nb, sizeof nb),
+                              i >= 0 ? s->phi[0][i] : 0.0, i >= 0 ? 1.0 / s->ewt[i] : 0.0);
+    }
+    s->note[0] = '\0';
     for (;;) {
         int isb;
         double ts = next_stop(s, s->hh > 0 ? 1 : -1, &isb);
@@ -1024,14 +1295,16 @@ static int step_once(dae_solver *s)
         double hmin = fmax(s->o.h_min, 4 * DBL_EPSILON * fabs(s->tn));
         if (fabs(s->hh) < hmin && !landing && last_res_fail)
             return bg_error_raise(&s->err, DAE_RES_FAIL, w,
-                                  "the residual kept failing (recoverable status, NaN or Inf) "
-                                  "until the step size fell to %.3g at t = %.17g",
-                                  s->hh, s->tn);
-        if (fabs(s->hh) < hmin && !landing)
+                                  "the residual kept failing until the step size fell to %.3g at "
+                                  "t = %.17g: %s",
+                                  s->hh, s->tn, s->note);
+        if (fabs(s->hh) < hmin && !landing) {
+            if (nef + ncf == 0) note_step_limit(s);
             return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
-                                  "step size %.3g at t = %.17g is below the minimum %.3g "
-                                  "(%d error-test and %d Newton failures in this step)",
-                                  s->hh, s->tn, hmin, nef, ncf);
+                                  "step size %.3g at t = %.17g is below the minimum %.3g (%d "
+                                  "error-test and %d Newton failures in this step)%s%s",
+                                  s->hh, s->tn, hmin, nef, ncf, s->note[0] ? ": " : "", s->note);
+        }
         daei_set_weights(s, s->phi[0]);
         set_coeffs(s);
         predict(s);
@@ -1040,7 +1313,14 @@ static int step_once(dae_solver *s)
         if (nl < 0) {
             restore(s);
             return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, w,
-                                  "a callback returned the fatal status %d at t = %.17g", nl, tnew);
+                                  "a callback returned the fatal status %d in the step from t = "
+                                  "%.17g to %.17g: %s",
+                                  nl, s->tn, tnew, s->note);
+        }
+        if (nl == NL_LSFAIL) {
+            restore(s);
+            return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w, "at t = %.17g, h = %.3g: %s", s->tn,
+                                  s->hh, s->note);
         }
         if (nl == NL_OK) {
             if (s->o.fixed_step || !test_error(s)) {
@@ -1048,18 +1328,17 @@ static int step_once(dae_solver *s)
                 s->tn = tnew;
                 return landing && isb ? 1 : 0;
             }
+            note_error_test(s, tnew);
             restore(s);
             s->st.rejected_error++;
             s->since_fail = -1;
             nef++;
             s->phase = 1;
-            if (nef >= MAX_NEF) {
-                int iv = largest_error_var(s);
+            last_res_fail = 0;
+            if (nef >= MAX_NEF)
                 return bg_error_raise(&s->err, DAE_ERR_FAIL, w,
-                                      "error test failed %d times at t = %.17g, h = %.3g; the "
-                                      "largest weighted error is in %s",
-                                      nef, s->tn, s->hh, daei_vname(s, iv, nb, sizeof nb));
-            }
+                                      "error test failed %d times at t = %.17g, h = %.3g: %s", nef,
+                                      s->tn, s->hh, s->note);
             if (nef == 1) {
                 double ekn = s->kk == s->knew ? s->err_k : s->err_km1;
                 s->kk = s->knew;
@@ -1084,22 +1363,17 @@ static int step_once(dae_solver *s)
         s->st.newton_fails++;
         last_res_fail = nl == NL_RES_RECOVER;
         if (ncf >= MAX_NCF) {
-            if (nl == NL_SINGULAR) {
-                int c = ls_singular_col(s->ls);
+            if (nl == NL_SINGULAR)
                 return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w,
-                                      "Newton matrix singular at t = %.17g, h = %.3g: column of "
-                                      "%s (%s)",
-                                      s->tn, s->hh, daei_vname(s, c, nb, sizeof nb),
-                                      ls_get_error(s->ls)->message);
-            }
+                                      "Newton matrix singular %d times at t = %.17g, h = %.3g: %s",
+                                      ncf, s->tn, s->hh, s->note);
             if (last_res_fail)
                 return bg_error_raise(&s->err, DAE_RES_FAIL, w,
-                                      "the residual failed (recoverable status, NaN or Inf) %d "
-                                      "times at t = %.17g, h = %.3g",
-                                      ncf, s->tn, s->hh);
+                                      "the residual failed %d times at t = %.17g, h = %.3g: %s",
+                                      ncf, s->tn, s->hh, s->note);
             return bg_error_raise(&s->err, DAE_CONV_FAIL, w,
-                                  "Newton iteration failed %d times at t = %.17g, h = %.3g", ncf,
-                                  s->tn, s->hh);
+                                  "Newton iteration failed %d times at t = %.17g, h = %.3g: %s",
+                                  ncf, s->tn, s->hh, s->note);
         }
         s->hh *= 0.25;
         s->need_setup = 1;
@@ -1183,11 +1457,9 @@ static int find_root(dae_solver *s)
     return 1;
 }
 
-static int advance(dae_solver *s, double tout, double *tret, double *y, double *yp, int one)
+static int advance_run(dae_solver *s, double tout, double *tret, double *y, double *yp, int one)
 {
     const char *w = "dae_solve_to";
-    if (!s || !tret) return BG_ERR_ARGUMENT;
-    if (!s->initialized) return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first");
     if (!isfinite(tout))
         return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "tout = %g is not finite", tout);
     if (s->first) {
@@ -1248,7 +1520,10 @@ static int advance(dae_solver *s, double tout, double *tret, double *y, double *
         if (r == 1) { /* landed on a breakpoint: restart before the next step (which may be in
                          the next call, when tout is the breakpoint itself) */
             s->ibk++;
-            if (s->p.nroots > 0 && (r = find_root(s)) < 0) return r;
+            if (s->p.nroots > 0 && (r = find_root(s)) < 0) {
+                output_state(s, s->tn, tret, y, yp);
+                return r;
+            }
             s->restart_pending = 1;
             continue;
         }
@@ -1257,6 +1532,25 @@ static int advance(dae_solver *s, double tout, double *tret, double *y, double *
             return r;
         }
     }
+}
+
+/* advance_run behind the checks of the call order; a failure stops the integration until
+ * dae_init or dae_reinit (DAE_TOO_MUCH_WORK and argument errors do not). */
+static int advance(dae_solver *s, double tout, double *tret, double *y, double *yp, int one)
+{
+    const char *w = one ? "dae_step" : "dae_solve_to";
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!tret) return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "tret is NULL");
+    if (!s->initialized)
+        return bg_error_raise(&s->err, BG_ERR_STATE, w, "call dae_init before integrating");
+    if (s->failed)
+        return bg_error_raise(&s->err, BG_ERR_STATE, w,
+                              "the integration stopped with %s at t = %.17g: call dae_reinit (or "
+                              "dae_init) before integrating again",
+                              dae_return_name(s->failed), s->tn);
+    int r = advance_run(s, tout, tret, y, yp, one);
+    if (r < 0 && r != DAE_TOO_MUCH_WORK && r != BG_ERR_ARGUMENT) s->failed = r;
+    return r;
 }
 
 int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp)
@@ -1291,6 +1585,7 @@ int dae_roots_found(const dae_solver *s, int *found)
 
 int dae_stats_line(const dae_stats *st, char *buf, size_t size)
 {
+    if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
     return snprintf(
         buf, size,
         "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
@@ -1301,6 +1596,7 @@ int dae_stats_line(const dae_stats *st, char *buf, size_t size)
 
 int dae_stats_csv_header(char *buf, size_t size)
 {
+    if (!buf && size > 0) return BG_ERR_ARGUMENT;
     return snprintf(buf, size,
                     "steps,rejected,newton,conv_fails,res,res_fd,jac,symbolic,factor,refactor,"
                     "solves,order1,order2,order3,order4,order5,h_min,h_max,max_drift,"
@@ -1309,6 +1605,7 @@ int dae_stats_csv_header(char *buf, size_t size)
 
 int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
 {
+    if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
     return snprintf(buf, size,
                     "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,"
                     "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g",

@@ -17,7 +17,23 @@
  * The details and the reasons are in the header comment of bg_dae.c.
  *
  * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),
- * < 0 for a fatal one (the integration stops with DAE_CALLBACK_FAIL). */
+ * < 0 for a fatal one (the integration stops with DAE_CALLBACK_FAIL). The residual array is
+ * zeroed before each call of the residual function; one that fails may set the rows it could not
+ * evaluate to NaN, and the failure message then names the first of those equations.
+ *
+ * Errors. Every function returns a status (bg_status.h, or the dae_return codes below) and, where
+ * it has the solver, leaves a message in dae_get_error(s). Misuse: BG_ERR_ARGUMENT (a NULL
+ * solver, array or callback that is needed, a size or option out of range: the message names
+ * it), BG_ERR_PATTERN (a Jacobian or constraint pattern of the wrong shape or structure),
+ * BG_ERR_STATE (stepping before dae_init, or after a failure without dae_reinit; consistent
+ * values after the first step). The failures of the integration (DAE_TOO_MUCH_ACC ..
+ * DAE_STEP_TOO_SMALL) name the time and what stopped it by the problem's names: the unknown with
+ * the largest weighted local error (error test), with the largest weighted Newton correction
+ * (convergence), the unknown of the singular column of the Newton matrix, the equation whose
+ * residual is NaN or Inf, or the unknown that limits the step; equations without names (eq_names
+ * NULL) are called "equation i (the row of x)", x being the unknown matched to row i in a
+ * maximum matching of the Newton matrix's pattern that takes the diagonal first. The library
+ * never prints. */
 #ifndef BG_DAE_H
 #define BG_DAE_H
 
@@ -67,6 +83,8 @@ typedef struct dae_problem {
     /* optional event functions */
     int nroots;
     dae_root_fn roots;
+    const char *const *eq_names; /* n names of the equations (rows of F) for messages; NULL (or a
+                                    NULL entry): named after the unknown matched to the row */
 } dae_problem;
 
 typedef enum dae_index2_policy {
@@ -83,7 +101,7 @@ typedef struct dae_options {
     double h_init;            /* 0: chosen by the solver */
     double h_min;             /* default 0: limited by round-off only */
     double h_max;             /* 0: no limit */
-    long max_steps;           /* per call of dae_solve_to; default 100000 */
+    long max_steps;           /* per call of dae_solve_to; default 100000 (< 1: default) */
     dae_index2_policy index2; /* default DAE_I2_EXCLUDE */
     int exclude_alg;          /* 1: index-1 algebraic variables take no part in the local error
                                  test either (default 0). Right for models whose algebraic
@@ -96,14 +114,18 @@ typedef struct dae_options {
     const double *breakpoints; /* ascending times where the step must land (kinks) */
     int nbreakpoints;
     int projection;            /* project onto cons after each step (needs cons) */
-    int max_newton;            /* Newton iterations per step, default 4 */
+    int max_newton;            /* Newton iterations per step, default 4 (< 1: default) */
     int fixed_step;            /* 1: constant h_init, order max_order after dae_set_history, no
                                   error-test rejection (for convergence-order studies) */
     int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
                                   convergence test (default 0: full weight, see bg_dae.c) */
 } dae_options;
 
-void dae_options_default(dae_options *o);
+/* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. dae_create checks the options:
+ * tolerances as stated, h_init, h_min, h_max finite and >= 0 with h_min <= h_max when h_max > 0,
+ * max_order 1..5, a known index2 policy and linear solver, a finite t_stop, nbreakpoints >= 0
+ * with finite breakpoints, projection only with constraints. */
+int dae_options_default(dae_options *o);
 
 typedef struct dae_stats {
     long steps, rejected_error, newton_iters, newton_fails;
@@ -133,7 +155,7 @@ enum dae_return {
     DAE_RES_FAIL = -25,      /* residual kept failing (recoverable failures, NaN or Inf) */
     DAE_CALLBACK_FAIL = -26, /* a callback returned < 0 */
     DAE_INIT_FAIL = -27,     /* consistent initialisation failed */
-    DAE_STEP_TOO_SMALL = -28
+    DAE_STEP_TOO_SMALL = -28 /* the step size fell below h_min (or round-off) */
 };
 
 typedef struct dae_solver dae_solver;
@@ -144,16 +166,24 @@ typedef struct dae_solver dae_solver;
  * algebraic variables (with the differential variables taken as known): a variable in the
  * under-determined part cannot be found from those equations, only through the derivative of a
  * constraint, and is index 2 (a constraint effort, or anything that depends on one); the others
- * are index 1. kind receives n values. Returns the number of index-2 variables, or
- * BG_ERR_MEMORY. */
+ * are index 1. kind receives n values. Returns the number of index-2 variables, BG_ERR_ARGUMENT
+ * (a NULL argument), BG_ERR_PATTERN (the patterns are not both n x n) or BG_ERR_MEMORY. */
 int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind);
 
-/* NULL on failure with the reason in err. The problem's arrays and patterns are copied. */
+/* NULL on failure with the reason in err (may be NULL): BG_ERR_ARGUMENT (p NULL, n < 1, no
+ * residual, options out of range, kinds that are not dae_var_kind or do not fit the patterns,
+ * ncons or nroots < 0, constraints or events declared without their function), BG_ERR_PATTERN
+ * (a Jacobian pattern not n x n or not well formed, a constraint pattern not ncons x n, an
+ * equation that depends on no unknown), BG_ERR_MEMORY, BG_ERR_LIBRARY. o NULL: the defaults.
+ * The problem's arrays, names and patterns are copied. */
 dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err);
 void dae_free(dae_solver **s);
+/* The error record with the last message; NULL if s is NULL. */
 bg_error *dae_get_error(dae_solver *s);
 
-/* Start at t0 from y0, yp0 (yp0 may be NULL: zero). No consistency is assumed or checked. */
+/* Start at t0 from y0, yp0 (yp0 may be NULL: zero). No consistency is assumed or checked.
+ * BG_OK, BG_ERR_ARGUMENT (s or y0 NULL, t0 not finite), BG_ERR_NONFINITE (a value not finite:
+ * the message names it) or DAE_CALLBACK_FAIL (the event functions). Clears a failure. */
 int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
 /* Consistent initial values at the current time, for semi-explicit systems (y' appears only for
  * differential variables; algebraic variables are fixed by the rows without y', or, index-2
@@ -163,31 +193,50 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
  * the derivatives of the constraint rows (bg_dae_init.c has the details). The equations are
  * evaluated one rounding unit after t, so that inputs with a jump at t (a step at t0, a corner of
  * a reference) take their values after it; the solver does the same when it restarts at a
- * breakpoint. The scaled residual norm reached goes to stats.init_residual. */
+ * breakpoint. The scaled residual norm reached goes to stats.init_residual.
+ * Only between dae_init (or dae_reinit) and the first step: BG_ERR_STATE before dae_init, after
+ * dae_set_history or once the integration has stepped. Failures: DAE_INIT_FAIL (the message
+ * names the equation that cannot be satisfied or the unknown that nothing determines, and the
+ * time), DAE_CALLBACK_FAIL. The state set by dae_init is kept on failure. */
 int dae_consistent_init(dae_solver *s);
-/* After a discontinuity: new state at time t; order 1, new first step. */
+/* After a discontinuity: new state at time t; order 1, new first step. The statuses of dae_init;
+ * clears a failure, keeps the statistics. */
 int dae_reinit(dae_solver *s, double t, const double *y, const double *yp);
 /* Fixed-step studies: history y(t0 - i h), i = 0..k, as k+1 consecutive arrays of n values
- * (Y[i*n + j]); the next steps use order k and step h. */
+ * (Y[i*n + j]); the next steps use order k and step h. BG_ERR_ARGUMENT for a NULL argument,
+ * k outside 1..5 or h not > 0, else the statuses of dae_init. */
 int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y);
 
-/* Integrate to tout and return y, yp there (interpolated). Returns DAE_SUCCESS,
- * DAE_TSTOP_RETURN, DAE_ROOT_RETURN (then *tret is the root) or an error (< 0), in which case
- * *tret, y and yp hold the last accepted state. */
+/* Integrate to tout and return y, yp there (interpolated; y or yp may be NULL). Returns
+ * DAE_SUCCESS, DAE_TSTOP_RETURN, DAE_ROOT_RETURN (then *tret is the root) or an error (< 0), in
+ * which case *tret, y and yp hold the last accepted state: BG_ERR_ARGUMENT (s or tret NULL, tout
+ * not finite, behind the last step, or too close to start), BG_ERR_STATE (before dae_init, or
+ * after a failure: call dae_reinit or dae_init first), DAE_TOO_MUCH_WORK (max_steps taken; the
+ * call may be repeated) or a failure DAE_TOO_MUCH_ACC .. DAE_STEP_TOO_SMALL (message: the time
+ * and the unknown or equation at fault, see above), after which the solver refuses to step with
+ * BG_ERR_STATE until dae_reinit or dae_init. */
 int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp);
-/* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret. */
+/* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret. The
+ * statuses of dae_solve_to. */
 int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp);
-/* y and yp at any t in the last step [tn - h_last, tn] (y or yp may be NULL). */
+/* y and yp at any t in the last step [tn - h_last, tn] (y or yp may be NULL). BG_OK,
+ * BG_ERR_ARGUMENT (s NULL, or t outside the last step: y, yp then hold the values at tn) or
+ * BG_ERR_STATE (before dae_init). No message (s is const). */
 int dae_dense(const dae_solver *s, double t, double *y, double *yp);
-/* After DAE_ROOT_RETURN: found[i] = +1 or -1 (direction) for the functions that changed sign. */
+/* After DAE_ROOT_RETURN: found[i] = +1 or -1 (direction) for the functions that changed sign.
+ * BG_OK or BG_ERR_ARGUMENT (s or found NULL). */
 int dae_roots_found(const dae_solver *s, int *found);
 
+/* Time of the last step (or of dae_init); NaN if s is NULL or not initialised. */
 double dae_current_time(const dae_solver *s);
+/* Statistics, NULL if s is NULL. */
 const dae_stats *dae_get_stats(const dae_solver *s);
-/* One line "steps=... rejected=... ..." / a CSV header and a CSV row. */
+/* One line "steps=... rejected=... ..." / a CSV header and a CSV row: the snprintf count, or
+ * BG_ERR_ARGUMENT (st NULL, or buf NULL with size > 0). */
 int dae_stats_line(const dae_stats *st, char *buf, size_t size);
 int dae_stats_csv_header(char *buf, size_t size);
 int dae_stats_csv(const dae_stats *st, char *buf, size_t size);
+/* Name of a dae_return or bg_status code, e.g. "DAE_CONV_FAIL". */
 const char *dae_return_name(int code);
 
 #ifdef __cplusplus

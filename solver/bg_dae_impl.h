@@ -23,8 +23,10 @@ struct dae_solver {
     dae_options o;
     int *kind;
     char **names;
-    double *atol; /* n */
-    double *bkpt; /* sorted breakpoints */
+    char **enames; /* equation names, NULL if not given */
+    int *rowvar;   /* unknown matched to each equation (messages), -1 if none */
+    double *atol;  /* n */
+    double *bkpt;  /* sorted breakpoints */
     int nbkpt;
     /* Jacobians and the Newton matrix */
     sp_csc *Jy, *Jyp;
@@ -78,6 +80,9 @@ struct dae_solver {
     int restart_pending; /* landed on a breakpoint: restart before the next step */
     int init_side;       /* consistent init: 0 at t, +1/-1 just after/before t (breakpoints) */
     int initialized;
+    int failed; /* the failure that stopped the integration (< 0), 0 if none */
+    /* what the last failed attempt found (names and values), for the final message */
+    char note[BG_MESSAGE_SIZE / 2];
     /* FD context */
     double fd_t;
     const double *fd_y, *fd_yp;
@@ -89,6 +94,13 @@ enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };
 
 double daei_seconds(void);
 const char *daei_vname(const dae_solver *s, int i, char *buf, size_t sz);
+/* Name of equation i: its eq_name, else "equation i (the row of x)"; buf holds at least 160. */
+const char *daei_ename(const dae_solver *s, int i, char *buf, size_t sz);
+/* Records what the last failed attempt found (printf format) in s->note. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+void daei_note(dae_solver *s, const char *fmt, ...);
 /* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. */
 int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd);
 /* Jy, Jyp at (t, y, yp); F = F(t, y, yp) is needed by the finite-difference path. */
@@ -99,5 +111,7 @@ void daei_sync_stats(dae_solver *s);
 /* Row classes, checks of the kinds against the patterns, and the initialisation matrices. */
 int daei_init_setup(dae_solver *s, bg_error *err);
 void daei_init_free(dae_solver *s);
+/* dae_consistent_init without the check of the call order (restarts at breakpoints). */
+int daei_consistent_init(dae_solver *s);
 
 #endif

@@ -51,6 +51,9 @@
 
 int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind)
 {
+    if (!Jy || !Jyp || !kind) return BG_ERR_ARGUMENT;
+    if (Jy->nrow != Jy->ncol || Jyp->nrow != Jy->nrow || Jyp->ncol != Jy->ncol)
+        return BG_ERR_PATTERN;
     int n = Jy->ncol, nalg2 = 0, ret = BG_ERR_MEMORY;
     int *rowalg = malloc(((size_t)n + 1) * sizeof *rowalg);
     int *matchrow = malloc(((size_t)n + 1) * sizeof *matchrow); /* variable matched to row */
@@ -220,7 +223,7 @@ int daei_init_setup(dae_solver *s, bg_error *err)
 {
     const char *w = "dae_create";
     int n = s->n;
-    char nb[32];
+    char nb[32], eb[192];
     s->rowkind = calloc((size_t)n, sizeof *s->rowkind);
     s->rowscaled = calloc((size_t)n, sizeof *s->rowscaled);
     s->arow = malloc((size_t)n * sizeof *s->arow);
@@ -237,11 +240,10 @@ int daei_init_setup(dae_solver *s, bg_error *err)
                                   daei_vname(s, j, nb, sizeof nb));
         if (s->kind[j] == DAE_ALG && has_yp)
             return bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                                  "%s is declared algebraic, but equation %d contains its "
-                                  "derivative (declare it index 2 if the system is not "
-                                  "semi-explicit)",
+                                  "%s is declared algebraic, but %s contains its derivative "
+                                  "(declare it index 2 if the system is not semi-explicit)",
                                   daei_vname(s, j, nb, sizeof nb),
-                                  s->Jyp->rowind[s->Jyp->colptr[j]]);
+                                  daei_ename(s, s->Jyp->rowind[s->Jyp->colptr[j]], eb, sizeof eb));
         if (s->kind[j] == DAE_ALG2 && has_yp) s->not_semi_explicit = 1;
     }
     /* row classes */
@@ -261,9 +263,9 @@ int daei_init_setup(dae_solver *s, bg_error *err)
         if (!touched[i]) {
             free(touched);
             return bg_error_raise(err, BG_ERR_PATTERN, w,
-                                  "equation %d depends on no variable (empty row of both "
-                                  "Jacobian patterns)",
-                                  i);
+                                  "%s depends on no variable (empty row of both Jacobian "
+                                  "patterns)",
+                                  daei_ename(s, i, eb, sizeof eb));
         }
     free(touched);
     s->nalg_rows = s->nalg1_rows = 0;
@@ -305,7 +307,7 @@ static void row_scales(dae_solver *s, const double *y, const double *yp, double 
 static int cb_fail(dae_solver *s, int r, const char *what, double t)
 {
     return bg_error_raise(&s->err, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL, "dae_consistent_init",
-                          "the %s failed (status %d) at t = %g", what, r, t);
+                          "the %s failed (status %d) at t = %.17g: %s", what, r, t, s->note);
 }
 
 /* F and the Jacobians at (t, y, yp). */
@@ -344,11 +346,13 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
                 imax = i;
             }
         if (gmax <= 10 * DBL_EPSILON) return BG_OK;
-        if (it == INIT_MAX_ITER)
+        if (it == INIT_MAX_ITER) {
+            char eb[192];
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
-                                  "the algebraic equations could not be satisfied at t = %g: "
-                                  "equation %d keeps a scaled residual of %.3g",
-                                  t, imax, gmax);
+                                  "the algebraic equations could not be satisfied at t = %.17g: "
+                                  "%s keeps a scaled residual of %.3g",
+                                  t, daei_ename(s, imax, eb, sizeof eb), gmax);
+        }
         sp_csc_zero(s->kkt);
         for (int j = 0; j < n; j++)
             s->kkt->val[s->kkt_diag[j]] = s->kind[j] == DAE_DIFF   ? 1.0
@@ -367,7 +371,7 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
         if ((r = factor_solve(s, s->kktls, s->kkt, z)) != BG_OK)
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the algebraic equations are dependent or contradict each other "
-                                  "at t = %g (%s)",
+                                  "at t = %.17g (%s)",
                                   t, ls_get_error(s->kktls)->message);
         for (int j = 0; j < n; j++)
             y[j] += z[j];
@@ -377,9 +381,20 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
 int dae_consistent_init(dae_solver *s)
 {
     const char *w = "dae_consistent_init";
-    if (!s || !s->initialized)
-        return s ? bg_error_raise(&s->err, BG_ERR_ARGUMENT, w, "call dae_init first")
-                 : BG_ERR_ARGUMENT;
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!s->initialized || !s->first)
+        return bg_error_raise(&s->err, BG_ERR_STATE, w,
+                              "consistent values are found between dae_init (or dae_reinit) and "
+                              "the first step: %s",
+                              !s->initialized ? "call dae_init first"
+                                              : "the integration has started (or dae_set_history "
+                                                "set a history); call dae_reinit");
+    return daei_consistent_init(s);
+}
+
+int daei_consistent_init(dae_solver *s)
+{
+    const char *w = "dae_consistent_init";
     int n = s->n, r;
     double t = s->tn;
     double *y = s->y, *yp = s->yp, *F = s->res, *u = s->ee;
@@ -454,7 +469,7 @@ int dae_consistent_init(dae_solver *s)
             int c = ls_singular_col(s->kls);
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the equations for the derivatives and the index-2 unknowns are "
-                                  "singular at t = %g: nothing determines %s%s%s (%s)",
+                                  "singular at t = %.17g: nothing determines %s%s%s (%s)",
                                   t, c >= 0 && s->kind[c] != DAE_ALG2 ? "the derivative of " : "",
                                   daei_vname(s, c, nb, sizeof nb),
                                   c >= 0 && s->kind[c] == DAE_ALG2
@@ -476,8 +491,12 @@ int dae_consistent_init(dae_solver *s)
     if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
     row_scales(s, y, yp, s->tmp2);
     double m = 0;
+    int im = -1;
     for (int i = 0; i < n; i++)
-        m = fmax(m, fabs(F[i]) / s->tmp2[i]);
+        if (fabs(F[i]) / s->tmp2[i] > m || im < 0) {
+            m = fmax(m, fabs(F[i]) / s->tmp2[i]);
+            im = i;
+        }
     s->st.init_residual = m;
     daei_sync_stats(s);
     memcpy(s->phi[0], y, (size_t)n * sizeof *y);
@@ -486,10 +505,12 @@ int dae_consistent_init(dae_solver *s)
     /* the derivatives may stay inconsistent at the level the linear algebra reaches on an
      * ill-conditioned system (stiff bars next to tiny rotary inertias: 1e-7 of the terms); the
      * first steps correct that, so only a gross failure is reported */
-    if ((unorm >= 1 && rnorm > 1e-6) || m > 1e-8)
+    if ((unorm >= 1 && rnorm > 1e-6) || m > 1e-8) {
+        char eb[192];
         return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
-                              "Newton iteration for consistent values did not converge at t = %g "
-                              "(scaled residual %.3g)",
-                              t, m);
+                              "Newton iteration for consistent values did not converge at t = "
+                              "%.17g: %s keeps a scaled residual of %.3g",
+                              t, daei_ename(s, im, eb, sizeof eb), m);
+    }
     return BG_OK;
 }

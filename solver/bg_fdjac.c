@@ -125,17 +125,18 @@ sp_fdjac *sp_fdjac_create(const sp_csc *P)
 
 int sp_fdjac_ngroups(const sp_fdjac *d)
 {
-    return d->col->ngroups;
+    return d ? d->col->ngroups : BG_ERR_ARGUMENT;
 }
 
 long sp_fdjac_calls(const sp_fdjac *d)
 {
-    return d->calls;
+    return d ? d->calls : BG_ERR_ARGUMENT;
 }
 
 int sp_fdjac_eval(sp_fdjac *d, sp_vecfn f, void *user, const double *x, const double *f0,
                   const double *typ, sp_csc *J)
 {
+    if (!d || !f || !x || !f0 || !J) return BG_ERR_ARGUMENT;
     const sp_csc *P = d->pattern;
     const sp_colouring *c = d->col;
     if (!sp_csc_same_pattern(P, J)) return BG_ERR_PATTERN;
@@ -189,8 +190,9 @@ static void keep_worst(sp_jac_entry *w, int nw, int *nk, sp_jac_entry e)
 int sp_jac_check(const sp_csc *J, sp_vecfn f, void *user, int m, const double *x, double floor,
                  double tol, sp_jac_entry *worst, int nworst, double *max_err)
 {
+    if (!J || !f || !x || nworst < 0 || (nworst > 0 && !worst)) return BG_ERR_ARGUMENT;
     int n = J->ncol;
-    if (m != J->nrow || floor <= 0) return BG_ERR_ARGUMENT;
+    if (m != J->nrow || !(floor > 0)) return BG_ERR_ARGUMENT;
     double *xp = malloc(((size_t)n + 1) * sizeof *xp);
     double *fp = malloc(((size_t)m + 1) * sizeof *fp);
     double *fm = malloc(((size_t)m + 1) * sizeof *fm);

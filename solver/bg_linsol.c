@@ -60,6 +60,11 @@ ls_solver *ls_create(ls_kind kind, const sp_csc *P, bg_error *err)
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "unknown linear solver kind %d", (int)kind);
         return NULL;
     }
+    bg_error perr = {0};
+    if (sp_csc_check(P, &perr) != BG_OK) {
+        bg_error_raise(err, BG_ERR_PATTERN, w, "invalid pattern: %s", perr.message);
+        return NULL;
+    }
     ls_solver *s = calloc(1, sizeof *s);
     if (!s) goto nomem;
     s->kind = kind;
@@ -173,7 +178,11 @@ static int dense_fact(ls_solver *s, const sp_csc *A)
 
 int ls_factor(ls_solver *s, const sp_csc *A)
 {
-    if (!s || !A) return BG_ERR_ARGUMENT;
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!A) {
+        s->factored = 0;
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "ls_factor", "the matrix is NULL");
+    }
     if (!sp_csc_same_pattern(s->pattern, A))
         return bg_error_raise(&s->err, BG_ERR_PATTERN, "ls_factor",
                               "matrix (%d x %d, %d entries) does not have the pattern the solver "
@@ -192,17 +201,24 @@ int ls_factor(ls_solver *s, const sp_csc *A)
     return dense_fact(s, A);
 }
 
-void ls_force_full(ls_solver *s)
+int ls_force_full(ls_solver *s)
 {
-    if (s) s->force_full = 1;
+    if (!s) return BG_ERR_ARGUMENT;
+    s->force_full = 1;
+    return BG_OK;
 }
 
 int ls_solve(ls_solver *s, double *b, int nrhs)
 {
-    if (!s || !b || nrhs < 1) return BG_ERR_ARGUMENT;
-    if (!s->factored)
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!b || nrhs < 1)
         return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "ls_solve",
-                              "no valid factorization to solve with");
+                              "needs a right-hand side and nrhs >= 1 (b %s, nrhs %d)",
+                              b ? "given" : "NULL", nrhs);
+    if (!s->factored)
+        return bg_error_raise(&s->err, BG_ERR_STATE, "ls_solve",
+                              "no valid factorization to solve with (call ls_factor first; the "
+                              "last factorization, if any, failed)");
     if (s->n == 0) return BG_OK;
     if (s->kind == LS_KLU) {
         if (!klu_solve(s->sym, s->num, s->n, nrhs, b, &s->common))
@@ -222,21 +238,26 @@ int ls_singular_col(const ls_solver *s)
 {
     return s ? s->singular_col : -1;
 }
-void ls_set_rcond_min(ls_solver *s, double r)
+int ls_set_rcond_min(ls_solver *s, double r)
 {
-    if (s) s->rcond_min = r;
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!(r >= 0))
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "ls_set_rcond_min",
+                              "rcond_min = %g: must be >= 0", r);
+    s->rcond_min = r;
+    return BG_OK;
 }
 const ls_stats *ls_get_stats(const ls_solver *s)
 {
-    return &s->st;
+    return s ? &s->st : NULL;
 }
 ls_kind ls_get_kind(const ls_solver *s)
 {
-    return s->kind;
+    return s ? s->kind : LS_NONE;
 }
 bg_error *ls_get_error(ls_solver *s)
 {
-    return &s->err;
+    return s ? &s->err : NULL;
 }
 
 /* ---- CHOLMOD: (A A^T + beta I) x = b ---- */
@@ -273,6 +294,11 @@ aat_solver *aat_create(const sp_csc *P, bg_error *err)
 {
     if (!P) {
         bg_error_raise(err, BG_ERR_ARGUMENT, "aat_create", "pattern is NULL");
+        return NULL;
+    }
+    bg_error perr = {0};
+    if (sp_csc_check(P, &perr) != BG_OK) {
+        bg_error_raise(err, BG_ERR_PATTERN, "aat_create", "invalid pattern: %s", perr.message);
         return NULL;
     }
     aat_solver *s = calloc(1, sizeof *s);
@@ -323,8 +349,12 @@ void aat_free(aat_solver **sp)
 
 int aat_factor(aat_solver *s, const sp_csc *A, double beta)
 {
-    if (!s || !A) return BG_ERR_ARGUMENT;
+    if (!s) return BG_ERR_ARGUMENT;
     s->factored = 0;
+    if (!A) return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "aat_factor", "the matrix is NULL");
+    if (!(beta >= 0) || !isfinite(beta))
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "aat_factor",
+                              "beta = %g: must be finite and >= 0", beta);
     if (!sp_csc_same_pattern(s->pattern, A))
         return bg_error_raise(&s->err, BG_ERR_PATTERN, "aat_factor",
                               "matrix does not have the pattern the solver was created with");
@@ -365,10 +395,14 @@ int aat_factor(aat_solver *s, const sp_csc *A, double beta)
 
 int aat_solve(aat_solver *s, const double *b, double *x)
 {
-    if (!s || !b || !x) return BG_ERR_ARGUMENT;
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!b || !x)
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "aat_solve", "%s is NULL",
+                              !b ? "the right-hand side" : "the solution array");
     if (!s->factored)
-        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "aat_solve",
-                              "no valid factorization to solve with");
+        return bg_error_raise(&s->err, BG_ERR_STATE, "aat_solve",
+                              "no valid factorization to solve with (call aat_factor first; the "
+                              "last factorization, if any, failed)");
     if (s->m == 0) return BG_OK;
     cholmod_dense B;
     memset(&B, 0, sizeof B);
@@ -388,9 +422,9 @@ int aat_solve(aat_solver *s, const double *b, double *x)
 
 bg_error *aat_get_error(aat_solver *s)
 {
-    return &s->err;
+    return s ? &s->err : NULL;
 }
 long aat_factor_count(const aat_solver *s)
 {
-    return s->nfactor;
+    return s ? s->nfactor : BG_ERR_ARGUMENT;
 }

@@ -2,6 +2,7 @@
  * products and the MatrixMarket writer (see bg_sparse.h for the method). */
 #include "bg_sparse.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,9 +72,11 @@ sp_csc *sp_csc_transpose(const sp_csc *A)
 
 sp_csc *sp_csc_from_dense(int nrow, int ncol, const double *D, double drop)
 {
+    if (nrow < 0 || ncol < 0 || (!D && (long)nrow * ncol > 0)) return NULL;
     long nnz = 0;
     for (long k = 0; k < (long)nrow * ncol; k++)
         if (drop < 0 || fabs(D[k]) > drop) nnz++;
+    if (nnz > INT_MAX - 1) return NULL;
     sp_csc *A = sp_csc_alloc(nrow, ncol, (int)nnz);
     if (!A) return NULL;
     int p = 0;
@@ -91,17 +94,19 @@ sp_csc *sp_csc_from_dense(int nrow, int ncol, const double *D, double drop)
     return A;
 }
 
-void sp_csc_to_dense(const sp_csc *A, double *D)
+int sp_csc_to_dense(const sp_csc *A, double *D)
 {
+    if (!A || !D) return BG_ERR_ARGUMENT;
     memset(D, 0, (size_t)A->nrow * A->ncol * sizeof *D);
     for (int j = 0; j < A->ncol; j++)
         for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
             D[A->rowind[p] + (size_t)j * A->nrow] += A->val[p];
+    return BG_OK;
 }
 
 int sp_csc_find(const sp_csc *A, int i, int j)
 {
-    if (j < 0 || j >= A->ncol) return -1;
+    if (!A || i < 0 || i >= A->nrow || j < 0 || j >= A->ncol) return -1;
     int lo = A->colptr[j], hi = A->colptr[j + 1] - 1;
     while (lo <= hi) {
         int mid = lo + (hi - lo) / 2;
@@ -121,11 +126,22 @@ int sp_csc_check(const sp_csc *A, bg_error *err)
     if (A->nrow < 0 || A->ncol < 0)
         return bg_error_raise(err, BG_ERR_PATTERN, w, "negative dimension %d x %d", A->nrow,
                               A->ncol);
+    if (A->nnz < 0)
+        return bg_error_raise(err, BG_ERR_PATTERN, w, "negative entry count %d", A->nnz);
+    if (!A->colptr || (A->nnz > 0 && (!A->rowind || !A->val)))
+        return bg_error_raise(err, BG_ERR_PATTERN, w, "the %s array is NULL",
+                              !A->colptr   ? "colptr"
+                              : !A->rowind ? "rowind"
+                                           : "val");
     if (A->colptr[0] != 0)
         return bg_error_raise(err, BG_ERR_PATTERN, w, "colptr[0] = %d, expected 0", A->colptr[0]);
     for (int j = 0; j < A->ncol; j++) {
         if (A->colptr[j + 1] < A->colptr[j])
             return bg_error_raise(err, BG_ERR_PATTERN, w, "colptr decreases at column %d", j);
+        if (A->colptr[j + 1] > A->nnz)
+            return bg_error_raise(err, BG_ERR_PATTERN, w,
+                                  "colptr[%d] = %d exceeds the entry count %d", j + 1,
+                                  A->colptr[j + 1], A->nnz);
         for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
             int i = A->rowind[p];
             if (i < 0 || i >= A->nrow)
@@ -153,13 +169,16 @@ int sp_csc_same_pattern(const sp_csc *A, const sp_csc *B)
            memcmp(A->rowind, B->rowind, (size_t)A->nnz * sizeof *A->rowind) == 0;
 }
 
-void sp_csc_zero(sp_csc *A)
+int sp_csc_zero(sp_csc *A)
 {
+    if (!A) return BG_ERR_ARGUMENT;
     if (A->nnz > 0) memset(A->val, 0, (size_t)A->nnz * sizeof *A->val);
+    return BG_OK;
 }
 
-void sp_matvec(const sp_csc *A, double alpha, const double *x, double beta, double *y)
+int sp_matvec(const sp_csc *A, double alpha, const double *x, double beta, double *y)
 {
+    if (!A || !x || !y) return BG_ERR_ARGUMENT;
     if (beta == 0.0)
         memset(y, 0, (size_t)A->nrow * sizeof *y);
     else if (beta != 1.0)
@@ -170,16 +189,19 @@ void sp_matvec(const sp_csc *A, double alpha, const double *x, double beta, doub
         for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
             y[A->rowind[p]] += A->val[p] * ax;
     }
+    return BG_OK;
 }
 
-void sp_matvec_t(const sp_csc *A, double alpha, const double *x, double beta, double *y)
+int sp_matvec_t(const sp_csc *A, double alpha, const double *x, double beta, double *y)
 {
+    if (!A || !x || !y) return BG_ERR_ARGUMENT;
     for (int j = 0; j < A->ncol; j++) {
         double s = 0.0;
         for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
             s += A->val[p] * x[A->rowind[p]];
         y[j] = (beta == 0.0 ? 0.0 : beta * y[j]) + alpha * s;
     }
+    return BG_OK;
 }
 
 int sp_write_mm(const sp_csc *A, FILE *f)
@@ -197,6 +219,9 @@ int sp_write_mm(const sp_csc *A, FILE *f)
 
 int sp_write_mm_file(const sp_csc *A, const char *path, bg_error *err)
 {
+    if (!A || !path)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "sp_write_mm_file", "%s is NULL",
+                              !A ? "the matrix" : "the path");
     FILE *f = fopen(path, "w");
     if (!f) return bg_error_raise(err, BG_ERR_IO, "sp_write_mm_file", "cannot open %s", path);
     int st = sp_write_mm(A, f);
@@ -249,6 +274,7 @@ static int grow(void **p, size_t elem, int cap)
 
 int sp_builder_add(sp_builder *b, int i, int j, double v)
 {
+    if (!b) return BG_ERR_ARGUMENT;
     if (i < 0 || i >= b->nrow || j < 0 || j >= b->ncol)
         return bg_error_raise(&b->err, BG_ERR_ARGUMENT, "sp_builder_add",
                               "entry (%d,%d) outside the %d x %d matrix", i, j, b->nrow, b->ncol);
@@ -270,16 +296,17 @@ int sp_builder_add(sp_builder *b, int i, int j, double v)
 
 int sp_builder_count(const sp_builder *b)
 {
-    return b->n;
+    return b ? b->n : BG_ERR_ARGUMENT;
 }
 
 const bg_error *sp_builder_error(const sp_builder *b)
 {
-    return &b->err;
+    return b ? &b->err : NULL;
 }
 
 sp_csc *sp_builder_finish(sp_builder *b, int *slot)
 {
+    if (!b) return NULL;
     int n = b->n, nc = b->ncol, nr = b->nrow;
     int *cnt = calloc((size_t)(nr > nc ? nr : nc) + 1, sizeof *cnt);
     int *order = malloc(((size_t)n + 1) * sizeof *order);
@@ -339,10 +366,14 @@ done:
     return A;
 }
 
-void sp_scatter_add(sp_csc *A, const int *slot, const double *v, int n)
+int sp_scatter_add(sp_csc *A, const int *slot, const double *v, int n)
 {
+    if (!A || n < 0 || (n > 0 && (!slot || !v))) return BG_ERR_ARGUMENT;
+    for (int k = 0; k < n; k++)
+        if (slot[k] < 0 || slot[k] >= A->nnz) return BG_ERR_ARGUMENT;
     for (int k = 0; k < n; k++)
         A->val[slot[k]] += v[k];
+    return BG_OK;
 }
 
 /* ---- union ---- */
@@ -404,15 +435,22 @@ sp_union *sp_union_create(const sp_csc *A, const sp_csc *B)
         u->M->colptr[j + 1] = r;
     }
     u->M->nnz = r;
+    u->nnz_a = A->nnz;
+    u->nnz_b = B->nnz;
     return u;
 }
 
-void sp_union_combine(sp_union *u, const sp_csc *A, double ca, const sp_csc *B, double cb)
+int sp_union_combine(sp_union *u, const sp_csc *A, double ca, const sp_csc *B, double cb)
 {
+    if (!u || !u->M || !A || !B) return BG_ERR_ARGUMENT;
+    if (A->nrow != u->M->nrow || A->ncol != u->M->ncol || B->nrow != u->M->nrow ||
+        B->ncol != u->M->ncol || A->nnz != u->nnz_a || B->nnz != u->nnz_b)
+        return BG_ERR_PATTERN;
     sp_csc_zero(u->M);
     double *m = u->M->val;
     for (int p = 0; p < A->nnz; p++)
         m[u->map_a[p]] = ca * A->val[p];
     for (int p = 0; p < B->nnz; p++)
         m[u->map_b[p]] += cb * B->val[p];
+    return BG_OK;
 }

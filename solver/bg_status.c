@@ -29,6 +29,8 @@ const char *bg_status_name(int status)
         return "BG_ERR_PATTERN";
     case BG_ERR_NONFINITE:
         return "BG_ERR_NONFINITE";
+    case BG_ERR_STATE:
+        return "BG_ERR_STATE";
     default:
         return "unknown status";
     }
@@ -38,7 +40,10 @@ int bg_error_vraise(bg_error *e, int status, const char *where, const char *fmt,
 {
     if (!e) return status;
     e->status = status;
-    vsnprintf(e->message, sizeof e->message, fmt, ap);
+    if (fmt)
+        vsnprintf(e->message, sizeof e->message, fmt, ap);
+    else
+        e->message[0] = '\0';
     if (e->handler) e->handler(e->user, status, where ? where : "", e->message);
     return status;
 }

@@ -3,7 +3,18 @@
  * The library never prints, exits or aborts. Every fallible call returns a status (0 success,
  * > 0 information or a recoverable condition, < 0 an error) and, on error, writes a message into
  * the bg_error record of the object concerned. A caller who wants messages as they happen installs
- * a handler; by default there is none and the last message is kept for bg_error_message(). */
+ * a handler; by default there is none and the last message is kept in the record's message.
+ *
+ * Misuse of the API is reported, never undefined: a NULL object, array or callback where one is
+ * needed, a negative or inconsistent size, or a value out of range gives BG_ERR_ARGUMENT (a
+ * matrix that is not the shape or structure required gives BG_ERR_PATTERN); a call in the wrong
+ * order (solving before a factorization, stepping before dae_init or after a failure, changing a
+ * compiled bond-graph model, querying one that is not compiled) gives BG_ERR_STATE. The message
+ * goes to the error record of the object when there is one (not when the object itself is NULL,
+ * nor in functions that take the object const); functions that return a pointer return NULL and
+ * those that return a count or an index return a negative value, as their header says. Freeing
+ * NULL, or a pointer to NULL, is always harmless. Matrices are trusted to be well formed
+ * (sp_csc_check tells) except where a header says that the structure is checked. */
 #ifndef BG_STATUS_H
 #define BG_STATUS_H
 
@@ -24,7 +35,10 @@ enum bg_status_code {
     BG_ERR_CALLBACK = -6,   /* a user callback returned a fatal status */
     BG_ERR_IO = -7,         /* a file could not be written or read */
     BG_ERR_PATTERN = -8,    /* a matrix does not have the pattern it was declared with */
-    BG_ERR_NONFINITE = -9   /* NaN or Inf where a finite number is needed */
+    BG_ERR_NONFINITE = -9,  /* NaN or Inf where a finite number is needed */
+    BG_ERR_STATE = -10      /* a call in the wrong order for the object's state (e.g. a solve
+                               before a factorization, a step before initialisation or after a
+                               failure, a change of a compiled model) */
 };
 
 /* Name of a status code, e.g. "BG_ERR_SINGULAR"; "unknown status" for others. */
@@ -42,12 +56,14 @@ typedef struct bg_error {
     char message[BG_MESSAGE_SIZE];
 } bg_error;
 
-/* Record an error (format as printf), call the handler if any; returns status. */
+/* Record an error (format as printf), call the handler if any; returns status. e may be NULL
+ * (nothing is recorded, the status is returned all the same). */
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
 int bg_error_raise(bg_error *e, int status, const char *where, const char *fmt, ...);
 int bg_error_vraise(bg_error *e, int status, const char *where, const char *fmt, va_list ap);
+/* Status BG_OK and an empty message; e may be NULL. */
 void bg_error_clear(bg_error *e);
 
 #ifdef __cplusplus
