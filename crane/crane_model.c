@@ -32,7 +32,7 @@ struct crane {
     int settle; /* built for the equilibrium: drive held, extra damping */
     int platform, slew, hinge, sensor;
     int n, nodes[MAXEL + 1], elems[MAXEL], boom; /* beam chain, or rigid boom body */
-    int tie, rope, load, cw;
+    int tie[2], nties, rope, load, cw; /* nties: 0, 1 or 2 (a laterally spread pair) */
     int drive_bond; /* into the slewing joint's drive port */
     double tie_L0;  /* unstretched tie length */
     int ref_value, ref_rate, ref_int, pid, vol_h, vol_l, motor_acc;
@@ -67,8 +67,9 @@ void crane_scene_default(crane_scene *s)
     s->boom_J = 0.0836 + 0.0665; /* equivalent lattice boom: polar of the two */
     s->boom_rho = 7850;
     s->ties = 1;
-    s->gantry_top[0] = -3.0;
-    s->gantry_top[2] = 12.0;
+    s->gantry_top[0] = -10.0;
+    s->gantry_top[2] = 20.0;
+    s->tie_spread = 3.0;
     s->tie_E = 2.1e11;
     s->tie_A = 0.0084;
     s->rope = 1;
@@ -147,6 +148,14 @@ static int bonds1(bgr_model *m, bgr_comp comp, const bond1 *t, size_t n, bg_erro
     return BG_OK;
 }
 
+/* Upper end of tie k (of nties) on the platform, platform frame: the gantry top, or with a
+ * lateral spread w the points gantry_top -/+ (0, w, 0). */
+static void gantry_point(const crane_scene *s, int k, int nties, double *p)
+{
+    memcpy(p, s->gantry_top, 3 * sizeof *p);
+    if (nties == 2) p[1] += k == 0 ? -s->tie_spread : s->tie_spread;
+}
+
 static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *err)
 {
     crane *c = calloc(1, sizeof *c);
@@ -157,6 +166,7 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
     c->s = *sc;
     c->settle = settle;
     const crane_scene *s = &c->s;
+    int nties = s->ties ? (s->tie_spread > 0 ? 2 : 1) : 0;
     if (s->boom_elements < 0 || s->boom_elements > MAXEL) {
         bg_error_raise(err, BG_ERR_ARGUMENT, "crane_build", "boom_elements %d outside 0..%d",
                        s->boom_elements, MAXEL);
@@ -195,13 +205,17 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
             c->e2[i] = -c->e2[i];
     c->e3[1] = 1; /* out of the luffing plane */
 
+    c->nties = nties;
     /* platform: ports 0 slewing joint (6D), 1 boom hinge (6D), then ties (3D), counterweight */
     {
-        double r[4 * 3];
-        int dims[4], np = 0;
+        double r[5 * 3];
+        int dims[5], np = 0;
         sub3(s->joint_A, s->platform_com, r + 3 * np), dims[np++] = 6;
         sub3(B, s->platform_com, r + 3 * np), dims[np++] = 6;
-        if (s->ties) sub3(s->gantry_top, s->platform_com, r + 3 * np), dims[np++] = 3;
+        for (int k = 0; k < nties; k++) {
+            gantry_point(s, k, nties, r + 3 * np);
+            sub3(r + 3 * np, s->platform_com, r + 3 * np), dims[np++] = 3;
+        }
         if (s->counterweight) sub3(s->cw_pos, s->platform_com, r + 3 * np), dims[np++] = 3;
         double J[9] = {s->platform_inertia[0], 0, 0, 0, s->platform_inertia[1], 0, 0, 0,
                        s->platform_inertia[2]};
@@ -225,8 +239,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
     TRY(bgr_bond(m, 0, "b_hinge_a", 6, bgr_port_of(m, c->hinge, 0), bgr_port_of(m, c->platform, 1),
                  NULL, NULL),
         "bond hinge");
-    bgr_port foot, tip_ports[2];
-    int ntip = s->ties + s->rope;
+    bgr_port foot, tip_ports[3];
+    int ntip = nties + s->rope;
     c->n = s->boom_elements;
     if (c->n > 0) {
         mech_section sec = {.E = s->boom_E,
@@ -261,11 +275,11 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         for (int i = 0; i < 3; i++)
             for (int k = i + 1; k < 3; k++)
                 J[k + 3 * i] = J[i + 3 * k];
-        double r[3 * 3];
-        int dims[3] = {6, 3, 3};
+        double r[4 * 3];
+        int dims[4] = {6, 3, 3, 3}; /* hinge, then ntip <= 3 tip ports */
         for (int i = 0; i < 3; i++) {
             c->foot_r[i] = r[i] = -0.5 * d[i];
-            c->tip_r[i] = r[3 + i] = r[6 + i] = 0.5 * d[i];
+            c->tip_r[i] = r[3 + i] = r[6 + i] = r[9 + i] = 0.5 * d[i];
         }
         TRY(c->boom = mech_body(m, 0, "boom", mass, J, g, 1 + ntip, r, dims), "rigid boom");
         foot = bgr_port_of(m, c->boom, 0);
@@ -275,17 +289,22 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
     TRY(bgr_bond(m, 0, "b_hinge_b", 6, bgr_port_of(m, c->hinge, 1), foot, NULL, NULL),
         "bond hinge boom");
     int tp = 0;
-    if (s->ties) {
+    for (int k = 0; k < nties; k++) { /* both ties of a pair have the same length */
+        static const char *const names[3][3] = {{"ties", "b_tie_gantry", "b_tie_tip"},
+                                                {"ties_left", "b_tie_left_gantry", "b_tie_left_tip"},
+                                                {"ties_right", "b_tie_right_gantry",
+                                                 "b_tie_right_tip"}};
+        const char *const *nm = names[nties == 1 ? 0 : 1 + k];
         double gt[3], L0;
-        memcpy(gt, s->gantry_top, sizeof gt);
+        gantry_point(s, k, nties, gt);
         sub3(tip, gt, d);
         L0 = tie_L0 > 0 ? tie_L0 : sqrt(mech_dot(d, d));
         c->tie_L0 = L0;
-        TRY(c->tie = mech_truss(m, 0, "ties", s->tie_E, s->tie_A, L0, settle ? 1e6 : 0), "ties");
-        TRY(bgr_bond(m, 0, "b_tie_gantry", 3, bgr_port_of(m, c->platform, pport++),
-                     bgr_port_of(m, c->tie, 0), NULL, NULL),
+        TRY(c->tie[k] = mech_truss(m, 0, nm[0], s->tie_E, s->tie_A, L0, settle ? 1e6 : 0), "ties");
+        TRY(bgr_bond(m, 0, nm[1], 3, bgr_port_of(m, c->platform, pport++),
+                     bgr_port_of(m, c->tie[k], 0), NULL, NULL),
             "bond tie gantry");
-        TRY(bgr_bond(m, 0, "b_tie_tip", 3, tip_ports[tp++], bgr_port_of(m, c->tie, 1), NULL, NULL),
+        TRY(bgr_bond(m, 0, nm[2], 3, tip_ports[tp++], bgr_port_of(m, c->tie[k], 1), NULL, NULL),
             "bond tie tip");
     }
     if (s->rope) {
@@ -471,7 +490,6 @@ static int set_initial(crane *c)
     double *y0 = bgr_y0(m), tip[3], B[3], gantry[3], load[3];
     memcpy(tip, c->tip0, sizeof tip);
     memcpy(B, s->boom_foot, sizeof B);
-    memcpy(gantry, s->gantry_top, sizeof gantry);
     if (mech_body_set(m, c->platform, s->platform_com, NULL, NULL, NULL) != BG_OK) return -1;
     if (c->n > 0) {
         if (mech_beam_chain_set(m, c->nodes, c->n, B, tip) != BG_OK) return -1;
@@ -487,7 +505,10 @@ static int set_initial(crane *c)
     }
     c->v_plat_x = mech_body_var(m, c->platform, 'x');
     c->v_plat_q = mech_body_var(m, c->platform, 'q');
-    if (s->ties && mech_axial_set(m, c->tie, gantry, tip) != BG_OK) return -1;
+    for (int k = 0; k < c->nties; k++) {
+        gantry_point(s, k, c->nties, gantry);
+        if (mech_axial_set(m, c->tie[k], gantry, tip) != BG_OK) return -1;
+    }
     c->v_load = -1;
     if (s->rope) {
         memcpy(load, tip, sizeof load);
@@ -560,7 +581,8 @@ int crane_energy(const crane *c, const double *y, double *kinetic, double *poten
         T += t, V += v;
     for (int k = 0; k < c->n; k++)
         U += mech_beam_energy(m, c->elems[k], y);
-    if (c->s.ties) U += mech_axial_energy(m, c->tie, y);
+    for (int k = 0; k < c->nties; k++)
+        U += mech_axial_energy(m, c->tie[k], y);
     if (c->s.rope) U += mech_axial_energy(m, c->rope, y);
     *kinetic = T;
     *potential = V;
@@ -652,7 +674,8 @@ int crane_settle(crane *c, bg_error *err)
         double tip[3], r = tip_radius(sc, y, tip);
         if (fabs(r - R) <= 1e-5 * R) break;
         double dx = tip[0] - c->s.boom_foot[0], dz = tip[2] - c->s.boom_foot[2], u[3], L;
-        sub3(tip, c->s.gantry_top, u);
+        gantry_point(&c->s, 0, c->nties, u);
+        sub3(tip, u, u);
         L = sqrt(mech_dot(u, u));
         /* rotation dphi about the hinge's y axis: d tip = dphi (dz, 0, -dx) */
         double dLdr = (u[0] * dz - u[2] * dx) / (L * dz);

@@ -41,7 +41,8 @@ typedef struct crane_scene {
     /* ties */
     int ties;             /* 0 / 1 */
     double gantry_top[3]; /* in the platform frame */
-    double tie_E, tie_A;
+    double tie_spread;    /* m; > 0: a pair of ties to gantry_top -/+ (0, spread, 0); 0: one */
+    double tie_E, tie_A;  /* each tie */
     /* rope and load */
     int rope;
     double rope_length, rope_E, rope_A, rope_damping;

@@ -93,6 +93,8 @@ static const key_def KEYS[] = {
     KBOOL("ties", "enabled", ties, "build the suspension ties"),
     KVEC("ties", "gantry_top", gantry_top, R_ANY, EXP_VANY, "m",
          "upper end of the ties on the platform, platform frame"),
+    KNUM("ties", "spread", tie_spread, R_NONNEG, EXP_NONNEG, "m",
+         "half the lateral distance of a pair of ties at the gantry (0: one tie)"),
     KNUM("ties", "E", tie_E, R_POS, EXP_POS, "Pa", "Young's modulus"),
     KNUM("ties", "A", tie_A, R_POS, EXP_POS, "m^2", "cross-section area"),
     KBOOL("rope", "enabled", rope, "build the rope and the load"),

@@ -31,6 +31,8 @@
  *                    beta             number >= 0    s, stiffness-proportional damping
  *   [ties]           enabled          boolean        build the suspension ties
  *                    gantry_top       vector         m, upper end on the platform (platform frame)
+ *                    spread           number >= 0    m; > 0: a pair of ties ending at gantry_top
+ *                                                    -/+ (0, spread, 0); 0: one tie
  *                    E                number > 0     Pa
  *                    A                number > 0     m^2
  *   [rope]           enabled          boolean        build the rope and the load
