@@ -235,9 +235,10 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
             int p = first_nonfinite(J->val, J->nnz);
             if (p >= 0) {
                 char eb[192], nb[32];
-                daei_note(s, "the Jacobian entry dF/d%s%s of %s is %g at t = %.17g",
-                          daei_vname(s, column_of(J, p), nb, sizeof nb), m ? "'" : "",
-                          daei_ename(s, J->rowind[p], eb, sizeof eb), J->val[p], t);
+                daei_note(s, "the Jacobian entry d(%s)/d(%s%s) is %g at t = %.17g",
+                          daei_ename(s, J->rowind[p], eb, sizeof eb),
+                          daei_vname(s, column_of(J, p), nb, sizeof nb), m ? "'" : "", J->val[p],
+                          t);
                 r = BG_RECOVERABLE;
             }
         }
@@ -1295,8 +1296,8 @@ static int step_once(dae_solver *s)
         double hmin = fmax(s->o.h_min, 4 * DBL_EPSILON * fabs(s->tn));
         if (fabs(s->hh) < hmin && !landing && last_res_fail)
             return bg_error_raise(&s->err, DAE_RES_FAIL, w,
-                                  "the residual kept failing until the step size fell to %.3g at "
-                                  "t = %.17g: %s",
+                                  "the residual (or Jacobian) kept failing until the step size "
+                                  "fell to %.3g at t = %.17g: %s",
                                   s->hh, s->tn, s->note);
         if (fabs(s->hh) < hmin && !landing) {
             if (nef + ncf == 0) note_step_limit(s);
@@ -1368,9 +1369,11 @@ static int step_once(dae_solver *s)
                                       "Newton matrix singular %d times at t = %.17g, h = %.3g: %s",
                                       ncf, s->tn, s->hh, s->note);
             if (last_res_fail)
-                return bg_error_raise(&s->err, DAE_RES_FAIL, w,
-                                      "the residual failed %d times at t = %.17g, h = %.3g: %s",
-                                      ncf, s->tn, s->hh, s->note);
+                return bg_error_raise(
+                    &s->err, DAE_RES_FAIL, w,
+                    "the residual (or Jacobian) failed %d times at t = %.17g, h = "
+                    "%.3g: %s",
+                    ncf, s->tn, s->hh, s->note);
             return bg_error_raise(&s->err, DAE_CONV_FAIL, w,
                                   "Newton iteration failed %d times at t = %.17g, h = %.3g: %s",
                                   ncf, s->tn, s->hh, s->note);

@@ -149,10 +149,12 @@ enum dae_return {
     DAE_ROOT_RETURN = 3,  /* an event function changed sign: see dae_roots_found */
     DAE_TOO_MUCH_WORK = -20,
     DAE_TOO_MUCH_ACC = -21,  /* tolerance below round-off */
-    DAE_ERR_FAIL = -22,      /* error test failed repeatedly or with |h| = h_min */
+    DAE_ERR_FAIL = -22,      /* error test failed repeatedly (10 times in one step) */
     DAE_CONV_FAIL = -23,     /* Newton failed repeatedly */
-    DAE_LSETUP_FAIL = -24,   /* Newton matrix singular */
-    DAE_RES_FAIL = -25,      /* residual kept failing (recoverable failures, NaN or Inf) */
+    DAE_LSETUP_FAIL = -24,   /* Newton matrix singular (or the linear solver or a projection
+                                failed) */
+    DAE_RES_FAIL = -25,      /* residual (or Jacobian) kept failing (recoverable failures, NaN
+                                or Inf) */
     DAE_CALLBACK_FAIL = -26, /* a callback returned < 0 */
     DAE_INIT_FAIL = -27,     /* consistent initialisation failed */
     DAE_STEP_TOO_SMALL = -28 /* the step size fell below h_min (or round-off) */

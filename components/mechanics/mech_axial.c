@@ -183,6 +183,9 @@ int mech_axial_set(bgr_model *m, int id, const double *xa, const double *xb)
     if (!el || el->cls != &axial_class || !y0)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_axial_set",
                               "element %d is not an axial element of a compiled model", id);
+    if (!xa || !xb)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_axial_set",
+                              "element %d: both end points are needed", id);
     for (int i = 0; i < 3; i++)
         y0[el->state0 + i] = xb[i] - xa[i];
     return BG_OK;
@@ -191,7 +194,7 @@ int mech_axial_set(bgr_model *m, int id, const double *xa, const double *xb)
 double mech_axial_tension(const bgr_model *m, int id, const double *y)
 {
     bgr_element *el = bgr_element_get((bgr_model *)m, id);
-    if (!el || el->cls != &axial_class) return NAN;
+    if (!el || el->cls != &axial_class || !bgr_n(m) || !y) return NAN;
     const axial *a = el->params;
     const double *d = y + a->d, *vA = y + a->f[0], *vB = y + a->f[1];
     double L = sqrt(mech_dot(d, d)), dv[3] = {vB[0] - vA[0], vB[1] - vA[1], vB[2] - vA[2]};
@@ -215,7 +218,7 @@ static double neg_li2_neg(double u)
 double mech_axial_energy(const bgr_model *m, int id, const double *y)
 {
     bgr_element *el = bgr_element_get((bgr_model *)m, id);
-    if (!el || el->cls != &axial_class) return NAN;
+    if (!el || el->cls != &axial_class || !bgr_n(m) || !y) return NAN;
     const axial *a = el->params;
     const double *d = y + a->d;
     double x = sqrt(mech_dot(d, d)) - a->L0;

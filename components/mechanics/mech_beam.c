@@ -458,6 +458,15 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
                               "%s: needs n >= 1 elements, two distinct end points and an up "
                               "vector not along the beam",
                               name ? name : "(null)");
+    if (!nodes || !elems)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "mech_beam_chain",
+                              "%s: needs the arrays for the node and element ids",
+                              name ? name : "(null)");
+    for (int k = 0; k <= n; k++)
+        if ((extra && extra[k] < 0) || (extra3 && extra3[k] < 0))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "mech_beam_chain",
+                                  "%s: node %d has a negative number of extra ports",
+                                  name ? name : "(null)", k);
     bgr_comp cc = bgr_component(m, c, name);
     if (cc < 0) return cc;
     double Le = L / n;
@@ -521,12 +530,15 @@ bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const
 {
     bgr_port none = {-1, -1};
     (void)extra;
-    if (k < 0 || k > n || j < 0) return none;
+    if (!m || !nodes || k < 0 || k > n || j < 0) return none;
     return bgr_port_of(m, nodes[k], (k > 0) + (k < n) + j); /* 6D extras, then 3D ones */
 }
 
 int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1)
 {
+    if (!nodes || n < 1 || !p0 || !p1)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam_chain_set",
+                              "needs the node ids, n >= 1 and both end points");
     for (int k = 0; k <= n; k++) {
         double x[3];
         for (int i = 0; i < 3; i++)
@@ -540,7 +552,7 @@ int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0,
 double mech_beam_energy(const bgr_model *m, int elem, const double *y)
 {
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);
-    if (!el || el->cls != &beam_class) return NAN;
+    if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
     const beam *b = el->params;
     ad_ctx c = {1};
     beam_energy(b, y, &c, b->work);

@@ -61,17 +61,22 @@ int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b
  * local e2 direction. Node k gets extra[k] additional 6D ports, then extra3[k] 3D (force only)
  * ports, at its centre (NULL: none) for the caller to bond (supports, loads, dampers, ties,
  * ropes); their handles come from mech_beam_chain_port. nodes (n+1) and elems (n) receive the
- * element ids. */
+ * element ids. Returns the chain's component, or BG_ERR_ARGUMENT (a bad section, n < 1, NULL or
+ * coincident end points, up NULL or along the beam, nodes or elems NULL, a negative extra count),
+ * or the status of the component, element or bond that failed. */
 int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
                     const double *p1, const double *up, const mech_section *sec,
                     const double *gravity, const int *extra, const int *extra3, int *nodes,
                     int *elems);
-/* The j-th extra port of node k (the 6D ones first, then the 3D ones). */
+/* The j-th extra port of node k (the 6D ones first, then the 3D ones); {-1, -1} if there is no
+ * such port (or m, nodes NULL). */
 bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra, int k,
                               int j);
-/* Positions of the chain's nodes into bgr_y0 (after bgr_compile), orientation identity. */
+/* Positions of the chain's nodes into bgr_y0 (after bgr_compile), orientation identity. BG_OK,
+ * or BG_ERR_ARGUMENT (NULL arrays, n < 1, a node that is not a body of a compiled model). */
 int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1);
-/* The deformation energy W of an element at a state vector y (after bgr_compile). */
+/* The deformation energy W of an element at a state vector y (after bgr_compile); NaN if elem
+ * is not a beam element of a compiled model, or y is NULL. */
 double mech_beam_energy(const bgr_model *m, int elem, const double *y);
 
 #ifdef __cplusplus

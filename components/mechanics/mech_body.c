@@ -368,7 +368,8 @@ int mech_body_energy(const bgr_model *m, int body_id, const double *y, double *k
                      double *potential)
 {
     const bgr_element *el = bgr_element_get((bgr_model *)m, body_id);
-    if (!el || el->cls != &body_class || !bgr_nvars(m)) return BG_ERR_ARGUMENT;
+    if (!el || el->cls != &body_class || !bgr_nvars(m) || !y || !kinetic || !potential)
+        return BG_ERR_ARGUMENT;
     const body *b = el->params;
     const double *x = y + el->state0, *v = x + 3, *w = x + 6;
     double Jw[3];

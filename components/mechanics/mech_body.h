@@ -36,16 +36,18 @@ int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const dou
               const double *gravity, int nports, const double *r, const int *dims);
 
 /* Initial state (after bgr_compile): position x and velocity v of the mass centre, body
- * angular velocity w, orientation q (NULL: identity); written into bgr_y0. */
+ * angular velocity w (x, v, w NULL: zero), orientation q (NULL: identity); written into bgr_y0.
+ * BG_OK, or BG_ERR_ARGUMENT if body is not a body of a compiled model. */
 int mech_body_set(bgr_model *m, int body, const double *x, const double *v, const double *w,
                   const double *q);
 
 /* Kinetic energy (1/2 m v.v + 1/2 w.J w) and the potential of gravity (-m g.x) at a state y;
- * BG_OK or BG_ERR_ARGUMENT if body is not a body of a compiled model. */
+ * BG_OK or BG_ERR_ARGUMENT if body is not a body of a compiled model or a pointer is NULL. */
 int mech_body_energy(const bgr_model *m, int body, const double *y, double *kinetic,
                      double *potential);
 
-/* Variable ids of the states (after bgr_compile): first of x, v, w, q. */
+/* Variable ids of the states (after bgr_compile): first of x, v, w, q; -1 if body is not a body
+ * of a compiled model or which is not one of 'x', 'v', 'w', 'q'. */
 int mech_body_var(const bgr_model *m, int body, char which);
 
 #ifdef __cplusplus

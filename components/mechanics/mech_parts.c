@@ -332,7 +332,8 @@ int mech_point_mass_energy(const bgr_model *m, int id, const double *y, double *
                            double *potential)
 {
     const bgr_element *el = bgr_element_get((bgr_model *)m, id);
-    if (!el || el->cls != &mass_class || !bgr_nvars(m)) return BG_ERR_ARGUMENT;
+    if (!el || el->cls != &mass_class || !bgr_nvars(m) || !y || !kinetic || !potential)
+        return BG_ERR_ARGUMENT;
     const part *p = el->params;
     const double *x = y + el->state0, *v = x + 3;
     *kinetic = 0.5 * p->m * mech_dot(v, v);

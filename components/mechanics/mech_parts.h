@@ -29,7 +29,7 @@ extern "C" {
 int mech_point_mass(bgr_model *m, bgr_comp c, const char *name, double mass, const double *gravity);
 int mech_point_mass_set(bgr_model *m, int id, const double *x, const double *v);
 /* Kinetic energy and the potential of gravity (-m g.x) at a state y (BG_ERR_ARGUMENT if id is
- * not a point mass of a compiled model). */
+ * not a point mass of a compiled model, or a pointer is NULL). */
 int mech_point_mass_energy(const bgr_model *m, int id, const double *y, double *kinetic,
                            double *potential);
 
