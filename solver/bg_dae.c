@@ -418,8 +418,9 @@ static int check_problem(const dae_problem *p, const dae_options *o, bg_error *e
 }
 
 /* rowvar[i]: the unknown matched to equation i in a maximum matching of the rows and columns of
- * the pattern M, diagonal entries first, then augmenting paths (depth first, explicit stack);
- * -1 for rows left unmatched. Only for naming equations in messages. */
+ * the pattern M: diagonal entries first, then any free row of each column, then augmenting paths
+ * (depth first, explicit stack); -1 for rows left unmatched. Only for naming equations in
+ * messages. */
 static int match_rows(const sp_csc *M, int *rowvar)
 {
     int n = M->ncol, ok = 0;
@@ -432,6 +433,12 @@ static int match_rows(const sp_csc *M, int *rowvar)
         rowvar[i] = colrow[i] = -1;
     for (int j = 0; j < n; j++)
         if (sp_csc_find(M, j, j) >= 0) rowvar[j] = colrow[j] = j;
+    for (int j = 0; j < n; j++) /* cheap pass: any free row of the column */
+        for (int p = M->colptr[j]; colrow[j] < 0 && p < M->colptr[j + 1]; p++)
+            if (rowvar[M->rowind[p]] < 0) {
+                rowvar[M->rowind[p]] = j;
+                colrow[j] = M->rowind[p];
+            }
     for (int j0 = 0; j0 < n; j0++) {
         if (colrow[j0] >= 0) continue;
         int top = 0, found = 0;
@@ -718,6 +725,11 @@ int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y)
                                   "needs 1 <= k <= 5 and h > 0 (k = %d, h = %g)", k, h)
                  : BG_ERR_ARGUMENT;
     int n = s->n;
+    for (size_t i = 0; i < (size_t)(k + 1) * n; i++)
+        if (!isfinite(Y[i]))
+            return bg_error_raise(&s->err, BG_ERR_NONFINITE, "dae_set_history",
+                                  "history value %zu (y(t0 - %zu h) of unknown %zu) is not finite",
+                                  i, i / (size_t)n, i % (size_t)n);
     int r = dae_init(s, t0, Y, NULL);
     if (r != BG_OK) return r;
     /* at constant step the modified divided differences are backward differences:

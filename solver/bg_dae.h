@@ -206,7 +206,8 @@ int dae_consistent_init(dae_solver *s);
 int dae_reinit(dae_solver *s, double t, const double *y, const double *yp);
 /* Fixed-step studies: history y(t0 - i h), i = 0..k, as k+1 consecutive arrays of n values
  * (Y[i*n + j]); the next steps use order k and step h. BG_ERR_ARGUMENT for a NULL argument,
- * k outside 1..5 or h not > 0, else the statuses of dae_init. */
+ * k outside 1..5 or h not > 0, BG_ERR_NONFINITE for a value that is not finite, else the
+ * statuses of dae_init. */
 int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y);
 
 /* Integrate to tout and return y, yp there (interpolated; y or yp may be NULL). Returns

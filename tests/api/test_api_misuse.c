@@ -680,6 +680,10 @@ static void test_dae_order(void)
            "dae_set_history(k = 9)");
     expect(dae_set_history(s, 0, 0.1, 1, NULL), BG_ERR_ARGUMENT, msg, "needs",
            "dae_set_history(Y NULL)");
+    Y[3] = NAN;
+    expect(dae_set_history(s, 0, 0.1, 2, Y), BG_ERR_NONFINITE, msg, "y(t0 - 1 h) of unknown 1",
+           "dae_set_history(a NaN in the history)");
+    Y[3] = 0.0;
 
     /* a proper start */
     tap_ok(dae_init(s, 0, y, yp) == BG_OK && dae_consistent_init(s) == BG_OK &&
