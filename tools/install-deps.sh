@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages the project needs, only those that are missing.
 set -euo pipefail
 pkgs=(build-essential meson ninja-build pkg-config python3 libsuitesparse-dev liblapack-dev
-      libblas-dev libsundials-dev libinih-dev gnuplot-nox)
+      libblas-dev libsundials-dev libinih-dev gnuplot-nox
+      valgrind gcovr clang libclang-rt-14-dev)  # CI jobs (tools/ci-*.sh, tools/coverage.sh)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
