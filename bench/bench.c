@@ -1,23 +1,53 @@
 /* The benchmark harness: error against run time for our solver and SUNDIALS IDA on the problem
- * collection (bench/problems.c), and a stability suite of stiff and extreme cases.
+ * collection (bench/problems.c) and the crane, the crane's scaling over its boom elements and its
+ * real-time check, and a stability suite of stiff and extreme cases.
  *
- *   bench [--problems LIST] [--solvers LIST] [--rtols LIST] [--repeat K] [--stability]
- *         [--quick] [--out DIR]
+ *   bench [--problems LIST|none] [--solvers LIST] [--rtols LIST] [--repeat K] [--stability]
+ *         [--quick] [--out DIR] [--crane-horizon T] [--crane-realtime K] [--scaling LIST|none]
+ *         [--crane-scene FILE] [--stability-filter TEXT] [--strict] [--help]
  *
- * writes to DIR (default results/bench): work_precision.csv (one row per problem, solver and
- * tolerance), report.md (tables per problem, the winner at each accuracy, CPU-time ratios of our
- * solver to IDA at equal accuracy interpolated at scd = 4, 6, 8, every failure with its message,
- * machine, commit and build flags), wp_<problem>.png (scd against CPU time and against steps,
- * drawn by gnuplot when it is installed) and, with --stability, stability.csv.
+ * Problems (default: all): ap102, pendulum2, robertson, vdp_scaled, hires, lin2, smooth_ode,
+ * kinks, the IVP Test Set's crank, pump, transamp, chemakzo, nand (bench/problems.h), and crane:
+ * the paper scene (crane_scene_default, or --crane-scene FILE) from its static equilibrium over
+ * [0, T] (--crane-horizon, default 1 s, --quick 0.1 s), reference: our own run at rtol 1e-11
+ * checked against IDA-KLU at the same tolerance (bench_crane.h). Solvers (default: all):
+ * bgdae-klu, bgdae-klu-scaleh, bgdae-dense, bgdae-dense-scaleh (ours with each index-2 error
+ * policy on KLU and on dense LU), ida-klu, ida-dense; dense LU on a model of more than 300
+ * unknowns (the crane) runs at the loosest tolerance only. Tolerances: rtol 1e-4 .. 1e-10
+ * (--quick: 1e-4, 1e-7), atol = factor * rtol per problem (crank: atol = rtol; pump: the test
+ * set's tolerance vector; crane: the scene's atol / rtol, paper 1).
+ *
+ * Writes to DIR (default results/bench): work_precision.csv (one row per problem, solver and
+ * tolerance: accuracy, CPU time median and minimum, counters, and the split of a profiled run into
+ * residual, Jacobian, linear algebra and the rest), report.md (targets with their verdicts and,
+ * where one is missed, where the time goes; the CPU-time ratio bgdae-klu / ida-klu at equal
+ * accuracy interpolated at scd = 4, 6, 8 for every problem; tables per problem; failures; machine,
+ * load, commit and build flags), wp_<problem>.png (scd against CPU time and against steps, drawn
+ * by gnuplot when it is installed), scaling.csv (crane: 8, 16, ..., 512 boom elements, --quick:
+ * 8 .. 64, or --scaling LIST: CPU time per step against the unknowns, log-log slope),
+ * realtime.csv (the paper scene over its full t_end, 20 s, K = --crane-realtime runs, default 5,
+ * 0 with --quick: real-time factor, peak memory, bookkeeping fraction) and, with --stability,
+ * stability.csv (bench_stab.h; --stability-filter runs the cases whose name contains TEXT).
+ * --problems none skips the work-precision runs (and, unless asked for, the crane's scaling and
+ * real-time runs).
  *
  * Method (IVP Test Set conventions, shared/testset/README.md): every solver starts from the same
- * consistent initial values (computed once by dae_consistent_init: IDA's own initialisation
- * handles index 1 only); CPU time of the integration alone, after a warm-up run, minimum of K
- * repetitions (the median is reported beside it); accuracy as scd (scored components) and mescd,
- * index-2 components apart. IDA runs as its guide recommends for index 2: id vector, algebraic
- * variables suppressed from the error test, fed the same residual and Jacobian code (dense, or
- * sparse CSC for KLU). Problems with breakpoints are integrated segment by segment (IDA is
- * re-initialised at each; its counters are summed). */
+ * consistent initial values (computed once per problem by dae_consistent_init at rtol 1e-10:
+ * IDA's own initialisation handles index 1 only); CPU time of the integration alone; the first
+ * run is profiled (residual and Jacobian callbacks and the linear solver timed) and is a warm-up
+ * not counted, except for the crane, then K timed runs (--repeat, default 3; --quick 1; the crane
+ * 1): the report uses the median, the CSV has the minimum beside it; accuracy as scd (scored
+ * components) and mescd, index-2 components apart. IDA runs as its guide recommends for index 2:
+ * id vector, algebraic variables suppressed from the error test, fed the same residual and
+ * Jacobian code (dense, or sparse CSC for KLU); ours with exclude_alg on the crane as
+ * crane/crane.c runs it. Problems with breakpoints are integrated segment by segment (IDA is
+ * re-initialised at each; its counters are summed).
+ *
+ * Exit status: 0 when every file is written (failed runs, missed targets and wrong stability
+ * cases are results, reported in the files); 1 if a file could not be written or a stability
+ * case crashed, and with --strict also if a run of our solver or of the crane failed or a
+ * stability case ended wrong, at its time limit or without its set-up; 2 for a bad command
+ * line. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -28,16 +58,14 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_case.h"
+#include "bench_crane.h"
+#include "bench_stab.h"
 #include "bench_util.h"
 #include "problems.h"
 
-#ifdef BENCH_HAVE_IDA
-#include <ida/ida.h>
-#include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunlinsol/sunlinsol_klu.h>
-#include <sunmatrix/sunmatrix_dense.h>
-#include <sunmatrix/sunmatrix_sparse.h>
+#ifdef BENCH_HAVE_SCENES
+#include "crane_scene.h"
 #endif
 
 #include "bench_version.h" /* BENCH_COMMIT, generated at build time */
@@ -45,327 +73,129 @@
 #define BENCH_BUILD_FLAGS "unknown"
 #endif
 
-#define MAXN 64
-#define MAXSOLVERS 8
 #define MAXRTOL 16
 #define MAXPROB 32
-
-typedef struct solver_def {
-    const char *name;
-    int ida;
-    ls_kind ls;
-    dae_index2_policy pol;
-} solver_def;
-
-static const solver_def SOLVERS[] = {
-    {"bgdae-klu", 0, LS_KLU, DAE_I2_EXCLUDE},     {"bgdae-klu-scaleh", 0, LS_KLU, DAE_I2_SCALE_H},
-    {"bgdae-dense", 0, LS_DENSE, DAE_I2_EXCLUDE}, {"ida-klu", 1, LS_KLU, DAE_I2_EXCLUDE},
-    {"ida-dense", 1, LS_DENSE, DAE_I2_EXCLUDE},
-};
-#define NSOLVERS ((int)(sizeof SOLVERS / sizeof *SOLVERS))
-
-/* atol = factor * rtol; the components' scales differ too much for atol = rtol in these. */
-static double atol_factor(const char *name)
-{
-    if (!strcmp(name, "robertson")) return 1e-6;
-    if (!strcmp(name, "pump")) return 1e-8;
-    if (!strcmp(name, "hires")) return 1e-4;
-    return 1e-2;
-}
-
-typedef struct run_out {
-    int status;
-    char msg[BG_MESSAGE_SIZE];
-    double y[MAXN];
-    long steps, rejected, newton, conv_fail, res, jac, fact, solves;
-    int max_order;
-    double cpu_min, cpu_med;
-} run_out;
-
-/* ---------------------------------------------------------------- ours ---- */
-
-static void set_options(dae_options *o, const bp_problem *p, const solver_def *sd, double rtol,
-                        double atol)
-{
-    dae_options_default(o);
-    o->rtol = rtol;
-    o->atol = atol;
-    o->linsol = sd->ls;
-    o->index2 = sd->pol;
-    o->has_t_stop = 1;
-    o->t_stop = p->tend;
-    o->breakpoints = p->breakpoints;
-    o->nbreakpoints = p->nbreakpoints;
-    o->max_steps = 2000000;
-}
-
-static void run_ours(const bp_problem *p, const solver_def *sd, double rtol, double atol,
-                     const double *y0, const double *yp0, run_out *out)
-{
-    bp_instance in;
-    memset(&in, 0, sizeof in);
-    out->status = -1;
-    if (bp_instance_init(&in, p) != 0) {
-        snprintf(out->msg, sizeof out->msg, "out of memory");
-        return;
-    }
-    dae_options o;
-    set_options(&o, p, sd, rtol, atol);
-    bg_error err = {0};
-    dae_solver *s = dae_create(&in.dp, &o, &err);
-    if (!s) {
-        snprintf(out->msg, sizeof out->msg, "%s", err.message);
-        bp_instance_free(&in);
-        return;
-    }
-    double t, yp[MAXN];
-    int r = dae_init(s, p->t0, y0, yp0);
-    while (r == 0) {
-        r = dae_solve_to(s, p->tend, &t, out->y, yp);
-        if (r == DAE_TSTOP_RETURN || (r == 0 && t >= p->tend)) {
-            r = 0;
-            break;
-        }
-    }
-    if (r < 0) snprintf(out->msg, sizeof out->msg, "%s", dae_get_error(s)->message);
-    const dae_stats *st = dae_get_stats(s);
-    out->status = r;
-    out->steps = st->steps;
-    out->rejected = st->rejected_error;
-    out->newton = st->newton_iters;
-    out->conv_fail = st->newton_fails;
-    out->res = st->res_evals + st->res_evals_fd;
-    out->jac = st->jac_evals;
-    out->fact = st->factor_full + st->factor_refactor;
-    out->solves = st->linear_solves;
-    out->max_order = 0;
-    for (int k = 1; k <= 5; k++)
-        if (st->steps_at_order[k]) out->max_order = k;
-    dae_free(&s);
-    bp_instance_free(&in);
-}
-
-/* ----------------------------------------------------------------- IDA ---- */
-
-#ifdef BENCH_HAVE_IDA
-static void run_ida(const bp_problem *p, const solver_def *sd, double rtol, double atol,
-                    const double *y0, const double *yp0, run_out *out)
-{
-    int n = p->n;
-    SUNContext ctx = NULL;
-    out->status = -1;
-    if (SUNContext_Create(NULL, &ctx) != 0) {
-        snprintf(out->msg, sizeof out->msg, "SUNContext_Create failed");
-        return;
-    }
-    bench_ida_ctx c = {p, NULL, NULL, NULL};
-    p->patterns(&c.jy, &c.jyp);
-    c.u = c.jy && c.jyp ? sp_union_create(c.jy, c.jyp) : NULL;
-    N_Vector yy = N_VNew_Serial(n, ctx), yp = N_VNew_Serial(n, ctx), id = N_VNew_Serial(n, ctx);
-    SUNMatrix A = c.u ? (sd->ls == LS_KLU ? SUNSparseMatrix(n, n, c.u->M->nnz, CSC_MAT, ctx)
-                                          : SUNDenseMatrix(n, n, ctx))
-                      : NULL;
-    SUNLinearSolver LS = A ? (sd->ls == LS_KLU ? SUNLinSol_KLU(yy, A, ctx)
-                                               : SUNLinSol_Dense(yy, A, ctx))
-                           : NULL;
-    void *mem = IDACreate(ctx);
-    long acc[7] = {0};
-    realtype t = p->t0;
-    if (!LS || !mem) {
-        snprintf(out->msg, sizeof out->msg, "IDA set-up failed (memory)");
-        goto done;
-    }
-    for (int i = 0; i < n; i++) {
-        NV_Ith_S(yy, i) = y0[i];
-        NV_Ith_S(yp, i) = yp0[i];
-        NV_Ith_S(id, i) = p->kind[i] == DAE_DIFF ? 1.0 : 0.0;
-    }
-    if (IDAInit(mem, bench_ida_res, p->t0, yy, yp) || IDASStolerances(mem, rtol, atol) ||
-        IDASetUserData(mem, &c) || IDASetLinearSolver(mem, LS, A) ||
-        IDASetJacFn(mem, bench_ida_jac) || IDASetId(mem, id) || IDASetSuppressAlg(mem, SUNTRUE) ||
-        IDASetMaxNumSteps(mem, 2000000)) {
-        snprintf(out->msg, sizeof out->msg, "IDA set-up failed");
-        goto done;
-    }
-    for (int b = 0; b <= p->nbreakpoints; b++) {
-        double tb = b < p->nbreakpoints ? p->breakpoints[b] : p->tend;
-        IDASetStopTime(mem, tb);
-        int r = IDASolve(mem, tb, &t, yy, yp, IDA_NORMAL);
-        long v[7];
-        IDAGetNumSteps(mem, &v[0]);
-        IDAGetNumErrTestFails(mem, &v[1]);
-        IDAGetNumNonlinSolvIters(mem, &v[2]);
-        IDAGetNumNonlinSolvConvFails(mem, &v[3]);
-        IDAGetNumResEvals(mem, &v[4]);
-        IDAGetNumJacEvals(mem, &v[5]);
-        IDAGetNumLinSolvSetups(mem, &v[6]);
-        for (int k = 0; k < 7; k++) acc[k] += v[k];
-        if (r < 0) {
-            snprintf(out->msg, sizeof out->msg, "IDASolve returned %d (%s) at t = %.9g", r,
-                     IDAGetReturnFlagName(r), t);
-            out->status = r;
-            goto done;
-        }
-        if (b < p->nbreakpoints) IDAReInit(mem, t, yy, yp);
-    }
-    out->status = 0;
-done:
-    for (int i = 0; i < n && yy; i++) out->y[i] = NV_Ith_S(yy, i);
-    out->steps = acc[0];
-    out->rejected = acc[1];
-    out->newton = acc[2];
-    out->conv_fail = acc[3];
-    out->res = acc[4];
-    out->jac = acc[5];
-    out->fact = acc[6];
-    out->solves = acc[2];
-    out->max_order = 0;
-    IDAFree(&mem);
-    if (LS) SUNLinSolFree(LS);
-    if (A) SUNMatDestroy(A);
-    N_VDestroy(yy);
-    N_VDestroy(yp);
-    N_VDestroy(id);
-    sp_union_free(&c.u);
-    sp_csc_free(&c.jy);
-    sp_csc_free(&c.jyp);
-    SUNContext_Free(&ctx);
-}
-#endif
-
-/* Warm-up, then K timed runs: CPU minimum and median. */
-static void timed(const bp_problem *p, const solver_def *sd, double rtol, double atol,
-                  const double *y0, const double *yp0, int K, run_out *out)
-{
-    double ts[64];
-    if (K > 64) K = 64;
-    int done = 0;
-    for (int k = -1; k < K; k++) {
-        double t0 = bench_cpu_now();
-#ifdef BENCH_HAVE_IDA
-        if (sd->ida)
-            run_ida(p, sd, rtol, atol, y0, yp0, out);
-        else
-#endif
-            run_ours(p, sd, rtol, atol, y0, yp0, out);
-        double t1 = bench_cpu_now();
-        if (k >= 0) ts[done++] = t1 - t0;
-        if (out->status < 0) { /* a failure is not timed further */
-            if (done == 0) ts[done++] = t1 - t0;
-            break;
-        }
-    }
-    out->cpu_med = bench_median(ts, done);
-    out->cpu_min = ts[0];
-}
-
-/* Consistent start shared by every solver. */
-static int consistent_start(const bp_problem *p, double rtol, double *y0, double *yp0,
-                            char *msg, size_t msz)
-{
-    bp_instance in;
-    memset(&in, 0, sizeof in);
-    if (bp_instance_init(&in, p) != 0) return -1;
-    dae_options o;
-    dae_options_default(&o);
-    o.rtol = rtol;
-    o.atol = rtol * atol_factor(p->name);
-    bg_error err = {0};
-    dae_solver *s = dae_create(&in.dp, &o, &err);
-    int r = s ? dae_init(s, p->t0, p->y0, p->yp0) : -1;
-    if (r == 0) r = dae_consistent_init(s);
-    if (r == 0) r = dae_dense(s, p->t0, y0, yp0);
-    if (r != 0) snprintf(msg, msz, "%s", s ? dae_get_error(s)->message : err.message);
-    dae_free(&s);
-    bp_instance_free(&in);
-    return r;
-}
-
-/* ------------------------------------------------------------- reporting ---- */
+#define MAXSCALE 16
+#define MAXREP 64
+/* larger cases run dense LU at the loosest tolerance only */
+#define DENSE_MAX_N 300
 
 typedef struct row {
-    const bp_problem *p;
+    int ci; /* case */
     const solver_def *sd;
     double rtol, atol;
     run_out r;
+    double cpu_min, cpu_med;
     bp_score sc;
 } row;
 
+/* ------------------------------------------------------------- reporting ---- */
+
+/* Splits a comma-separated list in place; the number of items, or -1 if more than max. */
 static int split_list(char *s, char **items, int max)
 {
     int n = 0;
-    for (char *tok = strtok(s, ","); tok && n < max; tok = strtok(NULL, ",")) items[n++] = tok;
+    for (char *tok = strtok(s, ","); tok; tok = strtok(NULL, ",")) {
+        if (n == max) return -1;
+        items[n++] = tok;
+    }
     return n;
 }
 
 /* scd is +inf where the error is exactly zero: count it as the 16 digits of double precision. */
-static double capped(double scd) { return scd > 16 ? 16 : scd; }
+static double capped(double scd)
+{
+    return scd > 16 ? 16 : scd;
+}
 
-/* log10 of CPU time at accuracy target on the curve of (scd, cpu) points: linear interpolation
- * in (scd, log cpu) between neighbours that bracket the target; NAN if none. */
-static double cpu_at(const row *rows, int nrows, const bp_problem *p, const char *solver,
-                     double target)
+static int row_ok(const row *r)
+{
+    return r->r.status >= 0 && !isnan(r->sc.scd);
+}
+
+/* log10 of the median CPU time at accuracy target on the curve of (scd, cpu) points of one
+ * solver: linear interpolation in (scd, log cpu) between neighbours that bracket the target (the
+ * cheapest such pair); NAN if none. */
+static double cpu_at(const row *rows, int nrows, int ci, const char *solver, double target)
 {
     double best = NAN;
     for (int a = 0; a < nrows; a++) {
         const row *A = &rows[a];
         double sa = capped(A->sc.scd);
-        if (A->p != p || strcmp(A->sd->name, solver) || A->r.status < 0 || isnan(sa)) continue;
+        if (A->ci != ci || strcmp(A->sd->name, solver) || !row_ok(A)) continue;
         for (int b = 0; b < nrows; b++) {
             const row *B = &rows[b];
             double sb = capped(B->sc.scd);
-            if (B->p != p || strcmp(B->sd->name, solver) || B->r.status < 0 || isnan(sb) ||
+            if (B->ci != ci || strcmp(B->sd->name, solver) || !row_ok(B) ||
                 !(sa <= target && sb >= target) || sa == sb)
                 continue;
             double w = (target - sa) / (sb - sa);
-            double lc = (1 - w) * log10(A->r.cpu_min) + w * log10(B->r.cpu_min);
+            double lc = (1 - w) * log10(A->cpu_med) + w * log10(B->cpu_med);
             if (isnan(best) || lc < best) best = lc;
         }
     }
     return best;
 }
 
-static void write_csv(FILE *f, const row *rows, int n)
+/* Ratio bgdae-klu / ida-klu at scd target, NAN if either curve does not reach it. */
+static double ratio_at(const row *rows, int n, int ci, double target)
 {
-    fprintf(f, "problem,solver,rtol,atol,status,scd,mescd,scd_index2,cpu_s,cpu_median_s,steps,"
-               "rejected,newton,conv_fail,res_evals,jac_evals,factorizations,solves\n");
+    double a = cpu_at(rows, n, ci, "bgdae-klu", target), b = cpu_at(rows, n, ci, "ida-klu", target);
+    return isnan(a) || isnan(b) ? NAN : pow(10, a - b);
+}
+
+static double frac_other(const run_out *r)
+{
+    return r->wall > 0 ? (r->wall - r->t_res - r->t_jac - r->t_lin) / r->wall : NAN;
+}
+
+static void write_csv(FILE *f, const row *rows, int n, bench_case **cases)
+{
+    fprintf(f, "problem,solver,rtol,atol,status,scd,mescd,scd_index2,mescd_index2,cpu_s,"
+               "cpu_median_s,steps,rejected,newton,conv_fail,res_evals,jac_evals,factorizations,"
+               "solves,max_order,profiled_wall_s,res_s,jac_s,linalg_s,other_fraction,message\n");
     for (int i = 0; i < n; i++) {
         const row *r = &rows[i];
-        fprintf(f, "%s,%s,%g,%g,%d,%.3f,%.3f,%.3f,%.6g,%.6g,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld\n",
-                r->p->name, r->sd->name, r->rtol, r->atol, r->r.status, r->sc.scd, r->sc.mescd,
-                r->sc.scd_i2, r->r.cpu_min, r->r.cpu_med, r->r.steps, r->r.rejected, r->r.newton,
-                r->r.conv_fail, r->r.res, r->r.jac, r->r.fact, r->r.solves);
+        fprintf(f,
+                "%s,%s,%g,%g,%d,%.3f,%.3f,%.3f,%.3f,%.6g,%.6g,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%d,"
+                "%.6g,%.6g,%.6g,%.6g,%.4f,\"%s\"\n",
+                cases[r->ci]->name, r->sd->name, r->rtol, r->atol, r->r.status, r->sc.scd,
+                r->sc.mescd, r->sc.scd_i2, r->sc.mescd_i2, r->cpu_min, r->cpu_med, r->r.steps,
+                r->r.rejected, r->r.newton, r->r.conv_fail, r->r.res, r->r.jac, r->r.fact,
+                r->r.solves, r->r.max_order, r->r.wall, r->r.t_res, r->r.t_jac, r->r.t_lin,
+                frac_other(&r->r), r->r.status < 0 ? r->r.msg : "");
     }
 }
 
-static void plot(const char *dir, const bp_problem *p, const row *rows, int n, const char **sol,
-                 int ns)
+static void plot(const char *dir, int ci, const char *name, const row *rows, int n,
+                 const char **sol, int ns)
 {
-    char dat[512], png[512];
-    snprintf(dat, sizeof dat, "%s/wp_%s.dat", dir, p->name);
-    snprintf(png, sizeof png, "%s/wp_%s.png", dir, p->name);
+    char dat[600], png[600];
+    snprintf(dat, sizeof dat, "%s/wp_%s.dat", dir, name);
+    snprintf(png, sizeof png, "%s/wp_%s.png", dir, name);
     FILE *f = fopen(dat, "w");
     if (!f) return;
     for (int s = 0; s < ns; s++) {
         fprintf(f, "# %s\n", sol[s]);
         for (int i = 0; i < n; i++)
-            if (rows[i].p == p && !strcmp(rows[i].sd->name, sol[s]) && rows[i].r.status >= 0)
-                fprintf(f, "%.6g %.4f %ld\n", rows[i].r.cpu_min, rows[i].sc.scd, rows[i].r.steps);
+            if (rows[i].ci == ci && !strcmp(rows[i].sd->name, sol[s]) && row_ok(&rows[i]))
+                fprintf(f, "%.6g %.4f %ld\n", rows[i].cpu_med, capped(rows[i].sc.scd),
+                        rows[i].r.steps);
         fprintf(f, "\n\n");
     }
     fclose(f);
-    char cmd[4096];
+    char cmd[6000];
     int len = snprintf(cmd, sizeof cmd,
                        "gnuplot -e \"set terminal png size 1000,420; set output '%s'; "
                        "set multiplot layout 1,2 title '%s'; set logscale x; set grid; "
-                       "set key bottom right; set xlabel 'CPU time [s]'; set ylabel 'scd'; plot ",
-                       png, p->name);
+                       "set key bottom right; set xlabel 'CPU time [s] (median)'; "
+                       "set ylabel 'scd'; plot ",
+                       png, name);
     for (int s = 0; s < ns; s++)
         len += snprintf(cmd + len, sizeof cmd - (size_t)len,
                         "'%s' index %d using 1:2 with linespoints title '%s'%s", dat, s, sol[s],
                         s + 1 < ns ? ", " : "; ");
-    len += snprintf(cmd + len, sizeof cmd - (size_t)len,
-                    "set xlabel 'steps'; plot ");
+    len += snprintf(cmd + len, sizeof cmd - (size_t)len, "set xlabel 'steps'; plot ");
     for (int s = 0; s < ns; s++)
         len += snprintf(cmd + len, sizeof cmd - (size_t)len,
                         "'%s' index %d using 3:2 with linespoints title '%s'%s", dat, s, sol[s],
@@ -374,43 +204,214 @@ static void plot(const char *dir, const bp_problem *p, const row *rows, int n, c
     if (system(cmd) != 0) remove(png);
 }
 
-static void write_report(FILE *f, const row *rows, int n, const bp_problem **probs, int np,
-                         const char **sol, int ns, double wall)
+static void fmt_ratio(char *buf, size_t sz, double r)
+{
+    if (isnan(r))
+        snprintf(buf, sz, "-");
+    else
+        snprintf(buf, sz, "%.2f", r);
+}
+
+/* The rows of solver name on case ci nearest to scd target (below and above), for the
+ * explanations of missed targets. */
+static const row *nearest(const row *rows, int n, int ci, const char *name, double target)
+{
+    const row *best = NULL;
+    for (int i = 0; i < n; i++) {
+        const row *r = &rows[i];
+        if (r->ci != ci || strcmp(r->sd->name, name) || !row_ok(r)) continue;
+        if (!best || fabs(capped(r->sc.scd) - target) < fabs(capped(best->sc.scd) - target))
+            best = r;
+    }
+    return best;
+}
+
+static void describe_row(FILE *f, const row *r)
+{
+    if (!r) {
+        fprintf(f, "no successful run");
+        return;
+    }
+    double w = r->r.wall > 0 ? r->r.wall : 1;
+    fprintf(f,
+            "%s at rtol %g (scd %.2f): %.3g s, %ld steps, %ld Newton iterations, %ld Jacobians, "
+            "%ld factorizations, %ld residuals; residual %.0f %%, Jacobian %.0f %%, linear algebra "
+            "%.0f %%, the rest %.0f %%",
+            r->sd->name, r->rtol, r->sc.scd, r->cpu_med, r->r.steps, r->r.newton, r->r.jac,
+            r->r.fact, r->r.res, 100 * r->r.t_res / w, 100 * r->r.t_jac / w, 100 * r->r.t_lin / w,
+            100 * frac_other(&r->r));
+}
+
+typedef struct extras {
+    char load_start[128], load_end[128];
+    int have_scaling;
+    double slope_n, slope_el;
+    int have_rt;
+    bench_rt_result rt;
+} extras;
+
+/* The first line of /proc/loadavg (the load of the shared machine), or "unknown". */
+static void load_average(char *buf, size_t sz)
+{
+    snprintf(buf, sz, "unknown");
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (!f) return;
+    if (!fgets(buf, (int)sz, f)) snprintf(buf, sz, "unknown");
+    buf[strcspn(buf, "\n")] = '\0';
+    fclose(f);
+}
+
+static void write_report_head(FILE *f, const row *rows, int n, bench_case **cases, int nc,
+                              const char **sol, int ns, double wall, int K, const extras *ex)
 {
     struct utsname u;
     uname(&u);
     fprintf(f, "# Benchmark report\n\n");
-    fprintf(f, "- machine: %s %s %s, %ld cores online\n", u.sysname, u.release, u.machine,
-            sysconf(_SC_NPROCESSORS_ONLN));
+    fprintf(f, "- machine: %s %s %s, %ld cores online (shared: timings are noisy)\n", u.sysname,
+            u.release, u.machine, sysconf(_SC_NPROCESSORS_ONLN));
+    fprintf(f, "- load average (/proc/loadavg) at the start: %s; at the end: %s\n", ex->load_start,
+            ex->load_end);
     fprintf(f, "- commit: %s\n- build: %s\n", BENCH_COMMIT, BENCH_BUILD_FLAGS);
-    fprintf(f, "- timing: CPU time of the integration alone, after a warm-up run, minimum of the "
-               "repetitions (median beside it in work_precision.csv)\n");
-    fprintf(f, "- accuracy: scd over the scored components, index-2 components apart (scd2); "
-               "atol = factor * rtol per problem\n- wall time of this run: %.1f s\n\n",
+    fprintf(f,
+            "- timing: CPU time of the integration alone, median of %d timed runs after a "
+            "profiled warm-up (the crane: the profiled run is the one timed run); minimum beside "
+            "it in work_precision.csv\n",
+            K);
+    fprintf(f,
+            "- accuracy: scd over the scored components, index-2 components apart (scd2); "
+            "atol = factor * rtol per problem\n- wall time of the work-precision runs: %.1f "
+            "s\n\n",
             wall);
-    for (int q = 0; q < np; q++) {
-        const bp_problem *p = probs[q];
-        fprintf(f, "## %s (n = %d): %s\n\n", p->name, p->n, p->title ? p->title : "");
-        fprintf(f, "| solver | rtol | status | scd | mescd | scd2 | CPU s | steps | rejected | "
-                   "Jacobians | factorizations |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+
+    /* targets */
+    fprintf(f, "## Targets\n\n| target | measured | verdict |\n|---|---|---|\n");
+    static const char *const tprob[] = {"pendulum2", "crank", "pump", "crane"};
+    for (int q = 0; q < 4; q++) {
+        int ci = -1;
+        for (int c = 0; c < nc; c++)
+            if (!strcmp(cases[c]->name, tprob[q])) ci = c;
+        if (ci < 0) continue;
+        for (int target = 4; target <= 6; target += 2) {
+            double r = ratio_at(rows, n, ci, target);
+            char b[32];
+            fmt_ratio(b, sizeof b, r);
+            fprintf(f, "| %s: CPU bgdae-klu / ida-klu at scd %d <= 0.5 | %s | %s |\n", tprob[q],
+                    target, b,
+                    isnan(r)   ? "not measurable (a curve does not reach this accuracy)"
+                    : r <= 0.5 ? "met"
+                               : "MISSED");
+        }
+    }
+    if (ex->have_rt) {
+        fprintf(f,
+                "| crane paper scene %s: real time / wall time >= 50 (median of %d) | %.2f | "
+                "%s |\n",
+                "20 s", ex->rt.runs, ex->rt.rt_factor, ex->rt.rt_factor >= 50 ? "met" : "MISSED");
+        fprintf(f, "| crane paper scene: peak memory < 64 MB | %.1f MB | %s |\n", ex->rt.peak_mb,
+                ex->rt.peak_mb < 64 ? "met" : "MISSED");
+        fprintf(f,
+                "| crane: bookkeeping outside residual, Jacobian and linear algebra < 10 %% | %.1f "
+                "%% | %s |\n",
+                100 * ex->rt.bookkeeping, ex->rt.bookkeeping < 0.1 ? "met" : "MISSED");
+    }
+    if (ex->have_scaling)
+        fprintf(f,
+                "| crane: time per step against unknowns, log-log slope <= 1.1 | %.3f (%.3f "
+                "against elements) | %s |\n",
+                ex->slope_n, ex->slope_el,
+                isnan(ex->slope_n)   ? "not measured"
+                : ex->slope_n <= 1.1 ? "met"
+                                     : "MISSED");
+    fprintf(f, "\n");
+    /* where the time goes where a ratio target is missed */
+    int said = 0;
+    for (int q = 0; q < 4; q++) {
+        int ci = -1;
+        for (int c = 0; c < nc; c++)
+            if (!strcmp(cases[c]->name, tprob[q])) ci = c;
+        if (ci < 0) continue;
+        for (int target = 4; target <= 6; target += 2) {
+            double r = ratio_at(rows, n, ci, target);
+            if (!isnan(r) && r <= 0.5) continue;
+            if (!said)
+                fprintf(f, "Where the time goes where a ratio target is missed (the runs "
+                           "nearest to the accuracy, profiled):\n\n");
+            said = 1;
+            fprintf(f, "- %s, scd %d: ", tprob[q], target);
+            describe_row(f, nearest(rows, n, ci, "bgdae-klu", target));
+            fprintf(f, "; against ");
+            describe_row(f, nearest(rows, n, ci, "ida-klu", target));
+            fprintf(f, ".\n");
+        }
+    }
+    if (said) fprintf(f, "\n");
+
+    /* ratio table */
+    fprintf(f, "## CPU time of bgdae-klu / ida-klu at equal accuracy\n\n"
+               "Interpolated in (scd, log CPU) on each solver's curve; '-' where a curve does not "
+               "reach the accuracy. Below 1: ours is faster.\n\n"
+               "| problem | n | scd 4 | scd 6 | scd 8 | fastest at scd 4 | fastest at scd 6 | "
+               "fastest at scd 8 |\n|---|---|---|---|---|---|---|---|\n");
+    for (int c = 0; c < nc; c++) {
+        fprintf(f, "| %s | %d |", cases[c]->name, cases[c]->n);
+        for (int target = 4; target <= 8; target += 2) {
+            char b[32];
+            fmt_ratio(b, sizeof b, ratio_at(rows, n, c, target));
+            fprintf(f, " %s |", b);
+        }
+        for (int target = 4; target <= 8; target += 2) {
+            double bestv = NAN;
+            const char *win = "-";
+            for (int s = 0; s < ns; s++) {
+                double lc = cpu_at(rows, n, c, sol[s], target);
+                if (!isnan(lc) && (isnan(bestv) || lc < bestv)) {
+                    bestv = lc;
+                    win = sol[s];
+                }
+            }
+            fprintf(f, " %s |", win);
+        }
+        fprintf(f, "\n");
+    }
+    fprintf(f, "\n");
+}
+
+static void write_report_problems(FILE *f, const row *rows, int n, bench_case **cases, int nc,
+                                  const char **sol, int ns)
+{
+    for (int c = 0; c < nc; c++) {
+        const bench_case *bc = cases[c];
+        fprintf(f, "## %s (n = %d): %s\n\nReference: %s.\n\n", bc->name, bc->n, bc->title,
+                bc->ref_source);
+        fprintf(f, "| solver | rtol | status | scd | mescd | scd2 | CPU s (median) | steps | "
+                   "rejected | Newton | Jacobians | factorizations | res/jac/lin/rest %% |\n"
+                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         for (int i = 0; i < n; i++) {
             const row *r = &rows[i];
-            if (r->p != p) continue;
-            fprintf(f, "| %s | %g | %s | %.2f | %.2f | %.2f | %.4g | %ld | %ld | %ld | %ld |\n",
+            if (r->ci != c) continue;
+            double w = r->r.wall > 0 ? r->r.wall : 1;
+            fprintf(f,
+                    "| %s | %g | %s | %.2f | %.2f | %.2f | %.4g | %ld | %ld | %ld | %ld | %ld | "
+                    "%.0f/%.0f/%.0f/%.0f |\n",
                     r->sd->name, r->rtol, r->r.status < 0 ? "FAIL" : "ok", r->sc.scd, r->sc.mescd,
-                    r->sc.scd_i2, r->r.cpu_min, r->r.steps, r->r.rejected, r->r.jac, r->r.fact);
+                    r->sc.scd_i2, r->cpu_med, r->r.steps, r->r.rejected, r->r.newton, r->r.jac,
+                    r->r.fact, 100 * r->r.t_res / w, 100 * r->r.t_jac / w, 100 * r->r.t_lin / w,
+                    100 * frac_other(&r->r));
         }
-        fprintf(f, "\nFastest at equal accuracy (interpolated on the scd axis):\n\n| scd |");
-        for (int s = 0; s < ns; s++) fprintf(f, " %s |", sol[s]);
+        fprintf(f,
+                "\nCPU time at equal accuracy (median, interpolated on the scd axis):\n\n| scd |");
+        for (int s = 0; s < ns; s++)
+            fprintf(f, " %s |", sol[s]);
         fprintf(f, " winner | bgdae-klu / ida-klu |\n|---|");
-        for (int s = 0; s <= ns + 1; s++) fprintf(f, "---|");
+        for (int s = 0; s <= ns + 1; s++)
+            fprintf(f, "---|");
         fprintf(f, "\n");
         for (int target = 4; target <= 8; target += 2) {
             fprintf(f, "| %d |", target);
             double bestv = NAN;
             const char *win = "-";
             for (int s = 0; s < ns; s++) {
-                double lc = cpu_at(rows, n, p, sol[s], target);
+                double lc = cpu_at(rows, n, c, sol[s], target);
                 if (isnan(lc))
                     fprintf(f, " - |");
                 else
@@ -420,206 +421,57 @@ static void write_report(FILE *f, const row *rows, int n, const bp_problem **pro
                     win = sol[s];
                 }
             }
-            double a = cpu_at(rows, n, p, "bgdae-klu", target),
-                   b = cpu_at(rows, n, p, "ida-klu", target);
-            if (isnan(a) || isnan(b))
-                fprintf(f, " %s | - |\n", win);
-            else
-                fprintf(f, " %s | %.2f |\n", win, pow(10, a - b));
+            char b[32];
+            fmt_ratio(b, sizeof b, ratio_at(rows, n, c, target));
+            fprintf(f, " %s | %s |\n", win, b);
         }
-        fprintf(f, "\n![work-precision %s](wp_%s.png)\n\n", p->name, p->name);
+        fprintf(f, "\n![work-precision %s](wp_%s.png)\n\n", bc->name, bc->name);
     }
     fprintf(f, "## Failures\n\n");
     int nf = 0;
     for (int i = 0; i < n; i++)
         if (rows[i].r.status < 0) {
-            fprintf(f, "- %s, %s, rtol %g: status %d: %s\n", rows[i].p->name, rows[i].sd->name,
-                    rows[i].rtol, rows[i].r.status, rows[i].r.msg);
+            fprintf(f, "- %s, %s, rtol %g: status %d at t = %.9g: %s\n", cases[rows[i].ci]->name,
+                    rows[i].sd->name, rows[i].rtol, rows[i].r.status, rows[i].r.t, rows[i].r.msg);
             nf++;
         }
     if (!nf) fprintf(f, "none\n");
-}
-
-/* -------------------------------------------------------- stability suite ---- */
-
-/* Brenan, Campbell and Petzold (1996), sec. 3.2 (a linear time-varying index-2 system of Gear
- * and Petzold): y1 + eta t y2 = g(t), y1' + eta t y2' + (1 + eta) y2 = 0; exact y2 = -g',
- * y1 = g + eta t g'. BDF is unstable on it for eta < -0.5. g = sin t here. */
-static double bcp_eta;
-static sp_csc *bcp_jy, *bcp_jyp;
-static int bcp_res(void *u, double t, const double *y, const double *yp, double *F)
-{
-    (void)u;
-    F[0] = y[0] + bcp_eta * t * y[1] - sin(t);
-    F[1] = yp[0] + bcp_eta * t * yp[1] + (1 + bcp_eta) * y[1];
-    return 0;
-}
-
-typedef struct stab_case {
-    const char *name;
-    const char *problem; /* from the collection, or NULL for the local BCP problem */
-    double rtol;
-    double eta;
-    int perturb;        /* start off the constraint manifold: the reference is then a run from
-                           the projected start at rtol 1e-11 */
-    int no_breakpoints;
-} stab_case;
-
-/* Integrates from (y0, yp0), after dae_consistent_init unless given_consistent; y at tend. */
-static int stab_run(const dae_problem *dp, const dae_options *o, double t0, double tend,
-                    const double *y0, const double *yp0, int given_consistent, double *y,
-                    dae_stats *st, char *msg, size_t msz)
-{
-    bg_error err = {0};
-    dae_solver *s = dae_create(dp, o, &err);
-    double yp[MAXN], t = t0;
-    int r = s ? dae_init(s, t0, y0, yp0) : -1;
-    if (r == 0 && !given_consistent) r = dae_consistent_init(s);
-    while (r == 0) {
-        r = dae_solve_to(s, tend, &t, y, yp);
-        if (r == DAE_TSTOP_RETURN || (r == 0 && t >= tend)) {
-            r = 0;
-            break;
-        }
-    }
-    if (r < 0) snprintf(msg, msz, "%s", s ? dae_get_error(s)->message : err.message);
-    if (s) *st = *dae_get_stats(s);
-    dae_free(&s);
-    return r;
-}
-
-static void stability(const char *dir, FILE *rep)
-{
-    static const stab_case cases[] = {
-        {"pendulum rtol 1e-2", "pendulum2", 1e-2, 0, 0, 0},
-        {"pendulum rtol 1e-12", "pendulum2", 1e-12, 0, 0, 0},
-        {"robertson rtol 1e-2", "robertson", 1e-2, 0, 0, 0},
-        {"robertson rtol 1e-12", "robertson", 1e-12, 0, 0, 0},
-        {"vdp eps 1e-6 rtol 1e-2", "vdp_scaled", 1e-2, 0, 0, 0},
-        {"vdp eps 1e-6 rtol 1e-12", "vdp_scaled", 1e-12, 0, 0, 0},
-        {"hires rtol 1e-12", "hires", 1e-12, 0, 0, 0},
-        {"ap102 rtol 1e-12", "ap102", 1e-12, 0, 0, 0},
-        {"pendulum off the manifold", "pendulum2", 1e-6, 0, 1, 0},
-        {"kinks without breakpoints", "kinks", 1e-6, 0, 0, 1},
-        {"kinks with breakpoints", "kinks", 1e-6, 0, 0, 0},
-        {"BCP index 2, eta = -0.3", NULL, 1e-6, -0.3, 0, 0},
-        {"BCP index 2, eta = -0.8 (BDF unstable)", NULL, 1e-6, -0.8, 0, 0},
-    };
-    char path[512];
-    snprintf(path, sizeof path, "%s/stability.csv", dir);
-    FILE *f = fopen(path, "w");
-    if (!f) return;
-    fprintf(f, "case,outcome,status,steps,highest_order,rejected,error_in_tolerances,drift,"
-               "message\n");
-    fprintf(rep, "## Stability suite\n\n| case | outcome | steps | highest order | rejected | "
-                 "error (tolerances) | drift |\n|---|---|---|---|---|---|---|\n");
-    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
-        const stab_case *sc = &cases[c];
-        dae_options o;
-        dae_options_default(&o);
-        o.rtol = sc->rtol;
-        o.max_steps = 2000000;
-        bp_instance in;
-        memset(&in, 0, sizeof in);
-        dae_problem dp = {0};
-        double y0[MAXN], yp0[MAXN], yref[MAXN], tend;
-        int n;
-        const bp_problem *p = sc->problem ? bp_find(sc->problem) : NULL;
-        if (p) {
-            if (bp_instance_init(&in, p) != 0) continue;
-            dp = in.dp;
-            n = p->n;
-            memcpy(y0, p->y0, (size_t)n * sizeof *y0);
-            memcpy(yp0, p->yp0, (size_t)n * sizeof *yp0);
-            if (sc->perturb)
-                for (int i = 0; i < n && i < 4; i++) y0[i] += 0.01 * (i + 1);
-            tend = p->tend;
-            bp_reference(p, yref);
-            o.atol = sc->rtol * atol_factor(p->name);
-            if (!sc->no_breakpoints) {
-                o.breakpoints = p->breakpoints;
-                o.nbreakpoints = p->nbreakpoints;
-            }
-        } else {
-            bcp_eta = sc->eta;
-            n = 2;
-            dp.n = 2;
-            dp.res = bcp_res; /* finite-difference Jacobian on dense patterns */
-            static const int bcp_kind[2] = {DAE_DIFF, DAE_ALG2}; /* y2 = -g' is index 2 */
-            static const double full[4] = {1, 1, 1, 1}, rowtwo[4] = {0, 1, 0, 1};
-            dp.kind = bcp_kind;
-            bcp_jy = sp_csc_from_dense(2, 2, full, 0.0);
-            bcp_jyp = sp_csc_from_dense(2, 2, rowtwo, 0.0); /* y1' and y2' in row 2 */
-            dp.jac_y_pattern = bcp_jy;
-            dp.jac_yp_pattern = bcp_jyp;
-            tend = 3.0;
-            /* consistent values from the exact solution: y2 = -cos t, y1 = sin t + eta t cos t
-             * (this system is not semi-explicit; dae_consistent_init does not apply) */
-            y0[1] = -1.0;
-            y0[0] = 0.0;
-            yp0[0] = 1.0 + bcp_eta;
-            yp0[1] = 0.0;
-            yref[1] = -cos(tend);
-            yref[0] = sin(tend) + bcp_eta * tend * cos(tend);
-            o.atol = sc->rtol * 1e-2;
-        }
-        o.has_t_stop = 1;
-        o.t_stop = tend;
-        double y[MAXN];
-        dae_stats stv = {0};
-        char msgb[BG_MESSAGE_SIZE] = "";
-        int r = stab_run(&dp, &o, p ? p->t0 : 0.0, tend, y0, yp0, !p, y, &stv, msgb,
-                         sizeof msgb);
-        if (sc->perturb && r == 0) { /* reference from the projected start, run tight */
-            dae_options ot = o;
-            ot.rtol = 1e-11;
-            ot.atol = 1e-11 * atol_factor(p->name);
-            dae_stats sr;
-            char m2[BG_MESSAGE_SIZE - 32];
-            if (stab_run(&dp, &ot, p->t0, tend, y0, yp0, 0, yref, &sr, m2, sizeof m2) != 0)
-                snprintf(msgb, sizeof msgb, "reference run failed: %s", m2);
-        }
-        double e = 0;
-        for (int i = 0; i < n; i++)
-            if (!p || p->kind[i] != DAE_ALG2)
-                e = fmax(e, fabs(y[i] - yref[i]) / (o.rtol * fabs(yref[i]) + o.atol));
-        const dae_stats *st = &stv;
-        int hi = 0;
-        for (int k = 1; k <= 5; k++)
-            if (st->steps_at_order[k]) hi = k;
-        /* the global error of a long stiff run may exceed the local tolerance by some hundreds */
-        const char *outcome = r < 0 ? "stopped with a diagnostic" : e <= 1000 ? "solved" : "WRONG";
-        const char *msg = msgb;
-        fprintf(f, "\"%s\",%s,%d,%ld,%d,%ld,%.3g,%.3g,\"%s\"\n", sc->name, outcome, r,
-                st->steps, hi, st->rejected_error, e, st->max_drift, msg);
-        fprintf(rep, "| %s | %s%s%s | %ld | %d | %ld | %.3g | %.3g |\n", sc->name, outcome,
-                r < 0 ? ": " : "", msg, st->steps, hi, st->rejected_error, e, st->max_drift);
-        bp_instance_free(&in);
-        sp_csc_free(&bcp_jy);
-        sp_csc_free(&bcp_jyp);
-    }
-    fclose(f);
+    fprintf(f, "\n");
 }
 
 /* -------------------------------------------------------------------- main ---- */
 
+static void usage_text(FILE *f)
+{
+    fprintf(f, "usage: bench [--problems LIST|none] [--solvers LIST] [--rtols LIST] [--repeat K]\n"
+               "             [--stability] [--quick] [--out DIR] [--crane-horizon T]\n"
+               "             [--crane-realtime K] [--scaling LIST|none] [--crane-scene FILE]\n"
+               "             [--stability-filter TEXT] [--strict] [--help]\n  solvers:");
+    for (int s = 0; s < bench_nsolvers; s++)
+        fprintf(f, " %s", bench_solvers[s].name);
+    fprintf(f, "\n  problems:");
+    for (int i = 0; i < bp_count(); i++)
+        fprintf(f, " %s", bp_get(i)->name);
+    for (int i = 0; i < bp_testset_count(); i++)
+        fprintf(f, " %s", bp_testset_get(i)->name);
+    fprintf(f,
+            " crane\n  --rtols: numbers in (0, 1); --repeat: 1..%d; --crane-horizon: seconds;\n"
+            "  --crane-realtime: runs of the full paper scene (0..99); --scaling: boom element\n"
+            "  counts 1..512; see the header of bench/bench.c\n",
+            MAXREP);
+}
+
 static int usage(const char *bad)
 {
-    fprintf(stderr,
-            "bench: %s\nusage: bench [--problems LIST] [--solvers LIST] [--rtols LIST] "
-            "[--repeat K] [--stability] [--quick] [--out DIR]\n  solvers:",
-            bad);
-    for (int s = 0; s < NSOLVERS; s++) fprintf(stderr, " %s", SOLVERS[s].name);
-    fprintf(stderr, "\n  problems:");
-    for (int i = 0; i < bp_count(); i++) fprintf(stderr, " %s", bp_get(i)->name);
-    fprintf(stderr, "\n");
+    fprintf(stderr, "bench: %s\n", bad);
+    usage_text(stderr);
     return 2;
 }
 
 static int mkdirs(const char *dir)
 {
     char buf[512];
-    snprintf(buf, sizeof buf, "%s", dir);
+    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) return -1;
     for (char *q = buf + 1; *q; q++)
         if (*q == '/') {
             *q = '\0';
@@ -629,69 +481,173 @@ static int mkdirs(const char *dir)
     return mkdir(buf, 0755) != 0 && errno != EEXIST ? -1 : 0;
 }
 
+/* A number in [lo, hi] from the whole of s; 0 if it is one. */
+static int parse_num(const char *s, double lo, double hi, double *v)
+{
+    char *end;
+    errno = 0;
+    *v = strtod(s, &end);
+    return *s && !*end && errno == 0 && isfinite(*v) && *v >= lo && *v <= hi ? 0 : -1;
+}
+
+static int parse_int(const char *s, int lo, int hi, int *v)
+{
+    char *end;
+    errno = 0;
+    long x = strtol(s, &end, 10);
+    if (!*s || *end || errno || x < lo || x > hi) return -1;
+    *v = (int)x;
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    char *plist = NULL, *slist = NULL, *rlist = NULL;
-    const char *out = "results/bench";
-    int K = 3, stab = 0, quick = 0;
+    char *plist = NULL, *slist = NULL, *rlist = NULL, *sclist = NULL;
+    const char *out = "results/bench", *scene_file = NULL, *stab_filter = NULL;
+    int K = 3, stab = 0, quick = 0, rt_K = -1, child = 0, have_K = 0, strict = 0;
+    double horizon = 0;
+    char m[512];
     for (int a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "--problems") && a + 1 < argc)
-            plist = argv[++a];
-        else if (!strcmp(argv[a], "--solvers") && a + 1 < argc)
-            slist = argv[++a];
-        else if (!strcmp(argv[a], "--rtols") && a + 1 < argc)
-            rlist = argv[++a];
-        else if (!strcmp(argv[a], "--repeat") && a + 1 < argc)
-            K = atoi(argv[++a]);
-        else if (!strcmp(argv[a], "--out") && a + 1 < argc)
-            out = argv[++a];
-        else if (!strcmp(argv[a], "--stability"))
+        const char *arg = argv[a];
+        int has_val = a + 1 < argc;
+        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+            usage_text(stdout);
+            return 0;
+        } else if (!strcmp(arg, "--stability")) {
             stab = 1;
-        else if (!strcmp(argv[a], "--quick"))
+        } else if (!strcmp(arg, "--quick")) {
             quick = 1;
-        else {
-            char m[256];
-            snprintf(m, sizeof m, "unknown or incomplete argument '%s'", argv[a]);
+        } else if (!strcmp(arg, "--strict")) {
+            strict = 1;
+        } else if (!strcmp(arg, "--realtime-child")) { /* internal: one real-time run */
+            child = 1;
+        } else if (!strcmp(arg, "--problems") || !strcmp(arg, "--solvers") ||
+                   !strcmp(arg, "--rtols") || !strcmp(arg, "--repeat") || !strcmp(arg, "--out") ||
+                   !strcmp(arg, "--crane-horizon") || !strcmp(arg, "--crane-realtime") ||
+                   !strcmp(arg, "--scaling") || !strcmp(arg, "--crane-scene") ||
+                   !strcmp(arg, "--stability-filter")) {
+            if (!has_val || !argv[a + 1][0] || !strncmp(argv[a + 1], "--", 2)) {
+                snprintf(m, sizeof m, "option %s needs a value", arg);
+                return usage(m);
+            }
+            char *v = argv[++a];
+            double d;
+            if (!strcmp(arg, "--problems"))
+                plist = v;
+            else if (!strcmp(arg, "--solvers"))
+                slist = v;
+            else if (!strcmp(arg, "--rtols"))
+                rlist = v;
+            else if (!strcmp(arg, "--out"))
+                out = v;
+            else if (!strcmp(arg, "--scaling"))
+                sclist = v;
+            else if (!strcmp(arg, "--crane-scene"))
+                scene_file = v;
+            else if (!strcmp(arg, "--stability-filter"))
+                stab_filter = v;
+            else if (!strcmp(arg, "--repeat")) {
+                if (parse_int(v, 1, MAXREP, &K) != 0) {
+                    snprintf(m, sizeof m, "--repeat takes a whole number from 1 to %d, not '%s'",
+                             MAXREP, v);
+                    return usage(m);
+                }
+                have_K = 1;
+            } else if (!strcmp(arg, "--crane-realtime")) {
+                if (parse_int(v, 0, 99, &rt_K) != 0) {
+                    snprintf(m, sizeof m, "--crane-realtime takes a number of runs 0..99, not '%s'",
+                             v);
+                    return usage(m);
+                }
+            } else if (parse_num(v, 1e-6, 1e4, &d) != 0) {
+                snprintf(m, sizeof m, "--crane-horizon takes a time in s in [1e-6, 1e4], not '%s'",
+                         v);
+                return usage(m);
+            } else {
+                horizon = d;
+            }
+        } else {
+            snprintf(m, sizeof m, "unknown argument '%s'", arg);
             return usage(m);
         }
     }
-    if (K < 1 || K > 64) return usage("--repeat takes a number from 1 to 64");
-    const bp_problem *probs[MAXPROB];
+
+    /* the crane's scene */
+    crane_scene scene;
+    crane_scene_default(&scene);
+    if (scene_file) {
+#ifdef BENCH_HAVE_SCENES
+        bg_error err = {0};
+        if (crane_scene_load(&scene, scene_file, &err) != BG_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            return 2;
+        }
+#else
+        return usage("--crane-scene: built without scene files (libinih-dev)");
+#endif
+    }
+    if (child) return bench_crane_realtime_child(&scene);
+
+    /* problems */
+    const char *pnames[MAXPROB];
     int np = 0;
     char *items[MAXPROB];
-    if (plist) {
+    if (plist && !strcmp(plist, "none")) {
+        /* no work-precision runs */
+    } else if (plist) {
         int k = split_list(plist, items, MAXPROB);
+        if (k < 0) return usage("--problems: too many names");
         for (int i = 0; i < k; i++) {
-            const bp_problem *p = bp_find(items[i]);
-            if (!p) {
-                char m[256];
+            if (strcmp(items[i], "crane") && !bp_find(items[i])) {
                 snprintf(m, sizeof m, "unknown problem '%s'", items[i]);
                 return usage(m);
             }
-            probs[np++] = p;
+            for (int j = 0; j < np; j++)
+                if (!strcmp(pnames[j], items[i])) {
+                    snprintf(m, sizeof m, "problem '%s' given twice", items[i]);
+                    return usage(m);
+                }
+            pnames[np++] = items[i];
         }
-    } else
+        if (np == 0) return usage("--problems: empty list");
+    } else {
         for (int i = 0; i < bp_count() && np < MAXPROB; i++)
-            if (bp_get(i)->yref || bp_get(i)->exact) probs[np++] = bp_get(i);
-    const solver_def *sols[MAXSOLVERS];
-    const char *solnames[MAXSOLVERS];
+            if (bp_get(i)->yref || bp_get(i)->exact) pnames[np++] = bp_get(i)->name;
+        for (int i = 0; i < bp_testset_count() && np < MAXPROB; i++)
+            pnames[np++] = bp_testset_get(i)->name;
+        pnames[np++] = "crane";
+    }
+    /* solvers */
+    const solver_def *sols[16];
+    const char *solnames[16];
     int ns = 0;
     if (slist) {
-        int k = split_list(slist, items, MAXSOLVERS);
+        int k = split_list(slist, items, 16);
+        if (k < 0) return usage("--solvers: too many names");
         for (int i = 0; i < k; i++) {
-            int found = -1;
-            for (int s = 0; s < NSOLVERS; s++)
-                if (!strcmp(items[i], SOLVERS[s].name)) found = s;
-            if (found < 0) {
-                char m[256];
+            const solver_def *sd = bench_solver_find(items[i]);
+            if (!sd) {
                 snprintf(m, sizeof m, "unknown solver '%s'", items[i]);
                 return usage(m);
             }
-            sols[ns++] = &SOLVERS[found];
+            for (int j = 0; j < ns; j++)
+                if (sols[j] == sd) {
+                    snprintf(m, sizeof m, "solver '%s' given twice", items[i]);
+                    return usage(m);
+                }
+            sols[ns++] = sd;
         }
+        if (ns == 0) return usage("--solvers: empty list");
     } else
-        for (int s = 0; s < NSOLVERS; s++) sols[ns++] = &SOLVERS[s];
+        for (int s = 0; s < bench_nsolvers; s++)
+            sols[ns++] = &bench_solvers[s];
 #ifndef BENCH_HAVE_IDA
+    if (!slist) { /* without IDA: ours only */
+        int k = 0;
+        for (int s = 0; s < ns; s++)
+            if (!sols[s]->ida) sols[k++] = sols[s];
+        ns = k;
+    }
     for (int s = 0; s < ns; s++)
         if (sols[s]->ida) {
             fprintf(stderr, "bench: built without SUNDIALS IDA; solver '%s' is not available\n",
@@ -699,88 +655,212 @@ int main(int argc, char **argv)
             return 2;
         }
 #endif
-    for (int s = 0; s < ns; s++) solnames[s] = sols[s]->name;
+    for (int s = 0; s < ns; s++)
+        solnames[s] = sols[s]->name;
+    /* tolerances */
     double rtols[MAXRTOL];
     int nr = 0;
     if (rlist) {
         int k = split_list(rlist, items, MAXRTOL);
+        if (k < 0) return usage("--rtols: too many tolerances (at most 16)");
         for (int i = 0; i < k; i++) {
-            char *end;
-            rtols[nr] = strtod(items[i], &end);
-            if (*end || !(rtols[nr] > 0 && rtols[nr] < 1)) {
-                char m[256];
+            if (parse_num(items[i], 1e-300, 1, &rtols[nr]) != 0 || rtols[nr] >= 1) {
                 snprintf(m, sizeof m, "--rtols: '%s' is not a number in (0, 1)", items[i]);
                 return usage(m);
             }
             nr++;
         }
+        if (nr == 0) return usage("--rtols: empty list");
     } else if (quick) {
         rtols[nr++] = 1e-4;
         rtols[nr++] = 1e-7;
     } else
-        for (int e = 4; e <= 10; e++) rtols[nr++] = pow(10.0, -e);
-    if (quick && K > 1) K = 1;
+        for (int e = 4; e <= 10; e++)
+            rtols[nr++] = pow(10.0, -e);
+    if (quick && !have_K) K = 1;
+    if (horizon <= 0) horizon = quick ? 0.1 : 1.0;
+    int rt_asked = rt_K > 0;
+    if (rt_K < 0) rt_K = quick ? 0 : 5;
+    int scale[MAXSCALE], nscale = 0;
+    if (sclist) {
+        if (strcmp(sclist, "none")) {
+            int k = split_list(sclist, items, MAXSCALE);
+            if (k < 0) return usage("--scaling: too many element counts (at most 16)");
+            for (int i = 0; i < k; i++)
+                if (parse_int(items[i], 1, 512, &scale[nscale++]) != 0) {
+                    snprintf(m, sizeof m, "--scaling: '%s' is not an element count 1..512",
+                             items[i]);
+                    return usage(m);
+                }
+        }
+    } else {
+        for (int e = 8; e <= (quick ? 64 : 512); e *= 2)
+            scale[nscale++] = e;
+    }
     if (mkdirs(out) != 0) {
         fprintf(stderr, "bench: cannot create the output folder '%s': %s\n", out, strerror(errno));
         return 1;
     }
-    row *rows = calloc((size_t)np * ns * nr + 1, sizeof *rows);
-    if (!rows) return 1;
-    int n = 0, failures = 0;
-    struct timespec wt0, wt1;
-    clock_gettime(CLOCK_MONOTONIC, &wt0);
+    /* a file that cannot be written fails now, not after the runs */
+    char path[600];
+    snprintf(path, sizeof path, "%s/report.md", out);
+    FILE *rep = fopen(path, "w");
+    if (!rep) {
+        fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno));
+        return 1;
+    }
+
+    /* the cases */
+    bench_case *cases[MAXPROB];
+    int nc = 0, failures = 0, io_errors = 0, crashed = 0, stab_bad = 0;
+    double wt0 = bench_wall_now();
+    char load_start[128];
+    load_average(load_start, sizeof load_start);
     for (int q = 0; q < np; q++) {
-        const bp_problem *p = probs[q];
-        double yref[MAXN];
-        bp_reference(p, yref);
-        for (int k = 0; k < nr; k++) {
-            double y0[MAXN], yp0[MAXN];
-            char msg[BG_MESSAGE_SIZE] = "";
-            if (consistent_start(p, rtols[k], y0, yp0, msg, sizeof msg) != 0) {
-                fprintf(stderr, "bench: %s: no consistent start at rtol %g: %s\n", p->name,
-                        rtols[k], msg);
-                memcpy(y0, p->y0, (size_t)p->n * sizeof *y0);
-                memcpy(yp0, p->yp0, (size_t)p->n * sizeof *yp0);
-            }
+        bench_case *bc = calloc(1, sizeof *bc);
+        char msg[BG_MESSAGE_SIZE] = "";
+        int r;
+        if (!bc) return 1;
+        if (!strcmp(pnames[q], "crane")) {
+            fprintf(stderr, "crane: building and settling the model\n");
+            r = bench_crane_case(bc, &scene, scene.static_start, horizon, "crane", msg, sizeof msg);
+        } else {
+            r = bench_case_from_problem(bc, bp_find(pnames[q]));
+            if (r) snprintf(msg, sizeof msg, "out of memory");
+        }
+        if (r != 0) {
+            fprintf(stderr, "bench: %s: %s\n", pnames[q], msg);
+            free(bc);
+            failures++;
+            continue;
+        }
+        if (bench_case_start(bc, 1e-10, msg, sizeof msg) != 0)
+            fprintf(stderr, "bench: %s: no consistent start (the given values are used): %s\n",
+                    bc->name, msg);
+        if (!strcmp(pnames[q], "crane")) {
+            fprintf(stderr, "crane: reference at rtol 1e-11\n");
+            if (bench_crane_reference(bc, 1e-11, 1, msg, sizeof msg) != 0)
+                fprintf(stderr, "bench: crane: %s\n", msg);
+            fprintf(stderr, "crane: reference: %s\n", bc->ref_source);
+        }
+        cases[nc++] = bc;
+    }
+    row *rows = calloc((size_t)nc * (size_t)ns * (size_t)nr + 1, sizeof *rows);
+    if (!rows) return 1;
+    int n = 0;
+    double cpu[MAXREP + 1];
+    double rtol_max = 0;
+    for (int k = 0; k < nr; k++)
+        rtol_max = fmax(rtol_max, rtols[k]);
+    for (int c = 0; c < nc; c++) {
+        bench_case *bc = cases[c];
+        for (int k = 0; k < nr; k++)
             for (int s = 0; s < ns; s++) {
+                /* dense LU on a large model (the crane): O(n^3) per factorization, shown at the
+                 * loosest tolerance only */
+                if (sols[s]->ls == LS_DENSE && bc->n > DENSE_MAX_N && rtols[k] != rtol_max)
+                    continue;
                 row *r = &rows[n++];
-                r->p = p;
+                r->ci = c;
                 r->sd = sols[s];
                 r->rtol = rtols[k];
-                r->atol = rtols[k] * atol_factor(p->name);
-                timed(p, sols[s], r->rtol, r->atol, y0, yp0, K, &r->r);
-                bp_score_compute(p, r->r.y, yref, r->rtol, r->atol, &r->sc);
+                bench_case_atol(bc, r->rtol, &r->atol, NULL);
+                if (bench_run_alloc(&r->r, bc->n) != 0) return 1;
+                run_opts ro = {0};
+                ro.rtol = r->rtol;
+                int m2 = bench_run_timed(bc, sols[s], &ro, bc->large ? 1 : K, &r->r, cpu);
+                r->cpu_min = cpu[0];
+                r->cpu_med = bench_median(cpu, m2);
+                if (r->r.status >= 0 && bc->yref)
+                    bc->score(bc, r->r.y, r->r.yp, r->rtol, r->atol, &r->sc);
+                else
+                    r->sc.scd = r->sc.mescd = r->sc.scd_i2 = r->sc.mescd_i2 = NAN;
+                bench_run_free(&r->r);
                 if (r->r.status < 0) failures += !sols[s]->ida;
-                fprintf(stderr, "%-12s %-17s rtol %-6g %s scd %6.2f  cpu %.4g s  steps %ld\n",
-                        p->name, sols[s]->name, r->rtol, r->r.status < 0 ? "FAIL" : "ok  ",
-                        r->sc.scd, r->r.cpu_min, r->r.steps);
+                fprintf(stderr, "%-10s %-18s rtol %-6g %s scd %6.2f  cpu %.4g s  steps %ld%s%s\n",
+                        bc->name, sols[s]->name, r->rtol, r->r.status < 0 ? "FAIL" : "ok  ",
+                        r->sc.scd, r->cpu_med, r->r.steps, r->r.status < 0 ? ": " : "",
+                        r->r.status < 0 ? r->r.msg : "");
             }
-        }
     }
-    char path[512];
+    double wall = bench_wall_now() - wt0;
+
     snprintf(path, sizeof path, "%s/work_precision.csv", out);
     FILE *f = fopen(path, "w");
     if (!f) {
         fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno));
-        free(rows);
         return 1;
     }
-    write_csv(f, rows, n);
-    fclose(f);
-    for (int q = 0; q < np; q++) plot(out, probs[q], rows, n, solnames, ns);
-    snprintf(path, sizeof path, "%s/report.md", out);
-    f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno));
-        free(rows);
+    write_csv(f, rows, n, cases);
+    if (fclose(f) != 0) {
+        fprintf(stderr, "bench: cannot write %s\n", path);
         return 1;
     }
-    clock_gettime(CLOCK_MONOTONIC, &wt1);
-    write_report(f, rows, n, probs, np, solnames, ns,
-                 (double)(wt1.tv_sec - wt0.tv_sec) + 1e-9 * (double)(wt1.tv_nsec - wt0.tv_nsec));
-    if (stab) stability(out, f);
-    fclose(f);
+    for (int c = 0; c < nc; c++)
+        plot(out, c, cases[c]->name, rows, n, solnames, ns);
+
+    /* the crane's scaling series and real-time check, into a temporary text for the report */
+    extras ex;
+    memset(&ex, 0, sizeof ex);
+    snprintf(ex.load_start, sizeof ex.load_start, "%s", load_start);
+    /* with the crane among the problems, or when asked for explicitly */
+    int want_crane = 0;
+    for (int q = 0; q < np; q++)
+        want_crane |= !strcmp(pnames[q], "crane");
+    FILE *tail = tmpfile();
+    if (!tail) {
+        fprintf(stderr, "bench: no temporary file: %s\n", strerror(errno));
+        return 1;
+    }
+    if ((want_crane || sclist) && nscale > 0) {
+        failures += bench_crane_scaling(out, tail, scale, nscale, 10, quick ? 60 : 200, 1.0,
+                                        quick ? 3 : 20, &ex.slope_n, &ex.slope_el);
+        ex.have_scaling = 1;
+    }
+    if ((want_crane || rt_asked) && rt_K > 0) {
+        char exe[4096];
+        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        if (len <= 0) {
+            fprintf(stderr, "bench: cannot find this program for the real-time runs\n");
+            failures++;
+        } else {
+            exe[len] = '\0';
+            failures += bench_crane_realtime(exe, scene_file, &scene, rt_K, out, tail, &ex.rt);
+            ex.have_rt = ex.rt.runs > 0;
+        }
+    }
+    if (stab) {
+        stab_config sc;
+        sc.quick = quick;
+        sc.crane_horizon = quick ? 0.05 : 0.25;
+        sc.time_limit = quick ? 60 : 600;
+        sc.scene = &scene;
+        sc.filter = stab_filter;
+        stab_bad = bench_stability(out, tail, &sc, &crashed);
+    }
+
+    load_average(ex.load_end, sizeof ex.load_end);
+    write_report_head(rep, rows, n, cases, nc, solnames, ns, wall, K, &ex);
+    write_report_problems(rep, rows, n, cases, nc, solnames, ns);
+    rewind(tail);
+    char buf[8192];
+    size_t got;
+    while ((got = fread(buf, 1, sizeof buf, tail)) > 0)
+        fwrite(buf, 1, got, rep);
+    fclose(tail);
+    int bad = ferror(rep);
+    if (fclose(rep) != 0 || bad) {
+        fprintf(stderr, "bench: cannot write %s/report.md\n", out);
+        io_errors++;
+    }
+    for (int c = 0; c < nc; c++) {
+        bench_case_free(cases[c]);
+        free(cases[c]);
+    }
     free(rows);
-    printf("bench: %d runs, %d failures of our solver; results in %s\n", n, failures, out);
-    return failures ? 1 : 0;
+    printf("bench: %d runs; %d failed runs of our solver or the crane's; %d stability cases wrong, "
+           "crashed, at the time limit or not set up (%d crashed); results in %s\n",
+           n, failures, stab_bad, crashed, out);
+    if (io_errors || crashed) return 1;
+    return strict && (failures || stab_bad) ? 1 : 0;
 }

@@ -16,6 +16,13 @@ double bench_cpu_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+double bench_wall_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 static int cmpd(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -29,11 +36,39 @@ double bench_median(double *v, int n)
 }
 
 #ifdef BENCH_HAVE_IDA
+int bench_ida_ctx_init(bench_ida_ctx *c, const dae_problem *dp)
+{
+    c->dp = dp;
+    c->jy = c->jyp = NULL;
+    c->u = NULL;
+    c->profile = 0;
+    c->t_res = c->t_jac = c->t_lsetup = c->t_lsolve = 0;
+    if (!dp->jac || !dp->jac_y_pattern || !dp->jac_yp_pattern) return BG_ERR_ARGUMENT;
+    c->jy = sp_csc_copy(dp->jac_y_pattern);
+    c->jyp = sp_csc_copy(dp->jac_yp_pattern);
+    c->u = c->jy && c->jyp ? sp_union_create(c->jy, c->jyp) : NULL;
+    if (!c->u) {
+        bench_ida_ctx_free(c);
+        return BG_ERR_MEMORY;
+    }
+    return 0;
+}
+
+void bench_ida_ctx_free(bench_ida_ctx *c)
+{
+    sp_union_free(&c->u);
+    sp_csc_free(&c->jy);
+    sp_csc_free(&c->jyp);
+}
+
 int bench_ida_res(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *user)
 {
     bench_ida_ctx *c = user;
-    return c->p->res(NULL, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp),
-                     N_VGetArrayPointer(rr));
+    double t0 = c->profile ? bench_wall_now() : 0;
+    int r = c->dp->res(c->dp->user, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp),
+                       N_VGetArrayPointer(rr));
+    if (c->profile) c->t_res += bench_wall_now() - t0;
+    return r;
 }
 
 int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
@@ -41,8 +76,13 @@ int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr
 {
     (void)rr, (void)t1, (void)t2, (void)t3;
     bench_ida_ctx *c = user;
-    int r = c->p->jac(NULL, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp), c->jy, c->jyp);
-    if (r != 0) return r;
+    double w0 = c->profile ? bench_wall_now() : 0;
+    int r =
+        c->dp->jac(c->dp->user, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp), c->jy, c->jyp);
+    if (r != 0) {
+        if (c->profile) c->t_jac += bench_wall_now() - w0;
+        return r;
+    }
     sp_union_combine(c->u, c->jy, 1.0, c->jyp, cj);
     const sp_csc *M = c->u->M;
     if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
@@ -60,6 +100,37 @@ int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr
             for (int k = M->colptr[j]; k < M->colptr[j + 1]; k++)
                 SM_ELEMENT_D(J, M->rowind[k], j) = M->val[k];
     }
+    if (c->profile) c->t_jac += bench_wall_now() - w0;
     return 0;
+}
+
+/* The wrapped linear solver's original operations and the context that receives the times. */
+static bench_ida_ctx *ls_ctx;
+static int (*ls_setup0)(SUNLinearSolver, SUNMatrix);
+static int (*ls_solve0)(SUNLinearSolver, SUNMatrix, N_Vector, N_Vector, realtype);
+
+static int ls_setup_timed(SUNLinearSolver S, SUNMatrix A)
+{
+    double t0 = bench_wall_now();
+    int r = ls_setup0(S, A);
+    ls_ctx->t_lsetup += bench_wall_now() - t0;
+    return r;
+}
+
+static int ls_solve_timed(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol)
+{
+    double t0 = bench_wall_now();
+    int r = ls_solve0(S, A, x, b, tol);
+    ls_ctx->t_lsolve += bench_wall_now() - t0;
+    return r;
+}
+
+void bench_ida_profile_ls(SUNLinearSolver LS, bench_ida_ctx *c)
+{
+    ls_ctx = c;
+    ls_setup0 = LS->ops->setup;
+    ls_solve0 = LS->ops->solve;
+    LS->ops->setup = ls_setup_timed;
+    LS->ops->solve = ls_solve_timed;
 }
 #endif

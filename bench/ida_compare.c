@@ -82,9 +82,11 @@ static int run_ida(const bp_problem *p, double rtol, double atol, int suppress, 
     int n = p->n, r = -1;
     SUNContext ctx = NULL;
     if (SUNContext_Create(NULL, &ctx) != 0) return -1;
-    bench_ida_ctx c = {p, NULL, NULL, NULL};
-    p->patterns(&c.jy, &c.jyp);
-    c.u = c.jy && c.jyp ? sp_union_create(c.jy, c.jyp) : NULL;
+    bp_instance in;
+    memset(&in, 0, sizeof in);
+    bench_ida_ctx c;
+    memset(&c, 0, sizeof c);
+    if (bp_instance_init(&in, p) == 0) bench_ida_ctx_init(&c, &in.dp);
     N_Vector yy = N_VNew_Serial(n, ctx), yp = N_VNew_Serial(n, ctx), id = N_VNew_Serial(n, ctx);
     SUNMatrix A = SUNDenseMatrix(n, n, ctx);
     SUNLinearSolver LS = SUNLinSol_Dense(yy, A, ctx);
@@ -131,9 +133,8 @@ done:
     N_VDestroy(yy);
     N_VDestroy(yp);
     N_VDestroy(id);
-    sp_union_free(&c.u);
-    sp_csc_free(&c.jy);
-    sp_csc_free(&c.jyp);
+    bench_ida_ctx_free(&c);
+    bp_instance_free(&in);
     SUNContext_Free(&ctx);
     return r;
 }

@@ -1,0 +1,125 @@
+/* What the benchmark harness runs: a case (a problem of the collection, bench/problems.h, or the
+ * crane, bench_crane.h) with its consistent start, tolerances, reference and accuracy measure, and
+ * the solvers (ours with each index-2 policy on KLU and on dense LU, SUNDIALS IDA on KLU and on
+ * dense LU) that integrate it from the same start with the same residual and Jacobian code.
+ *
+ * IDA is configured as its guide recommends for index 2: the id vector marks the differential
+ * unknowns, the algebraic ones are suppressed from the error test (IDASetSuppressAlg), the
+ * analytic Jacobian dF/dy + cj dF/dy' comes from the problem's callbacks; breakpoints are
+ * crossed by stopping there and re-initialising (IDAReInit; the counters are summed). Ours gets
+ * the breakpoints as options and, where the case asks (the crane, as crane/crane.c does),
+ * exclude_alg: index-1 algebraic unknowns out of the error test, which is what IDA's
+ * suppression does. */
+#ifndef BG_BENCH_CASE_H
+#define BG_BENCH_CASE_H
+
+#include "bg_dae.h"
+#include "problems.h"
+
+typedef struct bench_case bench_case;
+
+/* Accuracy of (y, yp) at tend against the case's reference (rtol, atol: the run's tolerances,
+ * atol the scalar of mescd). */
+typedef void (*bench_score_fn)(const bench_case *bc, const double *y, const double *yp, double rtol,
+                               double atol, bp_score *s);
+/* Constraint drift of a state (crane: hinge distance), >= 0. */
+typedef double (*bench_drift_fn)(const bench_case *bc, double t, const double *y, const double *yp);
+
+struct bench_case {
+    char name[64], title[200];
+    char ref_source[400]; /* where the reference comes from, for the report */
+    int n;
+    double t0, tend;
+    dae_problem dp;      /* residual, Jacobian, patterns, kinds, names, user */
+    double *y0, *yp0;    /* the start as given (owned) */
+    double *ys, *yps;    /* the consistent start shared by every solver (bench_case_start) */
+    double *breakpoints; /* inside (t0, tend), ascending (owned), nbreakpoints of them */
+    int nbreakpoints;
+    int exclude_alg; /* ours: index-1 algebraic unknowns out of the error test too */
+    /* tolerances: atol = atol_factor * rtol, or (atol_fn) a scalar and a vector */
+    double atol_factor;
+    void (*atol_fn)(const bench_case *bc, double rtol, double *atol, double *atolv);
+    double *yref, *ypref; /* reference at tend (owned); NULL: none */
+    bench_score_fn score;
+    bench_drift_fn drift;
+    int large;            /* long runs: the profiled first run counts as a timing sample */
+    const bp_problem *bp; /* the collection's problem, or NULL */
+    bp_instance in;
+    void *ext; /* the crane (bench_crane.c) */
+    void (*ext_free)(void *ext);
+};
+
+/* Wraps a problem of the collection (reference from bp_reference, scoring bp_score_compute;
+ * atol = factor * rtol with the factor of the problem, pump: the test set's tolerance vector).
+ * 0 or BG_ERR_MEMORY. */
+int bench_case_from_problem(bench_case *bc, const bp_problem *p);
+void bench_case_free(bench_case *bc);
+
+/* The run's absolute tolerances: *atol the scalar (for mescd and when atolv is not used),
+ * atolv (n values) filled when the case has a vector (returns 1), else 0. */
+int bench_case_atol(const bench_case *bc, double rtol, double *atol, double *atolv);
+
+/* Consistent start (ys, yps) by dae_consistent_init at rtol, with the case's options. 0, or a
+ * negative status with the message in msg (ys, yps are then the given start). */
+int bench_case_start(bench_case *bc, double rtol, char *msg, size_t msz);
+
+/* ------------------------------------------------------------------ solvers ---- */
+
+typedef struct solver_def {
+    const char *name;
+    int ida; /* 0: ours, 1: SUNDIALS IDA */
+    ls_kind ls;
+    dae_index2_policy pol;
+} solver_def;
+
+extern const solver_def bench_solvers[];
+extern const int bench_nsolvers;
+const solver_def *bench_solver_find(const char *name);
+
+/* One integration. */
+typedef struct run_opts {
+    double rtol;
+    double tend;            /* 0: the case's */
+    const double *y0, *yp0; /* NULL: the case's consistent start */
+    int consistent_init;    /* ours: dae_consistent_init first (a start off the manifold) */
+    int no_breakpoints;     /* run over the breakpoints without stopping there */
+    int profile;            /* time the residual, Jacobian and linear solver */
+    int track_drift;        /* ours: step by step, maximum of bc->drift (or the solver's) */
+    long max_steps;         /* 0: 1 000 000 */
+    double h_max;           /* ours: 0: none */
+} run_opts;
+
+typedef struct run_out {
+    int status; /* 0, or < 0 (our dae_return / IDA's flag) */
+    char msg[BG_MESSAGE_SIZE];
+    double t;       /* time reached */
+    double *y, *yp; /* n values at t (allocated by bench_run_alloc) */
+    long steps, rejected, newton, conv_fail, res, jac, fact, solves;
+    int max_order;
+    double cpu;                 /* CPU seconds of the integration (creation to end) */
+    double wall;                /* wall seconds, same span */
+    double t_res, t_jac, t_lin; /* wall seconds in the callbacks and linear algebra (profile) */
+    double drift; /* largest constraint drift seen (track_drift), else the solver's max_drift */
+} run_out;
+
+int bench_run_alloc(run_out *o, int n);
+void bench_run_free(run_out *o);
+/* Runs solver sd on the case; status in out. */
+void bench_run(const bench_case *bc, const solver_def *sd, const run_opts *ro, run_out *out);
+
+/* Timing: the first run is profiled (callbacks and linear solver timed); it is a warm-up that is
+ * not counted unless the case is large (then it counts as the first of K samples). K timed runs
+ * in all: CPU times into cpu[0..K-1] (ascending), count returned. A failing run ends the series.
+ * out holds the last run, with the profile of the first. */
+/* Timing wrappers of a problem's residual and Jacobian: *out = *in with its callbacks timed
+ * (wall clock) into p; out->user is p. */
+typedef struct bench_prof {
+    const dae_problem *in;
+    double t_res, t_jac;
+} bench_prof;
+void bench_prof_wrap(bench_prof *p, const dae_problem *in, dae_problem *out);
+
+int bench_run_timed(const bench_case *bc, const solver_def *sd, const run_opts *ro, int K,
+                    run_out *out, double *cpu);
+
+#endif

@@ -1,0 +1,661 @@
+/* The crane in the benchmark harness (bench_crane.h). */
+#include "bench_crane.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/time.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "bench_util.h"
+
+/* Output column of crane_output_names whose name is key followed by " [" or its end; -1 if none. */
+static int out_col(const char *key)
+{
+    size_t n = strlen(key);
+    for (int i = 0; i < CRANE_NOUT; i++) {
+        const char *nm = crane_output_names[i];
+        if (nm && !strncmp(nm, key, n) && (nm[n] == '\0' || nm[n] == ' ')) return i;
+    }
+    return -1;
+}
+
+/* The outputs that enter the crane's scd. */
+static const char *const SCORED[] = {"theta",  "omega",  "tip_x",      "tip_y",  "tip_z", "load_x",
+                                     "load_y", "load_z", "rope_force", "p_high", "p_low"};
+#define NSCORED ((int)(sizeof SCORED / sizeof *SCORED))
+
+static void free_crane(void *ext)
+{
+    crane *c = ext;
+    crane_free(&c);
+}
+
+bgr_model *bench_crane_model(const bench_case *bc)
+{
+    return crane_model((crane *)bc->ext);
+}
+
+static double digits(double e)
+{
+    return e > 0 ? -log10(e) : (e == 0 ? INFINITY : NAN);
+}
+
+static void crane_score(const bench_case *bc, const double *y, const double *yp, double rtol,
+                        double atol, bp_score *s)
+{
+    s->scd = s->mescd = s->scd_i2 = s->mescd_i2 = NAN;
+    s->worst = -1;
+    if (!bc->yref) return;
+    const crane *c = bc->ext;
+    double o[CRANE_NOUT], oref[CRANE_NOUT];
+    crane_outputs(c, bc->tend, y, yp, o);
+    crane_outputs(c, bc->tend, bc->yref, bc->ypref, oref);
+    double e = -1, em = -1, e2 = -1, em2 = -1, big2 = 0, ratio = atol / rtol;
+    for (int k = 0; k < NSCORED; k++) {
+        int j = out_col(SCORED[k]);
+        if (j < 0 || !isfinite(oref[j]) || oref[j] == 0) continue;
+        double r = fabs(o[j] - oref[j]) / fabs(oref[j]);
+        if (!(r <= e)) e = r; /* NaN wins */
+    }
+    const int *kind = bc->dp.kind;
+    for (int i = 0; i < bc->n; i++)
+        if (kind[i] == DAE_ALG2) big2 = fmax(big2, fabs(bc->yref[i]));
+    for (int i = 0; i < bc->n; i++) {
+        double d = fabs(y[i] - bc->yref[i]), a = fabs(bc->yref[i]);
+        if (kind[i] == DAE_DIFF) {
+            double r = d / (ratio + a);
+            if (!(r <= em)) em = r;
+        } else if (kind[i] == DAE_ALG2) {
+            double r = d / (ratio + a);
+            if (!(r <= em2)) em2 = r;
+            if (a > 1e-6 * big2) {
+                r = d / a;
+                if (!(r <= e2)) e2 = r;
+            }
+        }
+    }
+    if (e != -1) s->scd = digits(e);
+    if (em != -1) s->mescd = digits(em);
+    if (e2 != -1) s->scd_i2 = digits(e2);
+    if (em2 != -1) s->mescd_i2 = digits(em2);
+}
+
+static double crane_drift(const bench_case *bc, double t, const double *y, const double *yp)
+{
+    double o[CRANE_NOUT];
+    int j = out_col("constraint_drift");
+    if (j < 0) return 0;
+    crane_outputs(bc->ext, t, y, yp, o);
+    return o[j];
+}
+
+int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double tend,
+                     const char *name, char *msg, size_t msz)
+{
+    memset(bc, 0, sizeof *bc);
+    crane_scene s = *s0;
+    s.t_end = tend;
+    if (s.output_step > tend) s.output_step = tend;
+    bg_error err = {0};
+    crane *c = crane_build(&s, &err);
+    if (!c) {
+        snprintf(msg, msz, "building the crane: %s", err.message);
+        return err.status < 0 ? err.status : BG_ERR_ARGUMENT;
+    }
+    bc->ext = c;
+    bc->ext_free = free_crane;
+    if (settle) {
+        bg_error_clear(&err);
+        int r = crane_settle(c, &err);
+        if (r != BG_OK) {
+            snprintf(msg, msz, "settling the crane: %s", err.message);
+            bench_case_free(bc);
+            return r < 0 ? r : BG_ERR_ARGUMENT;
+        }
+    }
+    bgr_model *m = crane_model(c);
+    int r = bgr_dae_problem(m, &bc->dp);
+    if (r != BG_OK) {
+        snprintf(msg, msz, "crane problem: %s", bgr_model_error(m)->message);
+        bench_case_free(bc);
+        return r < 0 ? r : BG_ERR_ARGUMENT;
+    }
+    int n = bc->n = bc->dp.n;
+    snprintf(bc->name, sizeof bc->name, "%s", name);
+    bgr_stats st;
+    bgr_get_stats(m, &st);
+    snprintf(bc->title, sizeof bc->title,
+             "rotary crane, scene %s, %d boom elements, %s start, [0, %g] s (%d differential, %d "
+             "index-1, %d index-2 unknowns)",
+             s.name, s.boom_elements, settle ? "static-equilibrium" : "geometric", tend,
+             st.differential, st.algebraic, st.index2);
+    snprintf(bc->ref_source, sizeof bc->ref_source, "none");
+    bc->t0 = 0;
+    bc->tend = tend;
+    size_t sz = (size_t)(n > 0 ? n : 1) * sizeof(double);
+    bc->y0 = malloc(sz);
+    bc->yp0 = malloc(sz);
+    bc->ys = malloc(sz);
+    bc->yps = malloc(sz);
+    double bk[256];
+    int nb = crane_breakpoints(c, bk, 256);
+    if (nb > 256) nb = 256;
+    bc->breakpoints = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *bc->breakpoints);
+    if (!bc->y0 || !bc->yp0 || !bc->ys || !bc->yps || !bc->breakpoints) {
+        snprintf(msg, msz, "out of memory");
+        bench_case_free(bc);
+        return BG_ERR_MEMORY;
+    }
+    for (int i = 0; i < nb; i++)
+        if (bk[i] > 0 && bk[i] < tend) bc->breakpoints[bc->nbreakpoints++] = bk[i];
+    memcpy(bc->y0, bgr_y0(m), sz);
+    memcpy(bc->yp0, bgr_yp0(m), sz);
+    memcpy(bc->ys, bc->y0, sz);
+    memcpy(bc->yps, bc->yp0, sz);
+    bc->exclude_alg = 1;
+    bc->atol_factor = s.rtol > 0 ? s.atol / s.rtol : 1.0;
+    bc->score = crane_score;
+    bc->drift = crane_drift;
+    bc->large = 1;
+    return 0;
+}
+
+int bench_crane_reference(bench_case *bc, double rtol_ref, int check_ida, char *msg, size_t msz)
+{
+    run_out a, b;
+    if (bench_run_alloc(&a, bc->n) || bench_run_alloc(&b, bc->n)) {
+        bench_run_free(&a);
+        snprintf(msg, msz, "out of memory");
+        return BG_ERR_MEMORY;
+    }
+    run_opts ro = {0};
+    ro.rtol = rtol_ref;
+    ro.max_steps = 5000000;
+    bench_run(bc, bench_solver_find("bgdae-klu"), &ro, &a);
+    int r = a.status;
+    if (r < 0) {
+        snprintf(msg, msz, "reference run (bgdae-klu, rtol %g) failed: %s", rtol_ref, a.msg);
+        snprintf(bc->ref_source, sizeof bc->ref_source, "none: %s", msg);
+        goto done;
+    }
+    free(bc->yref);
+    free(bc->ypref);
+    bc->yref = a.y;
+    bc->ypref = a.yp;
+    a.y = a.yp = NULL;
+    double atol = bc->atol_factor * rtol_ref;
+    int len = snprintf(bc->ref_source, sizeof bc->ref_source,
+                       "bgdae-klu at rtol %g, atol %g (%ld steps, %.1f s)", rtol_ref, atol, a.steps,
+                       a.cpu);
+    const solver_def *ida = bench_solver_find("ida-klu");
+#ifndef BENCH_HAVE_IDA
+    check_ida = 0;
+#endif
+    if (check_ida && ida) {
+        bench_run(bc, ida, &ro, &b);
+        if (b.status < 0) {
+            snprintf(bc->ref_source + len, sizeof bc->ref_source - (size_t)len,
+                     "; IDA-KLU at the same tolerance failed: %.200s", b.msg);
+        } else {
+            bp_score sc;
+            bc->score(bc, b.y, b.yp, rtol_ref, atol, &sc);
+            snprintf(bc->ref_source + len, sizeof bc->ref_source - (size_t)len,
+                     "; IDA-KLU at the same tolerance (%ld steps) agrees to scd %.2f, mescd "
+                     "%.2f, index-2 scd %.2f",
+                     b.steps, sc.scd, sc.mescd, sc.scd_i2);
+        }
+    } else {
+        snprintf(bc->ref_source + len, sizeof bc->ref_source - (size_t)len,
+                 "; not checked against IDA in this run");
+    }
+done:
+    bench_run_free(&a);
+    bench_run_free(&b);
+    return r;
+}
+
+/* ------------------------------------------------------------------- scaling ---- */
+
+static double slope(const double *x, const double *y, int n)
+{
+    if (n < 2) return NAN;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int i = 0; i < n; i++) {
+        double lx = log(x[i]), ly = log(y[i]);
+        sx += lx;
+        sy += ly;
+        sxx += lx * lx;
+        sxy += lx * ly;
+    }
+    double d = n * sxx - sx * sx;
+    return d != 0 ? (n * sxy - sx * sy) / d : NAN;
+}
+
+int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, int skip, int steps,
+                        double t_max, double cpu_cap, double *slope_n, double *slope_el)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/scaling.csv", dir);
+    FILE *f = fopen(path, "w");
+    if (f)
+        fprintf(f, "elements,unknowns,status,t_reached,steps_total,steps_timed,newton_per_step,"
+                   "jac_per_step,fact_per_step,cpu_total_s,cpu_per_step_s,wall_per_step_s,"
+                   "res_per_step_s,jac_per_step_s,linalg_per_step_s,other_per_step_s,message\n");
+    fprintf(rep, "## Crane scaling series\n\n");
+    fprintf(rep,
+            "Paper scene without the static start (the boom's geometric shape: a violent start, "
+            "small steps), bgdae-klu at rtol = atol = 1e-6: %d warm-up steps, then %d timed "
+            "steps (fewer when they take more than %g s of CPU, at least 5; at most to t = %g "
+            "s). CPU per step is what the slope is fitted to; the parts are shares of the wall "
+            "time (the machine is shared: wall exceeds CPU when other work runs), residual and "
+            "Jacobian of the callbacks, linear algebra by the solver's own timer (assembly of "
+            "the Newton matrix, KLU factorization and solves), other = the rest (the "
+            "integrator's own work). scaling.csv has the rows, the parts in wall seconds.\n\n",
+            skip, steps, cpu_cap, t_max);
+    fprintf(rep, "| elements | unknowns | steps timed | Newton/step | Jacobians/step | "
+                 "factorizations/step | CPU/step | wall/step | residual %% | Jacobian %% | linear "
+                 "algebra %% | other %% | total CPU |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    double *xn = malloc((size_t)nel * sizeof *xn), *xe = malloc((size_t)nel * sizeof *xe);
+    double *yt = malloc((size_t)nel * sizeof *yt);
+    double *part[4]; /* residual, Jacobian, linear algebra, other: CPU per step estimated as
+                        their share of the wall time times the CPU per step */
+    for (int k = 0; k < 4; k++)
+        part[k] = malloc((size_t)nel * sizeof *part[k]);
+    int np = 0, fails = 0;
+    for (int e = 0; e < nel && xn && xe && yt && part[0] && part[1] && part[2] && part[3]; e++) {
+        crane_scene s;
+        crane_scene_default(&s);
+        s.boom_elements = elems[e];
+        s.static_start = 0;
+        bench_case bc;
+        char msg[BG_MESSAGE_SIZE] = "";
+        double *y = NULL, *yp = NULL;
+        dae_solver *sv = NULL;
+        int r = bench_crane_case(&bc, &s, 0, t_max, "crane", msg, sizeof msg);
+        long n_st = 0, n_nt = 0, n_jt = 0, n_ft = 0, tot_steps = 0;
+        double cpu_tot = 0, cpu_t = 0, wall_t = 0, tr = 0, tj = 0, tl = 0, t = 0;
+        if (r == 0) r = bench_case_start(&bc, 1e-6, msg, sizeof msg);
+        if (r == 0) {
+            bench_prof pw;
+            dae_problem dp;
+            bench_prof_wrap(&pw, &bc.dp, &dp);
+            dae_options o;
+            dae_options_default(&o);
+            o.rtol = o.atol = 1e-6;
+            o.exclude_alg = 1;
+            o.has_t_stop = 1;
+            o.t_stop = t_max;
+            o.max_steps = 10000000;
+            y = malloc((size_t)bc.n * sizeof *y);
+            yp = malloc((size_t)bc.n * sizeof *yp);
+            bg_error err = {0};
+            double c0 = bench_cpu_now();
+            sv = y && yp ? dae_create(&dp, &o, &err) : NULL;
+            r = sv ? dae_init(sv, 0.0, bc.ys, bc.yps) : BG_ERR_MEMORY;
+            if (!sv) snprintf(msg, sizeof msg, "%s", y && yp ? err.message : "out of memory");
+            double c1 = -1, w1 = 0, r1 = 0, j1 = 0, l1 = 0;
+            long s1 = 0, nt1 = 0, jt1 = 0, ft1 = 0;
+            const dae_stats *st = sv ? dae_get_stats(sv) : NULL;
+            while (r == 0 && t < t_max && st && st->steps < skip + steps) {
+                if (c1 >= 0 && st->steps - s1 >= 5 && bench_cpu_now() - c1 > cpu_cap) break;
+                r = dae_step(sv, t_max, &t, y, yp);
+                if (r > 0) r = 0;
+                if (st->steps == skip && c1 < 0) { /* start of the timed window */
+                    c1 = bench_cpu_now();
+                    w1 = bench_wall_now();
+                    r1 = pw.t_res;
+                    j1 = pw.t_jac;
+                    l1 = st->t_linalg;
+                    s1 = st->steps;
+                    nt1 = st->newton_iters;
+                    jt1 = st->jac_evals;
+                    ft1 = st->factor_full + st->factor_refactor;
+                }
+            }
+            double c2 = bench_cpu_now(), w2 = bench_wall_now();
+            if (r < 0) snprintf(msg, sizeof msg, "%s", dae_get_error(sv)->message);
+            if (st) {
+                tot_steps = st->steps;
+                cpu_tot = c2 - c0;
+                if (c1 >= 0 && st->steps > s1) {
+                    n_st = st->steps - s1;
+                    cpu_t = (c2 - c1) / (double)n_st;
+                    wall_t = (w2 - w1) / (double)n_st;
+                    tr = (pw.t_res - r1) / (double)n_st;
+                    tj = (pw.t_jac - j1) / (double)n_st;
+                    tl = (st->t_linalg - l1) / (double)n_st;
+                    n_nt = st->newton_iters - nt1;
+                    n_jt = st->jac_evals - jt1;
+                    n_ft = st->factor_full + st->factor_refactor - ft1;
+                }
+            }
+        }
+        if (r < 0) fails++;
+        int n = bc.n;
+        double other = wall_t - tr - tj - tl;
+        if (n_st > 0 && wall_t > 0) {
+            xn[np] = n;
+            xe[np] = elems[e];
+            yt[np] = cpu_t;
+            part[0][np] = fmax(cpu_t * tr / wall_t, 1e-12);
+            part[1][np] = fmax(cpu_t * tj / wall_t, 1e-12);
+            part[2][np] = fmax(cpu_t * tl / wall_t, 1e-12);
+            part[3][np] = fmax(cpu_t * other / wall_t, 1e-12);
+            np++;
+        }
+        fprintf(stderr,
+                "crane scaling: %4d elements, %6d unknowns: %s, %ld steps timed, %.3g ms "
+                "CPU per step\n",
+                elems[e], n, r < 0 ? "FAILED" : "ok", n_st, 1e3 * cpu_t);
+        double d = n_st > 0 ? (double)n_st : 1;
+        if (f)
+            fprintf(f,
+                    "%d,%d,%d,%.6g,%ld,%ld,%.3f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,"
+                    "\"%s\"\n",
+                    elems[e], n, r, t, tot_steps, n_st, n_nt / d, n_jt / d, n_ft / d, cpu_tot,
+                    cpu_t, wall_t, tr, tj, tl, other, r < 0 ? msg : "");
+        if (n_st > 0)
+            fprintf(rep,
+                    "| %d | %d | %ld | %.2f | %.3f | %.3f | %.3g ms | %.3g ms | %.0f | %.0f | %.0f "
+                    "| %.0f | %.3g s |\n",
+                    elems[e], n, n_st, n_nt / d, n_jt / d, n_ft / d, 1e3 * cpu_t, 1e3 * wall_t,
+                    100 * tr / wall_t, 100 * tj / wall_t, 100 * tl / wall_t, 100 * other / wall_t,
+                    cpu_tot);
+        else
+            fprintf(rep, "| %d | %d | failed: %s | | | | | | | | | | |\n", elems[e], n, msg);
+        dae_free(&sv);
+        free(y);
+        free(yp);
+        bench_case_free(&bc);
+    }
+    *slope_n = np >= 2 ? slope(xn, yt, np) : NAN;
+    *slope_el = np >= 2 ? slope(xe, yt, np) : NAN;
+    fprintf(rep,
+            "\nLog-log least-squares slope of the CPU time per step: %.3f against the unknowns, "
+            "%.3f against the elements (target: <= 1.1, at most linear growth).\n\n",
+            *slope_n, *slope_el);
+    if (np >= 2)
+        fprintf(rep,
+                "Slopes of the parts against the unknowns (each part's CPU per step estimated as "
+                "its share of the wall time times the CPU per step): residual %.2f, Jacobian "
+                "%.2f, linear algebra %.2f, the integrator's own work %.2f.\n\n",
+                slope(xn, part[0], np), slope(xn, part[1], np), slope(xn, part[2], np),
+                slope(xn, part[3], np));
+    if (f) fclose(f);
+    for (int k = 0; k < 4; k++)
+        free(part[k]);
+    free(xn);
+    free(xe);
+    free(yt);
+    return fails;
+}
+
+/* ------------------------------------------------------------------ real time ---- */
+
+/* Peak resident memory of this process (Linux: ru_maxrss in kilobytes). */
+static long peak_kb(void)
+{
+    struct rusage ru;
+    memset(&ru, 0, sizeof ru);
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_maxrss;
+}
+
+int bench_crane_realtime_child(const crane_scene *s0)
+{
+    crane_scene s = *s0;
+    double w0 = bench_wall_now(), c0 = bench_cpu_now();
+    bench_case bc;
+    char msg[BG_MESSAGE_SIZE] = "";
+    int r = bench_crane_case(&bc, &s, s.static_start, s.t_end, "crane", msg, sizeof msg);
+    if (r == 0) r = bench_case_start(&bc, s.rtol, msg, sizeof msg);
+    if (r != 0) {
+        printf("status %d setup failed: %s\n", r, msg);
+        return 1;
+    }
+    double w1 = bench_wall_now(), c1 = bench_cpu_now();
+    bench_prof pw;
+    dae_problem dp;
+    bench_prof_wrap(&pw, &bc.dp, &dp);
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = s.rtol;
+    o.atol = s.atol;
+    o.exclude_alg = 1;
+    o.has_t_stop = 1;
+    o.t_stop = s.t_end;
+    o.breakpoints = bc.breakpoints;
+    o.nbreakpoints = bc.nbreakpoints;
+    o.max_steps = 10000000;
+    double *y = malloc((size_t)bc.n * sizeof *y), *yp = malloc((size_t)bc.n * sizeof *yp);
+    bg_error err = {0};
+    dae_solver *sv = y && yp ? dae_create(&dp, &o, &err) : NULL;
+    r = sv ? dae_init(sv, 0.0, bc.ys, bc.yps) : BG_ERR_MEMORY;
+    double out[CRANE_NOUT], theta = NAN, t = 0;
+    long nout = (long)ceil(s.t_end / s.output_step - 1e-9);
+    if (nout < 1) nout = 1;
+    for (long k = 1; k <= nout && r >= 0; k++) {
+        double tout = k == nout ? s.t_end : (double)k * s.output_step;
+        if (tout > s.t_end) tout = s.t_end;
+        r = dae_solve_to(sv, tout, &t, y, yp);
+        if (r >= 0) {
+            r = 0;
+            crane_outputs(bc.ext, t, y, yp, out);
+            theta = out[1];
+        }
+    }
+    double w2 = bench_wall_now(), c2 = bench_cpu_now();
+    if (r < 0 || !sv) {
+        printf("status %d run failed at t = %g: %s\n", r < 0 ? r : -1, t,
+               sv ? dae_get_error(sv)->message : err.message);
+    } else {
+        const dae_stats *st = dae_get_stats(sv);
+        printf("status 0 setup_wall %.6f setup_cpu %.6f int_wall %.6f int_cpu %.6f steps %ld "
+               "rejected %ld newton %ld jac %ld res_s %.6f jac_s %.6f lin_s %.6f theta %.9g n %d "
+               "maxrss_kb %ld\n",
+               w1 - w0, c1 - c0, w2 - w1, c2 - c1, st->steps, st->rejected_error, st->newton_iters,
+               st->jac_evals, pw.t_res, pw.t_jac, st->t_linalg, theta, bc.n, peak_kb());
+    }
+    fflush(stdout);
+    dae_free(&sv);
+    free(y);
+    free(yp);
+    bench_case_free(&bc);
+    return r < 0 ? 1 : 0;
+}
+
+typedef struct rt_run {
+    int status;
+    double setup_wall, setup_cpu, int_wall, int_cpu, res_s, jac_s, lin_s, theta, maxrss_mb;
+    long steps, rejected, newton, jac;
+    int n;
+    char msg[512];
+} rt_run;
+
+/* Runs one child; 0 if it completed. */
+static int rt_child(const char *exe, const char *scene_file, rt_run *o)
+{
+    memset(o, 0, sizeof *o);
+    o->status = -1;
+    int fd[2];
+    if (pipe(fd) != 0) {
+        snprintf(o->msg, sizeof o->msg, "pipe: %s", strerror(errno));
+        return -1;
+    }
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(o->msg, sizeof o->msg, "fork: %s", strerror(errno));
+        close(fd[0]);
+        close(fd[1]);
+        return -1;
+    }
+    if (pid == 0) {
+        close(fd[0]);
+        if (dup2(fd[1], STDOUT_FILENO) < 0) _exit(127);
+        close(fd[1]);
+        if (scene_file)
+            execl(exe, exe, "--realtime-child", "--crane-scene", scene_file, (char *)NULL);
+        else
+            execl(exe, exe, "--realtime-child", (char *)NULL);
+        _exit(127);
+    }
+    close(fd[1]);
+    char buf[2048];
+    size_t len = 0;
+    ssize_t k;
+    while (len + 1 < sizeof buf && (k = read(fd[0], buf + len, sizeof buf - 1 - len)) != 0) {
+        if (k < 0) {
+            if (errno == EINTR) continue;
+            break;
+        }
+        len += (size_t)k;
+    }
+    buf[len] = '\0';
+    close(fd[0]);
+    int wst = 0;
+    while (waitpid(pid, &wst, 0) < 0 && errno == EINTR)
+        ;
+    char *nl = strchr(buf, '\n');
+    if (nl) *nl = '\0';
+    long kb = 0;
+    int got = sscanf(buf,
+                     "status %d setup_wall %lf setup_cpu %lf int_wall %lf int_cpu %lf steps %ld "
+                     "rejected %ld newton %ld jac %ld res_s %lf jac_s %lf lin_s %lf theta %lf n %d "
+                     "maxrss_kb %ld",
+                     &o->status, &o->setup_wall, &o->setup_cpu, &o->int_wall, &o->int_cpu,
+                     &o->steps, &o->rejected, &o->newton, &o->jac, &o->res_s, &o->jac_s, &o->lin_s,
+                     &o->theta, &o->n, &kb);
+    o->maxrss_mb = (double)kb / 1024.0;
+    if (got != 15 || !WIFEXITED(wst) || WEXITSTATUS(wst) != 0) {
+        snprintf(o->msg, sizeof o->msg, "%.400s (exit status %d)", len ? buf : "no output",
+                 WIFEXITED(wst) ? WEXITSTATUS(wst) : -1);
+        if (o->status == 0) o->status = -1;
+        return -1;
+    }
+    return 0;
+}
+
+int bench_crane_realtime(const char *exe, const char *scene_file, const crane_scene *s, int K,
+                         const char *dir, FILE *rep, bench_rt_result *res)
+{
+    memset(res, 0, sizeof *res);
+    res->rt_factor = res->rt_factor_all = res->peak_mb = res->bookkeeping = NAN;
+    char path[600];
+    snprintf(path, sizeof path, "%s/realtime.csv", dir);
+    FILE *f = fopen(path, "w");
+    if (f)
+        fprintf(f, "run,status,unknowns,setup_wall_s,int_wall_s,int_cpu_s,steps,rejected,newton,"
+                   "jacobians,res_s,jac_s,linalg_s,other_s,realtime_factor,"
+                   "realtime_factor_with_setup,peak_rss_mb,theta_end,message\n");
+    rt_run *runs = calloc((size_t)(K > 0 ? K : 1), sizeof *runs);
+    double *v = calloc((size_t)(K > 0 ? K : 1), sizeof *v);
+    int fails = 0, ok = 0;
+    for (int k = 0; k < K && runs && v; k++) {
+        rt_run *o = &runs[k];
+        int r = rt_child(exe, scene_file, o);
+        double other = o->int_wall - o->res_s - o->jac_s - o->lin_s;
+        fprintf(stderr,
+                "crane real time, run %d/%d: %s, integration %.2f s wall for %g s (%.2fx "
+                "real time), set-up %.2f s, peak RSS %.1f MB\n",
+                k + 1, K, r == 0 ? "ok" : o->msg, o->int_wall, s->t_end,
+                o->int_wall > 0 ? s->t_end / o->int_wall : 0, o->setup_wall, o->maxrss_mb);
+        if (f)
+            fprintf(f,
+                    "%d,%d,%d,%.4f,%.4f,%.4f,%ld,%ld,%ld,%ld,%.4f,%.4f,%.4f,%.4f,%.4g,%.4g,%.2f,"
+                    "%.9g,\"%s\"\n",
+                    k + 1, o->status, o->n, o->setup_wall, o->int_wall, o->int_cpu, o->steps,
+                    o->rejected, o->newton, o->jac, o->res_s, o->jac_s, o->lin_s, other,
+                    o->int_wall > 0 ? s->t_end / o->int_wall : 0,
+                    o->int_wall > 0 ? s->t_end / (o->int_wall + o->setup_wall) : 0, o->maxrss_mb,
+                    o->theta, r == 0 ? "" : o->msg);
+        if (r != 0) {
+            fails++;
+            continue;
+        }
+        ok++;
+    }
+    if (f) fclose(f);
+    fprintf(rep, "## Crane real-time check\n\n");
+    fprintf(rep,
+            "Scene %s, %d boom elements, %g s at rtol %g, atol %g, output every %g s (computed, "
+            "not written), bgdae-klu; %d runs, each in a fresh process (peak resident memory "
+            "from its rusage); realtime.csv has the runs.\n\n",
+            s->name, s->boom_elements, s->t_end, s->rtol, s->atol, s->output_step, K);
+    if (ok > 0) {
+        int m = 0;
+        for (int k = 0; k < K; k++)
+            if (runs[k].status == 0) v[m++] = runs[k].int_wall;
+        res->wall_int = bench_median(v, m);
+        m = 0;
+        for (int k = 0; k < K; k++)
+            if (runs[k].status == 0) v[m++] = runs[k].int_cpu;
+        res->cpu_int = bench_median(v, m);
+        m = 0;
+        for (int k = 0; k < K; k++)
+            if (runs[k].status == 0) v[m++] = runs[k].int_wall + runs[k].setup_wall;
+        double all = bench_median(v, m);
+        m = 0;
+        for (int k = 0; k < K; k++)
+            if (runs[k].status == 0)
+                v[m++] = (runs[k].int_wall - runs[k].res_s - runs[k].jac_s - runs[k].lin_s) /
+                         runs[k].int_wall;
+        res->bookkeeping = bench_median(v, m);
+        double peak = 0, setup, rs = 0, js = 0, ls = 0;
+        long steps = 0;
+        m = 0;
+        for (int k = 0; k < K; k++)
+            if (runs[k].status == 0) {
+                peak = fmax(peak, runs[k].maxrss_mb);
+                v[m++] = runs[k].setup_wall;
+                steps = runs[k].steps;
+            }
+        setup = bench_median(v, m);
+        /* the parts of the run closest to the median wall time */
+        double best = INFINITY;
+        for (int k = 0; k < K; k++)
+            if (runs[k].status == 0 && fabs(runs[k].int_wall - res->wall_int) < best) {
+                best = fabs(runs[k].int_wall - res->wall_int);
+                rs = runs[k].res_s;
+                js = runs[k].jac_s;
+                ls = runs[k].lin_s;
+            }
+        res->steps = steps;
+        res->peak_mb = peak;
+        res->rt_factor = s->t_end / res->wall_int;
+        res->rt_factor_all = s->t_end / all;
+        res->runs = ok;
+        double w = res->wall_int;
+        fprintf(rep,
+                "| quantity | median | target |\n|---|---|---|\n"
+                "| integration wall time | %.2f s (CPU %.2f s) | |\n"
+                "| real-time factor (simulated / wall time of the integration) | %.2f | >= 50: "
+                "%s |\n"
+                "| the same on CPU time (less sensitive to other work on the machine) | %.2f | "
+                "|\n"
+                "| real-time factor including set-up (build, settle, consistent values: %.2f s) "
+                "| %.2f | |\n"
+                "| peak resident memory (largest of the runs) | %.1f MB | < 64 MB: %s |\n"
+                "| steps | %ld (%.3g ms per step) | |\n"
+                "| time in the residual (wall) | %.2f s (%.0f %%) | |\n"
+                "| time in the Jacobian | %.2f s (%.0f %%) | |\n"
+                "| linear algebra (Newton matrix assembly, KLU) | %.2f s (%.0f %%) | |\n"
+                "| solver bookkeeping (the rest) | %.0f %% | < 10 %%: %s |\n\n",
+                w, res->cpu_int, res->rt_factor, res->rt_factor >= 50 ? "met" : "MISSED",
+                s->t_end / res->cpu_int, setup, res->rt_factor_all, peak,
+                peak < 64 ? "met" : "MISSED", steps, steps ? 1e3 * w / (double)steps : 0, rs,
+                100 * rs / w, js, 100 * js / w, ls, 100 * ls / w, 100 * res->bookkeeping,
+                res->bookkeeping < 0.1 ? "met" : "MISSED");
+    }
+    if (fails) fprintf(rep, "%d of %d runs failed (see realtime.csv).\n\n", fails, K);
+    free(runs);
+    free(v);
+    return fails;
+}

@@ -1,0 +1,64 @@
+/* The crane (crane/crane_model.h) in the benchmark harness: as a case of the work-precision runs
+ * (the paper scene over a short horizon, reference from our own run at rtol 1e-11 checked against
+ * IDA at the same tolerance), the scaling series over the number of boom elements, and the
+ * real-time check of the paper scene over its full 20 s (each run in a fresh process, for its
+ * peak memory). */
+#ifndef BG_BENCH_CRANE_H
+#define BG_BENCH_CRANE_H
+
+#include <stdio.h>
+
+#include "bench_case.h"
+#include "crane_model.h"
+
+/* The crane of scene s as a case over [0, tend] (the scene's t_end is set to tend): built,
+ * settled into its static equilibrium if settle (else the scene's geometric start), the model's
+ * residual and Jacobian (bgr_dae_problem), its breakpoints, exclude_alg as crane/crane.c runs
+ * it, atol = rtol. Accuracy: scd over the outputs theta, omega, tip and load positions, rope
+ * force and line pressures (crane_outputs; relative errors as the test set's scd), mescd over
+ * the differential unknowns, the index-2 unknowns apart (scd2 over those above 1e-6 of the
+ * largest). Drift: the hinge mismatch (output constraint_drift). No reference yet (yref NULL).
+ * 0, or a negative status with the message in msg. */
+int bench_crane_case(bench_case *bc, const crane_scene *s, int settle, double tend,
+                     const char *name, char *msg, size_t msz);
+
+/* The model of a crane case (to change its start, e.g. move the load). */
+bgr_model *bench_crane_model(const bench_case *bc);
+
+/* Reference of a crane case at rtol_ref: ours (bgdae-klu) from the case's consistent start;
+ * with check_ida, IDA-KLU at the same tolerance, scored against it (its scd and mescd written
+ * into bc->ref_source with the steps of both). 0, or a negative status (message in msg). */
+int bench_crane_reference(bench_case *bc, double rtol_ref, int check_ida, char *msg, size_t msz);
+
+/* Scaling series: for each element count in elems (nel of them), the paper scene without the
+ * static start (the boom's geometric shape), ours (bgdae-klu) at rtol = atol = 1e-6 for a warm-up
+ * of `skip` steps, then `steps` timed steps (fewer, at least 5, once they have taken cpu_cap
+ * seconds of CPU; at most up to t_max): CPU time per step, the wall time per step with its
+ * residual, Jacobian and linear-algebra parts, total time, unknowns. Log-log least-squares slopes
+ * of the time per step against the unknowns and against the elements. Writes scaling.csv into
+ * dir and a report section into rep; *slope_n, *slope_el receive the slopes (NAN if < 2 points).
+ * Returns the number of failed runs. */
+int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, int skip, int steps,
+                        double t_max, double cpu_cap, double *slope_n, double *slope_el);
+
+/* The real-time check: K runs of scene s over its t_end (paper: 20 s) at its tolerances, each in
+ * a fresh process (exe: this program) started with --realtime-child [--crane-scene scene_file]
+ * (scene_file NULL: the default scene, which s must then be): set-up (build,
+ * settle, consistent values) and integration timed apart, output at the scene's output step
+ * (crane_outputs computed, nothing written), peak resident memory from the child's rusage.
+ * Writes realtime.csv into dir and a report section into rep; medians into *rt_factor (simulated
+ * time / wall time of the integration), *rt_factor_all (including the set-up), *peak_mb (the
+ * largest peak RSS), *bookkeeping (fraction of the integration outside residual, Jacobian and
+ * linear algebra). Returns the number of failed runs. */
+typedef struct bench_rt_result {
+    double rt_factor, rt_factor_all, peak_mb, bookkeeping, wall_int, cpu_int;
+    long steps;
+    int runs;
+} bench_rt_result;
+int bench_crane_realtime(const char *exe, const char *scene_file, const crane_scene *s, int K,
+                         const char *dir, FILE *rep, bench_rt_result *res);
+/* The child's side: runs scene s once and prints one line of results on stdout. Exit status 0,
+ * or 1 if the run failed. */
+int bench_crane_realtime_child(const crane_scene *s);
+
+#endif

@@ -1,0 +1,133 @@
+/* The benchmark harness's command line and outputs (bench/bench.c), run as a program:
+ *   test_bench_cli BENCH OUTDIR
+ * bad command lines end with exit status 2; a small work-precision run (two problems, two
+ * tolerances, every solver) and a filtered stability run write their files with the expected
+ * rows; an output folder that cannot be created gives exit status 1. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "tap.h"
+
+static const char *bench;
+
+/* Runs bench with args (NULL-terminated, without argv[0]), output to /dev/null; exit status, or
+ * -1 if it did not exit normally. */
+static int run(const char *const *args)
+{
+    char *argv[32];
+    int n = 0;
+    argv[n++] = (char *)bench;
+    for (; *args && n < 31; args++)
+        argv[n++] = (char *)*args;
+    argv[n] = NULL;
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) return -1;
+    if (pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        if (fd >= 0) {
+            dup2(fd, STDOUT_FILENO);
+            dup2(fd, STDERR_FILENO);
+            close(fd);
+        }
+        execv(bench, argv);
+        _exit(127);
+    }
+    int st = 0;
+    if (waitpid(pid, &st, 0) < 0) return -1;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* Lines of a file that contain every one of the given strings (NULL-terminated); -1 if the file
+ * cannot be read. */
+static int count_lines(const char *path, const char *a, const char *b)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    char line[8192];
+    int n = 0;
+    while (fgets(line, sizeof line, f))
+        if ((!a || strstr(line, a)) && (!b || strstr(line, b))) n++;
+    fclose(f);
+    return n;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 3) {
+        fprintf(stderr, "usage: test_bench_cli BENCH OUTDIR\n");
+        return 2;
+    }
+    bench = argv[1];
+    const char *dir = argv[2];
+
+    static const char *const bad[][4] = {
+        {"--bogus", NULL},
+        {"--rtols", "2", NULL},
+        {"--rtols", "1e-4,x", NULL},
+        {"--repeat", "0", NULL},
+        {"--repeat", NULL},
+        {"--problems", "nosuch", NULL},
+        {"--solvers", "nosuch", NULL},
+        {"--scaling", "1024", NULL},
+        {"--crane-horizon", "-1", NULL},
+        {"--crane-realtime", "x", NULL},
+        {"--solvers", "bgdae-klu,bgdae-klu", NULL},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        int r = run(bad[i]);
+        tap_ok(r == 2, "bad command line %s %s: exit status %d (want 2)", bad[i][0],
+               bad[i][1] ? bad[i][1] : "", r);
+    }
+
+    char out[4096], path[4200];
+    snprintf(out, sizeof out, "%s/wp", dir);
+    const char *small[] = {"--problems", "pendulum2,ap102", "--rtols", "1e-4,1e-6", "--repeat",
+                           "1",          "--scaling",       "none",    "--out",     out,
+                           NULL};
+    int r = run(small);
+    tap_ok(r == 0, "small work-precision run: exit status %d", r);
+    snprintf(path, sizeof path, "%s/work_precision.csv", out);
+    int rows = count_lines(path, NULL, NULL);
+    tap_ok(count_lines(path, "problem,solver,rtol", NULL) == 1,
+           "work_precision.csv has its header");
+    /* every solver at both tolerances on both problems: at least our four */
+    int ours_p = count_lines(path, "pendulum2,bgdae-", NULL),
+        ours_a = count_lines(path, "ap102,bgdae-", NULL);
+    tap_ok(ours_p == 8 && ours_a == 8, "work_precision.csv: 8 rows of ours per problem (%d, %d)",
+           ours_p, ours_a);
+    tap_ok(rows == 1 + 2 * count_lines(path, "pendulum2,", NULL),
+           "work_precision.csv: the same rows for both problems (%d lines)", rows);
+    tap_ok(count_lines(path, "pendulum2,bgdae-klu,0.0001,", NULL) == 1 &&
+               count_lines(path, "pendulum2,bgdae-klu,0.0001,1e-06,0,", NULL) == 1,
+           "work_precision.csv: bgdae-klu on pendulum2 at 1e-4 succeeded (status 0)");
+    snprintf(path, sizeof path, "%s/report.md", out);
+    tap_ok(count_lines(path, "## Targets", NULL) == 1, "report.md has the targets");
+    tap_ok(count_lines(path, "## CPU time of bgdae-klu / ida-klu", NULL) == 1,
+           "report.md has the ratio table");
+    tap_ok(count_lines(path, "| pendulum2 | 5 |", NULL) == 1,
+           "report.md: pendulum2 in the ratio table");
+
+    snprintf(out, sizeof out, "%s/stab", dir);
+    const char *stab[] = {"--problems", "none",  "--stability", "--stability-filter",
+                          "pendulum",   "--out", out,           NULL};
+    r = run(stab);
+    tap_ok(r == 0, "filtered stability run: exit status %d", r);
+    snprintf(path, sizeof path, "%s/stability.csv", out);
+    tap_ok(count_lines(path, "\"pendulum", NULL) == 3, "stability.csv: the three pendulum cases");
+    tap_ok(count_lines(path, "\"pendulum", ",solved,") == 3, "stability.csv: all three solved");
+    snprintf(path, sizeof path, "%s/report.md", out);
+    tap_ok(count_lines(path, "## Stability suite", NULL) == 1,
+           "report.md has the stability section");
+
+    const char *unwritable[] = {"--problems", "pendulum2",          "--rtols", "1e-4",
+                                "--out",      "/proc/bench-test/x", NULL};
+    r = run(unwritable);
+    tap_ok(r == 1, "output folder that cannot be created: exit status %d (want 1)", r);
+    return tap_done();
+}
