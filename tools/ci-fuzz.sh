@@ -17,13 +17,14 @@ targets=("$@")
 fail_all() { for t in "${targets[@]}"; do echo "not ok - fuzz $t: $1"; done; exit 1; }
 bash tools/install-deps.sh >&2 || fail_all "installing packages failed"
 command -v clang >/dev/null || fail_all "clang is not installed (libFuzzer)"
-mkdir -p "$B"
+setup_log=$(mktemp) # not in $B: meson writes its .gitignore only into a folder it creates
 if [ ! -f "$B/build.ninja" ]; then
-  if ! CC=clang meson setup "$B" -Dfuzz=true -Dtests=false -Dwerror=true >"$B/setup.log" 2>&1; then
-    sed 's/^/# /' "$B/setup.log" | tail -n 20
+  if ! CC=clang meson setup "$B" -Dfuzz=true -Dtests=false -Dwerror=true >"$setup_log" 2>&1; then
+    sed 's/^/# /' "$setup_log" | tail -n 20
     fail_all "meson setup failed"
   fi
 fi
+rm -f "$setup_log"
 build_targets=()
 for t in "${targets[@]}"; do build_targets+=("fuzz/$t"); done
 if ! ninja -C "$B" -j2 "${build_targets[@]}" >"$B/build.log" 2>&1; then
