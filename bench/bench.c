@@ -710,12 +710,40 @@ int main(int argc, char **argv)
         return 1;
     }
 
+    int failures = 0, io_errors = 0, crashed = 0, stab_bad = 0;
+    extras ex;
+    memset(&ex, 0, sizeof ex);
+    load_average(ex.load_start, sizeof ex.load_start);
+    /* the crane's real-time check, scaling series and the stability suite write their report
+     * sections into a temporary text, appended to the report at the end */
+    FILE *tail = tmpfile();
+    if (!tail) {
+        fprintf(stderr, "bench: no temporary file: %s\n", strerror(errno));
+        return 1;
+    }
+    /* with the crane among the problems, or when asked for explicitly */
+    int want_crane = 0;
+    for (int q = 0; q < np; q++)
+        want_crane |= !strcmp(pnames[q], "crane");
+    /* The real-time runs first, while this process is small: a child's ru_maxrss includes the
+     * resident size it was forked with (Linux keeps the high-water mark across execve). */
+    if ((want_crane || rt_asked) && rt_K > 0) {
+        char exe[4096];
+        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        if (len <= 0) {
+            fprintf(stderr, "bench: cannot find this program for the real-time runs\n");
+            failures++;
+        } else {
+            exe[len] = '\0';
+            failures += bench_crane_realtime(exe, scene_file, &scene, rt_K, out, tail, &ex.rt);
+            ex.have_rt = ex.rt.runs > 0;
+        }
+    }
+
     /* the cases */
     bench_case *cases[MAXPROB];
-    int nc = 0, failures = 0, io_errors = 0, crashed = 0, stab_bad = 0;
+    int nc = 0;
     double wt0 = bench_wall_now();
-    char load_start[128];
-    load_average(load_start, sizeof load_start);
     for (int q = 0; q < np; q++) {
         bench_case *bc = calloc(1, sizeof *bc);
         char msg[BG_MESSAGE_SIZE] = "";
@@ -799,35 +827,11 @@ int main(int argc, char **argv)
     for (int c = 0; c < nc; c++)
         plot(out, c, cases[c]->name, rows, n, solnames, ns);
 
-    /* the crane's scaling series and real-time check, into a temporary text for the report */
-    extras ex;
-    memset(&ex, 0, sizeof ex);
-    snprintf(ex.load_start, sizeof ex.load_start, "%s", load_start);
-    /* with the crane among the problems, or when asked for explicitly */
-    int want_crane = 0;
-    for (int q = 0; q < np; q++)
-        want_crane |= !strcmp(pnames[q], "crane");
-    FILE *tail = tmpfile();
-    if (!tail) {
-        fprintf(stderr, "bench: no temporary file: %s\n", strerror(errno));
-        return 1;
-    }
+    /* the crane's scaling series, into the temporary text for the report */
     if ((want_crane || sclist) && nscale > 0) {
         failures += bench_crane_scaling(out, tail, scale, nscale, 10, quick ? 60 : 200, 1.0,
                                         quick ? 3 : 20, &ex.slope_n, &ex.slope_el);
         ex.have_scaling = 1;
-    }
-    if ((want_crane || rt_asked) && rt_K > 0) {
-        char exe[4096];
-        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        if (len <= 0) {
-            fprintf(stderr, "bench: cannot find this program for the real-time runs\n");
-            failures++;
-        } else {
-            exe[len] = '\0';
-            failures += bench_crane_realtime(exe, scene_file, &scene, rt_K, out, tail, &ex.rt);
-            ex.have_rt = ex.rt.runs > 0;
-        }
     }
     if (stab) {
         stab_config sc;

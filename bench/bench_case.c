@@ -460,6 +460,19 @@ int bench_run_timed(const bench_case *bc, const solver_def *sd, const run_opts *
     r1.profile = 1;
     bench_run(bc, sd, &r1, out);
     double pr[4] = {out->t_res, out->t_jac, out->t_lin, out->wall};
+    /* short runs: a preemption on a shared machine swamps a profile of some microseconds; keep
+     * the least disturbed of up to five (the one with the smallest wall time) */
+    double spent = out->wall;
+    for (int k = 1; k < 5 && !bc->large && out->status >= 0 && spent < 0.2; k++) {
+        bench_run(bc, sd, &r1, out);
+        spent += out->wall;
+        if (out->status >= 0 && out->wall < pr[3]) {
+            pr[0] = out->t_res;
+            pr[1] = out->t_jac;
+            pr[2] = out->t_lin;
+            pr[3] = out->wall;
+        }
+    }
     int m = 0;
     if (out->status < 0 || bc->large || K < 1) cpu[m++] = out->cpu;
     while (m < K && out->status >= 0) {
