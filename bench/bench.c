@@ -115,14 +115,21 @@ static int row_ok(const row *r)
 
 /* log10 of the median CPU time at accuracy target on the curve of (scd, cpu) points of one
  * solver: linear interpolation in (scd, log cpu) between neighbours that bracket the target (the
- * cheapest such pair); NAN if none. */
-static double cpu_at(const row *rows, int nrows, int ci, const char *solver, double target)
+ * cheapest such pair). When every run of the solver is more accurate than the target (its
+ * loosest tolerance already passes it), the cheapest run is taken and *bound set (an upper
+ * bound of the cost); NAN if the curve does not reach the target. */
+static double cpu_at_b(const row *rows, int nrows, int ci, const char *solver, double target,
+                       int *bound)
 {
-    double best = NAN;
+    double best = NAN, above = NAN;
+    int below = 0;
+    *bound = 0;
     for (int a = 0; a < nrows; a++) {
         const row *A = &rows[a];
         double sa = capped(A->sc.scd);
         if (A->ci != ci || strcmp(A->sd->name, solver) || !row_ok(A)) continue;
+        if (sa < target) below = 1;
+        if (sa >= target && (isnan(above) || log10(A->cpu_med) < above)) above = log10(A->cpu_med);
         for (int b = 0; b < nrows; b++) {
             const row *B = &rows[b];
             double sb = capped(B->sc.scd);
@@ -134,13 +141,27 @@ static double cpu_at(const row *rows, int nrows, int ci, const char *solver, dou
             if (isnan(best) || lc < best) best = lc;
         }
     }
+    if (isnan(best) && !below && !isnan(above)) {
+        best = above;
+        *bound = 1;
+    }
     return best;
 }
 
-/* Ratio bgdae-klu / ida-klu at scd target, NAN if either curve does not reach it. */
-static double ratio_at(const row *rows, int n, int ci, double target)
+static double cpu_at(const row *rows, int nrows, int ci, const char *solver, double target)
 {
-    double a = cpu_at(rows, n, ci, "bgdae-klu", target), b = cpu_at(rows, n, ci, "ida-klu", target);
+    int b;
+    return cpu_at_b(rows, nrows, ci, solver, target, &b);
+}
+
+/* Ratio bgdae-klu / ida-klu at scd target, NAN if either curve does not reach it; *bound set
+ * when either side is the cheapest run above the target rather than an interpolation. */
+static double ratio_at_b(const row *rows, int n, int ci, double target, int *bound)
+{
+    int ba, bb;
+    double a = cpu_at_b(rows, n, ci, "bgdae-klu", target, &ba),
+           b = cpu_at_b(rows, n, ci, "ida-klu", target, &bb);
+    *bound = ba || bb;
     return isnan(a) || isnan(b) ? NAN : pow(10, a - b);
 }
 
@@ -204,12 +225,17 @@ static void plot(const char *dir, int ci, const char *name, const row *rows, int
     if (system(cmd) != 0) remove(png);
 }
 
-static void fmt_ratio(char *buf, size_t sz, double r)
+/* The ratio at scd target as text: "-" if not measurable, "0.42*" when a side is the cheapest
+ * run above the target. Returns the ratio. */
+static double fmt_ratio(char *buf, size_t sz, const row *rows, int n, int ci, double target)
 {
+    int bound;
+    double r = ratio_at_b(rows, n, ci, target, &bound);
     if (isnan(r))
         snprintf(buf, sz, "-");
     else
-        snprintf(buf, sz, "%.2f", r);
+        snprintf(buf, sz, "%.2f%s", r, bound ? "*" : "");
+    return r;
 }
 
 /* The rows of solver name on case ci nearest to scd target (below and above), for the
@@ -292,9 +318,8 @@ static void write_report_head(FILE *f, const row *rows, int n, bench_case **case
             if (!strcmp(cases[c]->name, tprob[q])) ci = c;
         if (ci < 0) continue;
         for (int target = 4; target <= 6; target += 2) {
-            double r = ratio_at(rows, n, ci, target);
             char b[32];
-            fmt_ratio(b, sizeof b, r);
+            double r = fmt_ratio(b, sizeof b, rows, n, ci, target);
             fprintf(f, "| %s: CPU bgdae-klu / ida-klu at scd %d <= 0.5 | %s | %s |\n", tprob[q],
                     target, b,
                     isnan(r)   ? "not measurable (a curve does not reach this accuracy)"
@@ -331,16 +356,27 @@ static void write_report_head(FILE *f, const row *rows, int n, bench_case **case
             if (!strcmp(cases[c]->name, tprob[q])) ci = c;
         if (ci < 0) continue;
         for (int target = 4; target <= 6; target += 2) {
-            double r = ratio_at(rows, n, ci, target);
+            int bound;
+            double r = ratio_at_b(rows, n, ci, target, &bound);
             if (!isnan(r) && r <= 0.5) continue;
             if (!said)
                 fprintf(f, "Where the time goes where a ratio target is missed (the runs "
                            "nearest to the accuracy, profiled):\n\n");
             said = 1;
+            const row *a = nearest(rows, n, ci, "bgdae-klu", target),
+                      *b = nearest(rows, n, ci, "ida-klu", target);
             fprintf(f, "- %s, scd %d: ", tprob[q], target);
-            describe_row(f, nearest(rows, n, ci, "bgdae-klu", target));
+            describe_row(f, a);
             fprintf(f, "; against ");
-            describe_row(f, nearest(rows, n, ci, "ida-klu", target));
+            describe_row(f, b);
+            if (a && b && b->r.steps > 0 && a->r.steps > 0 && b->r.fact > 0 && b->r.newton > 0)
+                fprintf(f,
+                        ". Ours / IDA: steps %.2f, Newton iterations %.2f, factorizations %.2f, "
+                        "CPU per step %.2f",
+                        (double)a->r.steps / (double)b->r.steps,
+                        (double)a->r.newton / (double)b->r.newton,
+                        (double)a->r.fact / (double)b->r.fact,
+                        (a->cpu_med / (double)a->r.steps) / (b->cpu_med / (double)b->r.steps));
             fprintf(f, ".\n");
         }
     }
@@ -349,14 +385,15 @@ static void write_report_head(FILE *f, const row *rows, int n, bench_case **case
     /* ratio table */
     fprintf(f, "## CPU time of bgdae-klu / ida-klu at equal accuracy\n\n"
                "Interpolated in (scd, log CPU) on each solver's curve; '-' where a curve does not "
-               "reach the accuracy. Below 1: ours is faster.\n\n"
+               "reach the accuracy; '*' where a solver's loosest run is already more accurate "
+               "(its cheapest run stands in). Below 1: ours is faster.\n\n"
                "| problem | n | scd 4 | scd 6 | scd 8 | fastest at scd 4 | fastest at scd 6 | "
                "fastest at scd 8 |\n|---|---|---|---|---|---|---|---|\n");
     for (int c = 0; c < nc; c++) {
         fprintf(f, "| %s | %d |", cases[c]->name, cases[c]->n);
         for (int target = 4; target <= 8; target += 2) {
             char b[32];
-            fmt_ratio(b, sizeof b, ratio_at(rows, n, c, target));
+            fmt_ratio(b, sizeof b, rows, n, c, target);
             fprintf(f, " %s |", b);
         }
         for (int target = 4; target <= 8; target += 2) {
@@ -422,7 +459,7 @@ static void write_report_problems(FILE *f, const row *rows, int n, bench_case **
                 }
             }
             char b[32];
-            fmt_ratio(b, sizeof b, ratio_at(rows, n, c, target));
+            fmt_ratio(b, sizeof b, rows, n, c, target);
             fprintf(f, " %s | %s |\n", win, b);
         }
         fprintf(f, "\n![work-precision %s](wp_%s.png)\n\n", bc->name, bc->name);
