@@ -537,7 +537,7 @@ int bench_stability(const char *dir, FILE *rep, const stab_config *cfg, int *cra
         if (!strcmp(how, "CRASHED")) ++*crashed;
         fprintf(stderr, "stability: %-44s %s%s%s (%.1f s)\n", sc->name, how, res.msg[0] ? ": " : "",
                 res.msg, wall);
-        fprintf(f, "\"%s\",%s,%d,%.9g,%ld,%d,%ld,%.3g,\"%s\",%.3g,%.3g,\"%s\",%.3f,\"%s\"\n",
+        fprintf(f, "\"%s\",\"%s\",%d,%.9g,%ld,%d,%ld,%.3g,\"%s\",%.3g,%.3g,\"%s\",%.3f,\"%s\"\n",
                 sc->name, how, res.status, res.t, res.steps, res.hi, res.rejected, res.err,
                 res.worst, res.err_tight, res.drift, res.ref, res.cpu, res.msg);
         char et[64] = "";

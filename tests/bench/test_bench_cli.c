@@ -120,7 +120,7 @@ int main(int argc, char **argv)
     tap_ok(r == 0, "filtered stability run: exit status %d", r);
     snprintf(path, sizeof path, "%s/stability.csv", out);
     tap_ok(count_lines(path, "\"pendulum", NULL) == 3, "stability.csv: the three pendulum cases");
-    tap_ok(count_lines(path, "\"pendulum", ",solved,") == 3, "stability.csv: all three solved");
+    tap_ok(count_lines(path, "\"pendulum", ",\"solved\",") == 3, "stability.csv: all three solved");
     snprintf(path, sizeof path, "%s/report.md", out);
     tap_ok(count_lines(path, "## Stability suite", NULL) == 1,
            "report.md has the stability section");
