@@ -32,9 +32,9 @@ struct crane {
     int settle; /* built for the equilibrium: drive held, extra damping */
     int platform, slew, hinge, sensor;
     int n, nodes[MAXEL + 1], elems[MAXEL], boom; /* beam chain, or rigid boom body */
-    int tie[2], nties, rope, load, cw; /* nties: 0, 1 or 2 (a laterally spread pair) */
-    int drive_bond; /* into the slewing joint's drive port */
-    double tie_L0;  /* unstretched tie length */
+    int tie[2], nties, rope, load, cw;           /* nties: 0, 1 or 2 (a laterally spread pair) */
+    int drive_bond;                              /* into the slewing joint's drive port */
+    double tie_L0;                               /* unstretched tie length */
     int ref_value, ref_rate, ref_int, pid, vol_h, vol_l, motor_acc;
     double tip0[3], e2[3], e3[3]; /* undeformed tip, boom's transverse directions (theta = 0) */
     double tip_r[3];              /* rigid boom: tip in its body frame */
@@ -290,10 +290,10 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         "bond hinge boom");
     int tp = 0;
     for (int k = 0; k < nties; k++) { /* both ties of a pair have the same length */
-        static const char *const names[3][3] = {{"ties", "b_tie_gantry", "b_tie_tip"},
-                                                {"ties_left", "b_tie_left_gantry", "b_tie_left_tip"},
-                                                {"ties_right", "b_tie_right_gantry",
-                                                 "b_tie_right_tip"}};
+        static const char *const names[3][3] = {
+            {"ties", "b_tie_gantry", "b_tie_tip"},
+            {"ties_left", "b_tie_left_gantry", "b_tie_left_tip"},
+            {"ties_right", "b_tie_right_gantry", "b_tie_right_tip"}};
         const char *const *nm = names[nties == 1 ? 0 : 1 + k];
         double gt[3], L0;
         gantry_point(s, k, nties, gt);

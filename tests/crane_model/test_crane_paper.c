@@ -19,8 +19,8 @@ int main(void)
     run r;
     const double dt = 0.01, R = s.boom_tip_radius, t3 = s.ref_t3, wr = s.ref_rate;
     /* Eq. 8 integrated: ramps of t1 and t3 - t2 at half the rate, the plateau between */
-    const double theta_end = 0.5 * wr * s.ref_t1 + wr * (s.ref_t2 - s.ref_t1) +
-                             0.5 * wr * (s.ref_t3 - s.ref_t2);
+    const double theta_end =
+        0.5 * wr * s.ref_t1 + wr * (s.ref_t2 - s.ref_t1) + 0.5 * wr * (s.ref_t3 - s.ref_t2);
     if (start(&r, &s, 1) != 0) {
         tap_ok(0, "paper scene starts");
         finish(&r);
@@ -58,8 +58,9 @@ int main(void)
     tap_ok(fabs(th12 - theta_end) <= 0.05, "theta(%g s) = %.4f rad, within 0.05 of %g", t3, th12,
            theta_end);
     tap_ok(werr <= 0.05, "|omega - omega_r| <= %.4f rad/s throughout (limit 0.05)", werr);
-    tap_ok(wrest <= 0.02 * wr, "at rest after the profile: |omega| <= %.4f rad/s from %g s on "
-                               "(limit 2 %% of the plateau rate)",
+    tap_ok(wrest <= 0.02 * wr,
+           "at rest after the profile: |omega| <= %.4f rad/s from %g s on "
+           "(limit 2 %% of the plateau rate)",
            wrest, t3 + 1);
     tap_ok(threst <= 0.05, "after the profile: theta within %.4f rad of %g", threst, theta_end);
     tap_ok(pmin > 0 && pmax < 35e6, "line pressures within %.2f..%.2f MPa (0..35)", pmin / 1e6,
