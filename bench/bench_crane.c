@@ -14,17 +14,6 @@
 
 #include "bench_util.h"
 
-/* Output column of crane_output_names whose name is key followed by " [" or its end; -1 if none. */
-static int out_col(const char *key)
-{
-    size_t n = strlen(key);
-    for (int i = 0; i < CRANE_NOUT; i++) {
-        const char *nm = crane_output_names[i];
-        if (nm && !strncmp(nm, key, n) && (nm[n] == '\0' || nm[n] == ' ')) return i;
-    }
-    return -1;
-}
-
 /* The outputs that enter the crane's scd. */
 static const char *const SCORED[] = {"theta",  "omega",  "tip_x",      "tip_y",  "tip_z", "load_x",
                                      "load_y", "load_z", "rope_force", "p_high", "p_low"};
@@ -58,7 +47,7 @@ static void crane_score(const bench_case *bc, const double *y, const double *yp,
     crane_outputs(c, bc->tend, bc->yref, bc->ypref, oref);
     double e = -1, em = -1, e2 = -1, em2 = -1, big2 = 0, ratio = atol / rtol;
     for (int k = 0; k < NSCORED; k++) {
-        int j = out_col(SCORED[k]);
+        int j = crane_output_index(SCORED[k]);
         if (j < 0 || !isfinite(oref[j]) || oref[j] == 0) continue;
         double r = fabs(o[j] - oref[j]) / fabs(oref[j]);
         if (!(r <= e)) e = r; /* NaN wins */
@@ -89,7 +78,7 @@ static void crane_score(const bench_case *bc, const double *y, const double *yp,
 static double crane_drift(const bench_case *bc, double t, const double *y, const double *yp)
 {
     double o[CRANE_NOUT];
-    int j = out_col("constraint_drift");
+    int j = crane_output_index("constraint_drift");
     if (j < 0) return 0;
     crane_outputs(bc->ext, t, y, yp, o);
     return o[j];

@@ -302,17 +302,6 @@ static double wall_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Index of the output whose name is key followed by " [" or the end, or -1. */
-static int out_col(const char *key)
-{
-    size_t n = strlen(key);
-    for (int i = 0; i < CRANE_NOUT; i++) {
-        const char *nm = crane_output_names[i];
-        if (nm && !strncmp(nm, key, n) && (nm[n] == '\0' || nm[n] == ' ')) return i;
-    }
-    return -1;
-}
-
 /* ---------------------------------------------------------------- figures ---- */
 
 static int have_gnuplot(void)
@@ -348,8 +337,8 @@ typedef struct curve {
 /* Column of output a, or of b if the model has no a (-1: neither). */
 static int col_any(const char *a, const char *b)
 {
-    int c = out_col(a);
-    return c >= 0 || !b ? c : out_col(b);
+    int c = crane_output_index(a);
+    return c >= 0 || !b ? c : crane_output_index(b);
 }
 
 static int curve_col(curve *cv, int c)
@@ -363,8 +352,8 @@ static int curve_col(curve *cv, int c)
 /* err_name if the model has it, else ref - val labelled "err_name = ref - val [unit]". */
 static int curve_err(curve *cv, const char *err_name, const char *val, const char *ref)
 {
-    if (curve_col(cv, out_col(err_name))) return 1;
-    int v = out_col(val), r = out_col(ref);
+    if (curve_col(cv, crane_output_index(err_name))) return 1;
+    int v = crane_output_index(val), r = crane_output_index(ref);
     if (v < 0 || r < 0) return 0;
     const char *unit = strchr(crane_output_names[v], '[');
     snprintf(cv->using, sizeof cv->using, "($%d-$%d)", r + 1, v + 1);
@@ -392,12 +381,12 @@ static int write_plot_script(const char *dir, const crane_scene *s, double radiu
     fprintf(f, "# Figures of the crane run (paper Fig. 5) from results.csv; run in this folder:\n"
                "#   gnuplot plots.gp\n"
                "set terminal png size 900,600 noenhanced\n");
-    if (!curve_col(&t, out_col("t"))) {
+    if (!curve_col(&t, crane_output_index("t"))) {
         fclose(f);
         return 0;
     }
     /* (a) the tip's path seen from above, with the circle of the tip radius */
-    if (curve_col(&a, out_col("tip_x")) && curve_col(&b, out_col("tip_y"))) {
+    if (curve_col(&a, crane_output_index("tip_x")) && curve_col(&b, crane_output_index("tip_y"))) {
         gp_head(f, "fig5a.png", "(a) boom tip trajectory in the X0Y0 plane", s, &a, &b);
         /* the whole circle through the tip's start, centred on the slewing axis */
         double cx = s->joint_A[0], cy = s->joint_A[1], h = fmax(1.1 * radius, 1.05 * reach);
@@ -433,7 +422,8 @@ static int write_plot_script(const char *dir, const crane_scene *s, double radiu
         {"fig5d.png", "theta", "theta_ref", "(d) platform rotation angle"},
         {"fig5e.png", "omega", "omega_ref", "(e) platform angular velocity"}};
     for (int k = 0; k < 2; k++)
-        if (curve_col(&a, out_col(ref[k][1])) && curve_col(&b, out_col(ref[k][2]))) {
+        if (curve_col(&a, crane_output_index(ref[k][1])) &&
+            curve_col(&b, crane_output_index(ref[k][2]))) {
             gp_head(f, ref[k][0], ref[k][3], s, &t, &a);
             fprintf(f,
                     "plot 'results.csv' using 1:%s with lines lw 2 title '%s', \\\n"
@@ -514,7 +504,7 @@ static void write_row(run *r, double t, const double *out)
     int d1 = col_any("tip_defl_1", "defl_luff"), d2 = col_any("tip_defl_2", "defl_side");
     if (d1 >= 0 && fabs(out[d1]) > r->peak[0]) r->peak[0] = fabs(out[d1]);
     if (d2 >= 0 && fabs(out[d2]) > r->peak[1]) r->peak[1] = fabs(out[d2]);
-    int tx = out_col("tip_x"), ty = out_col("tip_y");
+    int tx = crane_output_index("tip_x"), ty = crane_output_index("tip_y");
     if (tx >= 0 && ty >= 0) {
         double ex = fabs(out[tx] - r->scene.joint_A[0]), ey = fabs(out[ty] - r->scene.joint_A[1]);
         if (isfinite(ex) && ex > r->reach) r->reach = ex;
@@ -588,7 +578,7 @@ static int write_scene_copy(run *r)
 
 static void draw_figures(run *r)
 {
-    int tx = out_col("tip_x"), ty = out_col("tip_y");
+    int tx = crane_output_index("tip_x"), ty = crane_output_index("tip_y");
     double radius = tx >= 0 && ty >= 0 ? hypot(r->first_out[tx] - r->scene.joint_A[0],
                                                r->first_out[ty] - r->scene.joint_A[1])
                                        : r->scene.boom_tip_radius;
@@ -614,7 +604,7 @@ static void draw_figures(run *r)
 static void summary(run *r)
 {
     const dae_stats *st = r->s ? dae_get_stats(r->s) : NULL;
-    int th = out_col("theta"), thr = out_col("theta_ref");
+    int th = crane_output_index("theta"), thr = crane_output_index("theta_ref");
     printf("crane: scene %s, %s at t = %g s (of %g s)\n", r->scene.name, r->status, r->t,
            r->scene.t_end);
     if (r->have_final && th >= 0)

@@ -729,6 +729,17 @@ const char *const crane_output_names[CRANE_NOUT] = {"t [s]",
                                                     "p_low [Pa]",
                                                     "constraint_drift [m]"};
 
+int crane_output_index(const char *key)
+{
+    if (!key) return -1;
+    size_t n = strlen(key);
+    for (int i = 0; i < CRANE_NOUT; i++) {
+        const char *nm = crane_output_names[i];
+        if (nm && !strncmp(nm, key, n) && (nm[n] == '\0' || nm[n] == ' ')) return i;
+    }
+    return -1;
+}
+
 void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out)
 {
     const crane_scene *s = &c->s;

@@ -103,6 +103,9 @@ double crane_tie_length(const crane *c);
  * constraint_drift (distance between the hinge point on the platform and the boom's foot: the
  * joints hold at velocity level). NaN for parts a scene lacks. */
 extern const char *const crane_output_names[CRANE_NOUT]; /* "t [s]", "theta [rad]", ... */
+/* Index in crane_output_names of the output called key (the name without its unit: "tip_x"),
+ * -1 if none or key is NULL. */
+int crane_output_index(const char *key);
 void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out);
 
 /* Mechanical energies at a state y: kinetic (platform, boom nodes or rigid boom, load,

@@ -17,20 +17,10 @@ targets=("$@")
 fail_all() { for t in "${targets[@]}"; do echo "not ok - fuzz $t: $1"; done; exit 1; }
 bash tools/install-deps.sh >&2 || fail_all "installing packages failed"
 command -v clang >/dev/null || fail_all "clang is not installed (libFuzzer)"
-setup_log=$(mktemp) # not in $B: meson writes its .gitignore only into a folder it creates
-if [ ! -f "$B/build.ninja" ]; then
-  if ! CC=clang meson setup "$B" -Dfuzz=true -Dtests=false -Dwerror=true >"$setup_log" 2>&1; then
-    sed 's/^/# /' "$setup_log" | tail -n 20
-    fail_all "meson setup failed"
-  fi
-fi
-rm -f "$setup_log"
 build_targets=()
 for t in "${targets[@]}"; do build_targets+=("fuzz/$t"); done
-if ! ninja -C "$B" -j2 "${build_targets[@]}" >"$B/build.log" 2>&1; then
-  grep -E -A5 'error|warning' "$B/build.log" | head -n 40 | sed 's/^/# /'
-  fail_all "build failed"
-fi
+. tools/ci-common.sh
+CC=clang ci_build "$B" fail_all -Dfuzz=true -Dtests=false -Dwerror=true -- "${build_targets[@]}"
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -11,21 +11,11 @@ cd "$(dirname "$0")/.."
 B=${BUILD_ASAN:-build-asan}
 name="sanitizers: test suite under ASan+UBSan ($B)"
 bash tools/install-deps.sh >&2 || { echo "not ok - $name: installing packages failed"; exit 1; }
-setup_log=$(mktemp) # not in $B: meson writes its .gitignore only into a folder it creates
-if [ ! -f "$B/build.ninja" ]; then
-  if ! meson setup "$B" -Dwerror=true -Db_sanitize=address,undefined -Db_lundef=false \
-       -Dc_args=-fno-sanitize-recover=all -Dc_link_args=-fno-sanitize-recover=all \
-       >"$setup_log" 2>&1; then
-    sed 's/^/# /' "$setup_log" | tail -n 20
-    echo "not ok - $name: meson setup failed"; exit 1
-  fi
-fi
-rm -f "$setup_log"
+fail() { echo "not ok - $name: $1"; exit 1; }
+. tools/ci-common.sh
 start=$(date +%s)
-if ! ninja -C "$B" -j2 >"$B/build.log" 2>&1; then
-  grep -E -A5 'error|warning' "$B/build.log" | head -n 40 | sed 's/^/# /'
-  echo "not ok - $name: build failed"; exit 1
-fi
+ci_build "$B" fail -Dwerror=true -Db_sanitize=address,undefined -Db_lundef=false \
+  -Dc_args=-fno-sanitize-recover=all -Dc_link_args=-fno-sanitize-recover=all
 build_s=$(($(date +%s) - start))
 # the sanitizers must really be in: the library calls the ASan and the (aborting) UBSan runtimes
 syms=$(nm -D "$B/libbgdae.so" 2>/dev/null)

@@ -16,18 +16,9 @@ T_END=${T_END:-0.05}
 name="valgrind memcheck: crane paper --t-end $T_END"
 bash tools/install-deps.sh >&2 || { echo "not ok - $name: installing packages failed"; exit 1; }
 command -v valgrind >/dev/null || { echo "not ok - $name: valgrind is not installed"; exit 1; }
-setup_log=$(mktemp) # not in $B: meson writes its .gitignore only into a folder it creates
-if [ ! -f "$B/build.ninja" ]; then
-  if ! meson setup "$B" -Dwerror=true -Dtests=false >"$setup_log" 2>&1; then
-    sed 's/^/# /' "$setup_log" | tail -n 20
-    echo "not ok - $name: meson setup failed"; exit 1
-  fi
-fi
-rm -f "$setup_log"
-if ! ninja -C "$B" -j2 crane/program/crane >"$B/build.log" 2>&1; then
-  grep -E -A5 'error|warning' "$B/build.log" | head -n 40 | sed 's/^/# /'
-  echo "not ok - $name: build failed"; exit 1
-fi
+fail() { echo "not ok - $name: $1"; exit 1; }
+. tools/ci-common.sh
+ci_build "$B" fail -Dwerror=true -Dtests=false -- crane/program/crane
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT

@@ -14,18 +14,9 @@ MIN=${COV_MIN:-85}
 name="coverage: line coverage of the test suite (gcovr)"
 bash tools/install-deps.sh >&2 || { echo "not ok - $name: installing packages failed"; exit 1; }
 command -v gcovr >/dev/null || { echo "not ok - $name: gcovr is not installed"; exit 1; }
-setup_log=$(mktemp) # not in $B: meson writes its .gitignore only into a folder it creates
-if [ ! -f "$B/build.ninja" ]; then
-  if ! meson setup "$B" -Dwerror=true -Db_coverage=true >"$setup_log" 2>&1; then
-    sed 's/^/# /' "$setup_log" | tail -n 20
-    echo "not ok - $name: meson setup failed"; exit 1
-  fi
-fi
-rm -f "$setup_log"
-if ! ninja -C "$B" -j2 >"$B/build.log" 2>&1; then
-  grep -E -A5 'error|warning' "$B/build.log" | head -n 40 | sed 's/^/# /'
-  echo "not ok - $name: build failed"; exit 1
-fi
+fail() { echo "not ok - $name: $1"; exit 1; }
+. tools/ci-common.sh
+ci_build "$B" fail -Dwerror=true -Db_coverage=true
 find "$B" -name '*.gcda' -delete
 start=$(date +%s)
 OMP_NUM_THREADS=1 meson test -C "$B" --num-processes 2 --timeout-multiplier 3 "$@" \
