@@ -677,6 +677,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     memset(&s->st, 0, sizeof s->st);
     s->st.h_min_used = INFINITY;
     s->st.rcond_min = INFINITY;
+    s->st.t_last_restart = NAN;
     memcpy(s->phi[0], y0, (size_t)s->n * sizeof *y0);
     if (yp0)
         memcpy(s->phi[1], yp0, (size_t)s->n * sizeof *yp0);
@@ -693,6 +694,8 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
         s->ibk++;
     s->root_pending = 0;
     s->restart_pending = 0;
+    s->nautorestart = 0;
+    s->dn0_last = HUGE_VAL;
     s->init_side = 0;
     s->tlo = t0;
     s->need_setup = 1;
@@ -971,7 +974,16 @@ static int newton(dae_solver *s, double t)
             }
             s->ss = rate / (1.0 - rate);
         }
-        if (s->ss * dn <= EPS_NEWT) return NL_OK;
+        /* The first iteration is accepted on the rate of earlier ones only as far as that rate
+         * applies: the nonlinear part of the contraction grows with the size of the correction,
+         * so a first correction larger than the last accepted step's (the predictor missed a
+         * jump of an algebraic unknown, e.g. a saturated controller that switches inside the
+         * step) has the rate scaled up by the ratio, and usually takes another iteration.
+         * Without this, a step over a switch was accepted with the algebraic unknowns of the
+         * predictor, out of the error test (exclude_alg), and the run went on silently wrong. */
+        if (m == 0) s->dn0 = dn;
+        double ssm = m == 0 ? s->ss * fmax(1.0, dn / s->dn0_last) : s->ss;
+        if (ssm * dn <= EPS_NEWT) return NL_OK;
     }
     note_newton(s, t, rate);
     return NL_RECOVER;
@@ -1008,6 +1020,8 @@ static void complete_step(dae_solver *s)
     int n = s->n;
     s->st.steps++;
     s->nst_local++;
+    s->nautorestart = 0;
+    s->dn0_last = s->dn0;
     s->since_fail++;
     int kdiff = s->kk - s->kused;
     s->kused = s->kk;
@@ -1258,7 +1272,9 @@ static int project_step(dae_solver *s)
  * interpolant over the last half step): the local error of the order-1 restart is about
  * h^2/2 |y''|, so h = 0.5 sqrt(2 / |y''|) in the error norm, at most the last step. Far larger
  * than IDA's first-step rule, which would restart from h ~ 0.5/|y'| and double up again. */
-static int restart_at_breakpoint(dae_solver *s, double tout)
+/* dt != 0: the restart is made at tn + dt, past a jump that lies within a few units of
+ * round-off of tn, with y carried there along y' (a change far below the tolerances). */
+static int restart_at_breakpoint(dae_solver *s, double tout, double dt)
 {
     double hprev = fabs(s->hused), hpref = hprev;
     double hm = 0.5 * s->hused;
@@ -1270,6 +1286,11 @@ static int restart_at_breakpoint(dae_solver *s, double tout)
         daei_set_weights(s, s->y);
         double ypp = daei_wrms(s, s->tmp, s->werr);
         if (ypp > 0) hpref = fmin(hprev, 0.5 * sqrt(2.0 / ypp));
+    }
+    if (dt != 0) {
+        for (int i = 0; i < s->n; i++)
+            if (s->kind[i] == DAE_DIFF) s->y[i] += dt * s->yp[i];
+        s->tn += dt;
     }
     memcpy(s->phi[0], s->y, (size_t)s->n * sizeof(double));
     memcpy(s->phi[1], s->yp, (size_t)s->n * sizeof(double));
@@ -1311,6 +1332,16 @@ static int step_once(dae_solver *s)
                                   "the residual (or Jacobian) kept failing until the step size "
                                   "fell to %.3g at t = %.17g: %s",
                                   s->hh, s->tn, s->note);
+        /* The Newton iteration failed down to the smallest step with the error test never
+         * failing: the signature of an input that jumps at tn (a source or a reference that
+         * is not given as a breakpoint), which leaves the algebraic unknowns and y' of the
+         * history inconsistent on the far side. Restart once, as at a breakpoint, at the end
+         * of the last failed step (past the jump, a few units of round-off further on):
+         * right-hand consistent values, order 1. The step collapsing again, with no step
+         * accepted since, stops the run. */
+        if (fabs(s->hh) < hmin && !landing && ncf > 0 && nef == 0 && s->hused != 0 &&
+            s->nautorestart < MAX_AUTO_RESTARTS)
+            return 2;
         if (fabs(s->hh) < hmin && !landing) {
             if (nef + ncf == 0) note_step_limit(s);
             return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
@@ -1322,7 +1353,10 @@ static int step_once(dae_solver *s)
         set_coeffs(s);
         predict(s);
         double tnew = landing ? ts : s->tn + s->hh;
-        int nl = newton(s, tnew);
+        /* a step that lands on a breakpoint sees the inputs' left-hand values there (one unit of
+         * round-off short), whichever side the model gives the jump to: the restart takes the
+         * right-hand ones */
+        int nl = newton(s, landing && isb ? nextafter(ts, s->tn) : tnew);
         if (nl < 0) {
             restore(s);
             return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, w,
@@ -1374,6 +1408,7 @@ static int step_once(dae_solver *s)
         }
         ncf++;
         s->st.newton_fails++;
+        s->t_fail = tnew;
         last_res_fail = nl == NL_RES_RECOVER;
         if (ncf >= MAX_NCF) {
             if (nl == NL_SINGULAR)
@@ -1516,7 +1551,7 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
         }
         if (s->restart_pending) {
             s->restart_pending = 0;
-            int rr = restart_at_breakpoint(s, tout);
+            int rr = restart_at_breakpoint(s, tout, 0);
             if (rr != BG_OK) {
                 output_state(s, s->tn, tret, y, yp);
                 return rr;
@@ -1527,6 +1562,26 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
         if (r < 0) {
             output_state(s, s->tn, tret, y, yp);
             return r;
+        }
+        if (r == 2) { /* an unannounced jump at tn: restart there (no step was taken) */
+            char keep[sizeof s->note];
+            snprintf(keep, sizeof keep, "%s", s->note);
+            int rr = restart_at_breakpoint(s, tout, s->t_fail - s->tn);
+            if (rr != BG_OK) {
+                output_state(s, s->tn, tret, y, yp);
+                char m[BG_MESSAGE_SIZE];
+                snprintf(m, sizeof m, "%s", s->err.message);
+                return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
+                                      "the step size collapsed at t = %.17g with the Newton "
+                                      "iteration failing (%.200s), and a restart there with "
+                                      "consistent values (as at a breakpoint) failed too: %.300s",
+                                      s->tn, keep, m);
+            }
+            s->st.restarts++;
+            s->st.t_last_restart = s->tn;
+            s->nautorestart++;
+            nsteps--;
+            continue;
         }
         if (s->p.cons && s->p.ncons > 0 && (r = project_step(s)) < 0) {
             output_state(s, s->tn, tret, y, yp);
@@ -1596,7 +1651,7 @@ int dae_roots_found(const dae_solver *s, int *found)
         (st)->steps_at_order[2], (st)->steps_at_order[3], (st)->steps_at_order[4],                 \
         (st)->steps_at_order[5], (st)->steps ? (st)->h_min_used : 0.0, (st)->h_max_used,           \
         (st)->max_drift, (st)->init_residual, (st)->rcond_min, (st)->t_res, (st)->t_jac,           \
-        (st)->t_linalg
+        (st)->t_linalg, (st)->restarts
 
 int dae_stats_line(const dae_stats *st, char *buf, size_t size)
 {
@@ -1605,7 +1660,8 @@ int dae_stats_line(const dae_stats *st, char *buf, size_t size)
         buf, size,
         "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
         "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
-        "h=[%.3g,%.3g] drift=%.3g init_res=%.3g rcond_min=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs",
+        "h=[%.3g,%.3g] drift=%.3g init_res=%.3g rcond_min=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs "
+        "restarts=%ld",
         DAE_STATS_FIELDS(st));
 }
 
@@ -1615,7 +1671,7 @@ int dae_stats_csv_header(char *buf, size_t size)
     return snprintf(buf, size,
                     "steps,rejected,newton,conv_fails,res,res_fd,jac,symbolic,factor,refactor,"
                     "solves,order1,order2,order3,order4,order5,h_min,h_max,max_drift,"
-                    "init_residual,rcond_min,t_res,t_jac,t_linalg");
+                    "init_residual,rcond_min,t_res,t_jac,t_linalg,restarts");
 }
 
 int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
@@ -1623,6 +1679,6 @@ int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
     if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
     return snprintf(buf, size,
                     "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,"
-                    "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g",
+                    "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld",
                     DAE_STATS_FIELDS(st));
 }

@@ -14,6 +14,12 @@
  *     index-2 columns by alpha/h) so that it stays O(1) as h -> 0;
  *   - consistent initial values replace constraint rows by their time derivative;
  *   - optional projection onto position constraints after each step.
+ * Inputs that jump (sources, references) belong in options.breakpoints. One that is not given
+ * shows as a Newton iteration that fails down to the smallest step with no error-test failure;
+ * the solver then restarts once at that time as at a breakpoint (stats.restarts counts them) and
+ * stops with DAE_STEP_TOO_SMALL if the step collapses there again. A step is never accepted with
+ * algebraic unknowns left at the predictor's values across such a jump: the first Newton
+ * correction counts as converged on an earlier rate estimate only in proportion to its size.
  * The details and the reasons are in the header comment of bg_dae.c.
  *
  * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),
@@ -140,6 +146,8 @@ typedef struct dae_stats {
     double rcond_min;              /* smallest reciprocal condition estimate of the (scaled) Newton
                                       matrix (KLU: min|Ukk|/max|Ukk|; dense: LAPACK dgecon) */
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
+    long restarts;                 /* restarts at unannounced jumps (see dae_solve_to) */
+    double t_last_restart;         /* time of the last of them (NAN: none) */
 } dae_stats;
 
 /* Return codes of dae_solve_to / dae_step besides the bg_status codes. */

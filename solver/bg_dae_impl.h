@@ -14,6 +14,7 @@
 #define MAX_NCF 10 /* Newton failures in one step */
 #define EPS_NEWT 0.33
 #define RATE_MAX 0.9
+#define MAX_AUTO_RESTARTS 1 /* restarts at an unannounced jump before a step is accepted */
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
 
@@ -41,6 +42,7 @@ struct dae_solver {
     int jac_current; /* Jacobian evaluated at this step's predictor */
     int need_setup;
     double ss; /* Newton rate factor */
+    double dn0, dn0_last; /* first Newton correction norm of this step and of the last accepted one */
     /* consistent initialisation (bg_dae_init.c) */
     sp_csc *K;               /* stage B: Jacobian in (y'_D, y'_A1, y_A2) */
     int *kslot_yp, *kslot_y; /* entry p of Jyp / Jy -> slot in K, -1 if not used */
@@ -78,6 +80,8 @@ struct dae_solver {
     double troot;
     int ibk;             /* next breakpoint index */
     int restart_pending; /* landed on a breakpoint: restart before the next step */
+    int nautorestart; /* restarts at unannounced jumps since the last accepted step */
+    double t_fail;    /* end of the last step whose Newton iteration failed */
     int init_side;       /* consistent init: 0 at t, +1/-1 just after/before t (breakpoints) */
     int initialized;
     int failed; /* the failure that stopped the integration (< 0), 0 if none */
