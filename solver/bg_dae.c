@@ -1409,6 +1409,9 @@ static int step_once(dae_solver *s)
         ncf++;
         s->st.newton_fails++;
         s->t_fail = tnew;
+        /* failed on a fresh Jacobian: the next factorization pivots afresh, in case the reused
+         * pivot sequence was the trouble */
+        ls_force_full(s->ls);
         last_res_fail = nl == NL_RES_RECOVER;
         if (ncf >= MAX_NCF) {
             if (nl == NL_SINGULAR)

@@ -25,6 +25,7 @@ struct ls_solver {
     sp_csc *pattern; /* copy, to check the matrices given later */
     ls_stats st;
     double rcond_min;
+    double rcond_full; /* KLU: estimate of the last full factorization */
     int singular_col;
     int force_full;
     bg_error err;
@@ -69,7 +70,7 @@ ls_solver *ls_create(ls_kind kind, const sp_csc *P, bg_error *err)
     if (!s) goto nomem;
     s->kind = kind;
     s->n = P->ncol;
-    s->rcond_min = 1e-12;
+    s->rcond_min = 0.0;
     s->singular_col = -1;
     s->pattern = sp_csc_copy(P);
     if (!s->pattern) goto nomem;
@@ -134,16 +135,24 @@ static int klu_full(ls_solver *s, const sp_csc *A)
             "ls_factor", "klu_factor failed (KLU status %d)", s->common.status);
     }
     klu_rcond(s->sym, s->num, &s->common);
-    s->st.rcond = s->common.rcond;
+    s->st.rcond = s->rcond_full = s->common.rcond;
     return BG_OK;
 }
+
+/* A refactorization whose estimate falls more than this factor below the last full one's is
+ * redone with fresh pivots. */
+#define LS_REFACTOR_DROP 1e-3
 
 static int klu_fact(ls_solver *s, const sp_csc *A)
 {
     if (s->num && !s->force_full) {
         int ok = klu_refactor(A->colptr, A->rowind, A->val, s->sym, s->num, &s->common);
         s->st.refactor++;
-        if (ok && klu_rcond(s->sym, s->num, &s->common) && s->common.rcond >= s->rcond_min) {
+        /* stale pivots show as an estimate far below the one the pivots were chosen for; a
+         * matrix that is ill-conditioned by nature (index-2 systems, stiff bars: 1e-13 and
+         * below) keeps its estimate and its refactorization */
+        double rc = ok && klu_rcond(s->sym, s->num, &s->common) ? s->common.rcond : 0.0;
+        if (rc > 0 && rc >= s->rcond_min && rc >= LS_REFACTOR_DROP * s->rcond_full) {
             s->st.rcond = s->common.rcond;
             return BG_OK;
         }

@@ -617,6 +617,52 @@ out:
     sp_csc_free(&A);
 }
 
+/* ---- the fallback is relative to the estimate of the last full factorization ---- */
+
+static void test_refactor_drop(void)
+{
+    /* A(e) = [[1, 1], [1, 1 + e]]: min|Ukk|/max|Ukk| ~ e with diagonal pivots */
+    double D[4] = {1.0, 1.0, 1.0, 1.0 + 1e-14}, b[2] = {1.0, -2.0}, x[2];
+    sp_csc *A = tu_csc_from_mask(2, 2, NULL, D);
+    ls_solver *s = A ? ls_create(LS_KLU, A, NULL) : NULL;
+    if (!tap_ok(s != NULL, "refactor drop: create")) goto out;
+    /* ill-conditioned by nature (an index-2 or stiff system): the same matrix again refactors
+     * without fresh pivots, even with an estimate of 1e-14 */
+    ls_factor(s, A);
+    ls_factor(s, A);
+    const ls_stats *st = ls_get_stats(s);
+    tap_ok(st->factor == 1 && st->refactor == 1 && st->fallback == 0 && st->rcond < 1e-13,
+           "refactor drop: a matrix with estimate %.3g refactors without a fallback (factor %ld, "
+           "refactor %ld, fallback %ld)",
+           st->rcond, st->factor, st->refactor, st->fallback);
+    /* well conditioned, then 1e-8 of that with the same pivots: stale, pivot afresh */
+    A->val[3] = 3.0; /* [[1, 1], [1, 3]]: pivots 1 and 2, estimate 1/2 */
+    ls_force_full(s);
+    ls_factor(s, A);
+    A->val[3] = 1.0 + 1e-8;
+    ls_factor(s, A);
+    st = ls_get_stats(s);
+    tap_ok(st->fallback == 1 && st->factor == 3,
+           "refactor drop: an estimate 1e-8 of the last full factorization's falls back (fallback "
+           "%ld, factor %ld)",
+           st->fallback, st->factor);
+    /* a drop by 1e-2 keeps the refactorization */
+    A->val[3] = 1.0 + 1e-6;
+    ls_factor(s, A);
+    st = ls_get_stats(s);
+    tap_ok(st->fallback == 1 && st->refactor == 3,
+           "refactor drop: an estimate 1e-2 of the last full one's keeps the refactorization "
+           "(fallback %ld, refactor %ld)",
+           st->fallback, st->refactor);
+    memcpy(x, b, sizeof b);
+    ls_solve(s, x, 1);
+    /* A^-1 b with e = 1e-6: x1 = ((1 + e) b0 - b1) / e, x2 = (b1 - b0) / e */
+    tap_close(x[1], (b[1] - b[0]) / 1e-6, 1e-8, 0, "refactor drop: solution after the refactor");
+out:
+    ls_free(&s);
+    sp_csc_free(&A);
+}
+
 /* ---- pattern mismatch ---- */
 
 static void test_pattern(tap_rng *r)
@@ -961,6 +1007,7 @@ int main(void)
     test_singular(&r);
     test_fallback();
     test_rcond();
+    test_refactor_drop();
     test_pattern(&r);
     test_nonfinite(&r);
     test_aat(&r, 30, 50, 0.1);
