@@ -76,6 +76,11 @@ ls_solver *ls_create(ls_kind kind, const sp_csc *P, bg_error *err)
     if (!s->pattern) goto nomem;
     if (kind == LS_KLU) {
         klu_defaults(&s->common);
+        /* COLAMD, not KLU's default AMD: AMD orders A + A^T for diagonal pivots, while Newton
+         * matrices of DAEs pivot off the diagonal (equations and unknowns are not paired by
+         * value), and at large alpha/h the crane's with 256 beam elements filled in to 2.1
+         * million entries in L (factor 63 ms) against 68 thousand (3 ms) with COLAMD */
+        s->common.ordering = 1;
         s->sym = klu_analyze(s->n, s->pattern->colptr, s->pattern->rowind, &s->common);
         if (!s->sym) {
             bg_error_raise(err,

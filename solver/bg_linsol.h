@@ -1,7 +1,7 @@
 /* Linear solvers behind one interface: sparse LU by KLU and dense LU by LAPACK.
  *
  * KLU (Davis and Palamadai Natarajan, ACM TOMS 37(3), 2010): the pattern is analysed once
- * (BTF, AMD ordering) at creation. The first ls_factor() is a full numeric factorization; later
+ * (BTF, then COLAMD ordering of the blocks, suited to pivots off the diagonal) at creation. The first ls_factor() is a full numeric factorization; later
  * ones reuse its pivot sequence through klu_refactor, which is much cheaper, then check the cheap
  * reciprocal condition estimate min|U_kk|/max|U_kk| (klu_rcond). If the refactorization hit a zero
  * pivot, or the estimate fell more than a factor 1e-3 below that of the last full factorization
