@@ -114,10 +114,27 @@ static int row_ok(const row *r)
 }
 
 /* log10 of the median CPU time at accuracy target on the curve of (scd, cpu) points of one
- * solver: linear interpolation in (scd, log cpu) between neighbours that bracket the target (the
- * cheapest such pair). When every run of the solver is more accurate than the target (its
- * loosest tolerance already passes it), the cheapest run is taken and *bound set (an upper
- * bound of the cost); NAN if the curve does not reach the target. */
+ * solver: linear interpolation in (scd, log cpu) between neighbours on the curve (runs at
+ * consecutive tolerances, failed runs left out) that bracket the target, the cheapest such pair.
+ * Only neighbours: a pair of runs far apart in tolerance would stand for runs in between that
+ * were measured and cost more (the crane at rtol 1e-4 is chaotic: one solver's run there can be
+ * lucky, three times cheaper and more accurate than its run at 1e-5). When every run of the
+ * solver is more accurate than the target (its loosest tolerance already passes it), the cheapest
+ * run is taken and *bound set (an upper bound of the cost); NAN if the curve does not reach the
+ * target. */
+/* A and B (same case and solver) are runs at consecutive tolerances of the curve: no successful
+ * run of theirs lies strictly between them in rtol. */
+static int neighbours(const row *rows, int nrows, const row *A, const row *B)
+{
+    double lo = fmin(A->rtol, B->rtol), hi = fmax(A->rtol, B->rtol);
+    for (int c = 0; c < nrows; c++) {
+        const row *C = &rows[c];
+        if (C->ci == A->ci && C->sd == A->sd && row_ok(C) && C->rtol > lo && C->rtol < hi)
+            return 0;
+    }
+    return 1;
+}
+
 static double cpu_at_b(const row *rows, int nrows, int ci, const char *solver, double target,
                        int *bound)
 {
@@ -134,7 +151,7 @@ static double cpu_at_b(const row *rows, int nrows, int ci, const char *solver, d
             const row *B = &rows[b];
             double sb = capped(B->sc.scd);
             if (B->ci != ci || strcmp(B->sd->name, solver) || !row_ok(B) ||
-                !(sa <= target && sb >= target) || sa == sb)
+                !(sa <= target && sb >= target) || sa == sb || !neighbours(rows, nrows, A, B))
                 continue;
             double w = (target - sa) / (sb - sa);
             double lc = (1 - w) * log10(A->cpu_med) + w * log10(B->cpu_med);
@@ -384,7 +401,9 @@ static void write_report_head(FILE *f, const row *rows, int n, bench_case **case
 
     /* ratio table */
     fprintf(f, "## CPU time of bgdae-klu / ida-klu at equal accuracy\n\n"
-               "Interpolated in (scd, log CPU) on each solver's curve; '-' where a curve does not "
+               "Interpolated in (scd, log CPU) between runs at neighbouring tolerances of each "
+               "solver's curve that bracket the accuracy (the cheapest such pair); '-' where a "
+               "curve does not "
                "reach the accuracy; '*' where a solver's loosest run is already more accurate "
                "(its cheapest run stands in). Below 1: ours is faster.\n\n"
                "| problem | n | scd 4 | scd 6 | scd 8 | fastest at scd 4 | fastest at scd 6 | "

@@ -1349,7 +1349,9 @@ static int step_once(dae_solver *s)
                                   "error-test and %d Newton failures in this step)%s%s",
                                   s->hh, s->tn, hmin, nef, ncf, s->note[0] ? ": " : "", s->note);
         }
-        daei_set_weights(s, s->phi[0]);
+        /* the weights change with h only through the index-2 unknowns' scaling by |h| */
+        if (s->has_alg2 && (s->o.index2 == DAE_I2_SCALE_H || s->o.newton_index2_scale_h))
+            daei_set_weights(s, s->phi[0]);
         set_coeffs(s);
         predict(s);
         double tnew = landing ? ts : s->tn + s->hh;
