@@ -23,8 +23,9 @@
  * where one is missed, where the time goes; the CPU-time ratio bgdae-klu / ida-klu at equal
  * accuracy interpolated at scd = 4, 6, 8 for every problem; tables per problem; failures; machine,
  * load, commit and build flags), wp_<problem>.png (scd against CPU time and against steps, drawn
- * by gnuplot when it is installed), scaling.csv (crane: 8, 16, ..., 512 boom elements, --quick:
- * 8 .. 64, or --scaling LIST: CPU time per step against the unknowns, log-log slope),
+ * by gnuplot when it is installed), scaling.csv (crane from its settled start: 8, 16, ..., 512
+ * boom elements, --quick: 8 .. 64, or --scaling LIST: CPU time per step, log-log slopes against
+ * the boom elements, the target's measure, and against the unknowns),
  * realtime.csv (the paper scene over its full t_end, 20 s, K = --crane-realtime runs, default 5,
  * 0 with --quick: real-time factor, peak memory, bookkeeping fraction) and, with --stability,
  * stability.csv (bench_stab.h; --stability-filter runs the cases whose name contains TEXT).
@@ -356,14 +357,25 @@ static void write_report_head(FILE *f, const row *rows, int n, bench_case **case
                 "%% | %s |\n",
                 100 * ex->rt.bookkeeping, ex->rt.bookkeeping < 0.1 ? "met" : "MISSED");
     }
-    if (ex->have_scaling)
+    if (ex->have_scaling) {
+        /* the issue states the target against the boom elements; against the unknowns (which
+         * include the platform's, the hydraulics' and the load's, a fixed part) it is stricter
+         * and reported beside it */
         fprintf(f,
-                "| crane: time per step against unknowns, log-log slope <= 1.1 | %.3f (%.3f "
-                "against elements) | %s |\n",
-                ex->slope_n, ex->slope_el,
+                "| crane: time per step against boom elements, log-log slope <= 1.1 | %.3f | %s "
+                "|\n",
+                ex->slope_el,
+                isnan(ex->slope_el)   ? "not measured"
+                : ex->slope_el <= 1.1 ? "met"
+                                      : "MISSED");
+        fprintf(f,
+                "| crane: the same against the unknowns (the fixed non-boom unknowns make it "
+                "stricter) | %.3f | %s |\n",
+                ex->slope_n,
                 isnan(ex->slope_n)   ? "not measured"
-                : ex->slope_n <= 1.1 ? "met"
-                                     : "MISSED");
+                : ex->slope_n <= 1.1 ? "within 1.1"
+                                     : "above 1.1");
+    }
     fprintf(f, "\n");
     /* where the time goes where a ratio target is missed */
     int said = 0;

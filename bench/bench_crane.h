@@ -30,8 +30,8 @@ bgr_model *bench_crane_model(const bench_case *bc);
  * into bc->ref_source with the steps of both). 0, or a negative status (message in msg). */
 int bench_crane_reference(bench_case *bc, double rtol_ref, int check_ida, char *msg, size_t msz);
 
-/* Scaling series: for each element count in elems (nel of them), the paper scene without the
- * static start (the boom's geometric shape), ours (bgdae-klu) at rtol = atol = 1e-6 for a warm-up
+/* Scaling series: for each element count in elems (nel of them), the paper scene from its
+ * static start (settled, not timed), ours (bgdae-klu) at rtol = atol = 1e-6 for a warm-up
  * of `skip` steps, then `steps` timed steps (fewer, at least 5, once they have taken cpu_cap
  * seconds of CPU; at most up to t_max): CPU time per step, the wall time per step with its
  * residual, Jacobian and linear-algebra parts, total time, unknowns. Log-log least-squares slopes

@@ -128,7 +128,7 @@ static int add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_cla
     if (!q)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "bgr_element_add",
                               "out of memory");
-    int *dims = malloc(((size_t)nports + 1) * sizeof *dims);
+    int *dims = calloc((size_t)nports + 1, sizeof *dims);
     if (!dims) {
         par_free(q);
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "bgr_element_add",

@@ -88,7 +88,7 @@ static void shape_eval(const source *q, double t, double *u, double *du, double 
 
 static double source_value(const source *q, double t)
 {
-    double u, du, A;
+    double u = 0, du = 0, A = 0; /* set by every shape (the compiler cannot see it at -O3) */
     shape_eval(q, t, &u, &du, &A);
     return q->out == SIG_VALUE ? u : q->out == SIG_RATE ? du : A - q->A0;
 }

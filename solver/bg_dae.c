@@ -271,12 +271,22 @@ void daei_set_weights(dae_solver *s, const double *y)
 
 double daei_wrms(const dae_solver *s, const double *v, const double *w)
 {
-    double sum = 0.0;
-    for (int i = 0; i < s->n; i++) {
-        double a = v[i] * w[i];
-        sum += a * a;
+    /* four partial sums: independent chains the processor overlaps */
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int n = s->n, i = 0;
+    for (; i + 4 <= n; i += 4) {
+        double a0 = v[i] * w[i], a1 = v[i + 1] * w[i + 1], a2 = v[i + 2] * w[i + 2],
+               a3 = v[i + 3] * w[i + 3];
+        s0 += a0 * a0;
+        s1 += a1 * a1;
+        s2 += a2 * a2;
+        s3 += a3 * a3;
     }
-    return sqrt(sum / (s->n > 0 ? s->n : 1));
+    for (; i < n; i++) {
+        double a = v[i] * w[i];
+        s0 += a * a;
+    }
+    return sqrt(((s0 + s1) + (s2 + s3)) / (n > 0 ? n : 1));
 }
 
 /* --------------------------------------------------------------- creation ---- */
@@ -795,30 +805,38 @@ static void set_coeffs(dae_solver *s)
     s->cj = -s->alphas / s->hh;
     s->ck = fabs(s->alpha[k] + s->alphas - s->alpha0);
     s->ck = fmax(s->ck, s->alpha[k]);
-    for (int j = s->ns; j <= k; j++)
+    for (int j = s->ns; j <= k; j++) {
+        double *restrict p = s->phi[j], b = s->beta[j];
         for (int i = 0; i < s->n; i++)
-            s->phi[j][i] *= s->beta[j];
+            p[i] *= b;
+    }
 }
 
 static void restore(dae_solver *s)
 {
     for (int j = 1; j <= s->kk; j++)
         s->psi[j - 1] = s->psi[j] - s->hh;
-    for (int j = s->ns; j <= s->kk; j++)
+    for (int j = s->ns; j <= s->kk; j++) {
+        double *restrict p = s->phi[j], b = s->beta[j];
         for (int i = 0; i < s->n; i++)
-            s->phi[j][i] /= s->beta[j];
+            p[i] /= b;
+    }
 }
 
 static void predict(dae_solver *s)
 {
     int n = s->n;
-    memcpy(s->ypred, s->phi[0], (size_t)n * sizeof(double));
-    memset(s->yppred, 0, (size_t)n * sizeof(double));
-    for (int j = 1; j <= s->kk; j++)
+    double *restrict yq = s->ypred, *restrict ypq = s->yppred;
+    memcpy(yq, s->phi[0], (size_t)n * sizeof(double));
+    memset(ypq, 0, (size_t)n * sizeof(double));
+    for (int j = 1; j <= s->kk; j++) {
+        const double *restrict p = s->phi[j];
+        double g = s->gamma[j];
         for (int i = 0; i < n; i++) {
-            s->ypred[i] += s->phi[j][i];
-            s->yppred[i] += s->gamma[j] * s->phi[j][i];
+            yq[i] += p[i];
+            ypq[i] += g * p[i];
         }
+    }
 }
 
 enum { SU_OK = 0, SU_RECOVER = 1, SU_SINGULAR = 2, SU_LSFAIL = 3 };
@@ -945,10 +963,14 @@ static int newton(dae_solver *s, double t)
             return NL_LSFAIL;
         }
         s->st.newton_iters++;
-        for (int i = 0; i < n; i++) {
-            s->y[i] -= s->delta[i];
-            s->yp[i] -= s->cj * s->delta[i];
-            s->ee[i] -= s->delta[i];
+        {
+            double *restrict y = s->y, *restrict yp = s->yp, *restrict ee = s->ee, cj = s->cj;
+            const double *restrict d = s->delta;
+            for (int i = 0; i < n; i++) {
+                y[i] -= d[i];
+                yp[i] -= cj * d[i];
+                ee[i] -= d[i];
+            }
         }
         double dn = daei_wrms(s, s->delta, s->wnewt);
         if (!isfinite(dn)) {
@@ -989,6 +1011,26 @@ static int newton(dae_solver *s, double t)
     return NL_RECOVER;
 }
 
+/* Vector kernels on distinct arrays (restrict lets them vectorize: through the solver struct
+ * the compiler must assume that every store may change the coefficients it reads). */
+static void vadd(int n, double *restrict x, const double *restrict a) /* x += a */
+{
+    for (int i = 0; i < n; i++)
+        x[i] += a[i];
+}
+
+static void vsum(int n, double *restrict x, const double *restrict a, const double *restrict b)
+{
+    for (int i = 0; i < n; i++)
+        x[i] = a[i] + b[i];
+}
+
+static void vdiff(int n, double *restrict x, const double *restrict a, const double *restrict b)
+{
+    for (int i = 0; i < n; i++)
+        x[i] = a[i] - b[i];
+}
+
 /* Error test: 0 pass, 1 fail. Sets err_k, err_km1, knew. */
 static int test_error(dae_solver *s)
 {
@@ -999,13 +1041,11 @@ static int test_error(dae_solver *s)
     s->knew = k;
     s->err_km1 = 0;
     if (k > 1) {
-        for (int i = 0; i < s->n; i++)
-            s->tmp[i] = s->phi[k][i] + s->ee[i];
+        vsum(s->n, s->tmp, s->phi[k], s->ee);
         s->err_km1 = s->sigma[k - 1] * daei_wrms(s, s->tmp, s->werr);
         double terr_km1 = k * s->err_km1;
         if (k > 2) {
-            for (int i = 0; i < s->n; i++)
-                s->tmp[i] += s->phi[k - 1][i];
+            vadd(s->n, s->tmp, s->phi[k - 1]);
             double terr_km2 = (k - 1) * s->sigma[k - 2] * daei_wrms(s, s->tmp, s->werr);
             if (fmax(terr_km1, terr_km2) <= terr_k) s->knew = k - 1;
         } else if (terr_km1 <= 0.5 * terr_k) {
@@ -1051,8 +1091,7 @@ static void complete_step(dae_solver *s)
         else if (k == s->o.max_order || k + 1 >= s->ns || kdiff == 1)
             action = MAINTAIN;
         else {
-            for (int i = 0; i < n; i++)
-                s->tmp[i] = s->ee[i] - s->phi[k + 1][i];
+            vdiff(n, s->tmp, s->ee, s->phi[k + 1]);
             err_kp1 = daei_wrms(s, s->tmp, s->werr) / (k + 2);
             double terr_k = (k + 1) * s->err_k, terr_kp1 = (k + 2) * err_kp1;
             if (k == 1)
@@ -1085,11 +1124,9 @@ static void complete_step(dae_solver *s)
         s->hh = hnew;
     }
     if (s->kused < MAXORD) memcpy(s->phi[s->kused + 1], s->ee, (size_t)n * sizeof(double));
-    for (int i = 0; i < n; i++)
-        s->phi[s->kused][i] += s->ee[i];
+    vadd(n, s->phi[s->kused], s->ee);
     for (int j = s->kused - 1; j >= 0; j--)
-        for (int i = 0; i < n; i++)
-            s->phi[j][i] += s->phi[j + 1][i];
+        vadd(n, s->phi[j], s->phi[j + 1]);
 }
 
 int dae_dense(const dae_solver *s, double t, double *y, double *yp)
