@@ -705,6 +705,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->root_pending = 0;
     s->restart_pending = 0;
     s->nautorestart = 0;
+    s->ncrawl = 0;
     s->dn0_last = HUGE_VAL;
     s->init_side = 0;
     s->tlo = t0;
@@ -884,11 +885,11 @@ static int lsolve(dae_solver *s, double *v)
 {
     double t0 = daei_seconds();
     double cj = s->cjf;
-    for (int i = 0; i < s->n; i++)
-        if (s->rowscaled[i]) v[i] /= cj;
+    for (int k = 0; k < s->nsrows; k++)
+        v[s->srows[k]] /= cj;
     int r = ls_solve(s->ls, v, 1);
-    for (int j = 0; j < s->n; j++)
-        if (s->kind[j] == DAE_ALG2) v[j] *= cj;
+    for (int k = 0; k < s->na2; k++)
+        v[s->a2cols[k]] *= cj;
     if (s->cj != cj) {
         double f = 2.0 / (1.0 + s->cj / cj);
         for (int j = 0; j < s->n; j++)
@@ -1061,6 +1062,7 @@ static void complete_step(dae_solver *s)
     s->st.steps++;
     s->nst_local++;
     s->nautorestart = 0;
+    s->ncrawl = fabs(s->hh) < CRAWL_FACTOR * 4 * DBL_EPSILON * fabs(s->tn) ? s->ncrawl + 1 : 0;
     s->dn0_last = s->dn0;
     s->since_fail++;
     int kdiff = s->kk - s->kused;
@@ -1359,6 +1361,17 @@ static int step_once(dae_solver *s)
                               i >= 0 ? s->phi[0][i] : 0.0, i >= 0 ? 1.0 / s->ewt[i] : 0.0);
     }
     s->note[0] = '\0';
+    /* A crawl: CRAWL_STEPS accepted steps in a row, each within CRAWL_FACTOR of the round-off
+     * limit of t, the steps in between failing (a switch in the model that no step crosses). It
+     * would otherwise go on until max_steps or the caller's patience. */
+    if (s->ncrawl >= CRAWL_STEPS)
+        return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
+                              "the step size stayed below %g times the round-off limit of t for %d "
+                              "steps at t = %.17g (h = %.3g, %ld Newton and %ld error-test "
+                              "failures so far): the solution cannot pass this point (a switch or "
+                              "a singularity of the model)",
+                              CRAWL_FACTOR, CRAWL_STEPS, s->tn, s->hused, s->st.newton_fails,
+                              s->st.rejected_error);
     for (;;) {
         int isb;
         double ts = next_stop(s, s->hh > 0 ? 1 : -1, &isb);
@@ -1448,9 +1461,6 @@ static int step_once(dae_solver *s)
         ncf++;
         s->st.newton_fails++;
         s->t_fail = tnew;
-        /* failed on a fresh Jacobian: the next factorization pivots afresh, in case the reused
-         * pivot sequence was the trouble */
-        ls_force_full(s->ls);
         last_res_fail = nl == NL_RES_RECOVER;
         if (ncf >= MAX_NCF) {
             if (nl == NL_SINGULAR)

@@ -14,6 +14,8 @@
 #define MAX_NCF 10 /* Newton failures in one step */
 #define EPS_NEWT 0.33
 #define RATE_MAX 0.9
+#define CRAWL_FACTOR 100.0
+#define CRAWL_STEPS 200
 #define MAX_AUTO_RESTARTS 1 /* restarts at an unannounced jump before a step is accepted */
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
@@ -38,6 +40,8 @@ struct dae_solver {
                         (differentiated at initialisation); ROW_ALG2: algebraic with an index-2
                         unknown */
     int *rowscaled;  /* row scaled by h/alpha in the Newton matrix (ROW_DIFF and ROW_ALG2) */
+    int *srows, nsrows; /* the scaled rows, listed */
+    int *a2cols, na2;   /* the index-2 columns (scaled by alpha/h), listed */
     double cjf;      /* cj the factored matrix was built with */
     int jac_current; /* Jacobian evaluated at this step's predictor */
     int need_setup;
@@ -81,6 +85,7 @@ struct dae_solver {
     int ibk;             /* next breakpoint index */
     int restart_pending; /* landed on a breakpoint: restart before the next step */
     int nautorestart; /* restarts at unannounced jumps since the last accepted step */
+    int ncrawl;       /* accepted steps in a row within CRAWL_FACTOR of round-off */
     double t_fail;    /* end of the last step whose Newton iteration failed */
     int init_side;       /* consistent init: 0 at t, +1/-1 just after/before t (breakpoints) */
     int initialized;

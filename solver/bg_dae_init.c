@@ -142,6 +142,8 @@ void daei_init_free(dae_solver *s)
 {
     free(s->rowkind);
     free(s->rowscaled);
+    free(s->srows);
+    free(s->a2cols);
     sp_csc_free(&s->K);
     free(s->kslot_yp);
     free(s->kslot_y);
@@ -269,8 +271,15 @@ int daei_init_setup(dae_solver *s, bg_error *err)
         }
     free(touched);
     s->nalg_rows = s->nalg1_rows = 0;
+    s->srows = malloc(((size_t)n + 1) * sizeof *s->srows);
+    s->a2cols = malloc(((size_t)n + 1) * sizeof *s->a2cols);
+    if (!s->srows || !s->a2cols) goto nomem;
+    s->nsrows = s->na2 = 0;
+    for (int j = 0; j < n; j++)
+        if (s->kind[j] == DAE_ALG2) s->a2cols[s->na2++] = j;
     for (int i = 0; i < n; i++) {
         s->rowscaled[i] = s->rowkind[i] != ROW_ALG1;
+        if (s->rowscaled[i]) s->srows[s->nsrows++] = i;
         s->arow[i] = s->rowkind[i] == ROW_DIFF ? -1 : s->nalg_rows++;
         s->nalg1_rows += s->rowkind[i] == ROW_ALG1;
     }
