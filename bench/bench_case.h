@@ -121,6 +121,10 @@ typedef struct bench_prof {
 } bench_prof;
 void bench_prof_wrap(bench_prof *p, const dae_problem *in, dae_problem *out);
 
+/* A profiled warm-up run (its split into residual, Jacobian and linear algebra kept in out),
+ * then K timed runs into cpu[] (a run under 10 ms timed as the mean of a batch of about 20 ms;
+ * a large case counts its profiled run as the first, and runs once when that took over 5 s; a
+ * failure runs once). Returns the number of times in cpu. */
 int bench_run_timed(const bench_case *bc, const solver_def *sd, const run_opts *ro, int K,
                     run_out *out, double *cpu);
 

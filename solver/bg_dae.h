@@ -20,6 +20,8 @@
  * stops with DAE_STEP_TOO_SMALL if the step collapses there again. A step is never accepted with
  * algebraic unknowns left at the predictor's values across such a jump: the first Newton
  * correction counts as converged on an earlier rate estimate only in proportion to its size.
+ * A run that crawls (200 accepted steps in a row within 100 times the round-off limit of t, at a
+ * switch no step crosses) stops with DAE_STEP_TOO_SMALL.
  * The details and the reasons are in the header comment of bg_dae.c.
  *
  * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),

@@ -99,11 +99,8 @@ static void triad_q(const ad_ctx *c, const double *q, int off, const double *E0,
 static void half_diff_dots(const ad_ctx *c, const ad *a, const ad *b, const ad *cc, const ad *d,
                            ad *r)
 {
-    ad u, v;
-    ad_dot3(c, a, b, &u);
-    ad_dot3(c, cc, d, &v);
-    ad_axpy(c, &u, -1.0, &v, r);
-    ad_scale(c, 0.5, r, r);
+    ad_dot3s(c, 0.5, a, b, 0, r);
+    ad_dot3s(c, -0.5, cc, d, 1, r);
 }
 
 /* W(x_a, x_b, q_a, q_b) on AD numbers, into k->W. */
