@@ -27,6 +27,19 @@ if [ -x "$B/bench/bench" ]; then
     echo "not ok - bench --quick --stability failed:"; tail -n 5 "$B/bench-quick.log"
     extra_fail=$((extra_fail+1))
   fi
+  # every stability case ends solved (error checked against its reference) or stopped with a
+  # diagnostic: never WRONG, CRASHED, at the time limit or not set up
+  if [ -s "$B/bench-quick/stability.csv" ]; then
+    bad=$(awk -F'","' 'NR > 1 && $2 ~ /^(WRONG|CRASHED|TIME LIMIT|set-up failed)/ {print $1 "\": " $2}' \
+          "$B/bench-quick/stability.csv" | tr -d '"')
+    ncases=$(($(wc -l < "$B/bench-quick/stability.csv") - 1))
+    if [ -z "$bad" ] && [ "$ncases" -gt 0 ]; then
+      echo "ok - stability suite: $ncases cases, none wrong, crashed or at the time limit"
+      extra_pass=$((extra_pass+1))
+    else
+      echo "not ok - stability suite: $bad"; extra_fail=$((extra_fail+1))
+    fi
+  fi
 fi
 
 # install check: the library, its headers and pkg-config file serve an outside program

@@ -92,15 +92,17 @@ static inline void ad_inv(const ad_ctx *c, const ad *a, ad *r)
 }
 
 /* r = s (a . b) for 3-vectors in one pass, or r += s (a . b) when acc (r may alias neither; a
- * and b may be the same) */
+ * and b may be the same). Without acc r's old contents are not read (they may be garbage). */
 static inline void ad_dot3s(const ad_ctx *c, double s, const ad *a, const ad *b, int acc, ad *r)
 {
     const double a0 = a[0].v, a1 = a[1].v, a2 = a[2].v, b0 = b[0].v, b1 = b[1].v, b2 = b[2].v;
-    const double k = acc ? 1.0 : 0.0;
-    r->v = k * r->v + s * (a0 * b0 + a1 * b1 + a2 * b2);
-    for (int i = 0; i < AD_N; i++)
-        r->g[i] = k * r->g[i] + s * (a[0].g[i] * b0 + a0 * b[0].g[i] + a[1].g[i] * b1 +
-                                     a1 * b[1].g[i] + a[2].g[i] * b2 + a2 * b[2].g[i]);
+    double v = s * (a0 * b0 + a1 * b1 + a2 * b2);
+    r->v = acc ? r->v + v : v;
+    for (int i = 0; i < AD_N; i++) {
+        double g = s * (a[0].g[i] * b0 + a0 * b[0].g[i] + a[1].g[i] * b1 + a1 * b[1].g[i] +
+                        a[2].g[i] * b2 + a2 * b[2].g[i]);
+        r->g[i] = acc ? r->g[i] + g : g;
+    }
     if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
             for (int j = 0; j < AD_N; j++) {
@@ -108,7 +110,7 @@ static inline void ad_dot3s(const ad_ctx *c, double s, const ad *a, const ad *b,
                 for (int m = 0; m < 3; m++)
                     h += a[m].h[i * AD_N + j] * b[m].v + a[m].v * b[m].h[i * AD_N + j] +
                          a[m].g[i] * b[m].g[j] + a[m].g[j] * b[m].g[i];
-                r->h[i * AD_N + j] = k * r->h[i * AD_N + j] + s * h;
+                r->h[i * AD_N + j] = acc ? r->h[i * AD_N + j] + s * h : s * h;
             }
 }
 

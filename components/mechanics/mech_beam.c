@@ -416,7 +416,7 @@ static int beam_add(bgr_model *m, bgr_comp c, const char *name, int node_a, int 
     if (b && shared) {
         b->work = shared;
         shared->refs++;
-    } else if (b && !(b->work = malloc(sizeof *b->work))) {
+    } else if (b && !(b->work = calloc(1, sizeof *b->work))) {
         free(b);
         b = NULL;
     } else if (b) {
@@ -525,7 +525,7 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
         if (nodes[k] < 0) return nodes[k];
     }
     /* one scratch for the chain, held here until its elements have taken their references */
-    beam_work *shared = malloc(sizeof *shared);
+    beam_work *shared = calloc(1, sizeof *shared);
     if (!shared) return bg_error_raise(err, BG_ERR_MEMORY, "mech_beam_chain", "out of memory");
     shared->refs = 1;
     for (int k = 0; k < n; k++) {
