@@ -132,8 +132,7 @@ static int neighbours(const row *rows, int nrows, const row *A, const row *B)
     double lo = fmin(A->rtol, B->rtol), hi = fmax(A->rtol, B->rtol);
     for (int c = 0; c < nrows; c++) {
         const row *C = &rows[c];
-        if (C->ci == A->ci && C->sd == A->sd && row_ok(C) && C->rtol > lo && C->rtol < hi)
-            return 0;
+        if (C->ci == A->ci && C->sd == A->sd && row_ok(C) && C->rtol > lo && C->rtol < hi) return 0;
     }
     return 1;
 }

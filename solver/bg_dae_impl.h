@@ -36,17 +36,18 @@ struct dae_solver {
     sp_union *U;
     sp_fdjac *fdy, *fdyp;
     ls_solver *ls;
-    int *rowkind;    /* ROW_DIFF: contains y'; ROW_ALG1: algebraic, no index-2 unknown
-                        (differentiated at initialisation); ROW_ALG2: algebraic with an index-2
-                        unknown */
-    int *rowscaled;  /* row scaled by h/alpha in the Newton matrix (ROW_DIFF and ROW_ALG2) */
+    int *rowkind;       /* ROW_DIFF: contains y'; ROW_ALG1: algebraic, no index-2 unknown
+                           (differentiated at initialisation); ROW_ALG2: algebraic with an index-2
+                           unknown */
+    int *rowscaled;     /* row scaled by h/alpha in the Newton matrix (ROW_DIFF and ROW_ALG2) */
     int *srows, nsrows; /* the scaled rows, listed */
     int *a2cols, na2;   /* the index-2 columns (scaled by alpha/h), listed */
-    double cjf;      /* cj the factored matrix was built with */
-    int jac_current; /* Jacobian evaluated at this step's predictor */
+    double cjf;         /* cj the factored matrix was built with */
+    int jac_current;    /* Jacobian evaluated at this step's predictor */
     int need_setup;
     double ss; /* Newton rate factor */
-    double dn0, dn0_last; /* first Newton correction norm of this step and of the last accepted one */
+    double dn0,
+        dn0_last; /* first Newton correction norm of this step and of the last accepted one */
     /* consistent initialisation (bg_dae_init.c) */
     sp_csc *K;               /* stage B: Jacobian in (y'_D, y'_A1, y_A2) */
     int *kslot_yp, *kslot_y; /* entry p of Jyp / Jy -> slot in K, -1 if not used */
@@ -84,9 +85,9 @@ struct dae_solver {
     double troot;
     int ibk;             /* next breakpoint index */
     int restart_pending; /* landed on a breakpoint: restart before the next step */
-    int nautorestart; /* restarts at unannounced jumps since the last accepted step */
-    int ncrawl;       /* accepted steps in a row within CRAWL_FACTOR of round-off */
-    double t_fail;    /* end of the last step whose Newton iteration failed */
+    int nautorestart;    /* restarts at unannounced jumps since the last accepted step */
+    int ncrawl;          /* accepted steps in a row within CRAWL_FACTOR of round-off */
+    double t_fail;       /* end of the last step whose Newton iteration failed */
     int init_side;       /* consistent init: 0 at t, +1/-1 just after/before t (breakpoints) */
     int initialized;
     int failed; /* the failure that stopped the integration (< 0), 0 if none */

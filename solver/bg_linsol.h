@@ -1,14 +1,15 @@
 /* Linear solvers behind one interface: sparse LU by KLU and dense LU by LAPACK.
  *
  * KLU (Davis and Palamadai Natarajan, ACM TOMS 37(3), 2010): the pattern is analysed once
- * (BTF, then COLAMD ordering of the blocks, suited to pivots off the diagonal) at creation. The first ls_factor() is a full numeric factorization; later
- * ones reuse its pivot sequence through klu_refactor, which is much cheaper, then check the cheap
- * reciprocal condition estimate min|U_kk|/max|U_kk| (klu_rcond). If the refactorization hit a zero
- * pivot, or the estimate fell more than a factor 1e-3 below that of the last full factorization
- * (the pivots have gone stale) or below rcond_min (default 0), a full factorization with fresh
- * pivoting is done (counted as a fallback). A matrix that is ill-conditioned by nature keeps its
- * refactorizations: the estimate is relative to what fresh pivots gave. A singular matrix is reported with the column of the original matrix
- * at fault and the numerical rank.
+ * (BTF, then COLAMD ordering of the blocks, suited to pivots off the diagonal) at creation. The
+ * first ls_factor() is a full numeric factorization; later ones reuse its pivot sequence through
+ * klu_refactor, which is much cheaper, then check the cheap reciprocal condition estimate
+ * min|U_kk|/max|U_kk| (klu_rcond). If the refactorization hit a zero pivot, or the estimate fell
+ * more than a factor 1e-3 below that of the last full factorization (the pivots have gone stale) or
+ * below rcond_min (default 0), a full factorization with fresh pivoting is done (counted as a
+ * fallback). A matrix that is ill-conditioned by nature keeps its refactorizations: the estimate is
+ * relative to what fresh pivots gave. A singular matrix is reported with the column of the original
+ * matrix at fault and the numerical rank.
  *
  * Dense: the matrix is expanded into a column-major array and factored by dgetrf (partial
  * pivoting); rcond is estimated by dgecon in the 1-norm. Meant for small systems and as a
@@ -60,8 +61,8 @@ int ls_solve(ls_solver *s, double *b, int nrhs);
  * (or s is NULL). */
 int ls_singular_col(const ls_solver *s);
 /* A refactorization whose rcond estimate falls below this absolute threshold (default 0: only
- * the relative test above applies) is redone as a full factorization with fresh pivoting. BG_OK, or BG_ERR_ARGUMENT (s NULL, rcond_min
- * negative or NaN; the threshold is then unchanged). */
+ * the relative test above applies) is redone as a full factorization with fresh pivoting. BG_OK, or
+ * BG_ERR_ARGUMENT (s NULL, rcond_min negative or NaN; the threshold is then unchanged). */
 int ls_set_rcond_min(ls_solver *s, double rcond_min);
 /* Statistics, NULL if s is NULL. */
 const ls_stats *ls_get_stats(const ls_solver *s);

@@ -75,8 +75,8 @@ static void triad_q(const ad_ctx *c, const double *q, int off, const double *E0,
         if (c->order > 1)
             for (int m = 0; m < 4; m++)
                 for (int l = 0; l < 4; l++) /* d2N = 2 A, d2s = 2 I */
-                    d2R[k][m][l] = (2 * QA[k][m][l] - dR[k][m] * 2 * q[l] -
-                                    dR[k][l] * 2 * q[m] - (m == l ? 2 * R[k] : 0.0)) *
+                    d2R[k][m][l] = (2 * QA[k][m][l] - dR[k][m] * 2 * q[l] - dR[k][l] * 2 * q[m] -
+                                    (m == l ? 2 * R[k] : 0.0)) *
                                    is;
     }
     for (int i = 0; i < 3; i++)
@@ -89,9 +89,8 @@ static void triad_q(const ad_ctx *c, const double *q, int off, const double *E0,
             if (c->order > 1)
                 for (int m = 0; m < 4; m++)
                     for (int l = 0; l < 4; l++)
-                        o->h[(off + m) * AD_N + off + l] = e[0] * d2R[r][m][l] +
-                                                           e[1] * d2R[r + 3][m][l] +
-                                                           e[2] * d2R[r + 6][m][l];
+                        o->h[(off + m) * AD_N + off + l] =
+                            e[0] * d2R[r][m][l] + e[1] * d2R[r + 3][m][l] + e[2] * d2R[r + 6][m][l];
         }
 }
 

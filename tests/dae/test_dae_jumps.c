@@ -160,12 +160,14 @@ static void check_chain(jp *p, const char *name)
             tap_close(o.y[IU], sat(10 * p->s1), 1e-6, 1e-6,
                       "%s, rtol %g, exclude_alg %d: u(1) on the far side of the jump", name, rtol,
                       ex);
-            tap_close(o.y[IZ], bp.y[IZ], 0, 10 * rtol, "%s, rtol %g, exclude_alg %d: z(1) = %.10f "
-                      "as with the breakpoint", name, rtol, ex, o.y[IZ]);
+            tap_close(o.y[IZ], bp.y[IZ], 0, 10 * rtol,
+                      "%s, rtol %g, exclude_alg %d: z(1) = %.10f "
+                      "as with the breakpoint",
+                      name, rtol, ex, o.y[IZ]);
             tap_ok(o.st.restarts >= 1 && fabs(o.st.t_last_restart - p->tc) < 1e-12,
-                       "%s, rtol %g, exclude_alg %d: restarted at the jump (%ld restarts, the "
-                       "last at t = %.17g, tc = %.17g)",
-                       name, rtol, ex, o.st.restarts, o.st.t_last_restart, p->tc);
+                   "%s, rtol %g, exclude_alg %d: restarted at the jump (%ld restarts, the "
+                   "last at t = %.17g, tc = %.17g)",
+                   name, rtol, ex, o.st.restarts, o.st.t_last_restart, p->tc);
         }
     }
 }
