@@ -184,6 +184,15 @@ static double ratio_at_b(const row *rows, int n, int ci, double target, int *bou
     return isnan(a) || isnan(b) ? NAN : pow(10, a - b);
 }
 
+/* A row of the targets table for a scaling slope (limit 1.1). */
+static void slope_row(FILE *f, const char *what, double slope, const char *ok, const char *bad)
+{
+    fprintf(f, "| crane: %s | %.3f | %s |\n", what, slope,
+            isnan(slope)   ? "not measured"
+            : slope <= 1.1 ? ok
+                           : bad);
+}
+
 static double frac_other(const run_out *r)
 {
     return r->wall > 0 ? (r->wall - r->t_res - r->t_jac - r->t_lin) / r->wall : NAN;
@@ -364,20 +373,10 @@ static void write_report_head(FILE *f, const row *rows, int n, bench_case **case
         /* the issue states the target against the boom elements; against the unknowns (which
          * include the platform's, the hydraulics' and the load's, a fixed part) it is stricter
          * and reported beside it */
-        fprintf(f,
-                "| crane: time per step against boom elements, log-log slope <= 1.1 | %.3f | %s "
-                "|\n",
-                ex->slope_el,
-                isnan(ex->slope_el)   ? "not measured"
-                : ex->slope_el <= 1.1 ? "met"
-                                      : "MISSED");
-        fprintf(f,
-                "| crane: the same against the unknowns (the fixed non-boom unknowns make it "
-                "stricter) | %.3f | %s |\n",
-                ex->slope_n,
-                isnan(ex->slope_n)   ? "not measured"
-                : ex->slope_n <= 1.1 ? "within 1.1"
-                                     : "above 1.1");
+        slope_row(f, "time per step against boom elements, log-log slope <= 1.1", ex->slope_el,
+                  "met", "MISSED");
+        slope_row(f, "the same against the unknowns (the fixed non-boom unknowns make it stricter)",
+                  ex->slope_n, "within 1.1", "above 1.1");
     }
     fprintf(f, "\n");
     /* where the time goes where a ratio target is missed */

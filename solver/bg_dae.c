@@ -1056,13 +1056,19 @@ static int test_error(dae_solver *s)
     return s->ck * enorm_k > 1.0;
 }
 
+/* The smallest step t can take here: a few units of round-off of t. */
+static double roundoff_h(const dae_solver *s)
+{
+    return 4 * DBL_EPSILON * fabs(s->tn);
+}
+
 static void complete_step(dae_solver *s)
 {
     int n = s->n;
     s->st.steps++;
     s->nst_local++;
     s->nautorestart = 0;
-    s->ncrawl = fabs(s->hh) < CRAWL_FACTOR * 4 * DBL_EPSILON * fabs(s->tn) ? s->ncrawl + 1 : 0;
+    s->ncrawl = fabs(s->hh) < CRAWL_FACTOR * roundoff_h(s) ? s->ncrawl + 1 : 0;
     s->dn0_last = s->dn0;
     s->since_fail++;
     int kdiff = s->kk - s->kused;
@@ -1306,13 +1312,13 @@ static int project_step(dae_solver *s)
     return s->o.projection ? project_vec(s, s->tn, s->phi[0]) : BG_OK;
 }
 
-/* Restart at a breakpoint: left value of y, consistent right value of y', order 1. */
-/* The first step after a breakpoint is sized from y'' just before it (differenced from the
- * interpolant over the last half step): the local error of the order-1 restart is about
- * h^2/2 |y''|, so h = 0.5 sqrt(2 / |y''|) in the error norm, at most the last step. Far larger
- * than IDA's first-step rule, which would restart from h ~ 0.5/|y'| and double up again. */
-/* dt != 0: the restart is made at tn + dt, past a jump that lies within a few units of
- * round-off of tn, with y carried there along y' (a change far below the tolerances). */
+/* Restart at a breakpoint: left value of y, consistent right value of y', order 1. The first
+ * step after a breakpoint is sized from y'' just before it (differenced from the interpolant over
+ * the last half step): the local error of the order-1 restart is about h^2/2 |y''|, so
+ * h = 0.5 sqrt(2 / |y''|) in the error norm, at most the last step. Far larger than IDA's
+ * first-step rule, which would restart from h ~ 0.5/|y'| and double up again.
+ * dt != 0: the restart is made at tn + dt, past a jump that lies within a few units of round-off
+ * of tn, with y carried there along y' (a change far below the tolerances). */
 static int restart_at_breakpoint(dae_solver *s, double tout, double dt)
 {
     double hprev = fabs(s->hused), hpref = hprev;
@@ -1342,6 +1348,9 @@ static int restart_at_breakpoint(dae_solver *s, double tout, double dt)
     s->first = 1;
     return first_step(s, tout, hpref);
 }
+
+/* step_once's results besides a failure (< 0) */
+enum { STEP_TAKEN = 0, STEP_ON_BREAKPOINT = 1, STEP_JUMP = 2 };
 
 static int step_once(dae_solver *s)
 {
@@ -1376,7 +1385,7 @@ static int step_once(dae_solver *s)
         int isb;
         double ts = next_stop(s, s->hh > 0 ? 1 : -1, &isb);
         int landing = !isnan(ts) && s->tn + s->hh == ts;
-        double hmin = fmax(s->o.h_min, 4 * DBL_EPSILON * fabs(s->tn));
+        double hmin = fmax(s->o.h_min, roundoff_h(s));
         if (fabs(s->hh) < hmin && !landing && last_res_fail)
             return bg_error_raise(&s->err, DAE_RES_FAIL, w,
                                   "the residual (or Jacobian) kept failing until the step size "
@@ -1391,7 +1400,7 @@ static int step_once(dae_solver *s)
          * accepted since, stops the run. */
         if (fabs(s->hh) < hmin && !landing && ncf > 0 && nef == 0 && s->hused != 0 &&
             s->nautorestart < MAX_AUTO_RESTARTS)
-            return 2;
+            return STEP_JUMP;
         if (fabs(s->hh) < hmin && !landing) {
             if (nef + ncf == 0) note_step_limit(s);
             return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
@@ -1425,7 +1434,7 @@ static int step_once(dae_solver *s)
             if (s->o.fixed_step || !test_error(s)) {
                 complete_step(s);
                 s->tn = tnew;
-                return landing && isb ? 1 : 0;
+                return landing && isb ? STEP_ON_BREAKPOINT : STEP_TAKEN;
             }
             note_error_test(s, tnew);
             restore(s);
@@ -1615,7 +1624,7 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
             output_state(s, s->tn, tret, y, yp);
             return r;
         }
-        if (r == 2) { /* an unannounced jump at tn: restart there (no step was taken) */
+        if (r == STEP_JUMP) { /* an unannounced jump at tn: restart there (no step was taken) */
             char keep[sizeof s->note];
             snprintf(keep, sizeof keep, "%s", s->note);
             int rr = restart_at_breakpoint(s, tout, s->t_fail - s->tn);
@@ -1639,8 +1648,8 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
             output_state(s, s->tn, tret, y, yp);
             return r;
         }
-        if (r == 1) { /* landed on a breakpoint: restart before the next step (which may be in
-                         the next call, when tout is the breakpoint itself) */
+        if (r == STEP_ON_BREAKPOINT) { /* landed on a breakpoint: restart before the next step
+                         (which may be in the next call, when tout is the breakpoint itself) */
             s->ibk++;
             if (s->p.nroots > 0 && (r = find_root(s)) < 0) {
                 output_state(s, s->tn, tret, y, yp);

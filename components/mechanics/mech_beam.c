@@ -33,10 +33,16 @@ typedef struct beam {
     beam_work *work;
 } beam;
 
+/* Drops one reference to a scratch; the last frees it. */
+static void work_release(beam_work *w)
+{
+    if (w && --w->refs == 0) free(w);
+}
+
 static void beam_free(void *p)
 {
     beam *b = p;
-    if (b && b->work && --b->work->refs == 0) free(b->work);
+    if (b) work_release(b->work);
     free(b);
 }
 
@@ -532,7 +538,7 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
         snprintf(nm, sizeof nm, "el%02d", k);
         elems[k] = beam_add(m, cc, nm, nodes[k], nodes[k + 1], sec, E0, Le, shared);
         if (elems[k] < 0) {
-            if (--shared->refs == 0) free(shared);
+            work_release(shared);
             return elems[k];
         }
         int pa = k > 0 ? 1 : 0; /* node k: next port; node k+1: prev port (0) */
@@ -540,18 +546,18 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
         int st = bgr_bond(m, cc, nm, 6, bgr_port_of(m, nodes[k], pa), bgr_port_of(m, elems[k], 0),
                           NULL, NULL);
         if (st < 0) {
-            if (--shared->refs == 0) free(shared);
+            work_release(shared);
             return st;
         }
         snprintf(nm, sizeof nm, "bb%02d", k);
         st = bgr_bond(m, cc, nm, 6, bgr_port_of(m, nodes[k + 1], 0), bgr_port_of(m, elems[k], 1),
                       NULL, NULL);
         if (st < 0) {
-            if (--shared->refs == 0) free(shared);
+            work_release(shared);
             return st;
         }
     }
-    if (--shared->refs == 0) free(shared);
+    work_release(shared);
     return cc;
 }
 
