@@ -14,8 +14,11 @@
 #define MAX_NCF 10 /* Newton failures in one step */
 #define EPS_NEWT 0.33
 #define RATE_MAX 0.9
+#define RATE_EXTEND 0.5 /* the Newton iteration may go past max_newton ... */
+#define NEWTON_EXTEND 2 /* ... up to this many times max_newton iterations */
 #define CRAWL_FACTOR 100.0
 #define CRAWL_STEPS 200
+#define JUMP_WINDOW 1000.0  /* a Newton failure this many round-off steps from tn marks a jump */
 #define MAX_AUTO_RESTARTS 1 /* restarts at an unannounced jump before a step is accepted */
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
