@@ -52,6 +52,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -148,6 +149,16 @@ const char *dae_return_name(int code)
 /* First entry of v[0..n) that is not finite, -1 if none. */
 static int first_nonfinite(const double *v, int n)
 {
+    /* Inf and NaN have all exponent bits set: one branch-free pass in integers, which the
+     * compiler vectorizes, then the search only when something is not finite */
+    const uint64_t expo = 0x7ff0000000000000u;
+    uint64_t bad = 0;
+    for (int i = 0; i < n; i++) {
+        uint64_t b;
+        memcpy(&b, &v[i], sizeof b);
+        bad |= (b & expo) == expo;
+    }
+    if (!bad) return -1;
     for (int i = 0; i < n; i++)
         if (!isfinite(v[i])) return i;
     return -1;
@@ -253,22 +264,34 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
 
 #define TOL_FLOOR 1e-100
 
-void daei_set_weights(dae_solver *s, const double *y)
+void daei_set_weights(dae_solver *s, const double *restrict y)
 {
-    double h = fabs(s->hh);
-    for (int i = 0; i < s->n; i++) {
-        /* tolerances below TOL_FLOOR act as TOL_FLOOR: the weights and their squares in the
-         * norms stay finite (atol = 0 with y_i = 0, or a denormal atol) */
-        double w = 1.0 / fmax(s->o.rtol * fabs(y[i]) + s->atol[i], TOL_FLOOR);
-        s->ewt[i] = w;
-        s->wdiff[i] = s->kind[i] == DAE_ALG2 ? 0.0 : w;
-        if (s->kind[i] == DAE_ALG2) {
-            s->werr[i] = s->o.index2 == DAE_I2_EXCLUDE ? 0.0 : w * h;
-            s->wnewt[i] = s->o.newton_index2_scale_h ? w * h : w;
-        } else {
-            s->werr[i] = s->kind[i] == DAE_ALG && s->o.exclude_alg ? 0.0 : w;
-            s->wnewt[i] = w;
-        }
+    double h = fabs(s->hh), rtol = s->o.rtol;
+    int n = s->n;
+    double *restrict ewt = s->ewt, *restrict wd = s->wdiff, *restrict we = s->werr,
+                     *restrict wn = s->wnewt;
+    const double *restrict at = s->atol;
+    /* every weight as that of a differential unknown in one branch-free pass, then the
+     * algebraic unknowns through their index lists */
+    for (int i = 0; i < n; i++) {
+        /* TOL_FLOOR added: the weights and their squares in the norms stay finite (atol = 0
+         * with y_i = 0, or a denormal atol) and any other tolerance is unchanged; no branch,
+         * so that the loop vectorizes */
+        double w = 1.0 / (rtol * fabs(y[i]) + at[i] + TOL_FLOOR);
+        ewt[i] = w;
+        wd[i] = w;
+        we[i] = w;
+        wn[i] = w;
+    }
+    if (s->o.exclude_alg)
+        for (int k = 0; k < s->na1; k++)
+            we[s->a1cols[k]] = 0.0;
+    for (int k = 0; k < s->na2; k++) {
+        int i = s->a2cols[k];
+        double w = ewt[i];
+        wd[i] = 0.0;
+        we[i] = s->o.index2 == DAE_I2_EXCLUDE ? 0.0 : w * h;
+        wn[i] = s->o.newton_index2_scale_h ? w * h : w;
     }
 }
 
@@ -832,14 +855,28 @@ static void predict(dae_solver *s)
 {
     int n = s->n;
     double *restrict yq = s->ypred, *restrict ypq = s->yppred;
-    memcpy(yq, s->phi[0], (size_t)n * sizeof(double));
-    memset(ypq, 0, (size_t)n * sizeof(double));
-    for (int j = 1; j <= s->kk; j++) {
-        const double *restrict p = s->phi[j];
-        double g = s->gamma[j];
+    const double *restrict p0 = s->phi[0], *restrict p1 = s->phi[1];
+    double g1 = s->gamma[1];
+    for (int i = 0; i < n; i++) {
+        yq[i] = p0[i] + p1[i];
+        ypq[i] = g1 * p1[i];
+    }
+    /* the remaining differences two at a time: fewer passes over yq and ypq */
+    int j = 2;
+    for (; j + 1 <= s->kk; j += 2) {
+        const double *restrict pa = s->phi[j], *restrict pb = s->phi[j + 1];
+        double ga = s->gamma[j], gb = s->gamma[j + 1];
         for (int i = 0; i < n; i++) {
-            yq[i] += p[i];
-            ypq[i] += g * p[i];
+            yq[i] += pa[i] + pb[i];
+            ypq[i] += ga * pa[i] + gb * pb[i];
+        }
+    }
+    if (j == s->kk) {
+        const double *restrict pa = s->phi[j];
+        double ga = s->gamma[j];
+        for (int i = 0; i < n; i++) {
+            yq[i] += pa[i];
+            ypq[i] += ga * pa[i];
         }
     }
 }
@@ -888,9 +925,9 @@ static int setup(dae_solver *s, double t, const double *F)
 static int lsolve(dae_solver *s, double *v)
 {
     double t0 = daei_seconds();
-    double cj = s->cjf;
+    double cj = s->cjf, rcj = 1.0 / cj;
     for (int k = 0; k < s->nsrows; k++)
-        v[s->srows[k]] /= cj;
+        v[s->srows[k]] *= rcj;
     int r = ls_solve(s->ls, v, 1);
     for (int k = 0; k < s->na2; k++)
         v[s->a2cols[k]] *= cj;
@@ -976,23 +1013,50 @@ static int newton(dae_solver *s, double t)
             if (r == SU_LSFAIL) return NL_LSFAIL;
             if (r == SU_RECOVER) return NL_RES_RECOVER;
         }
-        memcpy(s->delta, s->res, (size_t)n * sizeof(double));
+        { /* the residual becomes the right-hand side in place: swap the arrays */
+            double *sw = s->delta;
+            s->delta = s->res;
+            s->res = sw;
+        }
         if (lsolve(s, s->delta) != BG_OK) {
             daei_note(s, "the linear solve failed at t = %.17g: %s", t,
                       ls_get_error(s->ls)->message);
             return NL_LSFAIL;
         }
         s->st.newton_iters++;
-        {
+        double dn, dn_diff;
+        { /* the update and the weighted norms of the correction (all unknowns; without the
+           * index-2 ones) in one pass */
             double *restrict y = s->y, *restrict yp = s->yp, *restrict ee = s->ee, cj = s->cj;
-            const double *restrict d = s->delta;
-            for (int i = 0; i < n; i++) {
+            const double *restrict d = s->delta, *restrict w = s->wnewt, *restrict wd = s->wdiff;
+            double q0 = 0, q1 = 0, r0 = 0, r1 = 0;
+            int i = 0;
+            for (; i + 2 <= n; i += 2) {
+                double a0 = d[i] * w[i], a1 = d[i + 1] * w[i + 1];
+                double b0 = d[i] * wd[i], b1 = d[i + 1] * wd[i + 1];
+                q0 += a0 * a0;
+                q1 += a1 * a1;
+                r0 += b0 * b0;
+                r1 += b1 * b1;
+                y[i] -= d[i];
+                y[i + 1] -= d[i + 1];
+                yp[i] -= cj * d[i];
+                yp[i + 1] -= cj * d[i + 1];
+                ee[i] -= d[i];
+                ee[i + 1] -= d[i + 1];
+            }
+            for (; i < n; i++) {
+                double a0 = d[i] * w[i], b0 = d[i] * wd[i];
+                q0 += a0 * a0;
+                r0 += b0 * b0;
                 y[i] -= d[i];
                 yp[i] -= cj * d[i];
                 ee[i] -= d[i];
             }
+            double nn = n > 0 ? n : 1;
+            dn = sqrt((q0 + q1) / nn);
+            dn_diff = sqrt((r0 + r1) / nn);
         }
-        double dn = daei_wrms(s, s->delta, s->wnewt);
         if (!isfinite(dn)) {
             char nb[32];
             int i = first_nonfinite(s->delta, n);
@@ -1008,7 +1072,7 @@ static int newton(dae_solver *s, double t)
              * of the other unknowns amplified by about 1/h^2, so at very small steps they stop
              * decreasing while everything else has converged. Once the corrections of the
              * differential and index-1 unknowns are far below the tolerance, accept. */
-            if (s->has_alg2 && daei_wrms(s, s->delta, s->wdiff) <= 1e-6) return NL_OK;
+            if (s->has_alg2 && dn_diff <= 1e-6) return NL_OK;
             rate = pow(dn / oldnrm, 1.0 / m);
             if (rate > RATE_MAX) {
                 note_newton(s, t, rate);
@@ -1040,34 +1104,69 @@ static void vadd(int n, double *restrict x, const double *restrict a) /* x += a 
         x[i] += a[i];
 }
 
-static void vsum(int n, double *restrict x, const double *restrict a, const double *restrict b)
+/* The weighted RMS norm of a - b. */
+static double wrms_diff(const dae_solver *s, const double *restrict a, const double *restrict b,
+                        const double *restrict w)
 {
-    for (int i = 0; i < n; i++)
-        x[i] = a[i] + b[i];
-}
-
-static void vdiff(int n, double *restrict x, const double *restrict a, const double *restrict b)
-{
-    for (int i = 0; i < n; i++)
-        x[i] = a[i] - b[i];
+    int n = s->n;
+    double q0 = 0, q1 = 0;
+    int i = 0;
+    for (; i + 2 <= n; i += 2) {
+        double d0 = (a[i] - b[i]) * w[i], d1 = (a[i + 1] - b[i + 1]) * w[i + 1];
+        q0 += d0 * d0;
+        q1 += d1 * d1;
+    }
+    for (; i < n; i++) {
+        double d0 = (a[i] - b[i]) * w[i];
+        q0 += d0 * d0;
+    }
+    return sqrt((q0 + q1) / (n > 0 ? n : 1));
 }
 
 /* Error test: 0 pass, 1 fail. Sets err_k, err_km1, knew. */
 static int test_error(dae_solver *s)
 {
-    int k = s->kk;
-    double enorm_k = daei_wrms(s, s->ee, s->werr);
+    int k = s->kk, n = s->n;
+    /* the weighted norms of ee, ee + phi[k] and ee + phi[k] + phi[k-1] in one pass */
+    double q[3] = {0, 0, 0};
+    {
+        const double *restrict e = s->ee, *restrict w = s->werr;
+        const double *restrict pk = s->phi[k], *restrict pk1 = s->phi[k > 1 ? k - 1 : k];
+        double q0 = 0, q1 = 0, q2 = 0;
+        if (k > 2) {
+            for (int i = 0; i < n; i++) {
+                double a = e[i] * w[i], b = a + pk[i] * w[i], c = b + pk1[i] * w[i];
+                q0 += a * a;
+                q1 += b * b;
+                q2 += c * c;
+            }
+        } else if (k == 2) {
+            for (int i = 0; i < n; i++) {
+                double a = e[i] * w[i], b = a + pk[i] * w[i];
+                q0 += a * a;
+                q1 += b * b;
+            }
+        } else {
+            for (int i = 0; i < n; i++) {
+                double a = e[i] * w[i];
+                q0 += a * a;
+            }
+        }
+        double nn = n > 0 ? n : 1;
+        q[0] = sqrt(q0 / nn);
+        q[1] = sqrt(q1 / nn);
+        q[2] = sqrt(q2 / nn);
+    }
+    double enorm_k = q[0];
     s->err_k = s->sigma[k] * enorm_k;
     double terr_k = (k + 1) * s->err_k;
     s->knew = k;
     s->err_km1 = 0;
     if (k > 1) {
-        vsum(s->n, s->tmp, s->phi[k], s->ee);
-        s->err_km1 = s->sigma[k - 1] * daei_wrms(s, s->tmp, s->werr);
+        s->err_km1 = s->sigma[k - 1] * q[1];
         double terr_km1 = k * s->err_km1;
         if (k > 2) {
-            vadd(s->n, s->tmp, s->phi[k - 1]);
-            double terr_km2 = (k - 1) * s->sigma[k - 2] * daei_wrms(s, s->tmp, s->werr);
+            double terr_km2 = (k - 1) * s->sigma[k - 2] * q[2];
             if (fmax(terr_km1, terr_km2) <= terr_k) s->knew = k - 1;
         } else if (terr_km1 <= 0.5 * terr_k) {
             s->knew = k - 1;
@@ -1082,9 +1181,29 @@ static double roundoff_h(const dae_solver *s)
     return 4 * DBL_EPSILON * fabs(s->tn);
 }
 
+/* phi after an accepted step of order k = kused: phi[k+1] = ee, phi[k] += ee, then phi[j] +=
+ * phi[j+1] for j = k-1 .. 0, two levels per pass over the unknowns (the new phi[j+1] is added
+ * to phi[j] while it is at hand). */
+static void update_history(dae_solver *s)
+{
+    int n = s->n, k = s->kused;
+    if (k < MAXORD) memcpy(s->phi[k + 1], s->ee, (size_t)n * sizeof(double));
+    const double *restrict src = s->ee;
+    int j = k;
+    for (; j >= 1; j -= 2) { /* phi[j] += src; phi[j-1] += phi[j] */
+        double *restrict a = s->phi[j], *restrict b = s->phi[j - 1];
+        for (int i = 0; i < n; i++) {
+            double c = a[i] + src[i];
+            a[i] = c;
+            b[i] += c;
+        }
+        src = s->phi[j - 1];
+    }
+    if (j == 0) vadd(n, s->phi[0], s->phi[1]);
+}
+
 static void complete_step(dae_solver *s)
 {
-    int n = s->n;
     s->st.steps++;
     s->nst_local++;
     s->nautorestart = 0;
@@ -1119,8 +1238,7 @@ static void complete_step(dae_solver *s)
         else if (k == s->o.max_order || k + 1 >= s->ns || kdiff == 1)
             action = MAINTAIN;
         else {
-            vdiff(n, s->tmp, s->ee, s->phi[k + 1]);
-            err_kp1 = daei_wrms(s, s->tmp, s->werr) / (k + 2);
+            err_kp1 = wrms_diff(s, s->ee, s->phi[k + 1], s->werr) / (k + 2);
             double terr_k = (k + 1) * s->err_k, terr_kp1 = (k + 2) * err_kp1;
             if (k == 1)
                 action = terr_kp1 >= 0.5 * terr_k ? MAINTAIN : RAISE;
@@ -1151,10 +1269,7 @@ static void complete_step(dae_solver *s)
         }
         s->hh = hnew;
     }
-    if (s->kused < MAXORD) memcpy(s->phi[s->kused + 1], s->ee, (size_t)n * sizeof(double));
-    vadd(n, s->phi[s->kused], s->ee);
-    for (int j = s->kused - 1; j >= 0; j--)
-        vadd(n, s->phi[j], s->phi[j + 1]);
+    update_history(s);
 }
 
 int dae_dense(const dae_solver *s, double t, double *y, double *yp)

@@ -108,8 +108,8 @@ typedef enum dae_index2_policy {
 } dae_index2_policy;
 
 typedef struct dae_options {
-    double rtol;              /* default 1e-6; 0 <= rtol < 1 (rtol |y| + atol below 1e-100
-                                 acts as 1e-100, so that the weights stay finite) */
+    double rtol;              /* default 1e-6; 0 <= rtol < 1 (1e-100 is added to rtol |y| +
+                                 atol, so that the weights stay finite when both are 0) */
     double atol;              /* default 1e-8, used when atol_vec is NULL */
     const double *atol_vec;   /* n values or NULL */
     int max_order;            /* 1..5, default 5 */

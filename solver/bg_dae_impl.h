@@ -45,6 +45,7 @@ struct dae_solver {
     int *rowscaled;     /* row scaled by h/alpha in the Newton matrix (ROW_DIFF and ROW_ALG2) */
     int *srows, nsrows; /* the scaled rows, listed */
     int *a2cols, na2;   /* the index-2 columns (scaled by alpha/h), listed */
+    int *a1cols, na1;   /* the index-1 algebraic unknowns, listed */
     double cjf;         /* cj the factored matrix was built with */
     int jac_current;    /* Jacobian evaluated at this step's predictor */
     int need_setup;

@@ -144,6 +144,7 @@ void daei_init_free(dae_solver *s)
     free(s->rowscaled);
     free(s->srows);
     free(s->a2cols);
+    free(s->a1cols);
     sp_csc_free(&s->K);
     free(s->kslot_yp);
     free(s->kslot_y);
@@ -273,10 +274,13 @@ int daei_init_setup(dae_solver *s, bg_error *err)
     s->nalg_rows = s->nalg1_rows = 0;
     s->srows = malloc(((size_t)n + 1) * sizeof *s->srows);
     s->a2cols = malloc(((size_t)n + 1) * sizeof *s->a2cols);
-    if (!s->srows || !s->a2cols) goto nomem;
-    s->nsrows = s->na2 = 0;
-    for (int j = 0; j < n; j++)
+    s->a1cols = malloc(((size_t)n + 1) * sizeof *s->a1cols);
+    if (!s->srows || !s->a2cols || !s->a1cols) goto nomem;
+    s->nsrows = s->na2 = s->na1 = 0;
+    for (int j = 0; j < n; j++) {
         if (s->kind[j] == DAE_ALG2) s->a2cols[s->na2++] = j;
+        if (s->kind[j] == DAE_ALG) s->a1cols[s->na1++] = j;
+    }
     for (int i = 0; i < n; i++) {
         s->rowscaled[i] = s->rowkind[i] != ROW_ALG1;
         if (s->rowscaled[i]) s->srows[s->nsrows++] = i;
