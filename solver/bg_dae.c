@@ -732,6 +732,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->restart_pending = 0;
     s->nautorestart = 0;
     s->ncrawl = 0;
+    s->fail_note[0] = '\0';
     s->dn0_last = HUGE_VAL;
     s->t_fail = NAN;
     s->init_side = 0;
@@ -1513,9 +1514,10 @@ static int step_once(dae_solver *s)
                               "the step size stayed below %g times the round-off limit of t for %d "
                               "steps at t = %.17g (h = %.3g, %ld Newton and %ld error-test "
                               "failures so far): the solution cannot pass this point (a switch or "
-                              "a singularity of the model)",
+                              "a singularity of the model)%s%.200s",
                               CRAWL_FACTOR, CRAWL_STEPS, s->tn, s->hused, s->st.newton_fails,
-                              s->st.rejected_error);
+                              s->st.rejected_error,
+                              s->fail_note[0] ? "; the last Newton failure: " : "", s->fail_note);
     for (;;) {
         int isb;
         double ts = next_stop(s, s->hh > 0 ? 1 : -1, &isb);
@@ -1610,6 +1612,7 @@ static int step_once(dae_solver *s)
         ncf++;
         s->st.newton_fails++;
         s->t_fail = tnew;
+        snprintf(s->fail_note, sizeof s->fail_note, "%s", s->note);
         last_res_fail = nl == NL_RES_RECOVER;
         if (ncf >= MAX_NCF) {
             if (nl == NL_SINGULAR)

@@ -97,6 +97,7 @@ struct dae_solver {
     int failed; /* the failure that stopped the integration (< 0), 0 if none */
     /* what the last failed attempt found (names and values), for the final message */
     char note[BG_MESSAGE_SIZE / 2];
+    char fail_note[BG_MESSAGE_SIZE / 2]; /* the note of the last Newton failure */
     /* FD context */
     double fd_t;
     const double *fd_y, *fd_yp;

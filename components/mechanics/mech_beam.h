@@ -78,6 +78,11 @@ int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0,
 /* The deformation energy W of an element at a state vector y (after bgr_compile); NaN if elem
  * is not a beam element of a compiled model, or y is NULL. */
 double mech_beam_energy(const bgr_model *m, int elem, const double *y);
+/* The 12 port loads (F_a, M_a, F_b, M_b) of a beam element at a state vector y, for tests:
+ * path 0 as the residual computes them (plain arithmetic, one reverse pass), path 1 by the
+ * automatic differentiation the Jacobian uses. BG_OK, or BG_ERR_ARGUMENT (not a beam element of
+ * a compiled model, NULL arrays, another path). */
+int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, double g[12]);
 
 #ifdef __cplusplus
 }

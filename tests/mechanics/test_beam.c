@@ -41,6 +41,49 @@ static bgr_model *free_chain(int n, double L, int *nodes, int *elems)
     return m;
 }
 
+/* Largest difference between the port loads of the residual's plain path and of the AD path
+ * over the elements, relative to the largest load of the element. */
+static double loads_mismatch(const bgr_model *m, const int *elems, int ne, const double *y)
+{
+    double worst = 0;
+    for (int e = 0; e < ne; e++) {
+        double g0[12], g1[12], big = 0, diff = 0;
+        if (mech_beam_loads(m, elems[e], y, 0, g0) != BG_OK ||
+            mech_beam_loads(m, elems[e], y, 1, g1) != BG_OK)
+            return INFINITY;
+        for (int r = 0; r < 12; r++) {
+            big = fmax(big, fabs(g1[r]));
+            diff = fmax(diff, fabs(g0[r] - g1[r]));
+        }
+        worst = fmax(worst, big > 0 ? diff / big : diff);
+    }
+    return worst;
+}
+
+/* The residual's loads (plain arithmetic, reverse pass) against the AD loads at random states
+ * of the chain: configuration offsets of size amp (quaternions left unnormalised: R(q) divides
+ * by q.q), port flows of 0.1 (they enter through damping only). */
+static void check_plain_loads(bgr_model *m, const int *elems, int ne, double amp, const char *what)
+{
+    int N = bgr_n(m);
+    double *z = malloc((size_t)N * sizeof *z), worst = 0;
+    tap_rng rng = tap_rng_seed(5);
+    for (int trial = 0; z && trial < 4; trial++) {
+        for (int i = 0; i < N; i++) {
+            const char *nm = bgr_var_name(m, i);
+            const char *sl = strrchr(nm, '/');
+            int flow = sl && sl[1] == 'f' && sl[2] >= '0' && sl[2] <= '5' && !sl[3];
+            z[i] = bgr_y0(m)[i] + (flow ? 0.1 : amp) * tap_rng_range(&rng, -1, 1);
+        }
+        worst = fmax(worst, loads_mismatch(m, elems, ne, z));
+    }
+    tap_ok(z && worst <= 1e-10,
+           "%s: the residual's loads (plain arithmetic) equal the AD loads within %.2g of the "
+           "largest (<= 1e-10) at configurations %g off the rest state",
+           what, worst, amp);
+    free(z);
+}
+
 static void test_rigid_motion_and_jacobian(void)
 {
     int nodes[4], elems[3], n = 3;
@@ -107,6 +150,8 @@ static void test_rigid_motion_and_jacobian(void)
         free(z);
     }
     tap_ok(!bad, "beam: analytic (AD) Jacobian matches finite differences: %s", rep);
+    check_plain_loads(m, elems, n, 0.02, "free chain");
+    check_plain_loads(m, elems, n, 0.3, "free chain");
     free(y);
     free(yp);
     bgr_model_free(&m);
@@ -477,6 +522,8 @@ static void test_damping(void)
         }
     }
     tap_ok(!bad, "damping: Jacobian with the velocity terms matches finite differences: %s", rep);
+    check_plain_loads(m, elems, n, 1e-6, "damping");
+    check_plain_loads(m, elems, n, 0.05, "damping");
     /* eigenvalues at rest */
     double *ar, *ai, *be;
     int info = pencil_eigs(m, zp, &ar, &ai, &be);

@@ -395,6 +395,24 @@ static const expect expectations[] = {
     {"nand", 'B', 0, 4.5, -INFINITY, 0},
 };
 
+/* Options for a run over the whole interval with the problem's breakpoints; convention A
+ * (atol = rtol; pump: pumpi.f's per-component vector, into av) or B (atol = 1e-2 rtol). */
+static void solve_options(const bp_problem *p, int conv, double rtol, double *av, dae_options *o)
+{
+    dae_options_default(o);
+    o->rtol = rtol;
+    o->atol = conv == 'A' ? rtol : 1e-2 * rtol;
+    if (conv == 'A' && !strcmp(p->name, "pump")) {
+        for (int i = 0; i < 9; i++)
+            av[i] = i < 5 ? 1e-6 * rtol : (i < 8 ? rtol : 1000.0);
+        o->atol_vec = av;
+    }
+    o->has_t_stop = 1;
+    o->t_stop = p->tend;
+    o->breakpoints = p->breakpoints;
+    o->nbreakpoints = p->nbreakpoints;
+}
+
 static void test_solver(void)
 {
     const double rtol = 1e-6;
@@ -403,18 +421,7 @@ static void test_solver(void)
         const bp_problem *p = bp_find(x->name);
         double yref[MAXN], av[MAXN];
         dae_options o;
-        dae_options_default(&o);
-        o.rtol = rtol;
-        o.atol = x->conv == 'A' ? rtol : 1e-2 * rtol;
-        if (x->conv == 'A' && !strcmp(p->name, "pump")) {
-            for (int i = 0; i < 9; i++)
-                av[i] = i < 5 ? 1e-6 * rtol : (i < 8 ? rtol : 1000.0);
-            o.atol_vec = av;
-        }
-        o.has_t_stop = 1;
-        o.t_stop = p->tend;
-        o.breakpoints = p->breakpoints;
-        o.nbreakpoints = p->nbreakpoints;
+        solve_options(p, x->conv, rtol, av, &o);
         o.newton_index2_scale_h = x->nscale;
         run_out r;
         run(p, &o, &r);
@@ -468,17 +475,8 @@ static void test_pump_tight(void)
     const double rtols[] = {1e-9, 1e-10, 2.82e-11, 1.68e-11};
     for (int k = 0; k < 4; k++) {
         double rtol = rtols[k], av[9], yref[MAXN];
-        for (int i = 0; i < 9; i++)
-            av[i] = i < 5 ? 1e-6 * rtol : (i < 8 ? rtol : 1000.0);
         dae_options o;
-        dae_options_default(&o);
-        o.rtol = rtol;
-        o.atol = rtol;
-        o.atol_vec = av;
-        o.has_t_stop = 1;
-        o.t_stop = p->tend;
-        o.breakpoints = p->breakpoints;
-        o.nbreakpoints = p->nbreakpoints;
+        solve_options(p, 'A', rtol, av, &o);
         run_out r;
         run(p, &o, &r);
         bp_reference(p, yref);
