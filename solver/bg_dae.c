@@ -852,6 +852,8 @@ static void restore(dae_solver *s)
     }
 }
 
+/* ypred, yppred from the history; y and yp start there (the Newton iteration's initial
+ * values). */
 static void predict(dae_solver *s)
 {
     int n = s->n;
@@ -872,13 +874,17 @@ static void predict(dae_solver *s)
             ypq[i] += ga * pa[i] + gb * pb[i];
         }
     }
+    double *restrict y = s->y, *restrict yp = s->yp;
     if (j == s->kk) {
         const double *restrict pa = s->phi[j];
         double ga = s->gamma[j];
         for (int i = 0; i < n; i++) {
-            yq[i] += pa[i];
-            ypq[i] += ga * pa[i];
+            y[i] = yq[i] += pa[i];
+            yp[i] = ypq[i] += ga * pa[i];
         }
+    } else {
+        memcpy(y, yq, (size_t)n * sizeof *y);
+        memcpy(yp, ypq, (size_t)n * sizeof *yp);
     }
 }
 
@@ -994,8 +1000,9 @@ static int newton_extends(const dae_solver *s, int m, double dn, double rate)
 static int newton(dae_solver *s, double t)
 {
     int n = s->n;
-    memcpy(s->y, s->ypred, (size_t)n * sizeof(double));
-    memcpy(s->yp, s->yppred, (size_t)n * sizeof(double));
+    /* y and yp start at the predictor (predict); ee accumulates the corrections (formed as
+     * y - ypred after the iteration instead, the crane with a 1000 times stiffer boom took
+     * over 60 s instead of 1 s; not understood, so kept as it was) */
     memset(s->ee, 0, (size_t)n * sizeof(double));
     double ratio = s->cj / (s->cjf != 0 ? s->cjf : s->cj);
     if (s->first || ratio < CJ_LOW || ratio > CJ_HIGH) s->need_setup = 1;
