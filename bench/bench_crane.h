@@ -52,8 +52,8 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
  * linear algebra). Returns the number of failed runs. */
 typedef struct bench_rt_result {
     double rt_factor, rt_factor_all, peak_mb, bookkeeping, wall_int, cpu_int;
-    double res_s_med; /* residual seconds of the run nearest to the median */
-    long steps;
+    double res_s_med;   /* residual seconds of the run nearest to the median */
+    long steps, newton; /* of the last completed run (the same in every run) */
     int runs;
 } bench_rt_result;
 int bench_crane_realtime(const char *exe, const char *scene_file, const crane_scene *s, int K,
