@@ -35,7 +35,8 @@
  * Method (IVP Test Set conventions, shared/testset/README.md): every solver starts from the same
  * consistent initial values (computed once per problem by dae_consistent_init at rtol 1e-10:
  * IDA's own initialisation handles index 1 only); CPU time of the integration alone; the first
- * run is profiled (residual and Jacobian callbacks and the linear solver timed) and is a warm-up
+ * run is profiled (residual and Jacobian callbacks and the linear solver timed; our solver's
+ * own timers, stats.t_*, run in that run only: options.no_timing in the others) and is a warm-up
  * not counted, except for the crane (its profiled run is the first of its K, and a run of more
  * than 5 s is not repeated), then K timed runs (--repeat, default 3; --quick 1; a run under
  * 10 ms is timed as the mean of a batch of about 20 ms): the report uses the

@@ -169,9 +169,9 @@ static int first_nonfinite(const double *v, int n)
 int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd)
 {
     memset(F, 0, (size_t)s->n * sizeof *F); /* rows left NaN by a failing residual name it */
-    double t0 = daei_seconds();
+    double t0 = daei_clock(s);
     int r = s->p.res(s->p.user, t, y, yp, F);
-    s->st.t_res += daei_seconds() - t0;
+    s->st.t_res += daei_clock(s) - t0;
     if (fd)
         s->st.res_evals_fd++;
     else
@@ -220,7 +220,7 @@ static int fd_res_yp(void *u, const double *x, double *f)
 /* Jy, Jyp at (t, y, yp); F = F(t, y, yp) must be given (used by finite differences). */
 int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F)
 {
-    double t0 = daei_seconds();
+    double t0 = daei_clock(s);
     int r;
     s->st.jac_evals++;
     if (s->p.jac) {
@@ -239,7 +239,7 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
             r = sp_fdjac_eval(s->fdyp, fd_res_yp, s, yp, F, s->typ, s->Jyp);
         }
     }
-    s->st.t_jac += daei_seconds() - t0;
+    s->st.t_jac += daei_clock(s) - t0;
     if (r != 0 && s->p.jac)
         daei_note(s, "the Jacobian function returned the %s status %d at t = %.17g",
                   r < 0 ? "fatal" : "recoverable", r, t);
@@ -897,7 +897,7 @@ static int setup(dae_solver *s, double t, const double *F)
     int r = daei_eval_jac(s, t, s->y, s->yp, F);
     if (r < 0) return r;
     if (r > 0) return SU_RECOVER;
-    double t0 = daei_seconds();
+    double t0 = daei_clock(s);
     double cj = s->cj;
     sp_union_combine(s->U, s->Jy, 1.0, s->Jyp, cj);
     sp_csc *M = s->U->M;
@@ -907,7 +907,7 @@ static int setup(dae_solver *s, double t, const double *F)
             M->val[p] *= cs * (s->rowscaled[M->rowind[p]] ? 1.0 / cj : 1.0);
     }
     r = ls_factor(s->ls, M);
-    s->st.t_linalg += daei_seconds() - t0;
+    s->st.t_linalg += daei_clock(s) - t0;
     if (r == BG_OK) s->st.rcond_min = fmin(s->st.rcond_min, ls_get_stats(s->ls)->rcond);
     s->cjf = cj;
     s->jac_current = 1;
@@ -931,7 +931,7 @@ static int setup(dae_solver *s, double t, const double *F)
 /* delta = M^-1 F with the scaling of the factored matrix. */
 static int lsolve(dae_solver *s, double *v)
 {
-    double t0 = daei_seconds();
+    double t0 = daei_clock(s);
     double cj = s->cjf, rcj = 1.0 / cj;
     for (int k = 0; k < s->nsrows; k++)
         v[s->srows[k]] *= rcj;
@@ -944,7 +944,7 @@ static int lsolve(dae_solver *s, double *v)
             v[j] *= f;
     }
     s->st.linear_solves++;
-    s->st.t_linalg += daei_seconds() - t0;
+    s->st.t_linalg += daei_clock(s) - t0;
     return r;
 }
 
@@ -1424,10 +1424,10 @@ static int project_vec(dae_solver *s, double t, double *y)
         if (r != 0)
             return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
                                   "constraint function returned %d at t = %g", r, t);
-        double t0 = daei_seconds();
+        double t0 = daei_clock(s);
         r = aat_factor(s->aat_proj, s->G, 0.0);
         if (r == BG_OK) r = aat_solve(s->aat_proj, s->gv, s->gw);
-        s->st.t_linalg += daei_seconds() - t0;
+        s->st.t_linalg += daei_clock(s) - t0;
         if (r != BG_OK)
             return bg_error_raise(&s->err, DAE_LSETUP_FAIL, "dae_solve_to",
                                   "projection at t = %g: %s", t,

@@ -133,6 +133,9 @@ typedef struct dae_options {
                                   twice as many at a good rate (see above) */
     int fixed_step;            /* 1: constant h_init, order max_order after dae_set_history, no
                                   error-test rejection (for convergence-order studies) */
+    int no_timing;             /* 1: stats.t_res, t_jac, t_linalg are not measured (stay 0):
+                                  two clock reads fewer per residual, Jacobian and solve, which
+                                  on a problem of a few unknowns are a tenth of a step's cost */
     int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
                                   convergence test (default 0: full weight, see bg_dae.c) */
 } dae_options;

@@ -108,6 +108,11 @@ struct dae_solver {
 enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };
 
 double daei_seconds(void);
+/* daei_seconds, or 0 with options.no_timing (the timed statistics then stay 0) */
+static inline double daei_clock(const dae_solver *s)
+{
+    return s->o.no_timing ? 0.0 : daei_seconds();
+}
 const char *daei_vname(const dae_solver *s, int i, char *buf, size_t sz);
 /* Name of equation i: its eq_name, else "equation i (the row of x)"; buf holds at least 160. */
 const char *daei_ename(const dae_solver *s, int i, char *buf, size_t sz);

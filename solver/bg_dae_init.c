@@ -335,10 +335,10 @@ static int eval_all(dae_solver *s, double t, const double *y, const double *yp)
 
 static int factor_solve(dae_solver *s, ls_solver *ls, const sp_csc *M, double *rhs)
 {
-    double t0 = daei_seconds();
+    double t0 = daei_clock(s);
     int r = ls_factor(ls, M);
     if (r == BG_OK) r = ls_solve(ls, rhs, 1);
-    s->st.t_linalg += daei_seconds() - t0;
+    s->st.t_linalg += daei_clock(s) - t0;
     return r;
 }
 

@@ -22,7 +22,7 @@
  *   - c = 1.6 with max_newton = 12: the extension is bounded by 2 max_newton only; the results
  *     agree with the case above within the tolerance.
  * With the exact Jacobian (c = 1) the solution is the same within the tolerance, and Newton
- * failures are rare. */
+ * failures are rare. Last, options.no_timing: the same run, the timed statistics left at 0. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -74,6 +74,8 @@ typedef struct outcome {
     char msg[BG_MESSAGE_SIZE];
 } outcome;
 
+static int no_timing; /* options.no_timing for the next run */
+
 static void run(double c, int max_newton, double rtol, outcome *o)
 {
     nt p = {c, 30 * rtol};
@@ -101,6 +103,7 @@ static void run(double c, int max_newton, double rtol, outcome *o)
     opt.atol = rtol;
     opt.max_newton = max_newton;
     opt.exclude_alg = 1;
+    opt.no_timing = no_timing;
     opt.has_t_stop = 1;
     opt.t_stop = 10;
     memset(o, 0, sizeof *o);
@@ -186,5 +189,18 @@ int main(void)
                    24 * (wide.st.steps + wide.st.newton_fails + wide.st.rejected_error),
                "rtol %g, rate 0.375, max_newton 12: at most 24 iterations per attempt", rtol);
     }
+    /* options.no_timing: the same run to the bit, with the timed statistics left at 0 */
+    outcome a, b;
+    run(1.6, 4, 1e-6, &a);
+    no_timing = 1;
+    run(1.6, 4, 1e-6, &b);
+    no_timing = 0;
+    tap_ok(a.status >= 0 && b.status >= 0 && a.st.steps == b.st.steps &&
+               a.st.newton_iters == b.st.newton_iters && a.err == b.err && a.zerr == b.zerr,
+           "no_timing: the same steps (%ld, %ld), iterations and errors", a.st.steps, b.st.steps);
+    tap_ok(b.st.t_res == 0 && b.st.t_jac == 0 && b.st.t_linalg == 0 && a.st.t_res > 0 &&
+               a.st.t_linalg > 0,
+           "no_timing: t_res, t_jac, t_linalg 0 (timed: t_res %.3g s, t_linalg %.3g s)", a.st.t_res,
+           a.st.t_linalg);
     return tap_done();
 }
