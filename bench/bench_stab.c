@@ -382,9 +382,13 @@ static void run_isolated(const stab_case *sc, bench_case *bc, const double *y0, 
         *how = res->status < 0 ? "stopped with a diagnostic"
                : isnan(res->err)
                    ? (res->ref[0] == 'n' ? "solved (no reference)" : "solved (reference failed)")
-               : res->err <= 1000                ? "solved"
-               : res->err_tight <= res->err / 10 ? "solved, converging"
-                                                 : "WRONG";
+               : res->err <= 1000 ? "solved"
+               /* converging, but only from an error that is still a global error: above 1e4
+                * tolerances a tighter run being right does not make this one right (a step
+                * across an unannounced switch with the algebraic unknowns on its wrong side
+                * ends 1e5 tolerances off and converges) */
+               : res->err <= 1e4 && res->err_tight <= res->err / 10 ? "solved, converging"
+                                                                    : "WRONG";
         return;
     }
     memset(res, 0, sizeof *res);
@@ -447,9 +451,9 @@ int bench_stability(const char *dir, FILE *rep, const stab_config *cfg, int *cra
             "algebraic ones out), against the reference named; drift = largest constraint "
             "violation seen (pendulum: |g| at position level; crane: the hinge mismatch in m, "
             "its joints hold at velocity level). Outcome: solved (error within 1000 "
-            "tolerances); solved, converging (above, but the same run at rtol / 100, or at rtol / "
-            "10 where that one stops, cuts the error tenfold or more: its error is given in the "
-            "original tolerances); stopped "
+            "tolerances); solved, converging (above, up to 1e4 tolerances, and the same run at "
+            "rtol / 100, or at rtol / 10 where that one stops, cuts the error tenfold or more: "
+            "its error is given in the original tolerances); stopped "
             "with a diagnostic (the solver's message); WRONG; CRASHED; TIME LIMIT. Crane cases: "
             "scene %s with its damping removed, horizon %g s unless stated (stiffer boom: a "
             "fifth; 512 elements: 1e-5 of it, no reference), rtol = atol, reference: our run at "
