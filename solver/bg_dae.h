@@ -20,16 +20,16 @@
  * accepted steps close in on a switch that no step crosses, as the IVP Test Set's charge pump
  * does where a transistor switches off). The solver then restarts once at the end of the last
  * failed step as at a breakpoint (stats.restarts counts them) and stops with DAE_STEP_TOO_SMALL
- * if the step collapses there again.
+ * if the step collapses there again. A step is never accepted with algebraic unknowns left at
+ * the predictor's values across such a jump: the first Newton correction counts as converged on
+ * an earlier rate estimate only in proportion to its size. A run that crawls (200 accepted steps
+ * in a row within 100 times the round-off limit of t, at a switch no step crosses) stops with
+ * DAE_STEP_TOO_SMALL, and its message names the last Newton failure.
  * The Newton iteration stops after max_newton iterations, except that with a Newton matrix
  * evaluated at the step itself it goes on, up to 2 max_newton, while it contracts at a rate of
  * 0.5 or better and that rate says it will converge within them: the alternative, a step cut by
- * 4, costs more (on the crane with 512 boom elements it tripled the Jacobians per step). A step is
- * never accepted with algebraic unknowns left at the predictor's values across such a jump: the
- * first Newton correction counts as converged on an earlier rate estimate only in proportion to its
- * size. A run that crawls (200 accepted steps in a row within 100 times the round-off limit of t,
- * at a switch no step crosses) stops with DAE_STEP_TOO_SMALL. The details and the reasons are in
- * the header comment of bg_dae.c.
+ * 4, costs more (on the crane with 512 boom elements it tripled the Jacobians per step).
+ * The details and the reasons are in the header comment of bg_dae.c.
  *
  * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),
  * < 0 for a fatal one (the integration stops with DAE_CALLBACK_FAIL). The residual array is
@@ -134,8 +134,8 @@ typedef struct dae_options {
     int fixed_step;            /* 1: constant h_init, order max_order after dae_set_history, no
                                   error-test rejection (for convergence-order studies) */
     int no_timing;             /* 1: stats.t_res, t_jac, t_linalg are not measured (stay 0):
-                                  two clock reads fewer per residual, Jacobian and solve, which
-                                  on a problem of a few unknowns are a tenth of a step's cost */
+                                  two clock reads fewer per residual, Jacobian and solve, a
+                                  quarter of a step's cost on a problem of five unknowns */
     int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
                                   convergence test (default 0: full weight, see bg_dae.c) */
 } dae_options;
