@@ -1550,7 +1550,7 @@ static int step_once(dae_solver *s)
          * again, with no step accepted since, stops the run. */
         if (fabs(s->hh) < hmin && !landing && s->hused != 0 &&
             s->nautorestart < MAX_AUTO_RESTARTS &&
-            ((ncf > 0 && nef == 0) || fabs(s->t_fail - s->tn) <= JUMP_WINDOW * hmin))
+            ((ncf > 0 && nef == 0) || fabs(s->t_fail - s->tn) <= JUMP_WINDOW * roundoff_h(s)))
             return STEP_JUMP;
         if (fabs(s->hh) < hmin && !landing) {
             if (nef + ncf == 0) note_step_limit(s);

@@ -29,6 +29,7 @@ typedef struct beam_work {
 typedef struct beam {
     mech_section sec;
     double E0[9], L0;
+    double K[7][7]; /* local stiffness of (u, theta_a, theta_b): W = d^T K d / 2 */
     int node_a, node_b;
     int xa, qa, xb, qb; /* configuration variable ids */
     int e[2], s[2];     /* first effort id and orientation of each port */
@@ -163,30 +164,17 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
         half_diff_dots(c, k->e1, t + 6, k->e3, t + 0, &k->th[3 * n + 1]);
         half_diff_dots(c, k->e2, t + 0, k->e1, t + 3, &k->th[3 * n + 2]);
     }
-    /* energy */
-    const mech_section *S = &b->sec;
-    double L0 = b->L0;
-    ad_const(c, -L0, &k->t1);
+    /* energy W = d^T K d / 2 over the nonzero entries of the local stiffness */
+    ad_const(c, -b->L0, &k->t1);
     ad_axpy(c, &k->L, 1.0, &k->t1, &k->u); /* u = L - L0 */
-    ad_mul(c, &k->u, &k->u, &k->W);
-    ad_scale(c, 0.5 * S->E * S->A / L0, &k->W, &k->W);
-    ad_axpy(c, &k->th[3], -1.0, &k->th[0], &k->t1); /* twist */
-    ad_mul(c, &k->t1, &k->t1, &k->t2);
-    ad_axpy(c, &k->W, 0.5 * S->G * S->J / L0, &k->t2, &k->W);
-    const double EI[2] = {S->Iy * S->E, S->Iz * S->E}; /* about e2 (theta_y), e3 (theta_z) */
-    for (int a = 0; a < 2; a++) {
-        /* EI/(2 L0 (1 + P)) [(4 + P)(ta^2 + tb^2) + 2 (2 - P) ta tb], P the shear parameter
-         * 12 EI/(kappa G A L0^2) (0: Euler-Bernoulli, W = 2 EI/L0 (ta^2 + ta tb + tb^2)) */
-        double P = S->kappa > 0 ? 12 * EI[a] / (S->kappa * S->G * S->A * L0 * L0) : 0.0;
-        double f = EI[a] / (2 * L0 * (1 + P));
-        const ad *ta_ = &k->th[1 + a], *tb_ = &k->th[4 + a];
-        ad_mul(c, ta_, ta_, &k->t1);
-        ad_mul(c, tb_, tb_, &k->t2);
-        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
-        ad_axpy(c, &k->W, f * (4 + P), &k->t1, &k->W);
-        ad_mul(c, ta_, tb_, &k->t2);
-        ad_axpy(c, &k->W, f * 2 * (2 - P), &k->t2, &k->W);
-    }
+    const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
+    ad_const(c, 0.0, &k->W);
+    for (int r = 0; r < 7; r++)
+        for (int q = r; q < 7; q++) {
+            if (b->K[r][q] == 0) continue;
+            ad_mul(c, dl[r], dl[q], &k->t2);
+            ad_axpy(c, &k->W, (q == r ? 0.5 : 1.0) * b->K[r][q], &k->t2, &k->W);
+        }
 }
 
 /* J(q): dq = J(q) dphi for a global rotation dphi, dq = (0, dphi) (x) q / 2; rows j, cols k. */
@@ -250,7 +238,10 @@ static void velocity_gradient(const ad *a, const double *qa, const double *qb, d
     }
 }
 
-/* Local stiffness K (7 x 7) of the deformations (u, theta_a, theta_b): W = d^T K d / 2. */
+/* Local stiffness K (7 x 7) of the deformations (u, theta_a, theta_b): W = d^T K d / 2, with
+ * EI/(2 L0 (1 + P)) [(4 + P)(ta^2 + tb^2) + 2 (2 - P) ta tb] in bending, P the shear parameter
+ * 12 EI/(kappa G A L0^2) (0: Euler-Bernoulli, W = 2 EI/L0 (ta^2 + ta tb + tb^2)). Computed once,
+ * with the element. */
 static void local_stiffness(const beam *b, double K[7][7])
 {
     const mech_section *S = &b->sec;
@@ -443,8 +434,8 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
 {
     beam_fwd f;
     beam_forward(b, y, &f);
-    double K[7][7], v[7], z[7], gc[14];
-    local_stiffness(b, K);
+    const double(*K)[7] = b->K;
+    double v[7], z[7], gc[14];
     for (int r = 0; r < 7; r++)
         v[r] = f.def[r];
     if (b->sec.beta > 0) {
@@ -483,10 +474,10 @@ static void beam_loads(const beam *b, const double *y, int order, double *g, dou
     double beta = b->sec.beta;
     if (!(beta > 0)) return;
     const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
-    double Jd[7][12], (*dJ)[12][14] = k->dJ, K[7][7], w[12], dd[7] = {0}, z[7] = {0};
+    double Jd[7][12], (*dJ)[12][14] = k->dJ, w[12], dd[7] = {0}, z[7] = {0};
+    const double(*K)[7] = b->K;
     for (int r = 0; r < 7; r++)
         velocity_gradient(dl[r], qa, qb, Jd[r], dg ? dJ[r] : NULL);
-    local_stiffness(b, K);
     for (int m = 0; m < 6; m++) {
         w[m] = y[b->f[0] + m];
         w[6 + m] = y[b->f[1] + m];
@@ -646,6 +637,7 @@ static int beam_add(bgr_model *m, bgr_comp c, const char *name, int node_a, int 
     b->sec = *sec;
     memcpy(b->E0, E0, sizeof b->E0);
     b->L0 = L0;
+    local_stiffness(b, b->K);
     b->node_a = node_a;
     b->node_b = node_b;
     const int dims[2] = {6, 6};
