@@ -1282,20 +1282,37 @@ static void complete_step(dae_solver *s)
     update_history(s);
 }
 
+static void interpolate(const dae_solver *s, double t, double *y, double *yp);
+
 int dae_dense(const dae_solver *s, double t, double *y, double *yp)
 {
     if (!s) return BG_ERR_ARGUMENT;
     if (!s->initialized) return BG_ERR_STATE;
     int n = s->n;
     if (s->first || s->hused == 0) {
+        /* no step taken since the (re)start: phi[1] holds y', scaled by the first step's
+         * psi[0] once that step is chosen */
         if (y) memcpy(y, s->phi[0], (size_t)n * sizeof *y);
-        if (yp) memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
+        if (yp && s->first)
+            memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
+        else if (yp)
+            for (int i = 0; i < n; i++)
+                yp[i] = s->phi[1][i] / s->psi[0];
         return t == s->tn ? BG_OK : BG_ERR_ARGUMENT;
     }
     double tfuzz = 100 * DBL_EPSILON * (fabs(s->tn) + fabs(s->hh));
     if (s->hused < 0) tfuzz = -tfuzz;
     if ((t - (s->tn - s->hused - tfuzz)) * s->hused < 0 || (t - (s->tn + tfuzz)) * s->hused > 0)
         return BG_ERR_ARGUMENT;
+    interpolate(s, t, y, yp);
+    return BG_OK;
+}
+
+/* The history's interpolating polynomial at t (after a step: hused != 0), without the range
+ * check of dae_dense. */
+static void interpolate(const dae_solver *s, double t, double *y, double *yp)
+{
+    int n = s->n;
     double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
     int kord = s->kused > 0 ? s->kused : 1;
     if (y) memcpy(y, s->phi[0], (size_t)n * sizeof *y);
@@ -1309,7 +1326,6 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
             if (yp) yp[i] += d * s->phi[j][i];
         }
     }
-    return BG_OK;
 }
 
 /* -------------------------------------------------------------- stepping ---- */
@@ -1339,21 +1355,25 @@ static void clip_to_stop(dae_solver *s)
     if (s->o.h_max > 0 && fabs(s->hh) > s->o.h_max) s->hh = copysign(s->o.h_max, s->hh);
 }
 
-/* Initial step and history from phi[0] = y, phi[1] = y' (unscaled). */
-static int first_step(dae_solver *s, double tout, double hpref)
+/* Initial step and history from phi[0] = y, phi[1] = y' (unscaled). dir: the direction of
+ * the integration, 0 to take it from tout (a restart keeps the direction it had, and tout may
+ * then lie at tn). */
+static int first_step(dae_solver *s, double tout, double hpref, double dir)
 {
-    double dir = tout >= s->tn ? 1.0 : -1.0;
+    if (dir == 0) dir = tout >= s->tn ? 1.0 : -1.0;
     s->hh = 0;
     daei_set_weights(s, s->phi[0]);
     double h;
     if (s->o.h_init > 0)
         h = s->o.h_init;
     else {
-        double tdist = fabs(tout - s->tn);
+        /* tout counts only ahead of tn (a restart may sit on it) */
+        double tdist = (tout - s->tn) * dir > 0 ? fabs(tout - s->tn) : HUGE_VAL;
         int isb;
         double ts = next_stop(s, dir, &isb);
         if (!isnan(ts)) tdist = fmin(tdist, fabs(ts - s->tn));
-        if (tdist == 0)
+        if (tdist == HUGE_VAL && hpref > 0) tdist = hpref;
+        if (tdist == 0 || tdist == HUGE_VAL)
             return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_solve_to",
                                   "tout = %g is too close to t = %g to choose a first step", tout,
                                   s->tn);
@@ -1466,7 +1486,7 @@ static int project_step(dae_solver *s)
  * of tn, with y carried there along y' (a change far below the tolerances). */
 static int restart_at_breakpoint(dae_solver *s, double tout, double dt)
 {
-    double hprev = fabs(s->hused), hpref = hprev;
+    double hprev = fabs(s->hused), hpref = hprev, dir = s->hused >= 0 ? 1.0 : -1.0;
     double hm = 0.5 * s->hused;
     dae_dense(s, s->tn, s->y, s->yp);
     if (dae_dense(s, s->tn - hm, NULL, s->tmp) == BG_OK) {
@@ -1491,7 +1511,7 @@ static int restart_at_breakpoint(dae_solver *s, double tout, double dt)
     s->st.init_residual = keep;
     if (r != BG_OK) return r;
     s->first = 1;
-    return first_step(s, tout, hpref);
+    return first_step(s, tout, hpref, dir);
 }
 
 /* step_once's results besides a failure (< 0) */
@@ -1730,7 +1750,7 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
             output_state(s, s->tn, tret, y, yp);
             return DAE_SUCCESS;
         }
-        int r = first_step(s, tout, 0);
+        int r = first_step(s, tout, 0, 0);
         if (r != BG_OK) return r;
     }
     double dir = s->hh >= 0 ? 1.0 : -1.0;
@@ -1779,7 +1799,16 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
         if (r == STEP_JUMP) { /* an unannounced jump at tn: restart there (no step was taken) */
             char keep[sizeof s->note];
             snprintf(keep, sizeof keep, "%s", s->note);
-            int rr = restart_at_breakpoint(s, tout, s->t_fail - s->tn);
+            /* past the jump (the end of the last failed step), never behind tn (a stale
+             * failure). A tout in (tn, tn + dt] gets the values before the restart, the history
+             * extrapolated by less than dt: its left-hand values */
+            double dt = (s->t_fail - s->tn) * dir > 0 ? s->t_fail - s->tn : 0.0;
+            int out_here = !one && (s->tn + dt - tout) * dir >= 0;
+            if (out_here) {
+                interpolate(s, tout, y, yp);
+                if (y && s->o.projection) project_vec(s, tout, y);
+            }
+            int rr = restart_at_breakpoint(s, tout, dt);
             if (rr != BG_OK) {
                 output_state(s, s->tn, tret, y, yp);
                 char m[BG_MESSAGE_SIZE];
@@ -1793,6 +1822,10 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
             s->st.restarts++;
             s->st.t_last_restart = s->tn;
             s->nautorestart++;
+            if (out_here) {
+                *tret = tout;
+                return DAE_SUCCESS;
+            }
             nsteps--;
             continue;
         }

@@ -19,6 +19,7 @@
  *           with DAE_STEP_TOO_SMALL at tc, with a message that names the time and the failed
  *           restart, and keep the last state (y = y0 - t there).
  * z has no closed form; it is only checked to be the same with and without the breakpoint. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -131,6 +132,60 @@ static double y_exact(const jp *p, double t)
     return 0.25 + (t < p->tc ? u0 * t : u0 * p->tc + u1 * (t - p->tc));
 }
 
+/* Outputs requested on both sides of the jump, one of them on tc itself, where the restart (at
+ * the end of the last failed step, a few units of round-off past tc) lands beyond that tout:
+ * each call must return at its tout, going forward, with y there within its tolerance, and
+ * y' = u on the side of tc that tout lies on. (The solver used to restart beyond tout and turn
+ * round: the next tout was then "behind the last step".) */
+static void check_outputs_at_jump(jp *p, double rtol)
+{
+    static const int jy[][2] = {{IY, IU}, {IZ, IZ}, {IA, IA}, {IU, IA}, {IU, IU}};
+    static const int jyp[][2] = {{IY, IY}, {IZ, IZ}};
+    static const int kind[N] = {DAE_DIFF, DAE_DIFF, DAE_ALG, DAE_ALG};
+    sp_csc *Py = pattern(jy, 5), *Pyp = pattern(jyp, 2);
+    dae_problem dp = {0};
+    dp.n = N;
+    dp.res = res;
+    dp.jac_y_pattern = Py;
+    dp.jac_yp_pattern = Pyp;
+    dp.kind = kind;
+    dp.user = p;
+    dae_options opt;
+    dae_options_default(&opt);
+    opt.rtol = opt.atol = rtol;
+    opt.exclude_alg = 1;
+    bg_error err = {0};
+    dae_solver *s = Py && Pyp ? dae_create(&dp, &opt, &err) : NULL;
+    double y0[N] = {0.25, 0.5, p->s0, sat(10 * p->s0)}, yp0[N] = {0};
+    yp0[IY] = y0[IU];
+    yp0[IZ] = 1.0 - y0[IZ] * y0[IZ] * y0[IZ];
+    int ok = s && dae_init(s, 0.0, y0, yp0) == BG_OK;
+    tap_ok(ok, "outputs at the jump (rtol %g): set up", rtol);
+    const double touts[] = {0.25, p->tc, p->tc + 1e3 * DBL_EPSILON, p->tc + 1e-9, 0.6, 1.0};
+    for (int k = 0; ok && k < 6; k++) {
+        double t = -1, y[N], yp[N], tout = touts[k];
+        int r = dae_solve_to(s, tout, &t, y, yp);
+        /* at tc the left-hand slope (the output is the last moment before the restart) */
+        double slope = tout <= p->tc ? sat(10 * p->s0) : sat(10 * p->s1);
+        tap_ok(r == DAE_SUCCESS && t == tout,
+               "outputs at the jump (rtol %g): tout = %.17g returned (status %d, t = %.17g) %s",
+               rtol, tout, r, t, r < 0 ? dae_get_error(s)->message : "");
+        tap_close(y[IY], y_exact(p, tout), 0, 10 * rtol * (1 + fabs(y_exact(p, tout))),
+                  "outputs at the jump (rtol %g): y(%.17g) = %.12f against %.12f", rtol, tout,
+                  y[IY], y_exact(p, tout));
+        tap_close(yp[IY], slope, 1e-6, 1e-6,
+                  "outputs at the jump (rtol %g): y'(%.17g) = %.9f on tout's side of tc (%g)", rtol,
+                  tout, yp[IY], slope);
+    }
+    const dae_stats *st = s ? dae_get_stats(s) : NULL;
+    tap_ok(st && st->restarts >= 1,
+           "outputs at the jump (rtol %g): the run restarted at the jump (%ld restarts)", rtol,
+           st ? st->restarts : 0);
+    dae_free(&s);
+    sp_csc_free(&Py);
+    sp_csc_free(&Pyp);
+}
+
 static void check_chain(jp *p, const char *name)
 {
     const double rtols[] = {1e-4, 1e-6, 1e-8};
@@ -177,6 +232,8 @@ int main(void)
     /* tc irrational in binary, inside a step of any size */
     jp chain = {CHAIN, 0.3 + 1.0 / 7, -1, 1};
     check_chain(&chain, "chain");
+    for (int k = 0; k < 3; k++)
+        check_outputs_at_jump(&chain, k == 0 ? 1e-4 : k == 1 ? 1e-6 : 1e-8);
 
     jp broken = {BROKEN, 0.3 + 1.0 / 7, -3, 1};
     outcome o;
