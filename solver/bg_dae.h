@@ -23,11 +23,13 @@
  * if the step collapses there again. A step is never accepted with algebraic unknowns left at
  * the predictor's values across such a jump: the first Newton correction counts as converged on
  * an earlier rate estimate only in proportion to its size, and never when it moves an index-1
- * algebraic unknown by more than half its size and 100 tolerances (another iteration then
- * evaluates the residual where the first one went). A tout that falls between the last step
- * and such a restart gets the values before it. A run that crawls (200 accepted steps
- * in a row within 100 times the round-off limit of t, at a switch no step crosses) stops with
- * DAE_STEP_TOO_SMALL, and its message names the last Newton failure.
+ * algebraic unknown by more than half its size, 100 tolerances and five times its change over
+ * the last step (another iteration then evaluates the residual where the first one went). A
+ * tout that falls between the last step and such a restart gets the values before it. A run
+ * that crawls (200 accepted steps in a row within 100 times the round-off limit of t, at a
+ * switch no step crosses) stops with DAE_STEP_TOO_SMALL, and its message names the last Newton
+ * failure.
+ *
  * The Newton iteration stops after max_newton iterations, except that with a Newton matrix
  * evaluated at the step itself it goes on, up to 2 max_newton, while it contracts at a rate of
  * 0.5 or better and that rate says it will converge within them: the alternative, a step cut by

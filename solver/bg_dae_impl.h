@@ -20,9 +20,11 @@
 #define CRAWL_STEPS 200
 #define JUMP_WINDOW 1000.0  /* a Newton failure this many round-off steps from tn marks a jump */
 #define MAX_AUTO_RESTARTS 1 /* restarts at an unannounced jump before a step is accepted */
-#define JUMP_TOLS                                                                                  \
-    100.0 /* a first correction of an algebraic unknown this many tolerances (and                  \
-            half its size) large is not accepted without another iteration */
+/* a first correction of an algebraic unknown larger than JUMP_TOLS tolerances, JUMP_CHANGE times
+ * its change over the last step and half its size takes another iteration
+ * (first_correction_jumps) */
+#define JUMP_TOLS 100.0
+#define JUMP_CHANGE 5.0
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
 

@@ -21,8 +21,9 @@
  *           jump's first correction is no larger than the corrections of the steps before,
  *           and the Newton rate of those linear iterations is tiny. The solver accepted the
  *           step over tc after one iteration with u on the wrong side (y(1) off by 0.02 to
- *           0.045 at rtol 1e-4 to 1e-8); a first correction of half an algebraic unknown's
- *           size now takes another iteration.
+ *           0.045 at rtol 1e-4 to 1e-8). Now a first correction that moves an algebraic
+ *           unknown by half its size and five times its change over the last step (a: 2
+ *           against 0) takes another iteration; b's, about its change per step, does not.
  *   broken: after tc the output equation u^2 + a = 0 (a = 1) has no solution: the run must stop
  *           with DAE_STEP_TOO_SMALL at tc, with a message that names the time and the failed
  *           restart, and keep the last state (y = y0 - t there).
