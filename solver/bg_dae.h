@@ -19,8 +19,9 @@
  * error-test failure, or with the last Newton failure within 1000 round-off steps of t (the
  * accepted steps close in on a switch that no step crosses, as the IVP Test Set's charge pump
  * does where a transistor switches off). The solver then restarts once at the end of the last
- * failed step as at a breakpoint (stats.restarts counts them) and stops with DAE_STEP_TOO_SMALL
- * if the step collapses there again. A step is never accepted with algebraic unknowns left at
+ * failed step as at a breakpoint (stats.restarts counts them; the first step after it follows
+ * the new y', as IDA's first step does) and stops with DAE_STEP_TOO_SMALL if the step
+ * collapses there again. A step is never accepted with algebraic unknowns left at
  * the predictor's values across such a jump: the first Newton correction counts as converged on
  * an earlier rate estimate only in proportion to its size, and never when it moves an index-1
  * algebraic unknown by more than half its size, 100 tolerances and five times its change over
@@ -221,7 +222,11 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
  * the derivatives of the constraint rows (bg_dae_init.c has the details). The equations are
  * evaluated one rounding unit after t, so that inputs with a jump at t (a step at t0, a corner of
  * a reference) take their values after it; the solver does the same when it restarts at a
- * breakpoint. The scaled residual norm reached goes to stats.init_residual.
+ * breakpoint. The constraint rows are differentiated in t by one-sided differences whose step
+ * shrinks (from cbrt(eps) times |t|, or at t = 0 times the span to t_stop or the first
+ * breakpoint, else 1) until two estimates agree to 1e-3, so that an input that changes course
+ * soon after t is not differenced across its corner. The scaled residual norm reached goes to
+ * stats.init_residual.
  * Only between dae_init (or dae_reinit) and the first step: BG_ERR_STATE before dae_init, after
  * dae_set_history or once the integration has stepped. Failures: DAE_INIT_FAIL (the message
  * names the equation that cannot be satisfied or the unknown that nothing determines, and the

@@ -31,7 +31,12 @@
  *         ROW_DIFF and ROW_ALG2 rows:  F_i(t, y, y') = 0,
  *         ROW_ALG1 rows:               dF_i/dt + sum_j dF_i/dy_j y'_j = 0   (j not index 2),
  *     for the unknowns y' of the differential and index-1 variables and y of the index-2 ones.
- *     dF_i/dt is a central difference in t. The second derivatives of F are left out of the
+ *     dF_i/dt is a one-sided difference in t (forward, or backward where a restart at a
+ *     breakpoint takes the left-hand values), second order, with a step that starts at
+ *     cbrt(eps) times the time scale (|t|, or at t = 0 the span to the stop time or the first
+ *     breakpoint) and is divided by 8 until two successive estimates agree to 1e-3: an input
+ *     that is constant for 5 ns and then ramps (the IVP Test Set's pump) must not be
+ *     differenced across the ramp. The second derivatives of F are left out of the
  *     Jacobian of the differentiated rows (exact for constraints linear in the algebraic
  *     variables, as junction and velocity constraints are); the Jacobian is evaluated afresh in
  *     each iteration. The index-1 variables get their y' as a by-product, which starts the BDF
@@ -323,6 +328,62 @@ static int cb_fail(dae_solver *s, int r, const char *what, double t)
                           "the %s failed (status %d) at t = %.17g: %s", what, r, t, s->note);
 }
 
+/* dF_i/dt of the differentiated rows (ROW_ALG1) at (t, y, yp) into D, by the one-sided second-
+ * order difference (-3 F(t) + 4 F(t + d) - F(t + 2d)) / (2d); F holds F(t). Scratch: tmp, delta
+ * (D must be neither). */
+static int rows_dt(dae_solver *s, double t, double d, const double *y, const double *yp,
+                   const double *F, double *D)
+{
+    double *fp = s->tmp, *fm = s->delta;
+    int r;
+    if ((r = daei_call_res(s, t + d, y, yp, fp, 0)) != 0 ||
+        (r = daei_call_res(s, t + 2 * d, y, yp, fm, 0)) != 0)
+        return cb_fail(s, r, "residual", t + d);
+    for (int i = 0; i < s->n; i++)
+        D[i] = s->rowkind[i] == ROW_ALG1 ? (-3 * F[i] + 4 * fp[i] - fm[i]) / (2 * d) : 0.0;
+    return BG_OK;
+}
+
+#define DT_SHRINK 8.0
+#define DT_MAX_SHRINKS 10
+#define DT_AGREE 1e-3
+
+/* The step of rows_dt: from d0 (signed), divided by DT_SHRINK until two successive estimates
+ * agree to DT_AGREE in every differentiated row, relative to the estimate plus the row's other
+ * terms (sum_j |dF_i/dy_j y'_j|, the size that dF_i/dt balances) and the round-off of the
+ * difference; at most DT_MAX_SHRINKS times (8^10 = 1e9). The step is returned in *d, the
+ * estimate at it in D. Scratch: ypred (D: not tmp, delta or ypred). */
+static int choose_dt(dae_solver *s, double t, double d0, const double *y, const double *yp,
+                     const double *F, double *D, double *d)
+{
+    double *Da = s->ypred, *sc = s->yppred;
+    int r = rows_dt(s, t, d0, y, yp, F, Da);
+    if (r != BG_OK) return r;
+    /* the row's other terms, and the size of its residual terms for the round-off */
+    for (int i = 0; i < s->n; i++)
+        sc[i] = 0.0;
+    for (int j = 0; j < s->n; j++)
+        if (s->kind[j] != DAE_ALG2)
+            for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
+                sc[s->Jy->rowind[p]] += fabs(s->Jy->val[p] * yp[j]);
+    row_scales(s, y, yp, s->tmp2);
+    *d = d0;
+    for (int k = 0; k < DT_MAX_SHRINKS; k++) {
+        double dn = *d / DT_SHRINK;
+        if ((r = rows_dt(s, t, dn, y, yp, F, D)) != BG_OK) return r;
+        *d = dn;
+        int agree = 1;
+        for (int i = 0; i < s->n && agree; i++) {
+            if (s->rowkind[i] != ROW_ALG1) continue;
+            double noise = 10 * DBL_EPSILON * s->tmp2[i] / fabs(dn);
+            if (!(fabs(D[i] - Da[i]) <= DT_AGREE * (fabs(D[i]) + sc[i]) + noise)) agree = 0;
+        }
+        if (agree) return BG_OK;
+        memcpy(Da, D, (size_t)s->n * sizeof *D);
+    }
+    return BG_OK; /* no agreement: the smallest step's estimate */
+}
+
 /* F and the Jacobians at (t, y, yp). */
 static int eval_all(dae_solver *s, double t, const double *y, const double *yp)
 {
@@ -439,26 +500,16 @@ int daei_consistent_init(dae_solver *s)
         if (s->o.has_t_stop && s->o.t_stop != s->tn) tscale = fabs(s->o.t_stop - s->tn);
         if (s->nbkpt > 0 && s->bkpt[0] > s->tn) tscale = fmin(tscale, s->bkpt[0] - s->tn);
     }
-    double dt = cbrt(DBL_EPSILON) * tscale;
+    double dt = side * cbrt(DBL_EPSILON) * tscale;
     double unorm = INFINITY, uprev = INFINITY, rnorm = INFINITY;
     for (int it = 0; it < INIT_MAX_ITER; it++) {
         if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
         if (s->nalg1_rows > 0) { /* differentiated rows: dF_i/dt + sum_j dF_i/dy_j y'_j */
-            double *fp = s->tmp, *fm = s->delta;
-            if (side == 0) { /* central difference */
-                if ((r = daei_call_res(s, t + dt, y, yp, fp, 0)) != 0 ||
-                    (r = daei_call_res(s, t - dt, y, yp, fm, 0)) != 0)
-                    return cb_fail(s, r, "residual", t);
-                for (int i = 0; i < n; i++)
-                    if (s->rowkind[i] == ROW_ALG1) F[i] = (fp[i] - fm[i]) / (2 * dt);
-            } else { /* one-sided, second order: (-3 F(t) + 4 F(t+d) - F(t+2d)) / (2d) */
-                double d = side * dt;
-                if ((r = daei_call_res(s, t + d, y, yp, fp, 0)) != 0 ||
-                    (r = daei_call_res(s, t + 2 * d, y, yp, fm, 0)) != 0)
-                    return cb_fail(s, r, "residual", t);
-                for (int i = 0; i < n; i++)
-                    if (s->rowkind[i] == ROW_ALG1) F[i] = (-3 * F[i] + 4 * fp[i] - fm[i]) / (2 * d);
-            }
+            double *D = s->typ;
+            r = it == 0 ? choose_dt(s, t, dt, y, yp, F, D, &dt) : rows_dt(s, t, dt, y, yp, F, D);
+            if (r != BG_OK) return r;
+            for (int i = 0; i < n; i++)
+                if (s->rowkind[i] == ROW_ALG1) F[i] = D[i];
             for (int j = 0; j < n; j++)
                 if (s->kind[j] != DAE_ALG2)
                     for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)

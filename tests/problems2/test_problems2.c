@@ -245,20 +245,13 @@ static void test_initial_values(void)
                 dyp = fmax(dyp, fabs(yp[j] - p->yp0[j]) / (fabs(p->yp0[j]) + 1e-6));
         }
         /* y' tolerance 1e-5: dae_consistent_init differentiates the constraint rows in t by
-         * central differences with dt = cbrt(eps) max(1, |t|) = 6e-6; for transamp's input
-         * 0.1 sin(200 pi t) that is a truncation error (200 pi dt)^2 / 6 = 2.4e-6 in y'. */
+         * one-sided differences, from dt = cbrt(eps) = 6e-6 at t = 0 (no stop time given here)
+         * down by factors of 8 until two estimates agree to 1e-3. pump's input is 0 for 5 ns
+         * and then ramps (period 120 ns): with dt fixed at 6e-6 s the difference spanned 50
+         * periods, gave dF/dt = -9e5 V/s for 0 = y6 - Vin(t) instead of 0, and consistent
+         * initialisation set vgate' = 9.0e5 V/s and the index-2 current y9 = -6.9e-8 A where
+         * everything is 0 (a known failure until the step adapted). */
         int ok = ret == 0 && ir <= 1e-10 && dy <= 1e-9 && dyp <= 1e-5;
-        if (!strcmp(p->name, "pump")) {
-            /* Known solver failure: the same dt = 6e-6 s is 50 periods of pump's input (period
-             * 120 ns, tend 1.2e-6 s): dF/dt of 0 = y6 - Vin(t) at t = 0 comes out as -9e5 V/s
-             * instead of 0, and consistent initialisation sets vgate' = 9.0e5 V/s and the
-             * index-2 current y9 = -6.9e-8 A where everything is 0. */
-            tap_todo(ok,
-                     "init: %s: dae_consistent_init keeps y0 (rel change %.2g) and y0' (%.2g), "
-                     "scaled residual %.2g",
-                     p->name, dy, dyp, ir);
-            continue;
-        }
         tap_ok(ok,
                "init: %s: dae_consistent_init keeps y0 (rel change %.2g) and y0' (%.2g), "
                "scaled residual %.2g",
@@ -381,15 +374,17 @@ typedef struct expect {
  *   tolerances: 3.2); the transistor switches off about 0.1 ns before tend, a kink in y1 that
  *   the last steps cross (the BDF derivative that gives y9 = -y1' still spans it). Asserted
  *   >= 1.5 digits.
- * pump B (scalar atol 1e-8): the solver stops with DAE_STEP_TOO_SMALL after Newton failures
- *   (h ~ 1e-22) just after a breakpoint where the transistor switches and the gate capacitance
- *   dQG/dVG jumps by a factor 60 (y9 jumps): at t = 50.1 ns before e199932, at 119.9 or
- *   170.1 ns after it. IDA fails at 50.1 ns too. TODO.
+ * pump B (scalar atol 1e-8): the steps collapse just after breakpoints where the transistor
+ *   switches and the gate capacitance dQG/dVG jumps by a factor 60 (y9 jumps); the solver
+ *   restarts there as at an unannounced jump. It stopped with DAE_STEP_TOO_SMALL (h ~ 1e-22) at
+ *   t = 50.1 ns before e199932, at 119.9 or 170.1 ns after it, until the first step after such
+ *   a restart followed the new y' instead of the collapsed step (IDA fails at 50.1 ns). Plain
+ *   bound; y9 to 1.5 digits as in A (measured 5.98 and 1.90).
  * transamp, chemakzo, nand: the plain bound in both conventions. */
 static const expect expectations[] = {
     {"crank", 'A', 0, 3.5, 2.0, 0},          {"crank", 'B', 0, 1.5, -INFINITY, 0},
     {"crank", 'B', 0, 1.5, -INFINITY, 1},    {"pump", 'A', 0, 4.5, -INFINITY, 0},
-    {"pump", 'B', 1, 4.5, -INFINITY, 0},     {"transamp", 'A', 0, 4.5, -INFINITY, 0},
+    {"pump", 'B', 0, 4.5, -INFINITY, 0},     {"transamp", 'A', 0, 4.5, -INFINITY, 0},
     {"transamp", 'B', 0, 4.5, -INFINITY, 0}, {"chemakzo", 'A', 0, 4.5, -INFINITY, 0},
     {"chemakzo", 'B', 0, 4.5, -INFINITY, 0}, {"nand", 'A', 0, 4.5, -INFINITY, 0},
     {"nand", 'B', 0, 4.5, -INFINITY, 0},
@@ -493,6 +488,33 @@ static void test_pump_tight(void)
                "pump A rtol %g: reaches tend (%s at t = %.17g, %ld restarts) with the charges "
                "within %.2f <= 10 tolerances (mescd %.2f) %s",
                rtol, r.ret == 0 ? "ok" : dae_return_name(r.ret), r.t, r.st.restarts, qerr, s.mescd,
+               r.msg);
+    }
+    /* convention B (one atol, 1e-2 rtol, for charges, voltages and the current alike): the
+     * steps collapse just after breakpoints where the transistor switches and its gate
+     * capacitance jumps 60-fold, and the solver restarts there as at an unannounced jump. Until
+     * the first step after such a restart followed the new y' (it was capped by the collapsed
+     * step), every rtol from 1e-6 to 2e-8 stopped with DAE_STEP_TOO_SMALL at 119.9 to 890.1
+     * ns. Accuracy: mescd as the test set scores it (the charges, about 1e-13 C, are far
+     * inside atol; the voltages decide it) within 300 tolerances, mescd >= -log10(rtol) - 2.5
+     * (measured: 1.7 to 4.5 digits above -log10(rtol) - 2.5 between 1e-5 and 1e-8, 0.36 at
+     * 5e-9). At 1e-9 and 1e-10 the run still stops (at 650.1 and 530.1 ns: a Newton iteration
+     * at rate 0.44 that does not finish within the step's iterations): not asserted. */
+    const double rtols_b[] = {1e-5, 1e-6, 3e-7, 1e-7, 2e-8, 1e-8, 5e-9};
+    for (int k = 0; k < 7; k++) {
+        double rtol = rtols_b[k], av[9], yref[MAXN];
+        dae_options o;
+        solve_options(p, 'B', rtol, av, &o);
+        run_out r;
+        run(p, &o, &r);
+        bp_reference(p, yref);
+        bp_score s;
+        bp_score_compute(p, r.y, yref, rtol, o.atol, &s);
+        double bound = -log10(rtol) - 2.5;
+        tap_ok(r.ret == 0 && r.t == p->tend && s.mescd >= bound,
+               "pump B rtol %g: reaches tend (%s at t = %.17g, %ld restarts) with mescd %.2f >= "
+               "%.2f %s",
+               rtol, r.ret == 0 ? "ok" : dae_return_name(r.ret), r.t, r.st.restarts, s.mescd, bound,
                r.msg);
     }
 }
