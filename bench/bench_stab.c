@@ -189,15 +189,21 @@ typedef struct stab_result {
 } stab_result;
 
 /* Error in tolerances: max |y - yref| / (rtol |yref| + atol) over the differential unknowns (the
- * crane: its error test has the algebraic ones out) or the unknowns that are not index 2. */
+ * crane: its error test has the algebraic ones out) or the unknowns that are not index 2, of a
+ * test-set problem those that the test set scores (shared/testset/README.md: crank's positions
+ * y1..y7, whose undamped elastic velocities carry a global error that grows with the number of
+ * steps, 5e4 tolerances at rtol 1e-12 in our run and in the convergence of our runs towards the
+ * published MEBDFI reference alike). */
 static double err_tol(const bench_case *bc, const double *y, const double *yref, double rtol,
                       double atol, int diff_only, char *worst, size_t wsz)
 {
     double e = 0;
     int w = -1;
+    const unsigned char *scored = bc->bp ? bc->bp->scored : NULL;
     for (int i = 0; i < bc->n; i++) {
         int k = bc->dp.kind ? bc->dp.kind[i] : DAE_DIFF;
         if (diff_only ? k != DAE_DIFF : k == DAE_ALG2) continue;
+        if (scored && !scored[i]) continue;
         double r = fabs(y[i] - yref[i]) / (rtol * fabs(yref[i]) + atol);
         if (!(r <= e)) e = r, w = i;
     }
@@ -448,7 +454,10 @@ int bench_stability(const char *dir, FILE *rep, const stab_config *cfg, int *cra
     fprintf(rep,
             "bgdae-klu; error = max |y - yref| / (rtol |yref| + atol) over the unknowns that are "
             "not index 2 (the crane: over the differential unknowns; its error test leaves the "
-            "algebraic ones out), against the reference named; drift = largest constraint "
+            "algebraic ones out; a test-set problem: over the components the test set scores, "
+            "crank's positions y1..y7, as its undamped elastic velocities carry a global error "
+            "that grows with the number of steps), against the reference named; drift = "
+            "largest constraint "
             "violation seen (pendulum: |g| at position level; crane: the hinge mismatch in m, "
             "its joints hold at velocity level). Outcome: solved (error within 1000 "
             "tolerances); solved, converging (above, up to 1e4 tolerances, and the same run at "
