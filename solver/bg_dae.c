@@ -1019,7 +1019,7 @@ static int first_correction_jumps(const dae_solver *s)
     for (int k = 0; k < s->na1; k++) {
         int i = s->a1cols[k];
         double d = fabs(ee[i]); /* after one iteration: the correction */
-        if (d > JUMP_TOLS / w[i] && d > 0.5 * fmax(fabs(y[i]), fabs(y[i] - ee[i])) &&
+        if (d * w[i] > JUMP_TOLS && d > 0.5 * fmax(fabs(y[i]), fabs(y[i] - ee[i])) &&
             d > JUMP_CHANGE * fabs(p1[i]))
             return 1;
     }
