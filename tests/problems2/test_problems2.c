@@ -442,12 +442,11 @@ static void test_solver(void)
  * fails at round-off. The solver must restart past the switch (as at an unannounced jump) and
  * reach tend. Measured before that restart: DAE_STEP_TOO_SMALL at t = 1079.9 ns at rtol 2.82e-11
  * (and, with the Newton iteration's extension past max_newton, at 1e-10 and 1.68e-11). */
-/* pump in convention conv at rtol over the whole interval, scored against the reference (mescd
- * with atol = rtol in A, the run's atol in B). */
-static void run_pump(int conv, double rtol, double *av, dae_options *o, run_out *r, double *yref,
-                     bp_score *s)
+/* Problem p in convention conv at rtol over the whole interval, scored against the reference
+ * (mescd with atol = rtol in A, the run's atol in B). */
+static void run_scored(const bp_problem *p, int conv, double rtol, double *av, dae_options *o,
+                       run_out *r, double *yref, bp_score *s)
 {
-    const bp_problem *p = bp_find("pump");
     solve_options(p, conv, rtol, av, o);
     run(p, o, r);
     bp_reference(p, yref);
@@ -463,7 +462,7 @@ static void test_pump_tight(void)
         dae_options o;
         run_out r;
         bp_score s;
-        run_pump('A', rtol, av, &o, &r, yref, &s);
+        run_scored(p, 'A', rtol, av, &o, &r, yref, &s);
         /* the charges (the differential unknowns) within 10 of their own tolerances; the
          * voltages follow from them through capacitances of 0.4 pF to 4 pF, so a charge error
          * inside its tolerance 1e-6 rtol (Coulomb) may move a voltage by up to 2.5e6 rtol: they
@@ -493,7 +492,7 @@ static void test_pump_tight(void)
         dae_options o;
         run_out r;
         bp_score s;
-        run_pump('B', rtol, av, &o, &r, yref, &s);
+        run_scored(p, 'B', rtol, av, &o, &r, yref, &s);
         double bound = -log10(rtol) - 2.5;
         tap_ok(r.ret == 0 && r.t == p->tend && s.mescd >= bound,
                "pump B rtol %g: reaches tend (%s at t = %.17g, %ld restarts) with mescd %.2f >= "
@@ -518,12 +517,9 @@ static void test_crank_tight(void)
     for (int k = 0; k < 3; k++) {
         double rtol = rtols[k], av[MAXN], yref[MAXN];
         dae_options o;
-        solve_options(p, 'A', rtol, av, &o);
         run_out r;
-        run(p, &o, &r);
-        bp_reference(p, yref);
         bp_score s;
-        bp_score_compute(p, r.y, yref, rtol, o.atol, &s);
+        run_scored(p, 'A', rtol, av, &o, &r, yref, &s);
         double m7 = mescd_first(r.y, yref, 7, 1.0), bound = -log10(rtol) - 1.5;
         tap_ok(r.ret == 0 && r.t == p->tend && m7 >= bound,
                "crank A rtol %g: reaches tend (%s at t = %.17g) with mescd(y1..y7) %.2f >= %.2f "
