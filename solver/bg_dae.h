@@ -35,7 +35,8 @@
  * evaluated at the step itself it goes on, up to 2 max_newton, while it contracts at a rate of
  * 0.5 or better and that rate says it will converge within them: the alternative, a step cut by
  * 4, costs more (on the crane with 512 boom elements it tripled the Jacobians per step).
- * The details and the reasons are in the header comment of bg_dae.c.
+ * The details and the reasons are in the header comments of the solver's parts (solver/dae_*.c,
+ * listed in bg_dae.c).
  *
  * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),
  * < 0 for a fatal one (the integration stops with DAE_CALLBACK_FAIL). The residual array is
@@ -60,6 +61,7 @@
 
 #include <stddef.h>
 
+#include "bg_api.h"
 #include "bg_linsol.h"
 
 #ifdef __cplusplus
@@ -143,14 +145,14 @@ typedef struct dae_options {
                                   two clock reads fewer per residual, Jacobian and solve, a
                                   quarter of a step's cost on a problem of five unknowns */
     int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
-                                  convergence test (default 0: full weight, see bg_dae.c) */
+                                  convergence test (default 0: full weight, see dae_nls.c) */
 } dae_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. dae_create checks the options:
  * tolerances as stated, h_init, h_min, h_max finite and >= 0 with h_min <= h_max when h_max > 0,
  * max_order 1..5, a known index2 policy and linear solver, a finite t_stop, nbreakpoints >= 0
  * with finite breakpoints, projection only with constraints. */
-int dae_options_default(dae_options *o);
+BG_API int dae_options_default(dae_options *o);
 
 typedef struct dae_stats {
     long steps, rejected_error, newton_iters, newton_fails;
@@ -169,23 +171,9 @@ typedef struct dae_stats {
     double t_last_restart;         /* time of the last of them (NAN: none) */
 } dae_stats;
 
-/* Return codes of dae_solve_to / dae_step besides the bg_status codes. */
-enum dae_return {
-    DAE_SUCCESS = 0,
-    DAE_TSTOP_RETURN = 2, /* reached t_stop */
-    DAE_ROOT_RETURN = 3,  /* an event function changed sign: see dae_roots_found */
-    DAE_TOO_MUCH_WORK = -20,
-    DAE_TOO_MUCH_ACC = -21,  /* tolerance below round-off */
-    DAE_ERR_FAIL = -22,      /* error test failed repeatedly (10 times in one step) */
-    DAE_CONV_FAIL = -23,     /* Newton failed repeatedly */
-    DAE_LSETUP_FAIL = -24,   /* Newton matrix singular (or the linear solver or a projection
-                                failed) */
-    DAE_RES_FAIL = -25,      /* residual (or Jacobian) kept failing (recoverable failures, NaN
-                                or Inf) */
-    DAE_CALLBACK_FAIL = -26, /* a callback returned < 0 */
-    DAE_INIT_FAIL = -27,     /* consistent initialisation failed */
-    DAE_STEP_TOO_SMALL = -28 /* the step size fell below h_min (or round-off) */
-};
+/* Return codes of dae_solve_to / dae_step besides the bg_status codes: DAE_SUCCESS (0),
+ * DAE_TSTOP_RETURN, DAE_ROOT_RETURN and the failures DAE_TOO_MUCH_WORK .. DAE_STEP_TOO_SMALL,
+ * with their values and meanings in the one table of bg_status.h (BG_DAE_STATUS_TABLE). */
 
 typedef struct dae_solver dae_solver;
 
@@ -197,7 +185,7 @@ typedef struct dae_solver dae_solver;
  * constraint, and is index 2 (a constraint effort, or anything that depends on one); the others
  * are index 1. kind receives n values. Returns the number of index-2 variables, BG_ERR_ARGUMENT
  * (a NULL argument), BG_ERR_PATTERN (the patterns are not both n x n) or BG_ERR_MEMORY. */
-int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind);
+BG_API int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind);
 
 /* NULL on failure with the reason in err (may be NULL): BG_ERR_ARGUMENT (p NULL, n < 1, no
  * residual, options out of range, kinds that are not dae_var_kind or do not fit the patterns,
@@ -205,21 +193,21 @@ int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind);
  * (a Jacobian pattern not n x n or not well formed, a constraint pattern not ncons x n, an
  * equation that depends on no unknown), BG_ERR_MEMORY, BG_ERR_LIBRARY. o NULL: the defaults.
  * The problem's arrays, names and patterns are copied. */
-dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err);
-void dae_free(dae_solver **s);
+BG_API dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err);
+BG_API void dae_free(dae_solver **s);
 /* The error record with the last message; NULL if s is NULL. */
-bg_error *dae_get_error(dae_solver *s);
+BG_API bg_error *dae_get_error(dae_solver *s);
 
 /* Start at t0 from y0, yp0 (yp0 may be NULL: zero). No consistency is assumed or checked.
  * BG_OK, BG_ERR_ARGUMENT (s or y0 NULL, t0 not finite), BG_ERR_NONFINITE (a value not finite:
  * the message names it) or DAE_CALLBACK_FAIL (the event functions). Clears a failure. */
-int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
+BG_API int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
 /* Consistent initial values at the current time, for semi-explicit systems (y' appears only for
  * differential variables; algebraic variables are fixed by the rows without y', or, index-2
  * ones, through the derivatives of the constraints). First the algebraic rows are satisfied
  * with the smallest change of the differential variables; then y' of the differential and
  * index-1 variables and the values of the index-2 ones follow from the differential rows and
- * the derivatives of the constraint rows (bg_dae_init.c has the details). The equations are
+ * the derivatives of the constraint rows (dae_ic.c has the details). The equations are
  * evaluated one rounding unit after t, so that inputs with a jump at t (a step at t0, a corner of
  * a reference) take their values after it; the solver does the same when it restarts at a
  * breakpoint. The constraint rows are differentiated in t by one-sided differences whose step
@@ -231,15 +219,15 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
  * dae_set_history or once the integration has stepped. Failures: DAE_INIT_FAIL (the message
  * names the equation that cannot be satisfied or the unknown that nothing determines, and the
  * time), DAE_CALLBACK_FAIL. The state set by dae_init is kept on failure. */
-int dae_consistent_init(dae_solver *s);
+BG_API int dae_consistent_init(dae_solver *s);
 /* After a discontinuity: new state at time t; order 1, new first step. The statuses of dae_init;
  * clears a failure, keeps the statistics. */
-int dae_reinit(dae_solver *s, double t, const double *y, const double *yp);
+BG_API int dae_reinit(dae_solver *s, double t, const double *y, const double *yp);
 /* Fixed-step studies: history y(t0 - i h), i = 0..k, as k+1 consecutive arrays of n values
  * (Y[i*n + j]); the next steps use order k and step h. BG_ERR_ARGUMENT for a NULL argument,
  * k outside 1..5 or h not > 0, BG_ERR_NONFINITE for a value that is not finite, else the
  * statuses of dae_init. */
-int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y);
+BG_API int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y);
 
 /* Integrate to tout and return y, yp there (interpolated; y or yp may be NULL). Returns
  * DAE_SUCCESS, DAE_TSTOP_RETURN, DAE_ROOT_RETURN (then *tret is the root) or an error (< 0), in
@@ -249,29 +237,29 @@ int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y);
  * call may be repeated) or a failure DAE_TOO_MUCH_ACC .. DAE_STEP_TOO_SMALL (message: the time
  * and the unknown or equation at fault, see above), after which the solver refuses to step with
  * BG_ERR_STATE until dae_reinit or dae_init. */
-int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp);
+BG_API int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp);
 /* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret. The
  * statuses of dae_solve_to. */
-int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp);
+BG_API int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp);
 /* y and yp at any t in the last step [tn - h_last, tn] (y or yp may be NULL). BG_OK,
  * BG_ERR_ARGUMENT (s NULL, or t outside the last step: y, yp then hold the values at tn) or
  * BG_ERR_STATE (before dae_init). No message (s is const). */
-int dae_dense(const dae_solver *s, double t, double *y, double *yp);
+BG_API int dae_dense(const dae_solver *s, double t, double *y, double *yp);
 /* After DAE_ROOT_RETURN: found[i] = +1 or -1 (direction) for the functions that changed sign.
  * BG_OK or BG_ERR_ARGUMENT (s or found NULL). */
-int dae_roots_found(const dae_solver *s, int *found);
+BG_API int dae_roots_found(const dae_solver *s, int *found);
 
 /* Time of the last step (or of dae_init); NaN if s is NULL or not initialised. */
-double dae_current_time(const dae_solver *s);
+BG_API double dae_current_time(const dae_solver *s);
 /* Statistics, NULL if s is NULL. */
-const dae_stats *dae_get_stats(const dae_solver *s);
+BG_API const dae_stats *dae_get_stats(const dae_solver *s);
 /* One line "steps=... rejected=... ..." / a CSV header and a CSV row: the snprintf count, or
  * BG_ERR_ARGUMENT (st NULL, or buf NULL with size > 0). */
-int dae_stats_line(const dae_stats *st, char *buf, size_t size);
-int dae_stats_csv_header(char *buf, size_t size);
-int dae_stats_csv(const dae_stats *st, char *buf, size_t size);
-/* Name of a dae_return or bg_status code, e.g. "DAE_CONV_FAIL". */
-const char *dae_return_name(int code);
+BG_API int dae_stats_line(const dae_stats *st, char *buf, size_t size);
+BG_API int dae_stats_csv_header(char *buf, size_t size);
+BG_API int dae_stats_csv(const dae_stats *st, char *buf, size_t size);
+/* bg_status_name: the name of a status code, e.g. "DAE_CONV_FAIL". */
+BG_API const char *dae_return_name(int code);
 
 #ifdef __cplusplus
 }

@@ -1,8 +1,23 @@
-/* Internal to the solver: the solver record shared by bg_dae.c (stepping) and bg_dae_init.c
- * (structure analysis and consistent initial values). Not installed. */
+/* Internal to the solver: the solver record and the interfaces between the integrator's parts.
+ * Not installed; nothing here is exported from the shared library.
+ *
+ *   bg_dae.c      the outer loop: dae_init, dae_solve_to / dae_step over daei_step
+ *   dae_create.c  options, checks of the problem, creation and release
+ *   dae_step.c    one step: coefficients, prediction, the retry loop and its failure policy
+ *   dae_nls.c     the Newton corrector: Jacobian reuse, the scaled Newton matrix, linear solves
+ *   dae_err.c     error control: weights and norms, the error test, step and order selection,
+ *                 the first step
+ *   dae_disc.c    discontinuities: restarts at breakpoints and unannounced jumps, the crawl
+ *                 stop, the first-correction rule
+ *   dae_out.c     output: dense output, roots of event functions, drift and projection
+ *   dae_eval.c    callbacks (residual, Jacobian), names and notes for messages, statistics
+ *   dae_struct.c  structure: classification of the unknowns, maximum matching
+ *   dae_ic.c      row classes and consistent initial values */
 #ifndef BG_DAE_IMPL_H
 #define BG_DAE_IMPL_H
 
+#include <float.h>
+#include <math.h>
 #include <stddef.h>
 
 #include "bg_dae.h"
@@ -13,18 +28,6 @@
 #define MAX_NEF 10 /* error-test failures in one step */
 #define MAX_NCF 10 /* Newton failures in one step */
 #define EPS_NEWT 0.33
-#define RATE_MAX 0.9
-#define RATE_EXTEND 0.5 /* the Newton iteration may go past max_newton ... */
-#define NEWTON_EXTEND 2 /* ... up to this many times max_newton iterations */
-#define CRAWL_FACTOR 100.0
-#define CRAWL_STEPS 200
-#define JUMP_WINDOW 1000.0  /* a Newton failure this many round-off steps from tn marks a jump */
-#define MAX_AUTO_RESTARTS 1 /* restarts at an unannounced jump before a step is accepted */
-/* a first correction of an algebraic unknown larger than JUMP_TOLS tolerances, JUMP_CHANGE times
- * its change over the last step and half its size takes another iteration
- * (first_correction_jumps) */
-#define JUMP_TOLS 100.0
-#define JUMP_CHANGE 5.0
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
 
@@ -57,7 +60,7 @@ struct dae_solver {
     double ss; /* Newton rate factor */
     double dn0,
         dn0_last; /* first Newton correction norm of this step and of the last accepted one */
-    /* consistent initialisation (bg_dae_init.c) */
+    /* consistent initialisation (dae_ic.c) */
     sp_csc *K;               /* stage B: Jacobian in (y'_D, y'_A1, y_A2) */
     int *kslot_yp, *kslot_y; /* entry p of Jyp / Jy -> slot in K, -1 if not used */
     ls_solver *kls;
@@ -112,6 +115,7 @@ struct dae_solver {
 
 enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };
 
+/* ---- dae_eval.c: callbacks, names, notes, statistics ---- */
 double daei_seconds(void);
 /* daei_seconds, or 0 with options.no_timing (the timed statistics then stay 0) */
 static inline double daei_clock(const dae_solver *s)
@@ -126,13 +130,87 @@ const char *daei_ename(const dae_solver *s, int i, char *buf, size_t sz);
 __attribute__((format(printf, 2, 3)))
 #endif
 void daei_note(dae_solver *s, const char *fmt, ...);
+/* First entry of v[0..n) that is not finite, -1 if none. */
+int daei_first_nonfinite(const double *v, int n);
+/* The unknown with the largest |v_i w_i|, -1 if all are zero. */
+int daei_largest_weighted(const dae_solver *s, const double *v, const double *w);
 /* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. */
 int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd);
 /* Jy, Jyp at (t, y, yp); F = F(t, y, yp) is needed by the finite-difference path. */
 int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F);
+void daei_sync_stats(dae_solver *s);
+
+/* ---- dae_err.c: error control ---- */
 void daei_set_weights(dae_solver *s, const double *y);
 double daei_wrms(const dae_solver *s, const double *v, const double *w);
-void daei_sync_stats(dae_solver *s);
+/* The local error test of the step just corrected: 0 pass, 1 fail. Sets err_k, err_km1 and
+ * knew, the order the estimates favour. */
+int daei_error_test(dae_solver *s);
+/* Order and step for the next step after an accepted one (kdiff: the order change of the step
+ * just taken). */
+void daei_choose_next(dae_solver *s, int kdiff);
+/* Order and step after the nef-th error-test failure of one step. */
+void daei_after_error_fail(dae_solver *s, int nef);
+/* Initial step and history from phi[0] = y, phi[1] = y' (unscaled); dir 0: from tout. */
+int daei_first_step(dae_solver *s, double tout, double hpref, double dir);
+
+/* ---- dae_step.c: one step ---- */
+/* The smallest step t can take here: a few units of round-off of t. */
+static inline double daei_roundoff_h(const dae_solver *s)
+{
+    return 4 * DBL_EPSILON * fabs(s->tn);
+}
+/* Next time the step must land on (breakpoint or t_stop) beyond tn in direction dir, or NAN. */
+double daei_next_stop(const dae_solver *s, double dir, int *is_bkpt);
+/* h clipped to the next stop and to h_max. */
+void daei_clip_to_stop(dae_solver *s);
+/* daei_step's results besides a failure (< 0) */
+enum { STEP_TAKEN = 0, STEP_ON_BREAKPOINT = 1, STEP_JUMP = 2 };
+int daei_step(dae_solver *s);
+
+/* ---- dae_nls.c: the Newton corrector ---- */
+enum { NL_OK = 0, NL_RECOVER = 1, NL_RES_RECOVER = 2, NL_SINGULAR = 3, NL_LSFAIL = 4 };
+/* Corrects the predicted y, yp at t; ee holds the sum of the corrections. NL_*, or < 0 fatal
+ * (a callback's status). A failure is described in s->note. */
+int daei_newton(dae_solver *s, double t);
+
+/* ---- dae_disc.c: discontinuities ---- */
+/* Whether the first Newton correction shows a jump the predictor missed (another iteration). */
+int daei_first_correction_jumps(const dae_solver *s);
+/* Book-keeping of an accepted step (crawl count, restarts since the last accepted step). */
+void daei_disc_accepted(dae_solver *s);
+/* DAE_STEP_TOO_SMALL with its message when the run crawls, else BG_OK. */
+int daei_crawl_check(dae_solver *s);
+/* Whether a step that fell below the step floor marks an unannounced jump at tn. */
+int daei_jump_suspected(const dae_solver *s, int nef, int ncf);
+/* Restart with consistent values at a breakpoint (dt = 0, jump = 0), or at an unannounced jump
+ * at tn + dt (jump = 1). */
+int daei_restart(dae_solver *s, double tout, double dt, int jump);
+/* The restart after daei_step reported STEP_JUMP: DAE_SUCCESS when tout was reached before
+ * the restart point (*tret = tout, y and yp set), 1 to go on stepping, < 0 on failure. */
+int daei_restart_at_jump(dae_solver *s, double tout, double dir, int one, double *tret,
+                         double *y, double *yp);
+
+/* ---- dae_out.c: output ---- */
+/* The history's interpolating polynomial at t (after a step), without dae_dense's check. */
+void daei_interpolate(const dae_solver *s, double t, double *y, double *yp);
+/* Interpolated output at t (projected with options.projection), or the last step's values. */
+void daei_output_state(dae_solver *s, double t, double *tret, double *y, double *yp);
+/* Earliest sign change of the event functions in (tlo, tn]: 1 found, 0 none, < 0 failure. */
+int daei_find_root(dae_solver *s);
+/* Minimum-norm correction of y onto g(t, y) = 0. */
+int daei_project_vec(dae_solver *s, double t, double *y);
+/* Drift after an accepted step, and projection of y_n if asked. */
+int daei_project_step(dae_solver *s);
+
+/* ---- dae_struct.c: structure ---- */
+/* Maximum matching of the rows and columns of A restricted to the rows with rowmask[i] != 0
+ * and the columns with colmask[j] != 0 (NULL: all), by BTF's maxtrans with each column's
+ * diagonal entry tried first: rowvar[i] = the column matched to row i, -1 if none. Returns the
+ * number matched, or BG_ERR_MEMORY. */
+int daei_match(const sp_csc *A, const int *rowmask, const int *colmask, int *rowvar);
+
+/* ---- dae_ic.c: row classes and consistent initial values ---- */
 /* Row classes, checks of the kinds against the patterns, and the initialisation matrices. */
 int daei_init_setup(dae_solver *s, bg_error *err);
 void daei_init_free(dae_solver *s);

@@ -13,6 +13,7 @@
 #ifndef BG_FDJAC_H
 #define BG_FDJAC_H
 
+#include "bg_api.h"
 #include "bg_sparse.h"
 
 #ifdef __cplusplus
@@ -28,10 +29,10 @@ typedef struct sp_colouring {
 } sp_colouring;
 
 /* The greedy colouring of the columns of pattern; NULL if pattern is NULL or on failure. */
-sp_colouring *sp_colour(const sp_csc *pattern);
-void sp_colouring_free(sp_colouring **c);
+BG_API sp_colouring *sp_colour(const sp_csc *pattern);
+BG_API void sp_colouring_free(sp_colouring **c);
 /* 1 if no two columns of one group share a row of pattern, else 0 (also for NULL arguments). */
-int sp_colouring_valid(const sp_colouring *c, const sp_csc *pattern);
+BG_API int sp_colouring_valid(const sp_colouring *c, const sp_csc *pattern);
 
 /* f: R^n -> R^m. Returns 0 ok, > 0 recoverable failure, < 0 fatal. */
 typedef int (*sp_vecfn)(void *user, const double *x, double *f);
@@ -40,19 +41,19 @@ typedef struct sp_fdjac sp_fdjac;
 
 /* For a Jacobian with the given m x n pattern (values ignored). NULL if pattern is NULL or on
  * failure. */
-sp_fdjac *sp_fdjac_create(const sp_csc *pattern);
-void sp_fdjac_free(sp_fdjac **d);
+BG_API sp_fdjac *sp_fdjac_create(const sp_csc *pattern);
+BG_API void sp_fdjac_free(sp_fdjac **d);
 /* Number of column groups (function evaluations per Jacobian), BG_ERR_ARGUMENT if d is NULL. */
-int sp_fdjac_ngroups(const sp_fdjac *d);
+BG_API int sp_fdjac_ngroups(const sp_fdjac *d);
 /* Forward differences, one evaluation per group: J(:,j) ~ (f(x + h_j e_j) - f0) / h_j with
  * h_j = sqrt(eps) * max(|x_j|, typ_j) (typ may be NULL: 1), sign following x_j. f0 = f(x) must be
  * given. J must have the pattern given at creation; its values are overwritten. No allocation.
  * Returns 0, BG_ERR_ARGUMENT (d, f, x, f0 or J NULL), BG_ERR_PATTERN (J has another pattern), or
  * the callback's non-zero status (J then undefined). */
-int sp_fdjac_eval(sp_fdjac *d, sp_vecfn f, void *user, const double *x, const double *f0,
-                  const double *typ, sp_csc *J);
+BG_API int sp_fdjac_eval(sp_fdjac *d, sp_vecfn f, void *user, const double *x, const double *f0,
+                         const double *typ, sp_csc *J);
 /* Number of calls of f made by sp_fdjac_eval so far; BG_ERR_ARGUMENT if d is NULL. */
-long sp_fdjac_calls(const sp_fdjac *d);
+BG_API long sp_fdjac_calls(const sp_fdjac *d);
 
 /* One entry of a Jacobian check. */
 typedef struct sp_jac_entry {
@@ -69,8 +70,8 @@ typedef struct sp_jac_entry {
  * failure: BG_ERR_ARGUMENT (J, f or x NULL, m other than J's rows, floor not > 0, nworst < 0,
  * worst NULL with nworst > 0), the callback's status (BG_ERR_CALLBACK for a positive one) or
  * BG_ERR_MEMORY. */
-int sp_jac_check(const sp_csc *J, sp_vecfn f, void *user, int m, const double *x, double floor,
-                 double tol, sp_jac_entry *worst, int nworst, double *max_err);
+BG_API int sp_jac_check(const sp_csc *J, sp_vecfn f, void *user, int m, const double *x,
+                        double floor, double tol, sp_jac_entry *worst, int nworst, double *max_err);
 
 #ifdef __cplusplus
 }

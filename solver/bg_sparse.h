@@ -15,6 +15,7 @@
 
 #include <stdio.h>
 
+#include "bg_api.h"
 #include "bg_status.h"
 
 #ifdef __cplusplus
@@ -31,69 +32,69 @@ typedef struct sp_csc {
 
 /* A zero matrix with room for nnz entries (colptr zero, rowind/val uninitialised). NULL on
  * failure (a negative size, or no memory). */
-sp_csc *sp_csc_alloc(int nrow, int ncol, int nnz);
+BG_API sp_csc *sp_csc_alloc(int nrow, int ncol, int nnz);
 /* A copy of A (pattern and values). NULL if A is NULL or on failure. */
-sp_csc *sp_csc_copy(const sp_csc *A);
+BG_API sp_csc *sp_csc_copy(const sp_csc *A);
 /* The transpose of A. NULL if A is NULL or on failure. */
-sp_csc *sp_csc_transpose(const sp_csc *A);
+BG_API sp_csc *sp_csc_transpose(const sp_csc *A);
 /* From a dense column-major array, keeping entries with |a| > drop (drop < 0 keeps all). NULL if
  * D is NULL (with nrow * ncol > 0), a size is negative, or on failure. */
-sp_csc *sp_csc_from_dense(int nrow, int ncol, const double *D, double drop);
+BG_API sp_csc *sp_csc_from_dense(int nrow, int ncol, const double *D, double drop);
 /* Frees *A and sets it to NULL; A or *A may be NULL. */
-void sp_csc_free(sp_csc **A);
+BG_API void sp_csc_free(sp_csc **A);
 
 /* Dense column-major copy: D[i + j*nrow] = A(i,j); D must hold nrow*ncol doubles. BG_OK, or
  * BG_ERR_ARGUMENT if A or D is NULL. */
-int sp_csc_to_dense(const sp_csc *A, double *D);
+BG_API int sp_csc_to_dense(const sp_csc *A, double *D);
 /* Position of (i,j) in val[], or -1 if not in the pattern, out of range or A is NULL (binary
  * search). */
-int sp_csc_find(const sp_csc *A, int i, int j);
+BG_API int sp_csc_find(const sp_csc *A, int i, int j);
 /* Checks the structure: sizes, arrays present, monotone colptr, rows in range and strictly
  * ascending. Returns BG_OK, BG_ERR_ARGUMENT (A is NULL) or BG_ERR_PATTERN, with the first fault
  * in err (may be NULL). */
-int sp_csc_check(const sp_csc *A, bg_error *err);
+BG_API int sp_csc_check(const sp_csc *A, bg_error *err);
 /* 1 if A and B have the same dimensions and pattern, else 0 (also if either is NULL). */
-int sp_csc_same_pattern(const sp_csc *A, const sp_csc *B);
+BG_API int sp_csc_same_pattern(const sp_csc *A, const sp_csc *B);
 /* Values set to zero. BG_OK, or BG_ERR_ARGUMENT if A is NULL. */
-int sp_csc_zero(sp_csc *A);
+BG_API int sp_csc_zero(sp_csc *A);
 
 /* y = alpha*A*x + beta*y (beta == 0 ignores y's old content, NaN included). BG_OK, or
  * BG_ERR_ARGUMENT if A, x or y is NULL. */
-int sp_matvec(const sp_csc *A, double alpha, const double *x, double beta, double *y);
+BG_API int sp_matvec(const sp_csc *A, double alpha, const double *x, double beta, double *y);
 /* y = alpha*A^T*x + beta*y. BG_OK, or BG_ERR_ARGUMENT if A, x or y is NULL. */
-int sp_matvec_t(const sp_csc *A, double alpha, const double *x, double beta, double *y);
+BG_API int sp_matvec_t(const sp_csc *A, double alpha, const double *x, double beta, double *y);
 
 /* MatrixMarket coordinate real general, 1-based. Returns BG_OK, BG_ERR_ARGUMENT (A or f NULL)
  * or BG_ERR_IO. */
-int sp_write_mm(const sp_csc *A, FILE *f);
+BG_API int sp_write_mm(const sp_csc *A, FILE *f);
 /* The same into the file path: BG_OK, BG_ERR_ARGUMENT (A or path NULL) or BG_ERR_IO, with a
  * message in err (may be NULL). */
-int sp_write_mm_file(const sp_csc *A, const char *path, bg_error *err);
+BG_API int sp_write_mm_file(const sp_csc *A, const char *path, bg_error *err);
 
 /* ---- coordinate builder ---- */
 typedef struct sp_builder sp_builder;
 
 /* nrow x ncol, capacity grows as needed (cap_hint may be 0). NULL on failure (a negative
  * dimension, or no memory). */
-sp_builder *sp_builder_create(int nrow, int ncol, int cap_hint);
-void sp_builder_free(sp_builder **b);
+BG_API sp_builder *sp_builder_create(int nrow, int ncol, int cap_hint);
+BG_API void sp_builder_free(sp_builder **b);
 /* Adds entry (i,j) with value v. Returns the entry's number k >= 0 (0,1,2,... in order of
  * addition), or BG_ERR_ARGUMENT (b NULL, or an index out of range: message in the builder's
  * error) or BG_ERR_MEMORY. */
-int sp_builder_add(sp_builder *b, int i, int j, double v);
+BG_API int sp_builder_add(sp_builder *b, int i, int j, double v);
 /* Entries added so far, or BG_ERR_ARGUMENT if b is NULL. */
-int sp_builder_count(const sp_builder *b);
+BG_API int sp_builder_count(const sp_builder *b);
 /* The compressed matrix with duplicates summed. If slot != NULL it must hold
  * sp_builder_count(b) ints and receives slot[k] = position in val[] of entry k.
  * The builder stays valid (more entries may be added and finish called again). NULL if b is
  * NULL or on failure (message in the builder's error). */
-sp_csc *sp_builder_finish(sp_builder *b, int *slot);
+BG_API sp_csc *sp_builder_finish(sp_builder *b, int *slot);
 /* The builder's error record, NULL if b is NULL. */
-const bg_error *sp_builder_error(const sp_builder *b);
+BG_API const bg_error *sp_builder_error(const sp_builder *b);
 
 /* val[slot[k]] += v[k] for k < n. BG_OK, or BG_ERR_ARGUMENT (A, slot or v NULL with n > 0,
  * n < 0, or a slot outside 0..nnz-1; A is then unchanged). */
-int sp_scatter_add(sp_csc *A, const int *slot, const double *v, int n);
+BG_API int sp_scatter_add(sp_csc *A, const int *slot, const double *v, int n);
 
 /* ---- union of two patterns of the same shape ---- */
 typedef struct sp_union {
@@ -104,12 +105,12 @@ typedef struct sp_union {
 } sp_union;
 
 /* NULL on failure (A or B NULL, shapes differ, or no memory). */
-sp_union *sp_union_create(const sp_csc *A, const sp_csc *B);
-void sp_union_free(sp_union **u);
+BG_API sp_union *sp_union_create(const sp_csc *A, const sp_csc *B);
+BG_API void sp_union_free(sp_union **u);
 /* u->M = ca*A + cb*B; A and B must have the patterns u was created with. BG_OK,
  * BG_ERR_ARGUMENT (a NULL argument) or BG_ERR_PATTERN (a shape or entry count other than at
  * creation; M is then unchanged). */
-int sp_union_combine(sp_union *u, const sp_csc *A, double ca, const sp_csc *B, double cb);
+BG_API int sp_union_combine(sp_union *u, const sp_csc *A, double ca, const sp_csc *B, double cb);
 
 #ifdef __cplusplus
 }

@@ -4,36 +4,22 @@
 #include <stdio.h>
 #include <string.h>
 
+/* DAE_SUCCESS shares 0 with BG_OK: the first entry of the table with a value wins */
+#define BG_STATUS_NAME_(name, value, text)                                                         \
+    if (status == (value)) return #name;
+#define BG_STATUS_TEXT_(name, value, text)                                                         \
+    if (status == (value)) return text;
+
 const char *bg_status_name(int status)
 {
-    switch (status) {
-    case BG_OK:
-        return "BG_OK";
-    case BG_RECOVERABLE:
-        return "BG_RECOVERABLE";
-    case BG_ERR_MEMORY:
-        return "BG_ERR_MEMORY";
-    case BG_ERR_ARGUMENT:
-        return "BG_ERR_ARGUMENT";
-    case BG_ERR_SINGULAR:
-        return "BG_ERR_SINGULAR";
-    case BG_ERR_NOT_POSDEF:
-        return "BG_ERR_NOT_POSDEF";
-    case BG_ERR_LIBRARY:
-        return "BG_ERR_LIBRARY";
-    case BG_ERR_CALLBACK:
-        return "BG_ERR_CALLBACK";
-    case BG_ERR_IO:
-        return "BG_ERR_IO";
-    case BG_ERR_PATTERN:
-        return "BG_ERR_PATTERN";
-    case BG_ERR_NONFINITE:
-        return "BG_ERR_NONFINITE";
-    case BG_ERR_STATE:
-        return "BG_ERR_STATE";
-    default:
-        return "unknown status";
-    }
+    BG_STATUS_TABLE(BG_STATUS_NAME_)
+    return "unknown status";
+}
+
+const char *bg_status_message(int status)
+{
+    BG_STATUS_TABLE(BG_STATUS_TEXT_)
+    return "unknown status";
 }
 
 int bg_error_vraise(bg_error *e, int status, const char *where, const char *fmt, va_list ap)

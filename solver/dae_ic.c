@@ -1,13 +1,5 @@
-/* Structure analysis and consistent initial values for semi-explicit DAEs of index up to 2.
- *
- * Classification (dae_classify). A variable whose derivative appears is differential. The
- * algebraic equations (rows without y') are matched against the algebraic variables (augmenting
- * paths, Kuhn's method, iterative); the variables reachable from an unmatched variable along
- * alternating paths form the under-determined part of the Dulmage-Mendelsohn decomposition (Duff,
- * Erisman and Reid, Direct Methods for Sparse Matrices, ch. 6). They cannot be computed from the
- * algebraic equations with the differential variables known: they are fixed only through the
- * time derivative of a constraint, i.e. they are index-2 unknowns (constraint efforts and every
- * algebraic variable that depends on one). The rest are index 1.
+/* Row classes and consistent initial values for semi-explicit DAEs of index up to 2 (the
+ * classification of the unknowns: dae_struct.c).
  *
  * Row classes. ROW_DIFF rows contain y'. An algebraic row is ROW_ALG2 if it contains an index-2
  * unknown, ROW_ALG1 otherwise. ROW_ALG1 rows involve differential and index-1 variables only;
@@ -51,95 +43,6 @@
 
 #define KKT_ALG_WEIGHT 1e-10 /* D on algebraic variables in stage A */
 #define INIT_MAX_ITER 25
-
-/* ------------------------------------------------------------ classification ---- */
-
-int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind)
-{
-    if (!Jy || !Jyp || !kind) return BG_ERR_ARGUMENT;
-    if (Jy->nrow != Jy->ncol || Jyp->nrow != Jy->nrow || Jyp->ncol != Jy->ncol)
-        return BG_ERR_PATTERN;
-    int n = Jy->ncol, nalg2 = 0, ret = BG_ERR_MEMORY;
-    int *rowalg = malloc(((size_t)n + 1) * sizeof *rowalg);
-    int *matchrow = malloc(((size_t)n + 1) * sizeof *matchrow); /* variable matched to row */
-    int *stamp = calloc((size_t)n + 1, sizeof *stamp);
-    int *svar = malloc(((size_t)n + 1) * sizeof *svar), *sp = malloc(((size_t)n + 1) * sizeof *sp);
-    int *srow = malloc(((size_t)n + 1) * sizeof *srow);
-    int *matched = calloc((size_t)n + 1, sizeof *matched);
-    if (!rowalg || !matchrow || !stamp || !svar || !sp || !srow || !matched) goto done;
-    for (int i = 0; i < n; i++) {
-        rowalg[i] = 1;
-        matchrow[i] = -1;
-    }
-    for (int p = 0; p < Jyp->nnz; p++)
-        rowalg[Jyp->rowind[p]] = 0;
-    for (int j = 0; j < n; j++)
-        kind[j] = Jyp->colptr[j + 1] > Jyp->colptr[j] ? DAE_DIFF : DAE_ALG;
-    /* maximum matching of algebraic rows and algebraic variables, one augmenting path search
-     * (depth first, explicit stack) per variable */
-    for (int j0 = 0; j0 < n; j0++) {
-        if (kind[j0] != DAE_ALG) continue;
-        int top = 0, found = 0;
-        svar[0] = j0;
-        sp[0] = Jy->colptr[j0];
-        while (top >= 0 && !found) {
-            int v = svar[top];
-            int pushed = 0;
-            while (sp[top] < Jy->colptr[v + 1]) {
-                int i = Jy->rowind[sp[top]++];
-                if (!rowalg[i] || stamp[i] == j0 + 1) continue;
-                stamp[i] = j0 + 1;
-                srow[top] = i;
-                if (matchrow[i] < 0) {
-                    found = 1;
-                } else {
-                    svar[top + 1] = matchrow[i];
-                    sp[top + 1] = Jy->colptr[matchrow[i]];
-                    top++;
-                    pushed = 1;
-                }
-                break;
-            }
-            if (found) break;
-            if (!pushed && sp[top] >= Jy->colptr[v + 1]) top--;
-        }
-        if (found)
-            for (int k = top; k >= 0; k--)
-                matchrow[srow[k]] = svar[k];
-    }
-    for (int i = 0; i < n; i++)
-        if (matchrow[i] >= 0) matched[matchrow[i]] = 1;
-    /* under-determined part: breadth first from the unmatched algebraic variables */
-    int head = 0, tail = 0;
-    for (int j = 0; j < n; j++)
-        if (kind[j] == DAE_ALG && !matched[j]) {
-            kind[j] = DAE_ALG2;
-            svar[tail++] = j;
-        }
-    while (head < tail) {
-        int v = svar[head++];
-        for (int p = Jy->colptr[v]; p < Jy->colptr[v + 1]; p++) {
-            int i = Jy->rowind[p];
-            if (!rowalg[i]) continue;
-            int w = matchrow[i];
-            if (w >= 0 && kind[w] == DAE_ALG) {
-                kind[w] = DAE_ALG2;
-                svar[tail++] = w;
-            }
-        }
-    }
-    nalg2 = tail;
-    ret = nalg2;
-done:
-    free(rowalg);
-    free(matchrow);
-    free(stamp);
-    free(svar);
-    free(sp);
-    free(srow);
-    free(matched);
-    return ret;
-}
 
 /* ------------------------------------------------------------------- set-up ---- */
 

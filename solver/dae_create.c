@@ -1,0 +1,314 @@
+/* Creation and release of the integrator: default options, the checks of a problem and its
+ * options, the copies the solver keeps, the Jacobian patterns and the Newton matrix's structure,
+ * the classification of the unknowns when no kinds are given (dae_struct.c) and the matrices of
+ * consistent initialisation (dae_ic.c). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bg_dae_impl.h"
+
+int dae_options_default(dae_options *o)
+{
+    if (!o) return BG_ERR_ARGUMENT;
+    memset(o, 0, sizeof *o);
+    o->rtol = 1e-6;
+    o->atol = 1e-8;
+    o->max_order = 5;
+    o->max_steps = 100000;
+    o->index2 = DAE_I2_EXCLUDE;
+    o->linsol = LS_KLU;
+    o->max_newton = 4;
+    return BG_OK;
+}
+
+/* Dense n x n pattern; with kind, only the columns of differential variables. */
+static sp_csc *dense_pattern(int n, const int *kind)
+{
+    sp_builder *b = sp_builder_create(n, n, n * n);
+    if (!b) return NULL;
+    for (int j = 0; j < n; j++)
+        if (!kind || kind[j] == DAE_DIFF)
+            for (int i = 0; i < n; i++)
+                sp_builder_add(b, i, j, 0.0);
+    sp_csc *P = sp_builder_finish(b, NULL);
+    sp_builder_free(&b);
+    return P;
+}
+
+void dae_free(dae_solver **sp)
+{
+    if (!sp || !*sp) return;
+    dae_solver *s = *sp;
+    free(s->kind);
+    if (s->names) {
+        for (int i = 0; i < s->n; i++)
+            free(s->names[i]);
+        free(s->names);
+    }
+    if (s->enames) {
+        for (int i = 0; i < s->n; i++)
+            free(s->enames[i]);
+        free(s->enames);
+    }
+    free(s->rowvar);
+    free(s->atol);
+    free(s->bkpt);
+    sp_csc_free(&s->Jy);
+    sp_csc_free(&s->Jyp);
+    sp_union_free(&s->U);
+    sp_fdjac_free(&s->fdy);
+    sp_fdjac_free(&s->fdyp);
+    ls_free(&s->ls);
+    daei_init_free(s);
+    sp_csc_free(&s->G);
+    aat_free(&s->aat_proj);
+    free(s->gv);
+    free(s->gw);
+    for (int j = 0; j < NPHI; j++)
+        free(s->phi[j]);
+    free(s->ewt);
+    free(s->werr);
+    free(s->wnewt);
+    free(s->wdiff);
+    free(s->y);
+    free(s->yp);
+    free(s->ypred);
+    free(s->yppred);
+    free(s->ee);
+    free(s->delta);
+    free(s->res);
+    free(s->tmp);
+    free(s->tmp2);
+    free(s->typ);
+    free(s->glo);
+    free(s->ghi);
+    free(s->gmid);
+    free(s->rfound);
+    free(s);
+    *sp = NULL;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The checks of dae_create that need no allocation: sizes, options, patterns. */
+static int check_problem(const dae_problem *p, const dae_options *o, bg_error *err)
+{
+    const char *w = "dae_create";
+    int n = p->n;
+    bg_error perr = {0};
+    const char *hname[3] = {"h_init", "h_min", "h_max"};
+    const double hval[3] = {o->h_init, o->h_min, o->h_max};
+    for (int k = 0; k < 3; k++)
+        if (!(hval[k] >= 0) || !isfinite(hval[k]))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, w, "%s = %g: must be finite and >= 0",
+                                  hname[k], hval[k]);
+    if (o->index2 != DAE_I2_EXCLUDE && o->index2 != DAE_I2_SCALE_H)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "index2 = %d is not a dae_index2_policy",
+                              (int)o->index2);
+    if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "linsol = %d is not LS_KLU or LS_DENSE",
+                              (int)o->linsol);
+    if (o->has_t_stop && !isfinite(o->t_stop))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "t_stop = %g is not finite", o->t_stop);
+    if (o->nbreakpoints < 0 || (o->nbreakpoints > 0 && !o->breakpoints))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "nbreakpoints = %d needs that many breakpoints (array %s)",
+                              o->nbreakpoints, o->breakpoints ? "given" : "NULL");
+    for (int k = 0; k < o->nbreakpoints; k++)
+        if (!isfinite(o->breakpoints[k]))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, w, "breakpoint %d is %g", k,
+                                  o->breakpoints[k]);
+    if (p->ncons < 0 || p->nroots < 0)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "ncons = %d and nroots = %d must be >= 0",
+                              p->ncons, p->nroots);
+    if (p->ncons > 0 && (!p->cons || !p->cons_pattern))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "ncons = %d needs a constraint function and its pattern (cons %s, "
+                              "cons_pattern %s)",
+                              p->ncons, p->cons ? "given" : "NULL",
+                              p->cons_pattern ? "given" : "NULL");
+    if (p->nroots > 0 && !p->roots)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "nroots = %d but no root function",
+                              p->nroots);
+    const sp_csc *pat[2] = {p->jac_y_pattern, p->jac_yp_pattern};
+    for (int k = 0; k < 2; k++) {
+        if (!pat[k]) continue;
+        if (sp_csc_check(pat[k], &perr) != BG_OK)
+            return bg_error_raise(err, BG_ERR_PATTERN, w, "the pattern of dF/dy%s: %s",
+                                  k ? "'" : "", perr.message);
+        if (pat[k]->nrow != n || pat[k]->ncol != n)
+            return bg_error_raise(err, BG_ERR_PATTERN, w,
+                                  "the pattern of dF/dy%s is %d x %d, the problem has n = %d",
+                                  k ? "'" : "", pat[k]->nrow, pat[k]->ncol, n);
+    }
+    if (p->ncons > 0) {
+        if (sp_csc_check(p->cons_pattern, &perr) != BG_OK)
+            return bg_error_raise(err, BG_ERR_PATTERN, w, "the constraint pattern: %s",
+                                  perr.message);
+        if (p->cons_pattern->nrow != p->ncons || p->cons_pattern->ncol != n)
+            return bg_error_raise(err, BG_ERR_PATTERN, w,
+                                  "the constraint pattern is %d x %d, expected ncons x n = %d x %d",
+                                  p->cons_pattern->nrow, p->cons_pattern->ncol, p->ncons, n);
+    }
+    return BG_OK;
+}
+
+dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err)
+{
+    const char *w = "dae_create";
+    dae_options def;
+    if (!o) {
+        dae_options_default(&def);
+        o = &def;
+    }
+    if (!p || p->n < 1 || !p->res) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "problem needs n >= 1 and a residual function");
+        return NULL;
+    }
+    int n = p->n;
+    if (check_problem(p, o, err) != BG_OK) return NULL;
+    if (!(o->rtol >= 0) || (!o->atol_vec && !(o->atol >= 0)) ||
+        (o->rtol == 0 && o->atol == 0 && !o->atol_vec)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "tolerances must be >= 0 and not both zero (rtol %g, atol %g)", o->rtol,
+                       o->atol);
+        return NULL;
+    }
+    if (!(o->rtol < 1) || (!o->atol_vec && !isfinite(o->atol))) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "rtol must be below 1 and atol finite (rtol %g, atol %g)", o->rtol, o->atol);
+        return NULL;
+    }
+    if (o->max_order < 1 || o->max_order > MAXORD) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "max_order must be 1..5 (got %d)", o->max_order);
+        return NULL;
+    }
+    if (o->projection && (!p->cons || p->ncons < 1 || !p->cons_pattern)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "projection needs position constraints (cons, ncons, cons_pattern)");
+        return NULL;
+    }
+    if (o->h_max > 0 && o->h_min > o->h_max) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "h_min = %g exceeds h_max = %g", o->h_min,
+                       o->h_max);
+        return NULL;
+    }
+    if (o->fixed_step && !(o->h_init > 0)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "fixed_step needs h_init > 0");
+        return NULL;
+    }
+    if (p->jac && (!p->jac_y_pattern) != (!p->jac_yp_pattern)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "give both Jacobian patterns or neither");
+        return NULL;
+    }
+    dae_solver *s = calloc(1, sizeof *s);
+    if (!s) goto nomem;
+    s->n = n;
+    s->p = *p;
+    s->o = *o;
+    s->o.atol_vec = NULL;
+    s->o.breakpoints = NULL;
+    if (s->o.max_newton < 1) s->o.max_newton = 4;
+    if (s->o.max_steps < 1) s->o.max_steps = 100000;
+    s->kind = malloc((size_t)n * sizeof *s->kind);
+    s->atol = malloc((size_t)n * sizeof *s->atol);
+    if (!s->kind || !s->atol) goto nomem;
+    for (int i = 0; i < n; i++) {
+        s->kind[i] = p->kind ? p->kind[i] : DAE_DIFF;
+        if (p->kind && (s->kind[i] < DAE_DIFF || s->kind[i] > DAE_ALG2)) {
+            bg_error_raise(err, BG_ERR_ARGUMENT, w, "kind[%d] = %d is not a dae_var_kind", i,
+                           s->kind[i]);
+            dae_free(&s);
+            return NULL;
+        }
+        s->atol[i] = o->atol_vec ? o->atol_vec[i] : o->atol;
+        if (!(s->atol[i] >= 0) || !isfinite(s->atol[i]) || (s->atol[i] == 0 && o->rtol == 0)) {
+            bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                           "atol[%d] = %g: must be >= 0 (and > 0 if rtol = 0)", i, s->atol[i]);
+            dae_free(&s);
+            return NULL;
+        }
+    }
+    if (p->names) {
+        s->names = calloc((size_t)n, sizeof *s->names);
+        if (!s->names) goto nomem;
+        for (int i = 0; i < n; i++)
+            if (p->names[i] && !(s->names[i] = strdup(p->names[i]))) goto nomem;
+    }
+    if (p->eq_names) {
+        s->enames = calloc((size_t)n, sizeof *s->enames);
+        if (!s->enames) goto nomem;
+        for (int i = 0; i < n; i++)
+            if (p->eq_names[i] && !(s->enames[i] = strdup(p->eq_names[i]))) goto nomem;
+    }
+    if (o->nbreakpoints > 0) {
+        s->bkpt = malloc((size_t)o->nbreakpoints * sizeof *s->bkpt);
+        if (!s->bkpt) goto nomem;
+        memcpy(s->bkpt, o->breakpoints, (size_t)o->nbreakpoints * sizeof *s->bkpt);
+        qsort(s->bkpt, (size_t)o->nbreakpoints, sizeof *s->bkpt, cmp_double);
+        s->nbkpt = o->nbreakpoints;
+    }
+    /* Jacobian patterns: dense where not given (dF/dy' in the differential columns only) */
+    s->Jy = p->jac_y_pattern ? sp_csc_copy(p->jac_y_pattern) : dense_pattern(n, NULL);
+    s->Jyp = p->jac_yp_pattern ? sp_csc_copy(p->jac_yp_pattern) : dense_pattern(n, p->kind);
+    if (!s->Jy || !s->Jyp) goto nomem;
+    /* no kinds given: classify from the structure */
+    if (!p->kind && dae_classify(s->Jy, s->Jyp, s->kind) < 0) goto nomem;
+    sp_csc_zero(s->Jy);
+    sp_csc_zero(s->Jyp);
+    s->U = sp_union_create(s->Jy, s->Jyp);
+    if (!s->U) goto nomem;
+    s->rowvar = malloc((size_t)n * sizeof *s->rowvar);
+    if (!s->rowvar || daei_match(s->U->M, NULL, NULL, s->rowvar) < 0) goto nomem;
+    if (!p->jac) {
+        s->fdy = sp_fdjac_create(s->Jy);
+        s->fdyp = sp_fdjac_create(s->Jyp);
+        if (!s->fdy || !s->fdyp) goto nomem;
+    }
+    s->ls = ls_create(o->linsol, s->U->M, err);
+    if (!s->ls) {
+        dae_free(&s);
+        return NULL;
+    }
+    for (int i = 0; i < n; i++)
+        s->has_alg2 |= s->kind[i] == DAE_ALG2;
+    if (daei_init_setup(s, err) != BG_OK) {
+        dae_free(&s);
+        return NULL;
+    }
+    if (p->cons && p->ncons > 0) {
+        s->G = sp_csc_copy(p->cons_pattern);
+        s->gv = malloc((size_t)p->ncons * sizeof *s->gv);
+        s->gw = malloc((size_t)p->ncons * sizeof *s->gw);
+        if (!s->G || !s->gv || !s->gw) goto nomem;
+        s->aat_proj = aat_create(s->G, err);
+        if (!s->aat_proj) {
+            dae_free(&s);
+            return NULL;
+        }
+    }
+    for (int j = 0; j < NPHI; j++)
+        if (!(s->phi[j] = calloc((size_t)n, sizeof(double)))) goto nomem;
+    double **vecs[] = {&s->ewt,    &s->werr, &s->wnewt, &s->wdiff, &s->y,   &s->yp,   &s->ypred,
+                       &s->yppred, &s->ee,   &s->delta, &s->res,   &s->tmp, &s->tmp2, &s->typ};
+    for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
+        if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
+    if (p->nroots > 0) {
+        s->glo = calloc((size_t)p->nroots, sizeof(double));
+        s->ghi = calloc((size_t)p->nroots, sizeof(double));
+        s->gmid = calloc((size_t)p->nroots, sizeof(double));
+        s->rfound = calloc((size_t)p->nroots, sizeof(int));
+        if (!s->glo || !s->ghi || !s->gmid || !s->rfound) goto nomem;
+    }
+    return s;
+nomem:
+    dae_free(&s);
+    bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory (n = %d)", n);
+    return NULL;
+}

@@ -1,0 +1,244 @@
+/* The integrator's contact with the problem and with its user: the residual and Jacobian
+ * callbacks (timing, counting, NaN and Inf detection, coloured finite differences where no
+ * Jacobian is given), names of unknowns and equations for messages, and the statistics. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bg_dae_impl.h"
+
+
+#include "bg_fdjac.h"
+
+#include "bg_dae_impl.h"
+
+double daei_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+const char *daei_vname(const dae_solver *s, int i, char *buf, size_t sz)
+{
+    if (i < 0 || i >= s->n) return "(none)";
+    if (s->names && s->names[i]) return s->names[i];
+    snprintf(buf, sz, "y[%d]", i);
+    return buf;
+}
+
+const char *daei_ename(const dae_solver *s, int i, char *buf, size_t sz)
+{
+    if (i < 0 || i >= s->n) return "(no equation)";
+    if (s->enames && s->enames[i]) return s->enames[i];
+    char nb[32];
+    int v = s->rowvar ? s->rowvar[i] : -1;
+    if (v >= 0)
+        snprintf(buf, sz, "equation %d (the row of %s)", i, daei_vname(s, v, nb, sizeof nb));
+    else
+        snprintf(buf, sz, "equation %d", i);
+    return buf;
+}
+
+void daei_note(dae_solver *s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->note, sizeof s->note, fmt, ap);
+    va_end(ap);
+}
+
+/* ---------------------------------------------------------------- callbacks ---- */
+
+int daei_first_nonfinite(const double *v, int n)
+{
+    /* Inf and NaN have all exponent bits set: one branch-free pass in integers, which the
+     * compiler vectorizes, then the search only when something is not finite */
+    const uint64_t expo = 0x7ff0000000000000u;
+    uint64_t bad = 0;
+    for (int i = 0; i < n; i++) {
+        uint64_t b;
+        memcpy(&b, &v[i], sizeof b);
+        bad |= (b & expo) == expo;
+    }
+    if (!bad) return -1;
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i])) return i;
+    return -1;
+}
+
+/* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. A failure
+ * is described in s->note: the status, the time and the first equation that is NaN or Inf. */
+int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd)
+{
+    memset(F, 0, (size_t)s->n * sizeof *F); /* rows left NaN by a failing residual name it */
+    double t0 = daei_clock(s);
+    int r = s->p.res(s->p.user, t, y, yp, F);
+    s->st.t_res += daei_clock(s) - t0;
+    if (fd)
+        s->st.res_evals_fd++;
+    else
+        s->st.res_evals++;
+    int bad = daei_first_nonfinite(F, s->n);
+    if (r == 0 && bad < 0) return 0;
+    char eb[192];
+    if (r != 0 && bad >= 0)
+        daei_note(s, "the residual function returned the %s status %d at t = %.17g, %s is %g",
+                  r < 0 ? "fatal" : "recoverable", r, t, daei_ename(s, bad, eb, sizeof eb), F[bad]);
+    else if (r != 0)
+        daei_note(s, "the residual function returned the %s status %d at t = %.17g",
+                  r < 0 ? "fatal" : "recoverable", r, t);
+    else
+        daei_note(s, "the residual of %s is %g at t = %.17g", daei_ename(s, bad, eb, sizeof eb),
+                  F[bad], t);
+    return r != 0 ? r : BG_RECOVERABLE;
+}
+
+/* Column of entry p of A (binary search in colptr). */
+static int column_of(const sp_csc *A, int p)
+{
+    int lo = 0, hi = A->ncol - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo + 1) / 2;
+        if (A->colptr[mid] <= p)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+static int fd_res_y(void *u, const double *x, double *f)
+{
+    dae_solver *s = u;
+    return daei_call_res(s, s->fd_t, x, s->fd_yp, f, 1);
+}
+
+static int fd_res_yp(void *u, const double *x, double *f)
+{
+    dae_solver *s = u;
+    return daei_call_res(s, s->fd_t, s->fd_y, x, f, 1);
+}
+
+/* Jy, Jyp at (t, y, yp); F = F(t, y, yp) must be given (used by finite differences). */
+int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F)
+{
+    double t0 = daei_clock(s);
+    int r;
+    s->st.jac_evals++;
+    if (s->p.jac) {
+        r = s->p.jac(s->p.user, t, y, yp, s->Jy, s->Jyp);
+    } else {
+        s->fd_t = t;
+        s->fd_y = y;
+        s->fd_yp = yp;
+        for (int j = 0; j < s->n; j++)
+            s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol);
+        r = sp_fdjac_eval(s->fdy, fd_res_y, s, y, F, s->typ, s->Jy);
+        if (r == 0) {
+            double hs = fabs(s->hh) > 0 ? fabs(s->hh) : 1.0;
+            for (int j = 0; j < s->n; j++)
+                s->typ[j] = 1.0 / (s->ewt[j] * s->o.rtol * hs);
+            r = sp_fdjac_eval(s->fdyp, fd_res_yp, s, yp, F, s->typ, s->Jyp);
+        }
+    }
+    s->st.t_jac += daei_clock(s) - t0;
+    if (r != 0 && s->p.jac)
+        daei_note(s, "the Jacobian function returned the %s status %d at t = %.17g",
+                  r < 0 ? "fatal" : "recoverable", r, t);
+    if (r == 0) {
+        for (int m = 0; m < 2 && r == 0; m++) {
+            const sp_csc *J = m ? s->Jyp : s->Jy;
+            int p = daei_first_nonfinite(J->val, J->nnz);
+            if (p >= 0) {
+                char eb[192], nb[32];
+                daei_note(s, "the Jacobian entry d(%s)/d(%s%s) is %g at t = %.17g",
+                          daei_ename(s, J->rowind[p], eb, sizeof eb),
+                          daei_vname(s, column_of(J, p), nb, sizeof nb), m ? "'" : "", J->val[p],
+                          t);
+                r = BG_RECOVERABLE;
+            }
+        }
+    }
+    return r;
+}
+
+/* ------------------------------------------------------------- statistics ---- */
+
+void daei_sync_stats(dae_solver *s)
+{
+    ls_solver *all[3] = {s->ls, s->kls, s->kktls};
+    s->st.factor_symbolic = s->st.factor_full = s->st.factor_refactor = 0;
+    for (int k = 0; k < 3; k++) {
+        if (!all[k]) continue;
+        const ls_stats *a = ls_get_stats(all[k]);
+        s->st.factor_symbolic += a->symbolic;
+        s->st.factor_full += a->factor;
+        s->st.factor_refactor += a->refactor;
+    }
+}
+
+int daei_largest_weighted(const dae_solver *s, const double *v, const double *w)
+{
+    int im = -1;
+    double m = 0;
+    for (int i = 0; i < s->n; i++) {
+        double e = fabs(v[i] * w[i]);
+        if (e > m || (im < 0 && isnan(e))) {
+            m = e;
+            im = i;
+        }
+    }
+    return im;
+}
+
+/* ------------------------------------------------------------- statistics ---- */
+
+/* The fields of dae_stats in the order of the line and CSV formats below. */
+#define DAE_STATS_FIELDS(st)                                                                       \
+    (st)->steps, (st)->rejected_error, (st)->newton_iters, (st)->newton_fails, (st)->res_evals,    \
+        (st)->res_evals_fd, (st)->jac_evals, (st)->factor_symbolic, (st)->factor_full,             \
+        (st)->factor_refactor, (st)->linear_solves, (st)->steps_at_order[1],                       \
+        (st)->steps_at_order[2], (st)->steps_at_order[3], (st)->steps_at_order[4],                 \
+        (st)->steps_at_order[5], (st)->steps ? (st)->h_min_used : 0.0, (st)->h_max_used,           \
+        (st)->max_drift, (st)->init_residual, (st)->rcond_min, (st)->t_res, (st)->t_jac,           \
+        (st)->t_linalg, (st)->restarts
+
+int dae_stats_line(const dae_stats *st, char *buf, size_t size)
+{
+    if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
+    return snprintf(
+        buf, size,
+        "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
+        "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
+        "h=[%.3g,%.3g] drift=%.3g init_res=%.3g rcond_min=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs "
+        "restarts=%ld",
+        DAE_STATS_FIELDS(st));
+}
+
+int dae_stats_csv_header(char *buf, size_t size)
+{
+    if (!buf && size > 0) return BG_ERR_ARGUMENT;
+    return snprintf(buf, size,
+                    "steps,rejected,newton,conv_fails,res,res_fd,jac,symbolic,factor,refactor,"
+                    "solves,order1,order2,order3,order4,order5,h_min,h_max,max_drift,"
+                    "init_residual,rcond_min,t_res,t_jac,t_linalg,restarts");
+}
+
+int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
+{
+    if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
+    return snprintf(buf, size,
+                    "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,"
+                    "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld",
+                    DAE_STATS_FIELDS(st));
+}
+
+const char *dae_return_name(int code)
+{
+    return bg_status_name(code);
+}

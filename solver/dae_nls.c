@@ -1,0 +1,243 @@
+/* The Newton corrector of the integrator: a modified Newton iteration on
+ *     G(y) = F(t_n, y, y_pred' + cj (y - y_pred)) = 0,  cj = alpha_s / h,
+ * with the iteration matrix M = dF/dy + cj dF/dy' kept across steps while cj stays within
+ * [0.6, 1.67] of the value it was factored with (corrections rescaled by 2/(1 + cj/cj_f)),
+ * refreshed after a convergence failure, and refactored by KLU with the symbolic analysis reused.
+ * At most max_newton iterations per attempt, or up to twice that on a matrix evaluated at the
+ * step itself while the rate (0.5 or better) says it will converge within them
+ * (newton_extends).
+ *
+ * Weights. The convergence norm weighs an index-2 unknown lambda in full by default: its Newton
+ * error enters the differential unknowns within the same step (through dF/dlambda) and with them
+ * the error estimate, so stopping early on lambda shows up as spurious error-test failures.
+ * (Option newton_index2_scale_h scales lambda's weight by |h| instead; on the index-2 pendulum
+ * at rtol 1e-10 it took 510 steps against 189 with full weight, bench/ida_compare.)
+ * Rate. The convergence-rate estimate is reset (to IDA's cautious 100) whenever cj changes,
+ * since a rate measured with one iteration matrix says little about the next; without this the
+ * solver accepted one-iteration corrections on a stale rate and the pendulum needed 161 steps
+ * instead of 67 at rtol 1e-6. A first correction larger than the last accepted step's has the
+ * rate scaled up by the ratio, and one that shows a jump the predictor missed is never accepted
+ * on an earlier rate (daei_first_correction_jumps, dae_disc.c).
+ * Conditioning. The unscaled M has rows of size cj ~ 1/h (rows containing y') and rows of size 1
+ * (constraints), and its condition grows like h^-2. We factor R M C instead, with R = h/alpha on
+ * rows that contain y' and 1 elsewhere, C = cj on index-2 columns and 1 elsewhere; every block is
+ * then O(1). The solution is mapped back by delta = C z. */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "bg_dae_impl.h"
+
+#define RATE_MAX 0.9
+#define RATE_EXTEND 0.5 /* the Newton iteration may go past max_newton ... */
+#define NEWTON_EXTEND 2 /* ... up to this many times max_newton iterations */
+
+enum { SU_OK = 0, SU_RECOVER = 1, SU_SINGULAR = 2, SU_LSFAIL = 3 };
+
+/* Jacobian, scaled Newton matrix, factorization: SU_*, or the fatal (< 0) status of a callback.
+ * A failure is described in s->note. */
+static int setup(dae_solver *s, double t, const double *F)
+{
+    int r = daei_eval_jac(s, t, s->y, s->yp, F);
+    if (r < 0) return r;
+    if (r > 0) return SU_RECOVER;
+    double t0 = daei_clock(s);
+    double cj = s->cj;
+    sp_union_combine(s->U, s->Jy, 1.0, s->Jyp, cj);
+    sp_csc *M = s->U->M;
+    for (int j = 0; j < s->n; j++) {
+        double cs = s->kind[j] == DAE_ALG2 ? cj : 1.0;
+        for (int p = M->colptr[j]; p < M->colptr[j + 1]; p++)
+            M->val[p] *= cs * (s->rowscaled[M->rowind[p]] ? 1.0 / cj : 1.0);
+    }
+    r = ls_factor(s->ls, M);
+    s->st.t_linalg += daei_clock(s) - t0;
+    if (r == BG_OK) s->st.rcond_min = fmin(s->st.rcond_min, ls_get_stats(s->ls)->rcond);
+    s->cjf = cj;
+    s->jac_current = 1;
+    s->need_setup = 0;
+    s->ss = 20.0;
+    if (r == BG_OK) return SU_OK;
+    if (r == BG_ERR_SINGULAR) {
+        char nb[32];
+        int c = ls_singular_col(s->ls);
+        daei_note(s,
+                  "the Newton matrix is singular at t = %.17g: nothing determines %s (column %d; "
+                  "%s)",
+                  t, daei_vname(s, c, nb, sizeof nb), c, ls_get_error(s->ls)->message);
+        return SU_SINGULAR;
+    }
+    daei_note(s, "the Newton matrix could not be factored at t = %.17g: %s", t,
+              ls_get_error(s->ls)->message);
+    return r == BG_ERR_NONFINITE ? SU_RECOVER : SU_LSFAIL;
+}
+
+/* delta = M^-1 F with the scaling of the factored matrix. */
+static int lsolve(dae_solver *s, double *v)
+{
+    double t0 = daei_clock(s);
+    double cj = s->cjf, rcj = 1.0 / cj;
+    for (int k = 0; k < s->nsrows; k++)
+        v[s->srows[k]] *= rcj;
+    int r = ls_solve(s->ls, v, 1);
+    for (int k = 0; k < s->na2; k++)
+        v[s->a2cols[k]] *= cj;
+    if (s->cj != cj) {
+        double f = 2.0 / (1.0 + s->cj / cj);
+        for (int j = 0; j < s->n; j++)
+            v[j] *= f;
+    }
+    s->st.linear_solves++;
+    s->st.t_linalg += daei_clock(s) - t0;
+    return r;
+}
+
+/* Describes a Newton failure by the unknown with the largest weighted correction. */
+static void note_newton(dae_solver *s, double t, double rate)
+{
+    char nb[32];
+    int i = daei_largest_weighted(s, s->delta, s->wnewt);
+    if (i < 0) {
+        daei_note(s, "the Newton iteration did not converge at t = %.17g", t);
+        return;
+    }
+    daei_note(s,
+              "the Newton iteration did not converge at t = %.17g (rate %.3g): the largest "
+              "weighted correction is in %s (%.3g against the tolerance %.3g)",
+              t, rate, daei_vname(s, i, nb, sizeof nb), fabs(s->delta[i]), 1.0 / s->wnewt[i]);
+}
+
+/* Whether the iteration goes on past max_newton after iteration m (0-based) with correction
+ * norm dn at rate: only on a Newton matrix evaluated at this step (a stale one is refreshed
+ * instead, at the same h), while it contracts at RATE_EXTEND or better, and while the rate says
+ * it will pass the test within NEWTON_EXTEND * max_newton iterations in all. Failing there
+ * instead cuts the step by 4. On the crane with 512 boom elements the predictor misses the
+ * index-2 reactions by about 200 tolerances, the iteration then needs 5 or 6 iterations at rates
+ * of 0.2 to 0.4, and the cut steps cost 1.23 Jacobians and 22 ms per step against 0.4 and 11 ms
+ * with the extension (bench scaling series). */
+static int newton_extends(const dae_solver *s, int m, double dn, double rate)
+{
+    if (!s->jac_current || m < 1 || !(rate <= RATE_EXTEND) || rate <= 0) return 0;
+    double need = ceil(log(EPS_NEWT / (s->ss * dn)) / log(rate));
+    return m + 1 + need <= NEWTON_EXTEND * s->o.max_newton;
+}
+
+int daei_newton(dae_solver *s, double t)
+{
+    int n = s->n;
+    /* y and yp start at the predictor (predict); ee accumulates the corrections, which keep
+     * their own digits. Formed as y - ypred after the iteration instead, it carries the
+     * rounding of every update of y (eps |y|) into the history: the crane with a 1000 times
+     * stiffer boom then started with steps of 1e-11 at order 1, its Newton iteration stalling
+     * at rate 1 on a beam effort, and took over 60 s instead of 0.5 s */
+    memset(s->ee, 0, (size_t)n * sizeof(double));
+    double ratio = s->cj / (s->cjf != 0 ? s->cjf : s->cj);
+    if (s->first || ratio < CJ_LOW || ratio > CJ_HIGH) s->need_setup = 1;
+    /* a rate measured at another cj says little about this one: start cautious */
+    if (s->cj != s->cjold) s->ss = 100.0;
+    s->jac_current = 0;
+    double oldnrm = 0, rate = 0;
+    for (int m = 0;; m++) {
+        int r = daei_call_res(s, t, s->y, s->yp, s->res, 0);
+        if (r < 0) return r;
+        if (r > 0) return NL_RES_RECOVER;
+        if (s->need_setup) {
+            r = setup(s, t, s->res);
+            if (r < 0) return r;
+            if (r == SU_SINGULAR) return NL_SINGULAR;
+            if (r == SU_LSFAIL) return NL_LSFAIL;
+            if (r == SU_RECOVER) return NL_RES_RECOVER;
+        }
+        { /* the residual becomes the right-hand side in place: swap the arrays */
+            double *sw = s->delta;
+            s->delta = s->res;
+            s->res = sw;
+        }
+        if (lsolve(s, s->delta) != BG_OK) {
+            daei_note(s, "the linear solve failed at t = %.17g: %s", t,
+                      ls_get_error(s->ls)->message);
+            return NL_LSFAIL;
+        }
+        s->st.newton_iters++;
+        double dn, dn_diff;
+        { /* the update and the weighted norms of the correction (all unknowns; without the
+           * index-2 ones) in one pass */
+            double *restrict y = s->y, *restrict yp = s->yp, *restrict ee = s->ee, cj = s->cj;
+            const double *restrict d = s->delta, *restrict w = s->wnewt, *restrict wd = s->wdiff;
+            double q0 = 0, q1 = 0, r0 = 0, r1 = 0;
+            int i = 0;
+            for (; i + 2 <= n; i += 2) {
+                double a0 = d[i] * w[i], a1 = d[i + 1] * w[i + 1];
+                double b0 = d[i] * wd[i], b1 = d[i + 1] * wd[i + 1];
+                q0 += a0 * a0;
+                q1 += a1 * a1;
+                r0 += b0 * b0;
+                r1 += b1 * b1;
+                y[i] -= d[i];
+                y[i + 1] -= d[i + 1];
+                yp[i] -= cj * d[i];
+                yp[i + 1] -= cj * d[i + 1];
+                ee[i] -= d[i];
+                ee[i + 1] -= d[i + 1];
+            }
+            for (; i < n; i++) {
+                double a0 = d[i] * w[i], b0 = d[i] * wd[i];
+                q0 += a0 * a0;
+                r0 += b0 * b0;
+                y[i] -= d[i];
+                yp[i] -= cj * d[i];
+                ee[i] -= d[i];
+            }
+            double nn = n > 0 ? n : 1;
+            dn = sqrt((q0 + q1) / nn);
+            dn_diff = sqrt((r0 + r1) / nn);
+        }
+        if (!isfinite(dn)) {
+            char nb[32];
+            int i = daei_first_nonfinite(s->delta, n);
+            daei_note(s, "the Newton correction of %s is %g at t = %.17g",
+                      daei_vname(s, i, nb, sizeof nb), i >= 0 ? s->delta[i] : dn, t);
+            return NL_RES_RECOVER;
+        }
+        if (m == 0) {
+            oldnrm = dn;
+            if (dn <= 1e-4 * EPS_NEWT) return NL_OK;
+        } else {
+            /* Round-off floor of index-2 unknowns: their corrections carry the rounding errors
+             * of the other unknowns amplified by about 1/h^2, so at very small steps they stop
+             * decreasing while everything else has converged. Once the corrections of the
+             * differential and index-1 unknowns are far below the tolerance, accept: below
+             * 1e-6 of it, or at ten times their own rounding (eps |y| against rtol |y|, so
+             * 2.2e-5 of the tolerance at rtol 1e-10), which no iteration goes under. The
+             * latter lets the crank of the IVP Test Set start at rtol 1e-10 and 1e-11: its
+             * steps of 1e-12 s left the multipliers' corrections 1e4 tolerances large while the
+             * positions' and velocities' stayed at 2e-6, their round-off, and the steps
+             * collapsed at t = 4.5e-12. A fixed floor of 3e-5 instead (10 eps / rtol at rtol
+             * 1e-10 and above it at 1e-8) accepts unconverged iterations at 1e-8: the crane's
+             * hinge drift after 3 s grew from 1.6e-8 m to 6e-7 m. With rtol = 0 (atol alone)
+             * the rounding has no bound relative to the tolerance: 1e-6; and at most 1e-2. */
+            double floor_diff =
+                s->o.rtol > 0 ? fmin(1e-2, fmax(1e-6, 10 * DBL_EPSILON / s->o.rtol)) : 1e-6;
+            if (s->has_alg2 && dn_diff <= floor_diff) return NL_OK;
+            rate = pow(dn / oldnrm, 1.0 / m);
+            if (rate > RATE_MAX) {
+                note_newton(s, t, rate);
+                return NL_RECOVER;
+            }
+            s->ss = rate / (1.0 - rate);
+        }
+        /* The first iteration is accepted on the rate of earlier ones only as far as that rate
+         * applies: the nonlinear part of the contraction grows with the size of the correction,
+         * so a first correction larger than the last accepted step's (the predictor missed a
+         * jump of an algebraic unknown, e.g. a saturated controller that switches inside the
+         * step) has the rate scaled up by the ratio, and usually takes another iteration.
+         * Without this, a step over a switch was accepted with the algebraic unknowns of the
+         * predictor, out of the error test (exclude_alg), and the run went on silently wrong. */
+        if (m == 0) s->dn0 = dn;
+        double ssm = m == 0 ? s->ss * fmax(1.0, dn / s->dn0_last) : s->ss;
+        if (ssm * dn <= EPS_NEWT && (m > 0 || !daei_first_correction_jumps(s))) return NL_OK;
+        if (m + 1 >= s->o.max_newton && !newton_extends(s, m, dn, rate)) break;
+    }
+    note_newton(s, t, rate);
+    return NL_RECOVER;
+}

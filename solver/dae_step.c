@@ -1,0 +1,357 @@
+/* One step of the integrator: variable-order, variable-step BDF in fixed-leading-coefficient
+ * form with the history kept as modified divided differences phi[0..k+1], as in DASSL and IDA
+ * (Brenan, Campbell and Petzold 1996, sec. 5.2-5.3; IDA's published algorithm, Hindmarsh et al.,
+ * "SUNDIALS: Suite of nonlinear and differential/algebraic equation solvers", ACM TOMS 2005).
+ *
+ * daei_step is a retry loop over named parts: the checks before a step (tolerances against
+ * round-off, the crawl stop, dae_disc.c), the step floor (check_floor: a step below it stops the
+ * run or marks an unannounced jump), coefficients and prediction, the Newton corrector
+ * (dae_nls.c), the error test (dae_err.c), and on failure one function, handle_failure, that
+ * decides: retry with another h and order, or stop with a status and a message. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bg_dae_impl.h"
+
+/* What one call of daei_step has met so far. */
+typedef struct step_attempt {
+    int nef;           /* error-test failures */
+    int ncf;           /* Newton failures (not counting refreshes of a stale Jacobian) */
+    int last_res_fail; /* the last failure was the residual's (or the Jacobian's) */
+} step_attempt;
+
+enum { RETRY = 1 };
+
+/* ------------------------------------------------------------ BDF machinery ---- */
+
+static void set_coeffs(dae_solver *s)
+{
+    int k = s->kk;
+    if (s->hh != s->hused || k != s->kused) s->ns = 0;
+    s->ns = s->ns + 1 < s->kused + 2 ? s->ns + 1 : s->kused + 2;
+    if (k + 1 >= s->ns) {
+        double temp1 = s->hh;
+        s->beta[0] = 1;
+        s->alpha[0] = 1;
+        s->gamma[0] = 0;
+        s->sigma[0] = 1;
+        for (int i = 1; i <= k; i++) {
+            double temp2 = s->psi[i - 1];
+            s->psi[i - 1] = temp1;
+            s->beta[i] = s->beta[i - 1] * s->psi[i - 1] / temp2;
+            temp1 = temp2 + s->hh;
+            s->alpha[i] = s->hh / temp1;
+            s->sigma[i] = i * s->sigma[i - 1] * s->alpha[i];
+            s->gamma[i] = s->gamma[i - 1] + s->alpha[i - 1] / s->hh;
+        }
+        s->psi[k] = temp1;
+    }
+    s->alphas = 0;
+    s->alpha0 = 0;
+    for (int i = 0; i < k; i++) {
+        s->alphas -= 1.0 / (i + 1);
+        s->alpha0 -= s->alpha[i];
+    }
+    s->cjold = s->cj;
+    s->cj = -s->alphas / s->hh;
+    s->ck = fabs(s->alpha[k] + s->alphas - s->alpha0);
+    s->ck = fmax(s->ck, s->alpha[k]);
+    for (int j = s->ns; j <= k; j++) {
+        double *restrict p = s->phi[j], b = s->beta[j];
+        for (int i = 0; i < s->n; i++)
+            p[i] *= b;
+    }
+}
+
+static void restore(dae_solver *s)
+{
+    for (int j = 1; j <= s->kk; j++)
+        s->psi[j - 1] = s->psi[j] - s->hh;
+    for (int j = s->ns; j <= s->kk; j++) {
+        double *restrict p = s->phi[j], b = s->beta[j];
+        for (int i = 0; i < s->n; i++)
+            p[i] /= b;
+    }
+}
+
+/* ypred, yppred from the history; y and yp start there (the Newton iteration's initial
+ * values). */
+static void predict(dae_solver *s)
+{
+    int n = s->n;
+    double *restrict yq = s->ypred, *restrict ypq = s->yppred;
+    const double *restrict p0 = s->phi[0], *restrict p1 = s->phi[1];
+    double g1 = s->gamma[1];
+    for (int i = 0; i < n; i++) {
+        yq[i] = p0[i] + p1[i];
+        ypq[i] = g1 * p1[i];
+    }
+    /* the remaining differences two at a time: fewer passes over yq and ypq */
+    int j = 2;
+    for (; j + 1 <= s->kk; j += 2) {
+        const double *restrict pa = s->phi[j], *restrict pb = s->phi[j + 1];
+        double ga = s->gamma[j], gb = s->gamma[j + 1];
+        for (int i = 0; i < n; i++) {
+            yq[i] += pa[i] + pb[i];
+            ypq[i] += ga * pa[i] + gb * pb[i];
+        }
+    }
+    double *restrict y = s->y, *restrict yp = s->yp;
+    if (j == s->kk) {
+        const double *restrict pa = s->phi[j];
+        double ga = s->gamma[j];
+        for (int i = 0; i < n; i++) {
+            y[i] = yq[i] += pa[i];
+            yp[i] = ypq[i] += ga * pa[i];
+        }
+    } else {
+        memcpy(y, yq, (size_t)n * sizeof *y);
+        memcpy(yp, ypq, (size_t)n * sizeof *yp);
+    }
+}
+
+/* Vector kernels on distinct arrays (restrict lets them vectorize: through the solver struct
+ * the compiler must assume that every store may change the coefficients it reads). */
+static void vadd(int n, double *restrict x, const double *restrict a) /* x += a */
+{
+    for (int i = 0; i < n; i++)
+        x[i] += a[i];
+}
+
+/* phi after an accepted step of order k = kused: phi[k+1] = ee, phi[k] += ee, then phi[j] +=
+ * phi[j+1] for j = k-1 .. 0, two levels per pass over the unknowns (the new phi[j+1] is added
+ * to phi[j] while it is at hand). */
+static void update_history(dae_solver *s)
+{
+    int n = s->n, k = s->kused;
+    if (k < MAXORD) memcpy(s->phi[k + 1], s->ee, (size_t)n * sizeof(double));
+    const double *restrict src = s->ee;
+    int j = k;
+    for (; j >= 1; j -= 2) { /* phi[j] += src; phi[j-1] += phi[j] */
+        double *restrict a = s->phi[j], *restrict b = s->phi[j - 1];
+        for (int i = 0; i < n; i++) {
+            double c = a[i] + src[i];
+            a[i] = c;
+            b[i] += c;
+        }
+        src = s->phi[j - 1];
+    }
+    if (j == 0) vadd(n, s->phi[0], s->phi[1]);
+}
+
+static void complete_step(dae_solver *s)
+{
+    s->st.steps++;
+    s->nst_local++;
+    daei_disc_accepted(s);
+    s->dn0_last = s->dn0;
+    s->since_fail++;
+    int kdiff = s->kk - s->kused;
+    s->kused = s->kk;
+    s->hused = s->hh;
+    s->st.steps_at_order[s->kused]++;
+    s->st.h_last = s->hh;
+    s->st.order_last = s->kused;
+    s->st.h_min_used = fmin(s->st.h_min_used, fabs(s->hh));
+    s->st.h_max_used = fmax(s->st.h_max_used, fabs(s->hh));
+    daei_choose_next(s, kdiff);
+    update_history(s);
+}
+
+/* ------------------------------------------------------------ stops ---- */
+
+double daei_next_stop(const dae_solver *s, double dir, int *is_bkpt)
+{
+    double ts = NAN;
+    *is_bkpt = 0;
+    if (dir > 0 && s->ibk < s->nbkpt) {
+        ts = s->bkpt[s->ibk];
+        *is_bkpt = 1;
+    }
+    if (s->o.has_t_stop && (s->o.t_stop - s->tn) * dir > 0 &&
+        (isnan(ts) || (s->o.t_stop - ts) * dir < 0)) {
+        ts = s->o.t_stop;
+        *is_bkpt = 0;
+    }
+    return ts;
+}
+
+void daei_clip_to_stop(dae_solver *s)
+{
+    int isb;
+    double ts = daei_next_stop(s, s->hh > 0 ? 1.0 : -1.0, &isb);
+    if (!isnan(ts) && (s->tn + 1.0001 * s->hh - ts) * s->hh >= 0) s->hh = ts - s->tn;
+    if (s->o.h_max > 0 && fabs(s->hh) > s->o.h_max) s->hh = copysign(s->o.h_max, s->hh);
+}
+
+/* ------------------------------------------------------------ the step ---- */
+
+/* Describes an error-test failure by the unknown with the largest weighted local error. */
+static void note_error_test(dae_solver *s, double t)
+{
+    char nb[32];
+    int i = daei_largest_weighted(s, s->ee, s->werr);
+    if (i < 0) {
+        daei_note(s, "the error test failed at t = %.17g", t);
+        return;
+    }
+    daei_note(s,
+              "the error test failed at t = %.17g: the largest weighted local error is in %s "
+              "(estimate %.3g against the tolerance %.3g)",
+              t, daei_vname(s, i, nb, sizeof nb), s->ck * fabs(s->ee[i]), 1.0 / s->werr[i]);
+}
+
+/* Describes what limits a step that is too small although it has not failed: the local error
+ * of the last step, or the derivative that sized the first step. */
+static void note_step_limit(dae_solver *s)
+{
+    char nb[32];
+    int first = s->nst_local == 0;
+    int i = daei_largest_weighted(s, first ? s->phi[1] : s->ee, s->werr);
+    if (i < 0) {
+        s->note[0] = '\0';
+        return;
+    }
+    if (first)
+        daei_note(s, "the first step is sized by the derivative of %s (y' = %.3g, tolerance %.3g)",
+                  daei_vname(s, i, nb, sizeof nb), fabs(s->phi[1][i] / s->hh), 1.0 / s->werr[i]);
+    else
+        daei_note(s,
+                  "the step size is limited by the local error of %s (%.3g in the last step, "
+                  "tolerance %.3g)",
+                  daei_vname(s, i, nb, sizeof nb), s->ck * fabs(s->ee[i]), 1.0 / s->werr[i]);
+}
+
+/* The checks before a step: h clipped to the next stop, tolerances above round-off, no crawl. */
+static int check_before(dae_solver *s)
+{
+    char nb[32];
+    daei_clip_to_stop(s);
+    daei_set_weights(s, s->phi[0]);
+    double tolsf = DBL_EPSILON * daei_wrms(s, s->phi[0], s->ewt);
+    if (tolsf > 1) {
+        int i = daei_largest_weighted(s, s->phi[0], s->ewt);
+        return bg_error_raise(&s->err, DAE_TOO_MUCH_ACC, "dae_solve_to",
+                              "at t = %.17g the tolerances are below round-off: increase them by "
+                              "a factor of at least %.3g (the largest weighted value is %s = "
+                              "%.3g against the tolerance %.3g)",
+                              s->tn, tolsf, daei_vname(s, i, nb, sizeof nb),
+                              i >= 0 ? s->phi[0][i] : 0.0, i >= 0 ? 1.0 / s->ewt[i] : 0.0);
+    }
+    s->note[0] = '\0';
+    return daei_crawl_check(s);
+}
+
+/* The step floor: 0 to go on; below the floor (and not landing on a stop), STEP_JUMP when the
+ * collapse marks an unannounced jump (dae_disc.c), else the failure that stops the run. */
+static int check_floor(dae_solver *s, const step_attempt *a, int landing)
+{
+    const char *w = "dae_solve_to";
+    double hmin = fmax(s->o.h_min, daei_roundoff_h(s));
+    if (fabs(s->hh) >= hmin || landing) return 0;
+    if (a->last_res_fail)
+        return bg_error_raise(&s->err, DAE_RES_FAIL, w,
+                              "the residual (or Jacobian) kept failing until the step size fell "
+                              "to %.3g at t = %.17g: %s",
+                              s->hh, s->tn, s->note);
+    if (daei_jump_suspected(s, a->nef, a->ncf)) return STEP_JUMP;
+    if (a->nef + a->ncf == 0) note_step_limit(s);
+    return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
+                          "step size %.3g at t = %.17g is below the minimum %.3g (%d error-test "
+                          "and %d Newton failures in this step)%s%s",
+                          s->hh, s->tn, hmin, a->nef, a->ncf, s->note[0] ? ": " : "", s->note);
+}
+
+/* The failure policy of a step: after the attempt to tnew ended with nl (NL_OK: the error test
+ * failed; the history is restored), RETRY with the h and order set here, or the status (< 0)
+ * that stops the run, with its message.
+ *   - a fatal callback status, or a linear solver that fails: stop;
+ *   - an error-test failure: order and step from the estimates (daei_after_error_fail), at most
+ *     MAX_NEF in one step;
+ *   - a Newton failure on a Jacobian from an earlier step: a fresh Jacobian at the same step;
+ *   - a Newton failure on a current Jacobian (or a failing residual, or a singular matrix): the
+ *     step cut by 4, at most MAX_NCF in one step. */
+static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
+{
+    const char *w = "dae_solve_to";
+    if (nl < 0)
+        return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, w,
+                              "a callback returned the fatal status %d in the step from t = "
+                              "%.17g to %.17g: %s",
+                              nl, s->tn, tnew, s->note);
+    if (nl == NL_LSFAIL)
+        return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w, "at t = %.17g, h = %.3g: %s", s->tn,
+                              s->hh, s->note);
+    s->phase = 1;
+    if (nl == NL_OK) { /* the error test failed */
+        note_error_test(s, tnew);
+        s->st.rejected_error++;
+        s->since_fail = -1;
+        a->nef++;
+        a->last_res_fail = 0;
+        if (a->nef >= MAX_NEF)
+            return bg_error_raise(&s->err, DAE_ERR_FAIL, w,
+                                  "error test failed %d times at t = %.17g, h = %.3g: %s", a->nef,
+                                  s->tn, s->hh, s->note);
+        daei_after_error_fail(s, a->nef);
+        return RETRY;
+    }
+    if (nl == NL_RECOVER && !s->jac_current) { /* stale Jacobian: refresh, same step */
+        s->need_setup = 1;
+        return RETRY;
+    }
+    a->ncf++;
+    s->st.newton_fails++;
+    s->t_fail = tnew;
+    snprintf(s->fail_note, sizeof s->fail_note, "%s", s->note);
+    a->last_res_fail = nl == NL_RES_RECOVER;
+    if (a->ncf >= MAX_NCF) {
+        if (nl == NL_SINGULAR)
+            return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w,
+                                  "Newton matrix singular %d times at t = %.17g, h = %.3g: %s",
+                                  a->ncf, s->tn, s->hh, s->note);
+        if (a->last_res_fail)
+            return bg_error_raise(&s->err, DAE_RES_FAIL, w,
+                                  "the residual (or Jacobian) failed %d times at t = %.17g, h = "
+                                  "%.3g: %s",
+                                  a->ncf, s->tn, s->hh, s->note);
+        return bg_error_raise(&s->err, DAE_CONV_FAIL, w,
+                              "Newton iteration failed %d times at t = %.17g, h = %.3g: %s", a->ncf,
+                              s->tn, s->hh, s->note);
+    }
+    s->hh *= 0.25;
+    s->need_setup = 1;
+    return RETRY;
+}
+
+int daei_step(dae_solver *s)
+{
+    step_attempt a = {0, 0, 0};
+    int r = check_before(s);
+    if (r != BG_OK) return r;
+    for (;;) {
+        int isb;
+        double ts = daei_next_stop(s, s->hh > 0 ? 1 : -1, &isb);
+        int landing = !isnan(ts) && s->tn + s->hh == ts;
+        if ((r = check_floor(s, &a, landing)) != 0) return r;
+        /* the weights change with h only through the index-2 unknowns' scaling by |h| */
+        if (s->has_alg2 && (s->o.index2 == DAE_I2_SCALE_H || s->o.newton_index2_scale_h))
+            daei_set_weights(s, s->phi[0]);
+        set_coeffs(s);
+        predict(s);
+        double tnew = landing ? ts : s->tn + s->hh;
+        /* a step that lands on a breakpoint sees the inputs' left-hand values there (one unit of
+         * round-off short), whichever side the model gives the jump to: the restart takes the
+         * right-hand ones */
+        int nl = daei_newton(s, landing && isb ? nextafter(ts, s->tn) : tnew);
+        if (nl == NL_OK && (s->o.fixed_step || !daei_error_test(s))) {
+            complete_step(s);
+            s->tn = tnew;
+            return landing && isb ? STEP_ON_BREAKPOINT : STEP_TAKEN;
+        }
+        restore(s);
+        if ((r = handle_failure(s, &a, nl, tnew)) != RETRY) return r;
+    }
+}
