@@ -32,7 +32,7 @@
  * --problems none skips the work-precision runs (and, unless asked for, the crane's scaling and
  * real-time runs).
  *
- * Method (IVP Test Set conventions, shared/testset/README.md): every solver starts from the same
+ * Method (IVP Test Set conventions, docs/testset.md): every solver starts from the same
  * consistent initial values (computed once per problem by dae_consistent_init at rtol 1e-10:
  * IDA's own initialisation handles index 1 only); CPU time of the integration alone; the first
  * run is profiled (residual and Jacobian callbacks and the linear solver timed; our solver's
@@ -64,6 +64,7 @@
 
 #include "bench_case.h"
 #include "bench_crane.h"
+#include "bench_mebdfi.h"
 #include "bench_stab.h"
 #include "bench_util.h"
 #include "problems.h"
@@ -510,6 +511,144 @@ static void write_report_problems(FILE *f, const row *rows, int n, bench_case **
     fprintf(f, "\n");
 }
 
+/* ---------------------------------------------------- steps against tolerance ---- */
+
+/* The tighter run of the same case and solver with the fewest steps relative to A's: the
+ * largest steps(A) / steps(B) over successful runs B at a smaller rtol; NULL if none. */
+static const row *fewest_tighter(const row *rows, int n, const row *A, double *ratio)
+{
+    const row *best = NULL;
+    *ratio = 0;
+    if (!row_ok(A) || A->r.steps <= 0) return NULL;
+    for (int i = 0; i < n; i++) {
+        const row *B = &rows[i];
+        if (B->ci != A->ci || B->sd != A->sd || !row_ok(B) || !(B->rtol < A->rtol) ||
+            B->r.steps <= 0)
+            continue;
+        double q = (double)A->r.steps / (double)B->r.steps;
+        if (q > *ratio) {
+            *ratio = q;
+            best = B;
+        }
+    }
+    return best;
+}
+
+#define MORE_STEPS_LIMIT 1.05
+
+/* steps_vs_tol.csv and the report's section: steps (rejected) of every problem and solver at
+ * each tolerance, "MORE STEPS" where a looser tolerance took more than 5 % more steps than a
+ * tighter one (failed runs left out: their counts stop where they failed). Returns the number
+ * of flagged (problem, solver) pairs, or -1 if the CSV cannot be written. */
+static int write_steps_vs_tol(const char *dir, FILE *f, const row *rows, int n, bench_case **cases,
+                              int nc, const char **sol, int ns, const double *rtols, int nr)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/steps_vs_tol.csv", dir);
+    FILE *c = fopen(path, "w");
+    if (!c) return -1;
+    fprintf(c, "problem,solver,rtol,atol,status,steps,rejected,max_order,flag,"
+               "tighter_rtol_fewer_steps,tighter_steps,excess_percent\n");
+    for (int i = 0; i < n; i++) {
+        const row *A = &rows[i];
+        double q;
+        const row *B = fewest_tighter(rows, n, A, &q);
+        int flag = B && q > MORE_STEPS_LIMIT;
+        fprintf(c, "%s,%s,%g,%g,%d,%ld,%ld,%d,%s,", cases[A->ci]->name, A->sd->name, A->rtol,
+                A->atol, A->r.status, A->r.steps, A->r.rejected, A->r.max_order,
+                flag ? "MORE STEPS" : "");
+        if (flag)
+            fprintf(c, "%g,%ld,%.1f\n", B->rtol, B->r.steps, 100 * (q - 1));
+        else
+            fprintf(c, ",,\n");
+    }
+    int bad = fclose(c) != 0;
+    /* tolerances loosest first */
+    double rt[MAXRTOL];
+    int k = 0;
+    for (int i = 0; i < nr; i++)
+        rt[k++] = rtols[i];
+    for (int i = 1; i < k; i++)
+        for (int j = i; j > 0 && rt[j] > rt[j - 1]; j--) {
+            double t = rt[j];
+            rt[j] = rt[j - 1];
+            rt[j - 1] = t;
+        }
+    fprintf(f, "## Steps against tolerance\n\n"
+               "Accepted steps (rejected steps in brackets) of every run of the work-precision "
+               "series, loosest tolerance first (steps_vs_tol.csv). MORE STEPS: a looser "
+               "tolerance took more than 5 %% more steps than a tighter one of the same problem "
+               "and solver (the worst pair is named; failed runs are left out, their counts stop "
+               "where they failed). Step counts should fall as the tolerance loosens: where they "
+               "do not, the step size is not set by the accuracy asked for (an order held down "
+               "by a stability limit, a fail/grow cycle of the step size, restarts).\n\n");
+    int nflag = 0;
+    /* the flagged pairs first */
+    for (int ci = 0; ci < nc; ci++)
+        for (int s = 0; s < ns; s++) {
+            const row *worst = NULL, *wb = NULL;
+            double wq = 0;
+            for (int i = 0; i < n; i++) {
+                const row *A = &rows[i];
+                if (A->ci != ci || strcmp(A->sd->name, sol[s])) continue;
+                double q;
+                const row *B = fewest_tighter(rows, n, A, &q);
+                if (B && q > MORE_STEPS_LIMIT && q > wq) {
+                    wq = q;
+                    worst = A;
+                    wb = B;
+                }
+            }
+            if (!worst) continue;
+            if (!nflag) fprintf(f, "Flagged:\n\n");
+            nflag++;
+            fprintf(f,
+                    "- MORE STEPS: %s, %s: %ld steps at rtol %g against %ld at rtol %g (+%.0f "
+                    "%%)\n",
+                    cases[ci]->name, sol[s], worst->r.steps, worst->rtol, wb->r.steps, wb->rtol,
+                    100 * (wq - 1));
+        }
+    fprintf(f, nflag ? "\n" : "No problem and solver took more steps at a looser tolerance.\n\n");
+    fprintf(f, "| problem | solver |");
+    for (int i = 0; i < k; i++)
+        fprintf(f, " %g |", rt[i]);
+    fprintf(f, " flag |\n|---|---|");
+    for (int i = 0; i <= k; i++)
+        fprintf(f, "---|");
+    fprintf(f, "\n");
+    for (int ci = 0; ci < nc; ci++)
+        for (int s = 0; s < ns; s++) {
+            int any = 0, flag = 0;
+            for (int i = 0; i < n; i++)
+                any |= rows[i].ci == ci && !strcmp(rows[i].sd->name, sol[s]);
+            if (!any) continue;
+            fprintf(f, "| %s | %s |", cases[ci]->name, sol[s]);
+            for (int j = 0; j < k; j++) {
+                const row *A = NULL;
+                for (int i = 0; i < n; i++)
+                    if (rows[i].ci == ci && !strcmp(rows[i].sd->name, sol[s]) &&
+                        rows[i].rtol == rt[j])
+                        A = &rows[i];
+                if (!A) {
+                    fprintf(f, " |");
+                    continue;
+                }
+                double q;
+                const row *B = fewest_tighter(rows, n, A, &q);
+                int fl = B && q > MORE_STEPS_LIMIT;
+                flag |= fl;
+                if (A->r.status < 0)
+                    fprintf(f, " FAIL (%ld) |", A->r.steps);
+                else
+                    fprintf(f, " %s%ld (%ld)%s |", fl ? "**" : "", A->r.steps, A->r.rejected,
+                            fl ? "**" : "");
+            }
+            fprintf(f, " %s |\n", flag ? "MORE STEPS" : "");
+        }
+    fprintf(f, "\n");
+    return bad ? -1 : nflag;
+}
+
 /* -------------------------------------------------------------------- main ---- */
 
 static void usage_text(FILE *f)
@@ -517,7 +656,9 @@ static void usage_text(FILE *f)
     fprintf(f, "usage: bench [--problems LIST|none] [--solvers LIST] [--rtols LIST] [--repeat K]\n"
                "             [--stability] [--quick] [--out DIR] [--crane-horizon T]\n"
                "             [--crane-realtime K] [--scaling LIST|none] [--crane-scene FILE]\n"
-               "             [--stability-filter TEXT] [--strict] [--help]\n  solvers:");
+               "             [--stability-filter TEXT] [--strict] [--crane-full]\n"
+               "             [--crane-full-scene FILE] [--crane-full-rtols LIST] [--help]\n"
+               "  solvers:");
     for (int s = 0; s < bench_nsolvers; s++)
         fprintf(f, " %s", bench_solvers[s].name);
     fprintf(f, "\n  problems:");
@@ -525,10 +666,14 @@ static void usage_text(FILE *f)
         fprintf(f, " %s", bp_get(i)->name);
     for (int i = 0; i < bp_testset_count(); i++)
         fprintf(f, " %s", bp_testset_get(i)->name);
+    for (int i = 0; i < bp_osc_count(); i++)
+        fprintf(f, " %s", bp_osc_get(i)->name);
     fprintf(f,
             " crane\n  --rtols: numbers in (0, 1); --repeat: 1..%d; --crane-horizon: seconds;\n"
             "  --crane-realtime: runs of the full paper scene (0..99); --scaling: boom element\n"
-            "  counts 1..512; see the header of bench/bench.c\n",
+            "  counts 1..512; --crane-full: paper-undamped.ini over 20 s, ours and IDA at\n"
+            "  rtol 1e-4..1e-9 (--crane-full-rtols) against ours at 1e-10; see the header of\n"
+            "  bench/bench.c\n",
             MAXREP);
 }
 
@@ -573,9 +718,11 @@ static int parse_int(const char *s, int lo, int hi, int *v)
 
 int main(int argc, char **argv)
 {
-    char *plist = NULL, *slist = NULL, *rlist = NULL, *sclist = NULL;
+    char *plist = NULL, *slist = NULL, *rlist = NULL, *sclist = NULL, *cflist = NULL;
     const char *out = "results/bench", *scene_file = NULL, *stab_filter = NULL;
+    const char *full_scene = NULL;
     int K = 3, stab = 0, quick = 0, rt_K = -1, child = 0, have_K = 0, strict = 0;
+    int crane_full = 0;
     double horizon = 0;
     char m[512];
     for (int a = 1; a < argc; a++) {
@@ -590,13 +737,16 @@ int main(int argc, char **argv)
             quick = 1;
         } else if (!strcmp(arg, "--strict")) {
             strict = 1;
+        } else if (!strcmp(arg, "--crane-full")) {
+            crane_full = 1;
         } else if (!strcmp(arg, "--realtime-child")) { /* internal: one real-time run */
             child = 1;
         } else if (!strcmp(arg, "--problems") || !strcmp(arg, "--solvers") ||
                    !strcmp(arg, "--rtols") || !strcmp(arg, "--repeat") || !strcmp(arg, "--out") ||
                    !strcmp(arg, "--crane-horizon") || !strcmp(arg, "--crane-realtime") ||
                    !strcmp(arg, "--scaling") || !strcmp(arg, "--crane-scene") ||
-                   !strcmp(arg, "--stability-filter")) {
+                   !strcmp(arg, "--stability-filter") || !strcmp(arg, "--crane-full-scene") ||
+                   !strcmp(arg, "--crane-full-rtols")) {
             if (!has_val || !argv[a + 1][0] || !strncmp(argv[a + 1], "--", 2)) {
                 snprintf(m, sizeof m, "option %s needs a value", arg);
                 return usage(m);
@@ -617,6 +767,10 @@ int main(int argc, char **argv)
                 scene_file = v;
             else if (!strcmp(arg, "--stability-filter"))
                 stab_filter = v;
+            else if (!strcmp(arg, "--crane-full-scene"))
+                full_scene = v, crane_full = 1;
+            else if (!strcmp(arg, "--crane-full-rtols"))
+                cflist = v, crane_full = 1;
             else if (!strcmp(arg, "--repeat")) {
                 if (parse_int(v, 1, MAXREP, &K) != 0) {
                     snprintf(m, sizeof m, "--repeat takes a whole number from 1 to %d, not '%s'",
@@ -686,6 +840,8 @@ int main(int argc, char **argv)
             if (bp_get(i)->yref || bp_get(i)->exact) pnames[np++] = bp_get(i)->name;
         for (int i = 0; i < bp_testset_count() && np < MAXPROB; i++)
             pnames[np++] = bp_testset_get(i)->name;
+        for (int i = 0; i < bp_osc_count() && np < MAXPROB; i++)
+            pnames[np++] = bp_osc_get(i)->name;
         pnames[np++] = "crane";
     }
     /* solvers */
@@ -767,6 +923,40 @@ int main(int argc, char **argv)
     } else {
         for (int e = 8; e <= (quick ? 64 : 512); e *= 2)
             scale[nscale++] = e;
+    }
+    /* the crane over its full horizon against IDA (--crane-full): the scene, the tolerances */
+    double cf_rtols[MAXRTOL];
+    int cf_nr = 0;
+    crane_scene full;
+    char full_name[600] = "";
+    if (crane_full) {
+        if (cflist) {
+            int k = split_list(cflist, items, MAXRTOL);
+            if (k < 0) return usage("--crane-full-rtols: too many tolerances (at most 16)");
+            for (int i = 0; i < k; i++) {
+                if (parse_num(items[i], 1e-300, 1, &cf_rtols[cf_nr]) != 0 || cf_rtols[cf_nr] >= 1) {
+                    snprintf(m, sizeof m, "--crane-full-rtols: '%s' is not a number in (0, 1)",
+                             items[i]);
+                    return usage(m);
+                }
+                cf_nr++;
+            }
+            if (cf_nr == 0) return usage("--crane-full-rtols: empty list");
+        } else
+            for (int e = 4; e <= 9; e++)
+                cf_rtols[cf_nr++] = pow(10.0, -e);
+#ifdef BENCH_HAVE_SCENES
+        if (!full_scene) full_scene = BENCH_SCENES_DIR "/paper-undamped.ini";
+        bg_error err = {0};
+        if (crane_scene_load(&full, full_scene, &err) != BG_OK) {
+            fprintf(stderr, "bench: --crane-full: %s\n", err.message);
+            return 2;
+        }
+        const char *base = strrchr(full_scene, '/');
+        snprintf(full_name, sizeof full_name, "%s", base ? base + 1 : full_scene);
+#else
+        return usage("--crane-full: built without scene files (libinih-dev)");
+#endif
     }
     if (mkdirs(out) != 0) {
         fprintf(stderr, "bench: cannot create the output folder '%s': %s\n", out, strerror(errno));
@@ -913,9 +1103,25 @@ int main(int argc, char **argv)
         sc.filter = stab_filter;
         stab_bad = bench_stability(out, tail, &sc, &crashed);
     }
+    /* the crane over its full horizon against IDA: last (minutes per run); its rows reach
+     * crane_wp.csv as they are measured */
+    if (crane_full)
+        failures += bench_crane_full(out, tail, &full, full_name, cf_rtols, cf_nr, 1e-10);
 
     load_average(ex.load_end, sizeof ex.load_end);
     write_report_head(rep, rows, n, cases, nc, solnames, ns, wall, K, &ex);
+    if (n > 0 && write_steps_vs_tol(out, rep, rows, n, cases, nc, solnames, ns, rtols, nr) < 0) {
+        fprintf(stderr, "bench: cannot write %s/steps_vs_tol.csv\n", out);
+        io_errors++;
+    }
+    if (nc > 0) {
+        int mf = bench_mebdfi_compare(out, rep, cases, nc, rtols, nr);
+        if (mf < 0) {
+            fprintf(stderr, "bench: cannot write %s/mebdfi_compare.csv\n", out);
+            io_errors++;
+        } else
+            failures += mf;
+    }
     write_report_problems(rep, rows, n, cases, nc, solnames, ns);
     rewind(tail);
     char buf[8192];

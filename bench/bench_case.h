@@ -87,6 +87,11 @@ typedef struct run_opts {
     int track_drift;        /* ours: step by step, maximum of bc->drift (or the solver's) */
     long max_steps;         /* 0: 1 000 000 */
     double h_max;           /* ours: 0: none */
+    /* IDA: at each breakpoint, the values it restarts from (IDAReInit) made consistent by our
+     * dae_consistent_init (as our solver restarts there: the equations one rounding unit after
+     * the breakpoint) instead of IDA's own values before it (whose y' belongs to the input
+     * before the jump); the CPU time includes it, IDA's counters do not */
+    int ida_consistent_restart;
 } run_opts;
 
 typedef struct run_out {

@@ -722,3 +722,156 @@ int bench_crane_realtime(const char *exe, const char *scene_file, const crane_sc
     free(v);
     return fails;
 }
+
+/* ------------------------------------------------------------- full horizon ---- */
+
+typedef struct full_row {
+    const char *solver;
+    double rtol;
+    run_out r;
+    bp_score sc;
+} full_row;
+
+static void full_csv_row(FILE *f, const full_row *w, double atol)
+{
+    if (!f) return;
+    fprintf(f, "%s,%g,%g,%d,%.9g,%ld,%ld,%ld,%ld,%ld,%.6g,%.3f,%.3f,%.3f,\"%s\"\n", w->solver,
+            w->rtol, atol, w->r.status, w->r.t, w->r.steps, w->r.rejected, w->r.newton, w->r.jac,
+            w->r.res, w->r.cpu, w->sc.scd, w->sc.mescd, w->sc.scd_i2,
+            w->r.status < 0 ? w->r.msg : "");
+    fflush(f);
+}
+
+int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const char *scene_name,
+                     const double *rtols, int nr, double rtol_ref)
+{
+    char path[600], msg[BG_MESSAGE_SIZE] = "";
+    snprintf(path, sizeof path, "%s/crane_wp.csv", dir);
+    FILE *f = fopen(path, "w");
+    if (f)
+        fprintf(f, "solver,rtol,atol,status,t_reached,steps,rejected,newton,jacobians,res_evals,"
+                   "cpu_s,scd,mescd,scd_index2,message\n");
+    fprintf(rep, "## Crane over its full %g s against IDA\n\n", s->t_end);
+    bench_case bc;
+    int fails = 0;
+    int r = bench_crane_case(&bc, s, s->static_start, s->t_end, "crane_full", msg, sizeof msg);
+    if (r == 0 && bench_case_start(&bc, 1e-10, msg, sizeof msg) != 0)
+        fprintf(stderr, "crane full: no consistent start (the given values are used): %s\n", msg);
+    if (r != 0) {
+        fprintf(stderr, "crane full: %s\n", msg);
+        fprintf(rep, "Not run: %s.\n\n", msg);
+        if (f) fclose(f);
+        return 1;
+    }
+    const solver_def *ours = bench_solver_find("bgdae-klu");
+#ifdef BENCH_HAVE_IDA
+    const solver_def *ida = bench_solver_find("ida-klu");
+#else
+    const solver_def *ida = NULL;
+#endif
+    /* the reference */
+    full_row ref;
+    memset(&ref, 0, sizeof ref);
+    ref.solver = "bgdae-klu (reference)";
+    ref.rtol = rtol_ref;
+    double c0 = bench_cpu_now();
+    fprintf(stderr, "crane full: %s, reference: bgdae-klu at rtol %g over %g s\n", scene_name,
+            rtol_ref, s->t_end);
+    if (bench_run_alloc(&ref.r, bc.n) != 0) {
+        bench_case_free(&bc);
+        if (f) fclose(f);
+        return 1;
+    }
+    run_opts ro = {0};
+    ro.rtol = rtol_ref;
+    ro.max_steps = 100000000;
+    bench_run(&bc, ours, &ro, &ref.r);
+    ref.sc.scd = ref.sc.mescd = ref.sc.scd_i2 = NAN;
+    full_csv_row(f, &ref, bc.atol_factor * rtol_ref);
+    fprintf(stderr, "crane full: reference %s, %ld steps, %.1f s CPU\n",
+            ref.r.status < 0 ? ref.r.msg : "ok", ref.r.steps, ref.r.cpu);
+    if (ref.r.status < 0) {
+        fails++;
+    } else {
+        bc.yref = malloc((size_t)bc.n * sizeof *bc.yref);
+        bc.ypref = malloc((size_t)bc.n * sizeof *bc.ypref);
+        if (bc.yref && bc.ypref) {
+            memcpy(bc.yref, ref.r.y, (size_t)bc.n * sizeof *bc.yref);
+            memcpy(bc.ypref, ref.r.yp, (size_t)bc.n * sizeof *bc.ypref);
+        }
+    }
+    full_row *rows = calloc((size_t)(2 * nr + 1), sizeof *rows);
+    int nrow = 0;
+    for (int k = 0; k < nr && rows; k++)
+        for (int q = 0; q < 2; q++) {
+            const solver_def *sd = q == 0 ? ours : ida;
+            if (!sd) continue;
+            full_row *w = &rows[nrow];
+            w->solver = sd->name;
+            w->rtol = rtols[k];
+            if (bench_run_alloc(&w->r, bc.n) != 0) continue;
+            nrow++;
+            run_opts o = {0};
+            o.rtol = rtols[k];
+            o.max_steps = 100000000;
+            o.ida_consistent_restart = 1;
+            bench_run(&bc, sd, &o, &w->r);
+            double atol = bc.atol_factor * rtols[k];
+            if (w->r.status >= 0 && bc.yref)
+                bc.score(&bc, w->r.y, w->r.yp, rtols[k], atol, &w->sc);
+            else
+                w->sc.scd = w->sc.mescd = w->sc.scd_i2 = NAN;
+            if (w->r.status < 0 && !sd->ida) fails++;
+            full_csv_row(f, w, atol);
+            fprintf(stderr,
+                    "crane full: %-9s rtol %-6g %s t %.4g, %ld steps, %.1f s CPU, scd %.2f, "
+                    "mescd %.2f%s%s\n",
+                    sd->name, rtols[k], w->r.status < 0 ? "FAIL" : "ok", w->r.t, w->r.steps,
+                    w->r.cpu, w->sc.scd, w->sc.mescd, w->r.status < 0 ? ": " : "",
+                    w->r.status < 0 ? w->r.msg : "");
+            bench_run_free(&w->r);
+        }
+    double total = bench_cpu_now() - c0;
+    if (f) fclose(f);
+    /* the report */
+    fprintf(rep,
+            "Scene %s (%d boom elements, %d unknowns) over [0, %g] s from its %s start, %d "
+            "breakpoints; rtol = atol / %g = each tolerance below; one run each (crane_wp.csv). "
+            "Reference: bgdae-klu at rtol %g: %s (%ld steps, %.1f s CPU). IDA-KLU is restarted "
+            "at every breakpoint from values made consistent by our dae_consistent_init (as our "
+            "solver restarts there; IDA's own y' before a corner of the reference belongs to "
+            "the input before it), its CPU time including that. scd over the crane's outputs "
+            "(angle, rate, tip and load positions, rope force, line pressures), mescd over the "
+            "differential unknowns, both against the reference at %g s. Total CPU of the "
+            "series %.0f s.\n\n",
+            scene_name, s->boom_elements, bc.n, s->t_end,
+            s->static_start ? "static-equilibrium" : "geometric", bc.nbreakpoints,
+            bc.atol_factor, rtol_ref, ref.r.status < 0 ? ref.r.msg : "completed", ref.r.steps,
+            ref.r.cpu, s->t_end, total);
+    fprintf(rep, "| rtol | solver | status | t reached | steps | rejected | Newton | Jacobians | "
+                 "CPU s | scd | mescd | steps ours / IDA | CPU ours / IDA |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < nrow; i++) {
+        const full_row *w = &rows[i];
+        char ratio[64] = "";
+        if (i > 0 && !strcmp(w->solver, "ida-klu") && rows[i - 1].rtol == w->rtol &&
+            rows[i - 1].r.status >= 0 && w->r.status >= 0 && w->r.steps > 0 && w->r.cpu > 0)
+            snprintf(ratio, sizeof ratio, "%.2f | %.2f", (double)rows[i - 1].r.steps / w->r.steps,
+                     rows[i - 1].r.cpu / w->r.cpu);
+        else
+            snprintf(ratio, sizeof ratio, " | ");
+        fprintf(rep, "| %g | %s | %s | %.4g | %ld | %ld | %ld | %ld | %.1f | %.2f | %.2f | %s |\n",
+                w->rtol, w->solver, w->r.status < 0 ? "FAIL" : "ok", w->r.t, w->r.steps,
+                w->r.rejected, w->r.newton, w->r.jac, w->r.cpu, w->sc.scd, w->sc.mescd, ratio);
+    }
+    fprintf(rep, "\n");
+    for (int i = 0; i < nrow; i++)
+        if (rows[i].r.status < 0)
+            fprintf(rep, "- %s at rtol %g stopped at t = %.9g: %s\n", rows[i].solver,
+                    rows[i].rtol, rows[i].r.t, rows[i].r.msg);
+    fprintf(rep, "\n");
+    free(rows);
+    bench_run_free(&ref.r);
+    bench_case_free(&bc);
+    return fails;
+}

@@ -62,4 +62,16 @@ int bench_crane_realtime(const char *exe, const char *scene_file, const crane_sc
  * or 1 if the run failed. */
 int bench_crane_realtime_child(const crane_scene *s);
 
+/* The crane over its scene's full t_end (paper-undamped: 20 s) against IDA: the scene s (named
+ * scene_name in the report) from its static equilibrium if it asks for it, consistent start at
+ * rtol 1e-10, reference: ours (bgdae-klu) at rtol_ref (atol = the scene's atol / rtol times
+ * rtol); then ours and IDA-KLU at each of rtols (nr of them, atol likewise), IDA restarted at
+ * each breakpoint from values made consistent by dae_consistent_init (run_opts
+ * ida_consistent_restart), one run each: status, time reached, steps, rejected steps, Newton
+ * iterations, Jacobians, CPU time, scd over the outputs and mescd over the differential
+ * unknowns against the reference. Rows go to crane_wp.csv in dir as each run ends (flushed), a
+ * report section into rep. Returns the number of failed runs of ours (the reference included). */
+int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const char *scene_name,
+                     const double *rtols, int nr, double rtol_ref);
+
 #endif

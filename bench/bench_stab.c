@@ -190,7 +190,7 @@ typedef struct stab_result {
 
 /* Error in tolerances: max |y - yref| / (rtol |yref| + atol) over the differential unknowns (the
  * crane: its error test has the algebraic ones out) or the unknowns that are not index 2, of a
- * test-set problem those that the test set scores (shared/testset/README.md: crank's positions
+ * test-set problem those that the test set scores (docs/testset.md: crank's positions
  * y1..y7, whose undamped elastic velocities carry a global error that grows with the number of
  * steps, 5e4 tolerances at rtol 1e-12 in our run and in the convergence of our runs towards the
  * published MEBDFI reference alike). */

@@ -3,8 +3,8 @@
  * end values from the published test sets, and the accuracy measures of the IVP Test Set.
  *
  * Every problem is written as a residual F(t, y, y') = 0 from the published equations (the
- * sources are named at each problem in problems.c; the Fortran and R definitions kept in
- * shared/testset/src are the specification, no code is taken from them):
+ * sources are named at each problem in problems.c and in docs/testset.md; the published Fortran
+ * and R definitions are the specification, no code is taken from them):
  *   ap102       Ascher and Petzold, Computer Methods for ODEs and DAEs (SIAM 1998), Ex. 10.2:
  *               linear index 2, exact solution x1 = e^t, x2 = e^t/(t-2).
  *   pendulum2   the index-2 pendulum of J. Cash's MEBDFDAE driver (pendul2.f), reference by a
@@ -17,8 +17,8 @@
  *   smooth_ode  a linear 2x2 ODE with a manufactured smooth solution (order studies).
  *   kinks       y1' = u(t), y2' = y1 with a piecewise-linear forcing u that has kinks at the
  *               problem's breakpoints; exact solution piecewise polynomial.
- * and, in a second table (bp_testset_get), five problems of the IVP Test Set with the reference
- * values of shared/testset/reference_solutions.json:
+ * and, in a second table (bp_testset_get), five problems of the IVP Test Set with their published
+ * reference values (provenance in docs/testset.md):
  *   crank       flexible slider crank (Simeon), n = 24, index 2 (velocity constraints; 10
  *               index-2 accelerations and multipliers), stiff oscillatory (E = 2e11).
  *   pump        charge pump, n = 9, index 2 (the current y9), charge-oriented MOS model with
@@ -84,7 +84,15 @@ const bp_problem *bp_get(int i);
  * accuracy, so that properties asserted over the table above do not all hold for them. */
 int bp_testset_count(void);
 const bp_problem *bp_testset_get(int i);
-/* Lookup by name in both tables; NULL if unknown. */
+/* Undamped oscillatory problems (issue "Steps set by accuracy"), in a third table: osc_chain
+ * (a chain of masses on stiff springs, 59..626 Hz, driven by a slow ramp through a velocity
+ * constraint, index 2; closed-form reference) and rotating_beam (a flexible beam spun up by its
+ * hub, Simo and Vu-Quoc 1986, hub rate prescribed, index 2; reference by our solver at rtol
+ * 1e-12 checked against IDA). Their mass matrices are not the identity (rotating_beam) and
+ * they are checked by tests/bench/test_new_problems.c, not by the solver tests' table loops. */
+int bp_osc_count(void);
+const bp_problem *bp_osc_get(int i);
+/* Lookup by name in the three tables; NULL if unknown. */
 const bp_problem *bp_find(const char *name);
 
 /* A dae_problem ready for dae_create, with the patterns it points to. */

@@ -3,6 +3,7 @@
  * through the variable ids fixed at compilation. */
 #include "bgr_elements.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -528,6 +529,12 @@ static int src_declare(bgr_element *el, bgr_model *m, int flow)
         DEP(i, flow ? q->f[i] : q->e[i], 0);
         if (q->kind == LAW_SIGNAL) DEP(i, q->refvar, 0);
     }
+    /* a constant source's value is the size of what it imposes (nothing for a zero component,
+     * a function of time or a signal: no scale among the parameters) */
+    for (int i = 0; q->kind == LAW_CONST && q->vec && i < d; i++)
+        if (q->vec[i] != 0 && isfinite(q->vec[i]) &&
+            (st = bgr_declare_nominal(el, m, flow ? q->f[i] : q->e[i], fabs(q->vec[i]))))
+            return st;
     return BG_OK;
 }
 

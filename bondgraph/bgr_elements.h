@@ -15,6 +15,9 @@
  *   1-junction      f_k = f_0 (k > 0),  sum_k s_k e_k = 0
  *   gain (signal)   z = g x             (x any unknown: a sensor, or a signal path)
  * TF, GY and the junctions conserve power exactly: sum of e.f over their ports is zero.
+ * Nominal magnitudes (bgr_declare_nominal): a constant Se or Sf declares |E_i| (|F_i|) for the
+ * effort (flow) it imposes, where nonzero; the other elements have no scale of their own (a
+ * stiffness, mass or resistance relates two scales but sets neither) and declare nothing.
  *
  * Every constructor returns the element id (>= 0) or a negative status with the message in the
  * model's error record; ports are numbered 0, 1, ... as listed. Statuses: those of
@@ -25,6 +28,7 @@
 #ifndef BGR_ELEMENTS_H
 #define BGR_ELEMENTS_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -36,32 +40,32 @@ typedef double (*bgr_fn)(void *user, double x, double *dfdx);
 /* A function of time. */
 typedef double (*bgr_time_fn)(void *user, double t);
 
-int bgr_I(bgr_model *m, bgr_comp c, const char *name, int d, double mass);
+BG_API int bgr_I(bgr_model *m, bgr_comp c, const char *name, int d, double mass);
 /* M: d x d, column-major, symmetric positive definite. */
-int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double *M);
-int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
-int bgr_C(bgr_model *m, bgr_comp c, const char *name, int d, double stiffness);
-int bgr_C_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn psi, void *user);
-int bgr_R(bgr_model *m, bgr_comp c, const char *name, int d, double resistance);
-int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
+BG_API int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double *M);
+BG_API int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
+BG_API int bgr_C(bgr_model *m, bgr_comp c, const char *name, int d, double stiffness);
+BG_API int bgr_C_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn psi, void *user);
+BG_API int bgr_R(bgr_model *m, bgr_comp c, const char *name, int d, double resistance);
+BG_API int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
 /* value: d constants (NULL: zeros). */
-int bgr_Se(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
-int bgr_Se_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
-int bgr_Se_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
-int bgr_Sf(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
-int bgr_Sf_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
-int bgr_Sf_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
-int bgr_TF(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
-int bgr_TF_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref modulus);
-int bgr_GY(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
-int bgr_zero(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
-int bgr_one(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
+BG_API int bgr_Se(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
+BG_API int bgr_Se_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
+BG_API int bgr_Se_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
+BG_API int bgr_Sf(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
+BG_API int bgr_Sf_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
+BG_API int bgr_Sf_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
+BG_API int bgr_TF(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
+BG_API int bgr_TF_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref modulus);
+BG_API int bgr_GY(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
+BG_API int bgr_zero(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
+BG_API int bgr_one(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
 /* Signal z = gain * x; its output is bgr_ref {BGR_OWN, id, 0}. */
-int bgr_gain(bgr_model *m, bgr_comp c, const char *name, bgr_ref x, double gain);
+BG_API int bgr_gain(bgr_model *m, bgr_comp c, const char *name, bgr_ref x, double gain);
 
 /* The classes themselves, for bgr_element_add by hand. */
-extern const bgr_element_class bgr_class_I, bgr_class_C, bgr_class_R, bgr_class_Se, bgr_class_Sf,
-    bgr_class_TF, bgr_class_GY, bgr_class_zero, bgr_class_one, bgr_class_gain;
+BG_API extern const bgr_element_class bgr_class_I, bgr_class_C, bgr_class_R, bgr_class_Se,
+    bgr_class_Sf, bgr_class_TF, bgr_class_GY, bgr_class_zero, bgr_class_one, bgr_class_gain;
 
 #ifdef __cplusplus
 }

@@ -50,6 +50,7 @@ struct bgr_model {
     int *eq_owner;
     int *kind, *declared_i2;
     double *y0, *yp0;
+    double *nominal; /* nominal magnitudes: 0 while undeclared during compilation, then 1 */
     dep_rec *dep;
     int ndep, capdep;
     sp_csc *Jy, *Jyp;
@@ -190,6 +191,7 @@ void bgr_model_free(bgr_model **mp)
     free(m->eq_owner);
     free(m->kind);
     free(m->declared_i2);
+    free(m->nominal);
     free(m->y0);
     free(m->yp0);
     free(m->dep);
@@ -605,6 +607,25 @@ int bgr_declare_index2(bgr_element *el, bgr_model *m, int var)
     return BG_OK;
 }
 
+int bgr_declare_nominal(bgr_element *el, bgr_model *m, int var, double nominal)
+{
+    int st = check_declare(el, m, "bgr_declare_nominal");
+    if (st) return st;
+    if (var < 0 || var >= m->n)
+        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                    "element %s/%s (%s) declares the nominal magnitude of variable %d: out of "
+                    "range (0 .. %d)",
+                    m->comp[el->comp].path, el->name, el->cls->type, var, m->n - 1);
+    if (!(nominal > 0) || !isfinite(nominal))
+        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                    "element %s/%s (%s) declares the nominal magnitude of %s as %g: it must be "
+                    "finite and > 0",
+                    m->comp[el->comp].path, el->name, el->cls->type, m->vname[var], nominal);
+    /* several declarations of one unknown (a bond's effort seen from both ends): the largest */
+    if (nominal > m->nominal[var]) m->nominal[var] = nominal;
+    return BG_OK;
+}
+
 /* ---- compilation ---- */
 
 static int alloc_compiled(bgr_model *m)
@@ -617,7 +638,9 @@ static int alloc_compiled(bgr_model *m)
     m->declared_i2 = calloc(n, sizeof *m->declared_i2);
     m->y0 = calloc(n, sizeof *m->y0);
     m->yp0 = calloc(n, sizeof *m->yp0);
-    return m->vname && m->ename && m->eq_owner && m->kind && m->declared_i2 && m->y0 && m->yp0;
+    m->nominal = calloc(n, sizeof *m->nominal);
+    return m->vname && m->ename && m->eq_owner && m->kind && m->declared_i2 && m->y0 && m->yp0 &&
+           m->nominal;
 }
 
 static int name_variables(bgr_model *m)
@@ -718,6 +741,8 @@ static int compile(bgr_model *m)
     }
     if (m->neq_declared != n)
         return fail(m, BG_ERR_PATTERN, w, "%d equations for %d unknowns", m->neq_declared, n);
+    for (int v = 0; v < n; v++) /* undeclared nominal magnitudes: 1 (SI units) */
+        if (m->nominal[v] == 0) m->nominal[v] = 1.0;
     /* patterns and slots */
     sp_builder *by = sp_builder_create(n, n, m->ndep), *byp = sp_builder_create(n, n, n);
     int *ky = malloc(((size_t)m->ndep + 1) * sizeof *ky);
@@ -785,6 +810,25 @@ double *bgr_y0(bgr_model *m)
 double *bgr_yp0(bgr_model *m)
 {
     return m && m->compiled > 0 ? m->yp0 : NULL;
+}
+const double *bgr_nominals(const bgr_model *m)
+{
+    return m && m->compiled > 0 ? m->nominal : NULL;
+}
+
+int bgr_set_nominal(bgr_model *m, int var, double nominal)
+{
+    const char *w = "bgr_set_nominal";
+    if (!m) return BG_ERR_ARGUMENT;
+    if (m->compiled <= 0) return need_compiled(m, w);
+    if (var < 0 || var >= m->n)
+        return fail(m, BG_ERR_ARGUMENT, w, "variable %d out of range (0 .. %d)", var, m->n - 1);
+    if (!(nominal > 0) || !isfinite(nominal))
+        return fail(m, BG_ERR_ARGUMENT, w,
+                    "the nominal magnitude of %s is %g: it must be finite and > 0", m->vname[var],
+                    nominal);
+    m->nominal[var] = nominal;
+    return BG_OK;
 }
 
 int bgr_find_var(const bgr_model *m, const char *path)
@@ -859,6 +903,7 @@ int bgr_dae_problem(bgr_model *m, dae_problem *p)
     p->kind = m->kind;
     p->names = (const char *const *)m->vname;
     p->eq_names = (const char *const *)m->ename;
+    p->nominal = m->nominal;
     p->user = m;
     return BG_OK;
 }

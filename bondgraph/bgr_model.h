@@ -41,6 +41,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "bg_api.h"
 #include "bg_dae.h"
 
 #ifdef __cplusplus
@@ -95,19 +96,19 @@ struct bgr_element {
 
 /* ---- building ---- */
 /* A new model named name (NULL or "": "model"); NULL if out of memory. */
-bgr_model *bgr_model_create(const char *name);
-void bgr_model_free(bgr_model **m);
+BG_API bgr_model *bgr_model_create(const char *name);
+BG_API void bgr_model_free(bgr_model **m);
 /* Last error (file-free: the message names the component, element, bond or port); NULL if m is
  * NULL. */
-const bg_error *bgr_model_error(const bgr_model *m);
-bg_error *bgr_model_error_mut(bgr_model *m);
+BG_API const bg_error *bgr_model_error(const bgr_model *m);
+BG_API bg_error *bgr_model_error_mut(bgr_model *m);
 
 /* A component named name inside parent (0 = the model itself). Names are unique among the
  * siblings and may not contain '/'. Returns the component (> 0), BG_ERR_ARGUMENT (bad name or
  * parent, a duplicate), BG_ERR_STATE (model compiled) or BG_ERR_MEMORY. */
-bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name);
+BG_API bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name);
 /* Full path of a component, e.g. "crane/boom/element07"; NULL for an unknown one. */
-const char *bgr_component_path(const bgr_model *m, bgr_comp c);
+BG_API const char *bgr_component_path(const bgr_model *m, bgr_comp c);
 
 /* An element of class cls in component c. params is owned by the element from here on (freed by
  * cls->destroy, also on failure). nports ports; dims[k] the dimension port k needs (0: any;
@@ -116,28 +117,28 @@ const char *bgr_component_path(const bgr_model *m, bgr_comp c);
  * BG_ERR_ARGUMENT (NULL model or name, a name with '/', a duplicate, an unknown component, an
  * incomplete class, a negative count or dimension), BG_ERR_STATE (model compiled) or
  * BG_ERR_MEMORY; params are destroyed on every failure. */
-int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls,
-                    void *params, int nports, const int *dims, int nstates,
-                    const char *const *state_names, int nalg, const char *const *alg_names);
+BG_API int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls,
+                           void *params, int nports, const int *dims, int nstates,
+                           const char *const *state_names, int nalg, const char *const *alg_names);
 /* Port port of element elem; {-1, -1} if either does not exist. */
-bgr_port bgr_port_of(const bgr_model *m, int elem, int port);
+BG_API bgr_port bgr_port_of(const bgr_model *m, int elem, int port);
 /* The element, NULL if it does not exist. */
-bgr_element *bgr_element_get(bgr_model *m, int elem);
+BG_API bgr_element *bgr_element_get(bgr_model *m, int elem);
 
 /* Expose an inner port as a named port of component c (any depth); bgr_comp_port finds it.
  * BG_OK, BG_ERR_ARGUMENT (invalid component, name or port, a duplicate), BG_ERR_STATE (model
  * compiled) or BG_ERR_MEMORY. */
-int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner);
+BG_API int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner);
 /* The port exported as name from c; {-1, -1} if there is none. */
-bgr_port bgr_comp_port(const bgr_model *m, bgr_comp c, const char *name);
+BG_API bgr_port bgr_comp_port(const bgr_model *m, bgr_comp c, const char *name);
 
 /* A bond of dimension d from port a to port b (power a -> b), named in component c.
  * labels: d names for the effort components and d for the flow components (NULL: "e", "f" for
  * d = 1, "e0".."e{d-1}", "f0".. otherwise). Returns the bond id, or BG_ERR_ARGUMENT (port
  * already used, dimension mismatch, invalid port or name, a duplicate), BG_ERR_STATE (model
  * compiled) or BG_ERR_MEMORY. */
-int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_port b,
-             const char *const *effort_labels, const char *const *flow_labels);
+BG_API int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_port b,
+                    const char *const *effort_labels, const char *const *flow_labels);
 
 /* A reference to an unknown that is numbered only at compilation: a component of a bond's
  * effort or flow, or an element's state or own algebraic unknown (a signal). */
@@ -149,20 +150,20 @@ typedef struct bgr_ref {
 } bgr_ref;
 /* The variable id of a reference (from the numbering step of bgr_compile on), or -1 (not
  * numbered yet, no such unknown, or m NULL). */
-int bgr_ref_var(const bgr_model *m, bgr_ref r);
+BG_API int bgr_ref_var(const bgr_model *m, bgr_ref r);
 
 /* Initial values for the solver (defaults 0): by variable id after compilation, or by name.
  * The id of the unknown / equation with this path, -1 if there is none or the model is not
  * compiled. */
-int bgr_find_var(const bgr_model *m, const char *path);
-int bgr_find_eq(const bgr_model *m, const char *path);
+BG_API int bgr_find_var(const bgr_model *m, const char *path);
+BG_API int bgr_find_eq(const bgr_model *m, const char *path);
 
 /* ---- used by element classes (inside declare/residual/jacobian) ---- */
 /* Variable ids of effort / flow component i at port k, of state i, of own algebraic i; -1 for
  * an element or port that does not exist, an unconnected port, a component out of range, or
  * before the unknowns are numbered (bgr_sv, bgr_av: -1 only for el NULL). */
-int bgr_ev(const bgr_element *el, const bgr_model *m, int k, int i);
-int bgr_fv(const bgr_element *el, const bgr_model *m, int k, int i);
+BG_API int bgr_ev(const bgr_element *el, const bgr_model *m, int k, int i);
+BG_API int bgr_fv(const bgr_element *el, const bgr_model *m, int k, int i);
 static inline int bgr_sv(const bgr_element *el, int i)
 {
     return el ? el->state0 + i : -1;
@@ -173,19 +174,34 @@ static inline int bgr_av(const bgr_element *el, int i)
 }
 /* Dimension of port k (of its bond, else the one required, 0: any); BG_ERR_ARGUMENT for a NULL
  * argument or k out of range. */
-int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k);
+BG_API int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k);
 /* Number of unknowns, from the numbering step of bgr_compile on (0 before, or m NULL). */
-int bgr_nvars(const bgr_model *m);
+BG_API int bgr_nvars(const bgr_model *m);
 /* Declare: the element has neq equations (labels: suffixes of their names; NULL: "eq0", ...).
  * The bgr_declare_* functions return BG_OK, BG_ERR_ARGUMENT (an element of another model, an
  * equation or variable out of range, neq < 0), BG_ERR_PATTERN (more equations than unknowns),
  * BG_ERR_STATE (called outside declare() during bgr_compile) or BG_ERR_MEMORY. */
-int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels);
+BG_API int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels);
 /* Declare that equation k depends on variable var through y (wrt_yp = 0) or y' (1). The order
  * of these calls is the order jacobian() writes its values in. */
-int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp);
+BG_API int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp);
 /* Declare one of the element's own algebraic unknowns index 2 (a constraint effort). */
-int bgr_declare_index2(bgr_element *el, bgr_model *m, int var);
+BG_API int bgr_declare_index2(bgr_element *el, bgr_model *m, int var);
+/* Declare the nominal magnitude of unknown var (any unknown of the model: a bond's effort or
+ * flow at one of the element's ports, a state, a signal), in its own units: the size it takes in
+ * the model's normal operation, from the element's parameters (a relief valve's full-flow
+ * pressure, a load's weight, a member's length). The solver's absolute tolerance of the unknown
+ * is then options.atol * nominal (dae_problem.nominal, the convention of Modelica tools): in the
+ * local error test and in the Newton convergence test alike, so that one atol means the same for
+ * a pressure of 1e7 Pa, a force of 1e5 N and an angle of 1 rad. With rtol = atol = 1e-6 every
+ * unknown is then controlled to about a millionth of its own size, |y| or its nominal, whichever
+ * is larger (error weight rtol |y_i| + atol nominal_i), instead of to 1e-6 in SI units, which is
+ * no error at all for a pressure and a sizeable one for a strain. Several declarations of one
+ * unknown (a bond's effort seen from both of its ends): the largest wins; an unknown no element
+ * declares gets 1 (SI units). BG_ERR_ARGUMENT (besides the errors above) if nominal is not
+ * finite and > 0, with a message that names the element and the unknown. Elements without a
+ * physical scale declare nothing. */
+BG_API int bgr_declare_nominal(bgr_element *el, bgr_model *m, int var, double nominal);
 
 /* ---- compiling and solving ---- */
 /* Checks that every port is connected with the dimension it needs, numbers unknowns and
@@ -193,7 +209,7 @@ int bgr_declare_index2(bgr_element *el, bgr_model *m, int var);
  * message names the element and port at fault (BG_ERR_PATTERN, BG_ERR_ARGUMENT, BG_ERR_MEMORY,
  * or an element's status); BG_ERR_STATE if the model is compiled already or an earlier
  * compilation failed. After a failure the model can only be freed. */
-int bgr_compile(bgr_model *m);
+BG_API int bgr_compile(bgr_model *m);
 
 typedef struct bgr_stats {
     int equations; /* = unknowns */
@@ -204,42 +220,54 @@ typedef struct bgr_stats {
 } bgr_stats;
 /* BG_OK; BG_ERR_STATE before compilation (the element, bond and component counts are filled
  * all the same), BG_ERR_ARGUMENT for a NULL argument. */
-int bgr_get_stats(const bgr_model *m, bgr_stats *st);
+BG_API int bgr_get_stats(const bgr_model *m, bgr_stats *st);
 /* The statistics as text: BG_OK, BG_ERR_ARGUMENT (f NULL), BG_ERR_STATE (not compiled),
  * BG_ERR_IO. */
-int bgr_stats_print(const bgr_model *m, FILE *f);
+BG_API int bgr_stats_print(const bgr_model *m, FILE *f);
 
 /* A dae_problem for the compiled model (user = the model; the model must outlive the solver),
- * with the names of the unknowns and of the equations. BG_OK, BG_ERR_ARGUMENT (p NULL) or
- * BG_ERR_STATE (not compiled). */
-int bgr_dae_problem(bgr_model *m, dae_problem *p);
+ * with the names of the unknowns and of the equations and the nominal magnitudes of the unknowns
+ * (p->nominal = bgr_nominals(m); set it to NULL for the absolute tolerance in SI units). BG_OK,
+ * BG_ERR_ARGUMENT (p NULL) or BG_ERR_STATE (not compiled). */
+BG_API int bgr_dae_problem(bgr_model *m, dae_problem *p);
 /* Number of unknowns (= equations) of the compiled model; 0 before compilation or for NULL. */
-int bgr_n(const bgr_model *m);
+BG_API int bgr_n(const bgr_model *m);
 /* Name of an unknown / equation; NULL for an id out of range or a model not compiled. */
-const char *bgr_var_name(const bgr_model *m, int var);
-const char *bgr_eq_name(const bgr_model *m, int eq);
+BG_API const char *bgr_var_name(const bgr_model *m, int var);
+BG_API const char *bgr_eq_name(const bgr_model *m, int eq);
 /* Kinds of the unknowns (dae_var_kind); NULL before compilation. */
-const int *bgr_kinds(const bgr_model *m);
+BG_API const int *bgr_kinds(const bgr_model *m);
 /* Initial values: y0 and yp0 arrays of the model (n each), zero after compile; set freely. NULL
  * before compilation. */
-double *bgr_y0(bgr_model *m);
-double *bgr_yp0(bgr_model *m);
+BG_API double *bgr_y0(bgr_model *m);
+BG_API double *bgr_yp0(bgr_model *m);
+/* The n nominal magnitudes of the unknowns (see bgr_declare_nominal: the largest declaration,
+ * 1 for undeclared unknowns); bgr_dae_problem passes them as dae_problem.nominal. NULL before
+ * compilation. */
+BG_API const double *bgr_nominals(const bgr_model *m);
+/* Override the nominal magnitude of unknown var after compilation (a user who knows the scale
+ * of an unknown better than its elements, or 1 to get SI units back). Problems made by
+ * bgr_dae_problem see the change (they point at the model's array), solvers already created do
+ * not (dae_create copies the tolerances). BG_OK, BG_ERR_ARGUMENT (var out of range, nominal not
+ * finite and > 0), BG_ERR_STATE (not compiled). */
+BG_API int bgr_set_nominal(bgr_model *m, int var, double nominal);
 
 /* The residual and Jacobian of the compiled model (dae_res_fn / dae_jac_fn with user = model).
  * Besides the elements' statuses: BG_ERR_ARGUMENT (a NULL argument), BG_ERR_STATE (not
  * compiled), BG_ERR_PATTERN (Jy, Jyp without the model's shapes and entry counts). */
-int bgr_residual(void *model, double t, const double *y, const double *yp, double *F);
-int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp);
+BG_API int bgr_residual(void *model, double t, const double *y, const double *yp, double *F);
+BG_API int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy,
+                        sp_csc *Jyp);
 
 /* The breakpoints of all elements in (t0, t1], sorted, duplicates removed; at most max written
  * into t. Returns how many there are (may exceed max), or BG_ERR_ARGUMENT (max < 0, t NULL with
  * max > 0, t0 or t1 NaN), BG_ERR_MEMORY. Works before compilation as well. */
-int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max);
+BG_API int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max);
 
 /* Listing: one line per equation: its name, its text (if the class describes it) and the
  * variables it depends on. BG_OK, BG_ERR_ARGUMENT (f NULL), BG_ERR_STATE (not compiled),
  * BG_ERR_IO. */
-int bgr_list_equations(const bgr_model *m, FILE *f);
+BG_API int bgr_list_equations(const bgr_model *m, FILE *f);
 
 /* Check mode: every element's analytic partial derivatives against central differences of the
  * whole residual at (t, y, yp), entries missing from the declarations included. Errors are
@@ -247,8 +275,8 @@ int bgr_list_equations(const bgr_model *m, FILE *f);
  * number of mismatches (> tol relative), or < 0 on failure (BG_ERR_ARGUMENT: y or yp NULL, tol
  * not > 0, report NULL with size > 0; BG_ERR_STATE: not compiled; an element's status); the
  * worst is described in report (element, equation, variable, analytic, finite difference). */
-int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp, double tol,
-                       char *report, size_t size);
+BG_API int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp, double tol,
+                              char *report, size_t size);
 
 #ifdef __cplusplus
 }

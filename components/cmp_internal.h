@@ -29,6 +29,40 @@
         if (st_ != BG_OK) return st_;                                                              \
     } while (0)
 
+/* CMP_NOM declares the nominal magnitude nom of unknown var (bgr_declare_nominal) inside a
+ * declare() hook, returning on failure; nothing when nom is not a scale (0: not stated) or var
+ * does not exist (< 0). */
+#define CMP_NOM(el, m, var, nom)                                                                   \
+    do {                                                                                           \
+        double nom_ = (nom);                                                                       \
+        int var_ = (var);                                                                          \
+        if (var_ >= 0 && nom_ > 0 && isfinite(nom_)) {                                             \
+            int st_ = bgr_declare_nominal((el), (m), var_, nom_);                                  \
+            if (st_ != BG_OK) return st_;                                                          \
+        }                                                                                          \
+    } while (0)
+
+/* The check of the nominal-scale setters of the components: BG_OK if every one of the n values
+ * is finite and >= 0 (0: not stated) and the model is still being built; else the status, with
+ * a message naming the element (where) and the setter (what). */
+static inline int cmp_check_scales(bgr_model *m, const bgr_element *el, const char *what,
+                                   const double *v, int n)
+{
+    if (!m) return BG_ERR_ARGUMENT;
+    if (bgr_nvars(m) > 0)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_STATE, what,
+                              "element %s/%s: the model is compiled: state nominal scales "
+                              "before bgr_compile",
+                              bgr_component_path(m, el->comp), el->name);
+    for (int i = 0; i < n; i++)
+        if (!(v[i] >= 0) || !isfinite(v[i]))
+            return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, what,
+                                  "element %s/%s: nominal scale %g must be finite and >= 0 "
+                                  "(0: not stated)",
+                                  bgr_component_path(m, el->comp), el->name, v[i]);
+    return BG_OK;
+}
+
 #define CMP_TWO_PI 6.283185307179586476925286766559
 
 /* Smooth max(z, 0) with width eps > 0; its derivative into *dz (may be NULL). */

@@ -49,6 +49,15 @@ static int pid_declare(bgr_element *el, bgr_model *m)
         CMP_DEP(el, m, 2, q->y, 0);
         CMP_DEP(el, m, 2, q->z, 0);
     }
+    /* With limits, the output range max(|u_min|, |u_max|) is the output's scale, and that range
+     * over Ki the integral's (the integral that alone drives the output to its limit). Without
+     * limits the gains give no scale of the output (nor does anything give one of the filter
+     * state, which follows the measurement): nothing declared. */
+    if (q->sp.limit) {
+        double un = fmax(fabs(q->sp.out_min), fabs(q->sp.out_max));
+        CMP_NOM(el, m, q->u, un);
+        if (q->sp.ki != 0) CMP_NOM(el, m, q->I, un / fabs(q->sp.ki));
+    }
     return BG_OK;
 }
 

@@ -1,6 +1,6 @@
 /* PID controller of the crane paper, with optional smooth output limits.
  *
- * Control law (shared/crane/PAPER.md, hydraulic drive; the paper's Eq. 7):
+ * Control law (docs/crane.md, hydraulic drive; the paper's Eq. 7):
  *   x(t) = Kp err + Kd d(err)/dt + Ki integral(err dt),   err = r - y,
  * with r the reference (the platform's reference angular velocity omega_r) and y the measured
  * value (its angular velocity omega). The derivative of the error is not differenced from
@@ -32,10 +32,14 @@
  * only, and the error control sees no index-2 noise through it.
  * Note: with Kd != 0 and r' given, the output jumps where r' jumps (the corners of the
  * trapezoidal reference): those times are the reference's breakpoints, where the integrator
- * must restart from the right limits (see the note in sig_sources.h). */
+ * must restart from the right limits (see the note in sig_sources.h).
+ * Nominal magnitudes (bgr_declare_nominal): with limits, the output u gets the output range
+ * max(|u_min|, |u_max|) and the integral I that range over |Ki| (the integral that alone drives
+ * the output to its limit); without limits nothing is declared (the gains give no scale). */
 #ifndef CTL_PID_H
 #define CTL_PID_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -57,9 +61,9 @@ typedef struct ctl_pid_spec {
 
 /* Returns the element id (its output is bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the
  * model's error record). */
-int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec);
+BG_API int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec);
 
-extern const bgr_element_class ctl_class_pid;
+BG_API extern const bgr_element_class ctl_class_pid;
 
 #ifdef __cplusplus
 }

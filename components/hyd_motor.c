@@ -9,6 +9,7 @@
 
 typedef struct motor {
     double D, Cl, b;
+    double p_nom, w_nom; /* stated nominal pressure and shaft speed (0: none) */
     int pa, qa, pb, qb, T, w;
     int sa, sb, sw;
 } motor;
@@ -38,6 +39,16 @@ static int motor_declare(bgr_element *el, bgr_model *m)
     CMP_DEP(el, m, 2, q->pa, 0);
     CMP_DEP(el, m, 2, q->pb, 0);
     CMP_DEP(el, m, 2, q->w, 0);
+    /* Stated scales: the pressure for both ports; the torque the displacement gives at that
+     * pressure difference, D p / (2 pi); the shaft speed; the flow the displacement swallows at
+     * that speed, D w / (2 pi) (the leakage is a small part of it). */
+    double k = q->D / CMP_TWO_PI;
+    CMP_NOM(el, m, q->pa, q->p_nom);
+    CMP_NOM(el, m, q->pb, q->p_nom);
+    CMP_NOM(el, m, q->T, k * q->p_nom);
+    CMP_NOM(el, m, q->w, q->w_nom);
+    CMP_NOM(el, m, q->qa, k * q->w_nom);
+    CMP_NOM(el, m, q->qb, k * q->w_nom);
     return BG_OK;
 }
 
@@ -116,4 +127,19 @@ int hyd_motor(bgr_model *m, bgr_comp c, const char *name, double D, double Cl, d
     q->b = b;
     static const int dims[3] = {1, 1, 1};
     return bgr_element_add(m, c, name, &hyd_class_motor, q, 3, dims, 0, NULL, 0, NULL);
+}
+
+int hyd_motor_set_nominal(bgr_model *m, int id, double pressure, double speed)
+{
+    bgr_element *el = bgr_element_get(m, id);
+    if (!el || el->cls != &hyd_class_motor)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_motor_set_nominal",
+                              "element %d is not a hydraulic motor", id);
+    double v[2] = {pressure, speed};
+    int st = cmp_check_scales(m, el, "hyd_motor_set_nominal", v, 2);
+    if (st != BG_OK) return st;
+    motor *q = el->params;
+    q->p_nom = pressure;
+    q->w_nom = speed;
+    return BG_OK;
 }

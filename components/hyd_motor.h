@@ -22,6 +22,7 @@
 #ifndef HYD_MOTOR_H
 #define HYD_MOTOR_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -29,9 +30,17 @@ extern "C" {
 #endif
 
 /* Returns the element id or < 0 (message in the model's error record). */
-int hyd_motor(bgr_model *m, bgr_comp c, const char *name, double D, double Cl, double b);
+BG_API int hyd_motor(bgr_model *m, bgr_comp c, const char *name, double D, double Cl, double b);
 
-extern const bgr_element_class hyd_class_motor;
+/* Optional nominal scales (bgr_declare_nominal), stated before bgr_compile: pressure (Pa) for
+ * p_a and p_b, D pressure / (2 pi) for the torque T; speed (rad/s) for the shaft speed w and
+ * D speed / (2 pi) for the flows q_a, q_b (the displacement times the speed). The motor's
+ * parameters give no pressure or speed of their own (the load and the pump set them): not
+ * stated (0), the unknowns keep 1 (SI units). BG_OK, BG_ERR_ARGUMENT (id not a motor, a scale
+ * < 0 or not finite), BG_ERR_STATE (model compiled). */
+BG_API int hyd_motor_set_nominal(bgr_model *m, int id, double pressure, double speed);
+
+BG_API extern const bgr_element_class hyd_class_motor;
 
 #ifdef __cplusplus
 }

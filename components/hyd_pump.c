@@ -9,6 +9,7 @@
 
 typedef struct pump {
     double Dp, Cl;
+    double p_nom, w_nom; /* stated nominal pressure and drive speed (0: none) */
     bgr_ref cmd;
     /* variable ids and orientations, fixed at declaration */
     int x, T, w, pa, qa, pb, qb;
@@ -45,6 +46,17 @@ static int pump_declare(bgr_element *el, bgr_model *m)
     CMP_DEP(el, m, 1, q->x, 0);
     CMP_DEP(el, m, 2, q->qa, 0);
     CMP_DEP(el, m, 2, q->qb, 0);
+    /* Stated scales: the pressure for both ports; the torque the full displacement draws at
+     * that pressure difference, Dp p / (2 pi); the drive speed; the full displacement times the
+     * drive speed, Dp w / (2 pi), for the flows (the most the pump delivers). The command x is a
+     * fraction of the full displacement: 1 is its scale already. */
+    double k = q->Dp / CMP_TWO_PI;
+    CMP_NOM(el, m, q->pa, q->p_nom);
+    CMP_NOM(el, m, q->pb, q->p_nom);
+    CMP_NOM(el, m, q->T, k * q->p_nom);
+    CMP_NOM(el, m, q->w, q->w_nom);
+    CMP_NOM(el, m, q->qa, k * q->w_nom);
+    CMP_NOM(el, m, q->qb, k * q->w_nom);
     return BG_OK;
 }
 
@@ -124,4 +136,19 @@ int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl, b
     q->cmd = command;
     static const int dims[3] = {1, 1, 1};
     return bgr_element_add(m, c, name, &hyd_class_pump, q, 3, dims, 0, NULL, 0, NULL);
+}
+
+int hyd_pump_set_nominal(bgr_model *m, int id, double pressure, double speed)
+{
+    bgr_element *el = bgr_element_get(m, id);
+    if (!el || el->cls != &hyd_class_pump)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_pump_set_nominal",
+                              "element %d is not a hydraulic pump", id);
+    double v[2] = {pressure, speed};
+    int st = cmp_check_scales(m, el, "hyd_pump_set_nominal", v, 2);
+    if (st != BG_OK) return st;
+    pump *q = el->params;
+    q->p_nom = pressure;
+    q->w_nom = speed;
+    return BG_OK;
 }

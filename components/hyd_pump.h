@@ -18,11 +18,12 @@
  *
  * Source: the ideal positive-displacement machine with laminar cross-port leakage, as in the
  * pump-controlled motor of H. E. Merritt, Hydraulic Control Systems (Wiley, 1967), with the
- * displacement per radian written Dp / (2 pi); the pump of the crane paper (shared/crane/PAPER.md,
+ * displacement per radian written Dp / (2 pi); the pump of the crane paper (docs/crane.md,
  * hydraulic drive) is this element with x the output of the PID controller. */
 #ifndef HYD_PUMP_H
 #define HYD_PUMP_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -31,9 +32,18 @@ extern "C" {
 
 /* Returns the element id or < 0 (message in the model's error record): Dp > 0 and Cl >= 0
  * finite are required; the command must name an unknown once the model is compiled. */
-int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl, bgr_ref command);
+BG_API int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl,
+                    bgr_ref command);
 
-extern const bgr_element_class hyd_class_pump;
+/* Optional nominal scales (bgr_declare_nominal), stated before bgr_compile: pressure (Pa) for
+ * p_a and p_b, Dp pressure / (2 pi) for the torque T; speed (rad/s, the drive speed) for w_p and
+ * Dp speed / (2 pi) for the flows q_a, q_b (the displacement times the speed: the full flow).
+ * The command x keeps 1 (a fraction of the full displacement). Not stated (0): the pressures,
+ * torque, speed and flows keep 1 (SI units). BG_OK, BG_ERR_ARGUMENT (id not a pump, a scale < 0
+ * or not finite), BG_ERR_STATE (model compiled). */
+BG_API int hyd_pump_set_nominal(bgr_model *m, int id, double pressure, double speed);
+
+BG_API extern const bgr_element_class hyd_class_pump;
 
 #ifdef __cplusplus
 }

@@ -12,6 +12,7 @@
 #ifndef HYD_SOURCE_H
 #define HYD_SOURCE_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -19,10 +20,10 @@ extern "C" {
 #endif
 
 /* Each returns the element id or < 0 (message in the model's error record). */
-int hyd_tank(bgr_model *m, bgr_comp c, const char *name, double pressure);
-int hyd_pressure_source_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref pressure);
-int hyd_flow_source(bgr_model *m, bgr_comp c, const char *name, double flow);
-int hyd_flow_source_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref flow);
+BG_API int hyd_tank(bgr_model *m, bgr_comp c, const char *name, double pressure);
+BG_API int hyd_pressure_source_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref pressure);
+BG_API int hyd_flow_source(bgr_model *m, bgr_comp c, const char *name, double flow);
+BG_API int hyd_flow_source_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref flow);
 
 #ifdef __cplusplus
 }

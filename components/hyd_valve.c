@@ -10,6 +10,7 @@
 typedef struct valve {
     int relief;
     double G, pc, eps;
+    double pf, qr; /* relief valve: full-flow pressure and rated flow (the nominal scales) */
     int pa, qa, pb, qb, sa, sb;
 } valve;
 
@@ -41,6 +42,17 @@ static int valve_declare(bgr_element *el, bgr_model *m)
     CMP_DEP(el, m, 0, q->pb, 0);
     CMP_DEP(el, m, 1, q->qb, 0);
     CMP_DEP(el, m, 1, q->qa, 0);
+    if (q->relief) {
+        /* The full-flow pressure is the highest pressure the valve lets the circuit reach at its
+         * rated flow (it caps the pressure difference in [p_c - a few eps, p_f]): the scale of
+         * the pressures at its ports, and the rated flow the scale of the flow through it. A
+         * leakage has a conductance only, no pressure or flow of its own: nothing declared. */
+        double p = fmax(fabs(q->pc), fabs(q->pf));
+        CMP_NOM(el, m, q->pa, p);
+        CMP_NOM(el, m, q->pb, p);
+        CMP_NOM(el, m, q->qa, q->qr);
+        CMP_NOM(el, m, q->qb, q->qr);
+    }
     return BG_OK;
 }
 
@@ -134,6 +146,13 @@ int hyd_relief_valve(bgr_model *m, bgr_comp c, const char *name, double p_crack,
                               "relief valve %s: need p_full > p_crack (got p_full = %g, "
                               "p_crack = %g), rated flow %g > 0 and width %g > 0, all finite",
                               name ? name : "(null)", p_full, p_crack, q_rated, eps);
-    return add_valve(m, c, name, &hyd_class_relief, 1, q_rated / (p_full - p_crack), p_crack, eps,
-                     "hyd_relief_valve");
+    int id = add_valve(m, c, name, &hyd_class_relief, 1, q_rated / (p_full - p_crack), p_crack,
+                       eps, "hyd_relief_valve");
+    bgr_element *el = id >= 0 ? bgr_element_get(m, id) : NULL;
+    if (el) {
+        valve *q = el->params;
+        q->pf = p_full;
+        q->qr = q_rated;
+    }
+    return id;
 }

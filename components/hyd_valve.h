@@ -28,10 +28,16 @@
  *     eps ln(1 / (1 - exp(-q / (G eps)))) below it (0.46 eps for q >= G eps, 0.0068 eps for
  *     q >= 5 G eps). So the valve caps the pressure in the band [p_c - (a few eps), p_f] for
  *     flows up to q_r.
- * Static characteristic only: the valve's own dynamics (poppet mass, damping) are left out. */
+ * Static characteristic only: the valve's own dynamics (poppet mass, damping) are left out.
+ *
+ * Nominal magnitudes (bgr_declare_nominal): the relief valve declares its full-flow pressure
+ * max(|p_c|, |p_f|) for the pressures at both ports (the highest pressure difference it lets the
+ * circuit reach at its rated flow) and q_r for the flows; the leakage declares nothing (a
+ * conductance is no pressure or flow scale). */
 #ifndef HYD_VALVE_H
 #define HYD_VALVE_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -39,14 +45,14 @@ extern "C" {
 #endif
 
 /* Laminar leakage with conductance G >= 0. Returns the element id or < 0. */
-int hyd_leakage(bgr_model *m, bgr_comp c, const char *name, double G);
+BG_API int hyd_leakage(bgr_model *m, bgr_comp c, const char *name, double G);
 /* Relief valve: cracking pressure p_crack, full-flow pressure p_full > p_crack at the rated flow
  * q_rated > 0, smoothing width eps > 0 (a small fraction of p_full - p_crack, e.g. 1 %). Returns
  * the element id or < 0. */
-int hyd_relief_valve(bgr_model *m, bgr_comp c, const char *name, double p_crack, double p_full,
-                     double q_rated, double eps);
+BG_API int hyd_relief_valve(bgr_model *m, bgr_comp c, const char *name, double p_crack,
+                            double p_full, double q_rated, double eps);
 
-extern const bgr_element_class hyd_class_leakage, hyd_class_relief;
+BG_API extern const bgr_element_class hyd_class_leakage, hyd_class_relief;
 
 #ifdef __cplusplus
 }

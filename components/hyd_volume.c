@@ -9,6 +9,7 @@
 
 typedef struct volume {
     double V, beta;
+    double p_nom; /* stated nominal pressure (hyd_volume_set_nominal), 0: none */
     int np, p;
     int *e, *f, *s; /* per port */
 } volume;
@@ -57,6 +58,11 @@ static int volume_declare(bgr_element *el, bgr_model *m)
         CMP_DEP(el, m, k + 1, q->e[k], 0);
         CMP_DEP(el, m, k + 1, q->p, 0);
     }
+    /* V and beta give no pressure of their own (the pressure is set by the rest of the circuit):
+     * only a stated system pressure scales the volume's pressure and its ports' efforts */
+    CMP_NOM(el, m, q->p, q->p_nom);
+    for (int k = 0; k < np; k++)
+        CMP_NOM(el, m, q->e[k], q->p_nom);
     return BG_OK;
 }
 
@@ -133,4 +139,16 @@ int hyd_volume(bgr_model *m, bgr_comp c, const char *name, int nports, double V,
     int id = bgr_element_add(m, c, name, &hyd_class_volume, q, nports, dims, 1, sn, 0, NULL);
     free(dims);
     return id;
+}
+
+int hyd_volume_set_nominal(bgr_model *m, int id, double pressure)
+{
+    bgr_element *el = bgr_element_get(m, id);
+    if (!el || el->cls != &hyd_class_volume)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_volume_set_nominal",
+                              "element %d is not a hydraulic volume", id);
+    int st = cmp_check_scales(m, el, "hyd_volume_set_nominal", &pressure, 1);
+    if (st != BG_OK) return st;
+    ((volume *)el->params)->p_nom = pressure;
+    return BG_OK;
 }

@@ -19,6 +19,7 @@
 #ifndef HYD_VOLUME_H
 #define HYD_VOLUME_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -26,9 +27,18 @@ extern "C" {
 #endif
 
 /* Returns the element id or < 0 (message in the model's error record). */
-int hyd_volume(bgr_model *m, bgr_comp c, const char *name, int nports, double V, double beta);
+BG_API int hyd_volume(bgr_model *m, bgr_comp c, const char *name, int nports, double V,
+                      double beta);
 
-extern const bgr_element_class hyd_class_volume;
+/* Optional: the nominal pressure of the volume (Pa; bgr_declare_nominal), stated before
+ * bgr_compile: the scale of its pressure p and of its ports' efforts, so that the solver's
+ * absolute tolerance of them is atol * pressure. A system pressure (the circuit's relief or
+ * working pressure) is the right value: V and beta give none (the pressure is set by the rest of
+ * the circuit). Not stated (or 0): nothing declared, 1 Pa (SI units). BG_OK, BG_ERR_ARGUMENT (id
+ * not a volume, pressure < 0 or not finite), BG_ERR_STATE (model compiled). */
+BG_API int hyd_volume_set_nominal(bgr_model *m, int id, double pressure);
+
+BG_API extern const bgr_element_class hyd_class_volume;
 
 #ifdef __cplusplus
 }

@@ -12,6 +12,7 @@
 #ifndef ROT_DAMPER_H
 #define ROT_DAMPER_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -19,7 +20,7 @@ extern "C" {
 #endif
 
 /* Returns the element id or < 0 (message in the model's error record). */
-int rot_damper(bgr_model *m, bgr_comp c, const char *name, double b);
+BG_API int rot_damper(bgr_model *m, bgr_comp c, const char *name, double b);
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,7 @@
 #ifndef ROT_GEAR_H
 #define ROT_GEAR_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -21,7 +22,7 @@ extern "C" {
 #endif
 
 /* Returns the element id or < 0 (message in the model's error record). */
-int rot_gear(bgr_model *m, bgr_comp c, const char *name, double ratio);
+BG_API int rot_gear(bgr_model *m, bgr_comp c, const char *name, double ratio);
 
 #ifdef __cplusplus
 }

@@ -9,6 +9,7 @@
 
 typedef struct inertia {
     double J;
+    double w_nom; /* stated nominal speed (rot_inertia_set_nominal), 0: none */
     int T, w, s, p, th;
 } inertia;
 
@@ -29,6 +30,11 @@ static int inertia_declare(bgr_element *el, bgr_model *m)
     CMP_DEP(el, m, 1, q->p, 0);
     CMP_DEP(el, m, 2, q->th, 1);
     CMP_DEP(el, m, 2, q->p, 0);
+    /* J alone gives no speed; a stated speed scales the speed and the momentum J w. The angle
+     * keeps 1 rad (it grows without bound, no scale of its own); the torque 1 N m (set by the
+     * rest of the drive). */
+    CMP_NOM(el, m, q->w, q->w_nom);
+    CMP_NOM(el, m, q->p, q->J * q->w_nom);
     return BG_OK;
 }
 
@@ -96,4 +102,16 @@ int rot_inertia(bgr_model *m, bgr_comp c, const char *name, double J)
     static const int dims[1] = {1};
     static const char *const sn[2] = {"p", "angle"};
     return bgr_element_add(m, c, name, &rot_class_inertia, q, 1, dims, 2, sn, 0, NULL);
+}
+
+int rot_inertia_set_nominal(bgr_model *m, int id, double speed)
+{
+    bgr_element *el = bgr_element_get(m, id);
+    if (!el || el->cls != &rot_class_inertia)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "rot_inertia_set_nominal",
+                              "element %d is not a rotational inertia", id);
+    int st = cmp_check_scales(m, el, "rot_inertia_set_nominal", &speed, 1);
+    if (st != BG_OK) return st;
+    ((inertia *)el->params)->w_nom = speed;
+    return BG_OK;
 }

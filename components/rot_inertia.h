@@ -19,6 +19,7 @@
 #ifndef ROT_INERTIA_H
 #define ROT_INERTIA_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -26,11 +27,16 @@ extern "C" {
 #endif
 
 /* Returns the element id or < 0 (message in the model's error record). */
-int rot_inertia(bgr_model *m, bgr_comp c, const char *name, double J);
+BG_API int rot_inertia(bgr_model *m, bgr_comp c, const char *name, double J);
+/* Optional nominal speed (rad/s; bgr_declare_nominal), stated before bgr_compile: the scale of
+ * the speed w and, times J, of the momentum p. J gives no speed of its own: not stated (0), both
+ * keep 1 (SI units); the angle and the torque always do. BG_OK, BG_ERR_ARGUMENT (id not an
+ * inertia, speed < 0 or not finite), BG_ERR_STATE (model compiled). */
+BG_API int rot_inertia_set_nominal(bgr_model *m, int id, double speed);
 /* The moment of inertia of an element of class rot_class_inertia (0 for any other element). */
-double rot_inertia_moment(const bgr_element *el);
+BG_API double rot_inertia_moment(const bgr_element *el);
 
-extern const bgr_element_class rot_class_inertia;
+BG_API extern const bgr_element_class rot_class_inertia;
 
 #ifdef __cplusplus
 }

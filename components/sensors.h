@@ -17,6 +17,7 @@
 #ifndef SENSORS_H
 #define SENSORS_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -27,9 +28,9 @@ typedef enum rot_quantity { ROT_ANGLE = 0, ROT_VELOCITY = 1, ROT_ACCELERATION = 
 
 /* A sensor of quantity q on the rot_inertia element inertia. Returns the element id (its signal
  * is bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the model's error record). */
-int rot_sensor(bgr_model *m, bgr_comp c, const char *name, int inertia, rot_quantity q);
+BG_API int rot_sensor(bgr_model *m, bgr_comp c, const char *name, int inertia, rot_quantity q);
 
-extern const bgr_element_class rot_class_sensor;
+BG_API extern const bgr_element_class rot_class_sensor;
 
 #ifdef __cplusplus
 }

@@ -93,6 +93,34 @@ static double source_value(const source *q, double t)
     return q->out == SIG_VALUE ? u : q->out == SIG_RATE ? du : A - q->A0;
 }
 
+/* The signal's scale: the largest |value| the output takes, from the source's parameters (0:
+ * none, the output is unbounded or identically 0). */
+static double source_scale(const source *q)
+{
+    double sc = 0;
+    switch (q->kind) {
+    case SHAPE_PWL:
+        for (int k = 0; k < q->n; k++) {
+            if (q->out == SIG_VALUE) sc = fmax(sc, fabs(q->v[k]));
+            if (q->out == SIG_RATE && k > 0)
+                sc = fmax(sc, fabs((q->v[k] - q->v[k - 1]) / (q->t[k] - q->t[k - 1])));
+            /* the integral is bounded when the function ends (and, before 0, starts) at 0 */
+            if (q->out == SIG_INTEGRAL && q->v[q->n - 1] == 0 && (q->v[0] == 0 || q->t[0] >= 0))
+                sc = fmax(sc, fabs(q->cum[k] - q->A0));
+        }
+        return sc;
+    case SHAPE_STEP:
+        return q->out == SIG_VALUE ? fmax(fabs(q->b), fabs(q->c)) : 0.0;
+    case SHAPE_RAMP:
+        return q->out == SIG_RATE ? fabs(q->b) : 0.0;
+    case SHAPE_SINE:
+        return q->out == SIG_VALUE  ? fabs(q->a) + fabs(q->d)
+               : q->out == SIG_RATE ? fabs(q->a * q->b)
+                                    : 0.0;
+    }
+    return 0.0;
+}
+
 static int source_declare(bgr_element *el, bgr_model *m)
 {
     static const char *const lab[1] = {"signal"};
@@ -101,6 +129,8 @@ static int source_declare(bgr_element *el, bgr_model *m)
     int st = bgr_declare_equations(el, m, 1, lab);
     if (st) return st;
     CMP_DEP(el, m, 0, q->z, 0);
+    /* the largest magnitude of the output, where the parameters bound it */
+    CMP_NOM(el, m, q->z, source_scale(q));
     return BG_OK;
 }
 

@@ -8,7 +8,7 @@
  * quadrature):
  *   trapezoid  0 for t <= t0, rising linearly to h at t1, h until t2, falling linearly to 0 at
  *              t3, 0 after (t0 < t1 <= t2 < t3). The reference velocity of the crane paper
- *              (PAPER.md, Eq. 8) is t0 = 0, t1 = 2, t2 = 10, t3 = 12, h = 0.5 rad/s:
+ *              (docs/crane.md, Eq. 8) is t0 = 0, t1 = 2, t2 = 10, t3 = 12, h = 0.5 rad/s:
  *                omega_r = 0.25 t (t <= 2), 0.5 (2 < t <= 10), 0.25 (12 - t) (10 < t <= 12),
  *                0 (t > 12);
  *              its integral, the reference angle, is 0.125 t^2, 0.5 t - 0.5, ..., and 5 rad from
@@ -32,10 +32,15 @@
  * it takes the right limits, restart by hand at nextafter(t_b, INFINITY) with dae_reinit and
  * dae_consistent_init (tests/components/test_ctl_pid.c and test_sig_sources.c do so). Continuous
  * outputs (values of trapezoid, pwl, ramp, sine; every integral) need nothing of the kind.
+ * Nominal magnitude of the signal (bgr_declare_nominal): the largest |z| the parameters bound:
+ * max |v_k| (values of pwl, trapezoid, constant, step), the steepest slope (rates of pwl and
+ * trapezoid, |slope| of a ramp), |a| + |offset| and |a omega| (sine), the largest |integral| at
+ * the knots when the function ends at 0 (trapezoid); none (1) where the output is unbounded or 0.
  * Source: the crane paper's Eq. 8 for the trapezoid; the integrals and derivatives are exact. */
 #ifndef SIG_SOURCES_H
 #define SIG_SOURCES_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -46,23 +51,24 @@ typedef enum sig_output { SIG_VALUE = 0, SIG_RATE = 1, SIG_INTEGRAL = 2 } sig_ou
 
 /* Each returns the element id (signal bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the model's
  * error record). */
-int sig_trapezoid(bgr_model *m, bgr_comp c, const char *name, double t0, double t1, double t2,
-                  double t3, double height, sig_output out);
-int sig_pwl(bgr_model *m, bgr_comp c, const char *name, int n, const double *t, const double *v,
-            sig_output out);
-int sig_step(bgr_model *m, bgr_comp c, const char *name, double t_step, double before, double after,
-             sig_output out);
-int sig_ramp(bgr_model *m, bgr_comp c, const char *name, double t_start, double slope,
-             double offset, sig_output out);
-int sig_sine(bgr_model *m, bgr_comp c, const char *name, double amplitude, double omega,
-             double phase, double offset, sig_output out);
-int sig_constant(bgr_model *m, bgr_comp c, const char *name, double value, sig_output out);
+BG_API int sig_trapezoid(bgr_model *m, bgr_comp c, const char *name, double t0, double t1,
+                         double t2, double t3, double height, sig_output out);
+BG_API int sig_pwl(bgr_model *m, bgr_comp c, const char *name, int n, const double *t,
+                   const double *v, sig_output out);
+BG_API int sig_step(bgr_model *m, bgr_comp c, const char *name, double t_step, double before,
+                    double after, sig_output out);
+BG_API int sig_ramp(bgr_model *m, bgr_comp c, const char *name, double t_start, double slope,
+                    double offset, sig_output out);
+BG_API int sig_sine(bgr_model *m, bgr_comp c, const char *name, double amplitude, double omega,
+                    double phase, double offset, sig_output out);
+BG_API int sig_constant(bgr_model *m, bgr_comp c, const char *name, double value, sig_output out);
 
 /* The source function of signal element id at t: u(t), u'(t) and its integral from 0 to t (any
  * pointer may be NULL). BG_OK, or BG_ERR_ARGUMENT if id is not a signal source. */
-int sig_evaluate(bgr_model *m, int id, double t, double *value, double *rate, double *integral);
+BG_API int sig_evaluate(bgr_model *m, int id, double t, double *value, double *rate,
+                        double *integral);
 
-extern const bgr_element_class sig_class_source;
+BG_API extern const bgr_element_class sig_class_source;
 
 #ifdef __cplusplus
 }

@@ -1,5 +1,5 @@
-/* crane: simulates the hydraulically driven rotary crane of shared/crane/PAPER.md from a scene
- * file and writes the results.
+/* crane: simulates the hydraulically driven rotary crane of the crane paper (docs/crane.md) from a
+ * scene file and writes the results.
  *
  *   crane [SCENE] [--out DIR] [--t-end T] [--rtol R] [--atol A] [--elements N]
  *         [--output-step DT] [--set SECTION.KEY=VALUE]... [--no-plots] [--quiet] [--help]
@@ -72,7 +72,7 @@ static void on_signal(int sig)
 static const char *USAGE =
     "usage: crane [SCENE] [options]\n"
     "\n"
-    "Simulates the hydraulically driven rotary crane (shared/crane/PAPER.md) described by the\n"
+    "Simulates the hydraulically driven rotary crane (docs/crane.md) described by the\n"
     "scene file SCENE (default " DEFAULT_SCENE "; a bare name such as 'rigid-boom' is looked up\n"
     "in crane/scenes/) and writes the results into DIR.\n"
     "\n"

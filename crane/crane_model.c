@@ -107,6 +107,7 @@ void crane_scene_default(crane_scene *s)
     s->rtol = 1e-6;
     s->atol = 1e-6;
     s->output_step = 1e-3;
+    s->nominal_scales = 1;
 }
 
 static int fail_here(bg_error *err, const char *what, bgr_model *m)
@@ -206,6 +207,21 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
     c->e3[1] = 1; /* out of the luffing plane */
 
     c->nties = nties;
+    /* Nominal scales of the unknowns (the solver's absolute tolerance of an unknown is atol times
+     * its nominal magnitude; crane_scene.h): the weights the parts carry. The boom, its hinge and
+     * the ties carry the boom's weight and the load's (the rope the load's); the slewing joint
+     * everything, with the larger of the overturning moments about the axis of boom and load (at
+     * the tip radius) and of the counterweight as its moment scale; the hinge's moments scale with
+     * the moment of that weight about the hinge (the ties balance it). Bodies and point masses
+     * declare their own weights; a zero gravity states nothing (0 keeps the components' own). */
+    const double gg = fabs(s->g);
+    const double W_load = s->rope ? s->load_mass * gg : 0.0;
+    const double W_boom = s->boom_rho * s->boom_A * s->boom_length * gg + W_load;
+    const double W_cw = s->counterweight ? s->cw_mass * gg : 0.0;
+    const double W_all = W_boom + W_cw + s->platform_mass * gg;
+    const double M_all = fmax(W_boom * s->boom_tip_radius,
+                              W_cw * hypot(s->cw_pos[0], s->cw_pos[1]));
+    const double M_hinge = W_boom * fabs(s->boom_tip_radius - B[0]);
     /* platform: ports 0 slewing joint (6D), 1 boom hinge (6D), then ties (3D), counterweight */
     {
         double r[5 * 3];
@@ -226,6 +242,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
     int ground = mech_support(m, 0, "base", 6);
     TRY(ground, "base");
     TRY(c->slew = mech_revolute(m, 0, "slewing_joint", -1, z, 1), "slewing joint");
+    TRY(mech_set_nominal(m, ground, W_all, M_all, 0), "base scales");
+    TRY(mech_set_nominal(m, c->slew, W_all, M_all, 0), "slewing joint scales");
     TRY(bgr_bond(m, 0, "b_base", 6, bgr_port_of(m, ground, 0), bgr_port_of(m, c->slew, 0), NULL,
                  NULL),
         "bond base");
@@ -236,6 +254,7 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
 
     /* boom, hinged at B about the platform's y axis */
     TRY(c->hinge = mech_revolute(m, 0, "boom_hinge", c->platform, yax, 0), "boom hinge");
+    TRY(mech_set_nominal(m, c->hinge, W_boom, M_hinge, 0), "boom hinge scales");
     TRY(bgr_bond(m, 0, "b_hinge_a", 6, bgr_port_of(m, c->hinge, 0), bgr_port_of(m, c->platform, 1),
                  NULL, NULL),
         "bond hinge");
@@ -258,6 +277,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         TRY(mech_beam_chain(m, 0, "boom", c->n, B, tip, up, &sec, g, extra, extra3, c->nodes,
                             c->elems),
             "boom");
+        for (int k = 0; k < c->n; k++) /* moments: that force times the element length */
+            TRY(mech_set_nominal(m, c->elems[k], W_boom, 0, 0), "boom scales");
         foot = mech_beam_chain_port(m, c->nodes, c->n, extra, 0, 0);
         for (int j = 0; j < ntip; j++)
             tip_ports[j] = mech_beam_chain_port(m, c->nodes, c->n, extra, c->n, j);
@@ -282,6 +303,7 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
             c->tip_r[i] = r[3 + i] = r[6 + i] = r[9 + i] = 0.5 * d[i];
         }
         TRY(c->boom = mech_body(m, 0, "boom", mass, J, g, 1 + ntip, r, dims), "rigid boom");
+        TRY(mech_set_nominal(m, c->boom, W_boom, M_hinge, 0), "rigid boom scales");
         foot = bgr_port_of(m, c->boom, 0);
         for (int j = 0; j < ntip; j++)
             tip_ports[j] = bgr_port_of(m, c->boom, 1 + j);
@@ -301,6 +323,7 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         L0 = tie_L0 > 0 ? tie_L0 : sqrt(mech_dot(d, d));
         c->tie_L0 = L0;
         TRY(c->tie[k] = mech_truss(m, 0, nm[0], s->tie_E, s->tie_A, L0, settle ? 1e6 : 0), "ties");
+        TRY(mech_set_nominal(m, c->tie[k], W_boom, 0, 0), "tie scales");
         TRY(bgr_bond(m, 0, nm[1], 3, bgr_port_of(m, c->platform, pport++),
                      bgr_port_of(m, c->tie[k], 0), NULL, NULL),
             "bond tie gantry");
@@ -311,6 +334,7 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         double k = s->rope_E * s->rope_A / s->rope_length;
         double damp = settle ? 2 * sqrt(k * s->load_mass) : s->rope_damping;
         TRY(c->rope = mech_rope(m, 0, "rope", k, damp, s->rope_length, 0), "rope");
+        TRY(mech_set_nominal(m, c->rope, W_load, 0, 0), "rope scales");
         TRY(c->load = mech_point_mass(m, 0, "load", s->load_mass, g), "load");
         TRY(bgr_bond(m, 0, "b_rope_tip", 3, tip_ports[tp++], bgr_port_of(m, c->rope, 0), NULL,
                      NULL),
@@ -413,6 +437,18 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
             "line");
         TRY(vl = hyd_volume(m, hy, "line_low", 3 + 3 * valves, s->line_volume, s->bulk_modulus),
             "line");
+        /* Scales of the drive: the pressure the relief valves let the lines reach at full flow
+         * (cracking + 5 MPa; without valves the charge pressure, the one pressure the scene
+         * states), the pump's drive speed (its flows: the full displacement times it), the
+         * motor's speed on the reference's plateau (rate times the gear ratio; its flows: its
+         * displacement times it) */
+        double p_nom = valves ? s->relief_pressure + 5e6 : s->charge_pressure;
+        double w_motor = fabs(s->ref_rate) * s->gear_ratio;
+        TRY(hyd_volume_set_nominal(m, vh, p_nom), "line scales");
+        TRY(hyd_volume_set_nominal(m, vl, p_nom), "line scales");
+        TRY(hyd_pump_set_nominal(m, pump, p_nom, s->pump_speed), "pump scales");
+        TRY(hyd_motor_set_nominal(m, motor, p_nom, w_motor), "motor scales");
+        TRY(rot_inertia_set_nominal(m, inertia, w_motor), "motor inertia scales");
         TRY(tank = hyd_tank(m, hy, "charge_pump", s->charge_pressure), "charge");
         TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-9), "charge valve");
         c->vol_h = vh;
@@ -451,6 +487,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         fail_here(err, "compile", m);
         goto fail;
     }
+    for (int v = 0; !s->nominal_scales && v < bgr_n(m); v++) /* atol in SI units */
+        TRY(bgr_set_nominal(m, v, 1.0), "nominal scales");
     if (set_initial(c) != 0) {
         fail_here(err, "initial values", m);
         goto fail;
@@ -777,6 +815,35 @@ void crane_outputs(const crane *c, double t, const double *y, const double *yp, 
     out[19] = sqrt(mech_dot(d, d));
 }
 
+/* The physical quantity of an unknown of the crane model, from its path (for the table of the
+ * nominal scales): the hydraulic bonds carry pressure and volume flow, the other 1D bonds torque
+ * and speed; the 3D and 6D bonds force (e0..e2), moment (e3..e5), velocity and angular velocity;
+ * the states by their names. */
+static const char *domain_of(const char *nm)
+{
+    static const char *const hyd_bonds[] = {"b_pump_in/", "b_pump_out/", "b_motor_in/",
+                                            "b_motor_out/", "b_tank/",   "b_charge/",
+                                            "b_rhl_",      "b_rlh_",     "b_chh_",
+                                            "b_chl_"};
+    const char *leaf = strrchr(nm, '/');
+    leaf = leaf ? leaf + 1 : nm;
+    int digit = leaf[0] && leaf[1] >= '0' && leaf[1] <= '9', low = digit && leaf[1] < '3';
+    if (strstr(nm, "/line_high/p") || strstr(nm, "/line_low/p")) return "pressure [Pa]";
+    for (size_t k = 0; k < sizeof hyd_bonds / sizeof *hyd_bonds; k++)
+        if (strstr(nm, hyd_bonds[k])) return leaf[0] == 'e' ? "pressure [Pa]" : "volume flow [m^3/s]";
+    if (strstr(nm, "/b_") && !digit) return leaf[0] == 'e' ? "torque [N m]" : "shaft speed [rad/s]";
+    if (strstr(nm, "/b_") || strstr(nm, "/ba") || strstr(nm, "/bb")) {
+        if (leaf[0] == 'e') return low ? "force [N]" : "moment [N m]";
+        return low ? "velocity [m/s]" : "angular velocity [rad/s]";
+    }
+    if (strstr(nm, "motor_inertia/p")) return "angular momentum [N m s]";
+    if (digit && (leaf[0] == 'x' || leaf[0] == 'd')) return "position [m]";
+    if (digit && leaf[0] == 'v') return "velocity [m/s]";
+    if (digit && leaf[0] == 'w') return "angular velocity [rad/s]";
+    if (digit && leaf[0] == 'q') return "orientation quaternion [-]";
+    return "angles, controller, signals";
+}
+
 int crane_stats_print(const crane *c, FILE *f)
 {
     bgr_stats st;
@@ -822,5 +889,32 @@ int crane_stats_print(const crane *c, FILE *f)
     fprintf(f, "\n%-34s %10s %10s %10s\n", "unknowns by part", "diff", "alg", "index 2");
     for (int k = 0; k < np; k++)
         fprintf(f, "%-34s %10d %10d %10d\n", part[k], cnt[k][0], cnt[k][1], cnt[k][2]);
+    /* the nominal scales by quantity (scene [solver] nominal_scales) */
+    enum { MAXDOM = 16 };
+    const char *dom[MAXDOM];
+    int nd = 0, dcnt[MAXDOM] = {0};
+    double dmin[MAXDOM], dmax[MAXDOM];
+    const double *nom = bgr_nominals(c->m);
+    for (int i = 0; nom && i < bgr_n(c->m); i++) {
+        const char *d = domain_of(bgr_var_name(c->m, i));
+        int k = 0;
+        while (k < nd && strcmp(dom[k], d) != 0)
+            k++;
+        if (k == nd) {
+            if (nd == MAXDOM) continue; /* the classification has fewer quantities */
+            dom[nd] = d;
+            dmin[nd] = dmax[nd] = nom[i];
+            nd++;
+        }
+        dcnt[k]++;
+        dmin[k] = fmin(dmin[k], nom[i]);
+        dmax[k] = fmax(dmax[k], nom[i]);
+    }
+    fprintf(f, "\n%-34s %10s %10s %10s\n", "nominal scales by quantity", "unknowns", "min", "max");
+    for (int k = 0; k < nd; k++)
+        fprintf(f, "%-34s %10d %10.3g %10.3g\n", dom[k], dcnt[k], dmin[k], dmax[k]);
+    fprintf(f, "(the absolute tolerance of an unknown is atol times its nominal scale; scene "
+               "[solver] nominal_scales = %s)\n",
+            c->s.nominal_scales ? "true" : "false: all 1");
     return BG_OK;
 }

@@ -1,5 +1,5 @@
-/* The rotary crane of shared/crane/PAPER.md as a bond-graph model: scene parameters, the builder,
- * and the quantities the program writes.
+/* The rotary crane of the crane paper (docs/crane.md) as a bond-graph model: scene parameters, the
+ * builder, and the quantities the program writes.
  *
  * Parts (each built only if the scene asks for it): rotary platform (rigid body on a revolute
  * joint about Z0 at A, driven through the joint's drive port), boom (a chain of co-rotational
@@ -69,9 +69,13 @@ typedef struct crane_scene {
     int static_start; /* 1: start from the static equilibrium under gravity */
     /* solver and output */
     double t_end, rtol, atol, output_step;
+    int nominal_scales; /* 1: the unknowns' nominal magnitudes from the components' scales (the
+                         * absolute tolerance of unknown i is atol * nominal_i: a millionth of a
+                         * pressure's 35 MPa, of a beam force's 0.85 MN, ... with atol = 1e-6);
+                         * 0: all 1, atol in SI units for every unknown (the old behaviour) */
 } crane_scene;
 
-/* The paper scene's defaults (shared/crane/PAPER.md, with the choices stated in
+/* The paper scene's defaults (docs/crane.md, with the choices stated there and in
  * crane/scenes/paper.ini). */
 void crane_scene_default(crane_scene *s);
 

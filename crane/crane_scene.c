@@ -143,6 +143,9 @@ static const key_def KEYS[] = {
     KNUM("solver", "rtol", rtol, R_OPEN01, "a number in (0, 1)", "", "relative tolerance"),
     KNUM("solver", "atol", atol, R_POS, EXP_POS, "", "absolute tolerance"),
     KNUM("solver", "output_step", output_step, R_POS, EXP_POS, "s", "output interval"),
+    KBOOL("solver", "nominal_scales", nominal_scales,
+          "absolute tolerance of each unknown atol times its nominal magnitude (false: atol in SI "
+          "units)"),
 };
 #define NKEYS ((int)(sizeof KEYS / sizeof *KEYS))
 

@@ -71,6 +71,24 @@
  *                    rtol             number in (0, 1)  relative tolerance
  *                    atol             number > 0     absolute tolerance
  *                    output_step      number > 0     s, output interval (<= t_end)
+ *                    nominal_scales   boolean        absolute tolerances scaled by the unknowns'
+ *                                                    nominal magnitudes (default true; see below)
+ *
+ * Tolerances. The solver weighs the error of unknown i with rtol |y_i| + atol nominal_i. With
+ * nominal_scales = true (the default) nominal_i is the magnitude the components give that
+ * unknown from the scene's parameters (crane_model.c states them): the relief valves' full-flow
+ * pressure (relief_pressure + 5 MPa; the charge pressure without valves) for the line pressures,
+ * the pump's full flow pump_disp pump_speed / (2 pi) for its flows, the plateau speed
+ * rate * gear_ratio for the motor's, the weight of boom and load for the forces in boom, ties
+ * and hinge (that weight times the element length for the beam moments), the load's weight for
+ * the rope, the total weight and the larger overturning moment for the slewing joint, the
+ * members' lengths for their stretch vectors, the pump's full displacement (x_limit) for the
+ * PID output; 1 (SI) for positions, velocities and angles. "rtol = atol = 1e-6" then asks every
+ * unknown for about a millionth of its own size, |y| or its nominal, whichever is larger: 35 Pa
+ * on a line pressure, 0.85 N on a boom force, 1 um on a position. With nominal_scales = false
+ * every unknown has the absolute tolerance atol in SI units (1e-6 Pa on a 2..28 MPa pressure,
+ * 1e-6 N on a force of 1e5 N: far below what the rounding of the residual resolves), the
+ * behaviour before the scales existed. model_stats.txt lists the scales used by domain.
  *
  * Besides the ranges above, a scene must be consistent: the boom must reach its tip radius
  * (|tip_radius - foot.x| < length) and the reference's times must be ordered.

@@ -84,6 +84,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->dn0_last = HUGE_VAL;
     s->t_fail = NAN;
     s->init_side = 0;
+    daei_stab_reset(s);
     s->tlo = t0;
     s->need_setup = 1;
     s->initialized = 1;

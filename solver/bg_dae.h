@@ -108,6 +108,12 @@ typedef struct dae_problem {
     dae_root_fn roots;
     const char *const *eq_names; /* n names of the equations (rows of F) for messages; NULL (or a
                                     NULL entry): named after the unknown matched to the row */
+    const double *nominal;       /* n nominal magnitudes (finite, > 0) in the unknowns' units, or
+                                    NULL (all 1): the absolute tolerance of unknown i is
+                                    options.atol * nominal[i] (the convention of Modelica tools),
+                                    in the error test and in the Newton test alike, so that one
+                                    atol means the same for a pressure of 1e7 Pa and an angle of
+                                    1 rad. options.atol_vec, when given, is taken as it is */
 } dae_problem;
 
 typedef enum dae_index2_policy {
@@ -118,7 +124,8 @@ typedef enum dae_index2_policy {
 typedef struct dae_options {
     double rtol;              /* default 1e-6; 0 <= rtol < 1 (1e-100 is added to rtol |y| +
                                  atol, so that the weights stay finite when both are 0) */
-    double atol;              /* default 1e-8, used when atol_vec is NULL */
+    double atol;              /* default 1e-8, used when atol_vec is NULL (times the problem's
+                                 nominal magnitudes, when it has them) */
     const double *atol_vec;   /* n values or NULL */
     int max_order;            /* 1..5, default 5 */
     double h_init;            /* 0: chosen by the solver */
@@ -146,6 +153,12 @@ typedef struct dae_options {
                                   quarter of a step's cost on a problem of five unknowns */
     int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
                                   convergence test (default 0: full weight, see dae_nls.c) */
+    int stability_guard;       /* 1: where a lightly damped oscillation holds BDF orders 3..5
+                                  at their stability limit, the order is lowered to 2, which
+                                  damps it (numerical dissipation of the unresolved high
+                                  frequencies, for models whose fast modes are not part of the
+                                  answer: flexible structures, stiff hydraulic lines); default 0:
+                                  the order follows the error estimates alone (dae_stab.c) */
 } dae_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. dae_create checks the options:
@@ -168,6 +181,7 @@ typedef struct dae_stats {
                                       matrix (KLU: min|Ukk|/max|Ukk|; dense: LAPACK dgecon) */
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
     long restarts;                 /* restarts at unannounced jumps (see dae_solve_to) */
+    long stab_lowered;             /* times the stability guard lowered the order */
     double t_last_restart;         /* time of the last of them (NAN: none) */
 } dae_stats;
 

@@ -89,6 +89,20 @@ struct dae_solver {
     int has_alg2;
     double *y, *yp, *ypred, *yppred, *ee, *delta, *res, *tmp, *tmp2, *typ;
     double err_k, err_km1;
+    double err_next; /* the error estimate of the order chosen for the next step */
+    /* stability guard (dae_stab.c) */
+    double *stab_e[2];  /* weighted local error estimates of the last two steps */
+    int stab_ns;        /* of them, how many were taken at the current h and order */
+    double stab_hs;     /* the step they were taken with */
+    int stab_ks;        /* and the order */
+    int stab_hits;      /* consecutive fits that found one dominant oscillation */
+    double stab_theta;  /* h omega of the last such fit */
+    double stab_w;      /* omega of the dominant undamped oscillation, 0: none known */
+    int stab_active;    /* the order was lowered for it */
+    double stab_hleft;  /* the step when it was lowered */
+    long stab_since;    /* accepted steps since then */
+    double stab_tsum;   /* and the time they covered */
+    long stab_quiet;    /* no new lowering before this many accepted steps (stats.steps) */
     /* roots */
     double *glo, *ghi, *gmid;
     double tlo;
@@ -190,6 +204,16 @@ int daei_restart(dae_solver *s, double tout, double dt, int jump);
  * the restart point (*tret = tout, y and yp set), 1 to go on stepping, < 0 on failure. */
 int daei_restart_at_jump(dae_solver *s, double tout, double dir, int one, double *tret,
                          double *y, double *yp);
+
+/* ---- dae_stab.c: the stability guard ---- */
+/* After an accepted step (before the order and step for the next one are chosen): fits the
+ * error estimates of the last three steps for a dominant oscillation. */
+void daei_stab_observe(dae_solver *s);
+/* After the order and step for the next step were chosen: lowers the order where the step lies
+ * in the unstable band of BDF orders 3..5 for the dominant oscillation. */
+void daei_stab_decide(dae_solver *s);
+/* Forget what was learnt (a restart, dae_init). */
+void daei_stab_reset(dae_solver *s);
 
 /* ---- dae_out.c: output ---- */
 /* The history's interpolating polynomial at t (after a step), without dae_dense's check. */

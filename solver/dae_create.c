@@ -82,6 +82,8 @@ void dae_free(dae_solver **sp)
     free(s->tmp);
     free(s->tmp2);
     free(s->typ);
+    free(s->stab_e[0]);
+    free(s->stab_e[1]);
     free(s->glo);
     free(s->ghi);
     free(s->gmid);
@@ -227,7 +229,16 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
             dae_free(&s);
             return NULL;
         }
-        s->atol[i] = o->atol_vec ? o->atol_vec[i] : o->atol;
+        if (p->nominal && !o->atol_vec && !(p->nominal[i] > 0 && isfinite(p->nominal[i]))) {
+            char nb[32];
+            bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                           "the nominal magnitude of %s is %g: it must be finite and > 0",
+                           p->names && p->names[i] ? p->names[i] : (snprintf(nb, sizeof nb, "y[%d]", i), nb),
+                           p->nominal[i]);
+            dae_free(&s);
+            return NULL;
+        }
+        s->atol[i] = o->atol_vec ? o->atol_vec[i] : o->atol * (p->nominal ? p->nominal[i] : 1.0);
         if (!(s->atol[i] >= 0) || !isfinite(s->atol[i]) || (s->atol[i] == 0 && o->rtol == 0)) {
             bg_error_raise(err, BG_ERR_ARGUMENT, w,
                            "atol[%d] = %g: must be >= 0 (and > 0 if rtol = 0)", i, s->atol[i]);
@@ -296,7 +307,8 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     for (int j = 0; j < NPHI; j++)
         if (!(s->phi[j] = calloc((size_t)n, sizeof(double)))) goto nomem;
     double **vecs[] = {&s->ewt,    &s->werr, &s->wnewt, &s->wdiff, &s->y,   &s->yp,   &s->ypred,
-                       &s->yppred, &s->ee,   &s->delta, &s->res,   &s->tmp, &s->tmp2, &s->typ};
+                       &s->yppred, &s->ee,   &s->delta, &s->res,   &s->tmp, &s->tmp2, &s->typ,
+                       &s->stab_e[0], &s->stab_e[1]};
     for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
         if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
     if (p->nroots > 0) {

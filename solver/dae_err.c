@@ -153,6 +153,7 @@ void daei_choose_next(dae_solver *s, int kdiff)
     /* the initial phase ends at the first order decrease or at the highest order */
     if (s->knew == s->kk - 1 || s->kk == s->o.max_order) s->phase = 1;
     double hmax_inv = s->o.h_max > 0 ? 1.0 / s->o.h_max : 0.0;
+    s->err_next = s->err_k;
     if (s->o.fixed_step) {
         /* keep h and k */
     } else if (s->phase == 0) {
@@ -191,6 +192,7 @@ void daei_choose_next(dae_solver *s, int kdiff)
             err_knew = s->err_km1;
         } else
             err_knew = s->err_k;
+        s->err_next = err_knew;
         double hnew = s->hh;
         double rr = pow(2 * err_knew + 1e-4, -1.0 / (s->kk + 1));
         if (rr >= 2 && s->since_fail > s->kk) {

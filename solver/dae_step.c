@@ -156,7 +156,9 @@ static void complete_step(dae_solver *s)
     s->st.order_last = s->kused;
     s->st.h_min_used = fmin(s->st.h_min_used, fabs(s->hh));
     s->st.h_max_used = fmax(s->st.h_max_used, fabs(s->hh));
+    daei_stab_observe(s);
     daei_choose_next(s, kdiff);
+    daei_stab_decide(s);
     update_history(s);
 }
 

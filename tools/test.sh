@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds with warnings as errors, runs every unit test, checks that an
-# outside program builds against the installed library through pkg-config, and ends with one
-# line "N passed, N failed" (N counts the TAP test points of all test programs).
+# Installs what is missing, builds with warnings as errors, runs every unit test, checks that
+# outside programs build against the installed library through pkg-config and through CMake and
+# that it exports exactly what its public headers declare, and ends with one line
+# "N passed, N failed" (N counts the TAP test points of all test programs).
+# Environment: BUILD_TEST (build folder, default build-test).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh || { echo "0 passed, 1 failed"; exit 1; }
-B=build-test
+B=${BUILD_TEST:-build-test}
 if [ ! -d "$B" ]; then
   meson setup "$B" -Dwerror=true >/dev/null || { echo "0 passed, 1 failed"; exit 1; }
 fi
@@ -42,21 +44,56 @@ if [ -x "$B/bench/bench" ]; then
   fi
 fi
 
-# install check: the library, its headers and pkg-config file serve an outside program
+# install check: the library, its headers (<bgdae/...>), its pkg-config file and its CMake
+# package serve outside programs (tests/install/), the shared library exports exactly what the
+# public headers declare, and the installation holds nothing of the crane or of inih
 dest=$(mktemp -d)
 if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
-  prefix=$(meson introspect "$B" --buildoptions | python3 -c \
-    'import json,sys; print([o["value"] for o in json.load(sys.stdin) if o["name"]=="prefix"][0])')
-  libdir=$(meson introspect "$B" --buildoptions | python3 -c \
-    'import json,sys; print([o["value"] for o in json.load(sys.stdin) if o["name"]=="libdir"][0])')
-  pcdir="$dest$prefix/$libdir/pkgconfig"
-  if PKG_CONFIG_PATH="$pcdir" PKG_CONFIG_SYSROOT_DIR="$dest" \
-       cc -std=c11 -Wall -Werror tests/install_check.c -o "$dest/install_check" \
-       $(PKG_CONFIG_PATH="$pcdir" PKG_CONFIG_SYSROOT_DIR="$dest" pkg-config --cflags --libs bgdae) \
-     && LD_LIBRARY_PATH="$dest$prefix/$libdir" "$dest/install_check"; then
+  opt() { meson introspect "$B" --buildoptions | python3 -c \
+    'import json,sys; print([o["value"] for o in json.load(sys.stdin) if o["name"]==sys.argv[1]][0])' "$1"; }
+  prefix=$(opt prefix); libdir=$(opt libdir); includedir=$(opt includedir)
+  [[ $libdir = /* ]] || libdir="$prefix/$libdir"
+  [[ $includedir = /* ]] || includedir="$prefix/$includedir"
+  pc() { PKG_CONFIG_PATH="$dest$libdir/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$dest" pkg-config "$@"; }
+  # shellcheck disable=SC2046 # pkg-config's flags are words
+  if cc -std=c11 -Wall -Werror tests/install/install_check.c -o "$dest/install_check" \
+       $(pc --cflags --libs bgdae) \
+     && LD_LIBRARY_PATH="$dest$libdir" "$dest/install_check"; then
     echo "ok - install check: outside program built with pkg-config and ran"; extra_pass=$((extra_pass+1))
   else
-    echo "not ok - install check failed"; extra_fail=$((extra_fail+1))
+    echo "not ok - install check: outside program with pkg-config failed"; extra_fail=$((extra_fail+1))
+  fi
+  if cmake -S tests/install -B "$dest/cmake-build" -DCMAKE_PREFIX_PATH="$dest$prefix" \
+       >"$dest/cmake.log" 2>&1 \
+     && cmake --build "$dest/cmake-build" >>"$dest/cmake.log" 2>&1 \
+     && LD_LIBRARY_PATH="$dest$libdir" "$dest/cmake-build/cmake_check" >>"$dest/cmake.log" 2>&1; then
+    echo "ok - install check: outside program built with CMake (find_package(bgdae), bgdae::bgdae) and ran"
+    extra_pass=$((extra_pass+1))
+  else
+    tail -n 15 "$dest/cmake.log" | sed 's/^/# /'
+    echo "not ok - install check: outside program with CMake failed"; extra_fail=$((extra_fail+1))
+  fi
+  if python3 tools/check-exports.py "$dest$libdir/libbgdae.so" "$dest$includedir"/bgdae/*.h \
+       >"$dest/exports.log" 2>&1; then
+    echo "ok - install check: $(tail -n 1 "$dest/exports.log")"; extra_pass=$((extra_pass+1))
+  else
+    sed 's/^/# /' "$dest/exports.log"
+    echo "not ok - install check: the exported symbols differ from the public headers' declarations"
+    extra_fail=$((extra_fail+1))
+  fi
+  bad=""
+  pc --libs --static bgdae | grep -q inih && bad="$bad pkg-config --static names inih;"
+  ldd "$dest$libdir/libbgdae.so" 2>/dev/null | grep -q inih && bad="$bad libbgdae.so needs inih;"
+  for h in mech_util.h mech_ad.h cmp_internal.h bg_dae_impl.h crane_model.h crane_scene.h; do
+    [ -e "$dest$includedir/bgdae/$h" ] && bad="$bad $h installed;"
+  done
+  grep -q 'crane_' <<<"$(nm -D --defined-only "$dest$libdir/libbgdae.so")" \
+    && bad="$bad libbgdae.so holds crane functions;"
+  if [ -z "$bad" ]; then
+    echo "ok - install check: no inih, crane or private header in the installed library"
+    extra_pass=$((extra_pass+1))
+  else
+    echo "not ok - install check:$bad"; extra_fail=$((extra_fail+1))
   fi
 else
   echo "not ok - meson install failed"; extra_fail=$((extra_fail+1))

@@ -10,6 +10,7 @@ typedef struct axial {
     int rope;
     double k, c, L0, eps;
     int f[2], e[2], s[2], d; /* ids: flows, efforts, orientation, state */
+    mech_scales sc;          /* stated nominal scales */
 } axial;
 
 static void axial_free(void *p)
@@ -95,7 +96,17 @@ static int axial_declare(bgr_element *el, bgr_model *m)
     mech_emit E = {1, el, m, NULL, 0, BG_OK};
     axial_partials(el, zero, &E);
     free(zero);
-    return E.status;
+    if (E.status != BG_OK) return E.status;
+    /* Nominal magnitudes. d: the stated length, else L0 (|d| is the member's length, L0 to within
+     * its strain). The tension, hence the port forces, is the stiffness times an elongation that
+     * the parameters do not give (what the member carries): the stated force only (k times a
+     * deformation scale, or the weight it holds). */
+    int st2 = BG_OK;
+    for (int i = 0; i < 3 && st2 == BG_OK; i++)
+        st2 = mech_nominal(el, m, a->d + i, a->sc.length > 0 ? a->sc.length : a->L0);
+    for (int k = 0; k < 2 && st2 == BG_OK; k++)
+        st2 = mech_nominal_port(el, m, a->e[k], 3, a->sc.force, 0.0);
+    return st2;
 }
 
 static int axial_residual(const bgr_element *el, double t, const double *y, const double *yp,
@@ -134,6 +145,11 @@ static const bgr_element_class axial_class = {.type = "axial",
                                               .residual = axial_residual,
                                               .jacobian = axial_jacobian,
                                               .destroy = axial_free};
+
+mech_scales *mech_axial_scales_(bgr_element *el)
+{
+    return el && el->cls == &axial_class ? &((axial *)el->params)->sc : NULL;
+}
 
 static int add_axial(bgr_model *m, bgr_comp c, const char *name, int rope, double k, double cd,
                      double L0, double eps)

@@ -19,6 +19,7 @@
 #ifndef MECH_AXIAL_H
 #define MECH_AXIAL_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -26,22 +27,23 @@ extern "C" {
 #endif
 
 /* Ports 0 (A) and 1 (B), 3D. The state is named d0 d1 d2; set its initial value to x_B - x_A. */
-int mech_spring(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp, double L0);
-int mech_truss(bgr_model *m, bgr_comp c, const char *name, double E, double A, double L0,
-               double c_damp);
+BG_API int mech_spring(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp,
+                       double L0);
+BG_API int mech_truss(bgr_model *m, bgr_comp c, const char *name, double E, double A, double L0,
+                      double c_damp);
 /* eps <= 0: 1e-4 L0 */
-int mech_rope(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp, double L0,
-              double eps);
+BG_API int mech_rope(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp, double L0,
+                     double eps);
 /* Initial d (after bgr_compile). BG_OK, or BG_ERR_ARGUMENT (id not an axial element of a
  * compiled model, xa or xb NULL). */
-int mech_axial_set(bgr_model *m, int id, const double *xa, const double *xb);
+BG_API int mech_axial_set(bgr_model *m, int id, const double *xa, const double *xb);
 /* Elastic energy at a state vector y (after bgr_compile): k (L - L0)^2 / 2; for the rope k times
  * the integral of its smoothed stretch (softplus) from full slack, which differs from
  * k max(L - L0, 0)^2 / 2 by at most k eps^2 pi^2 / 6. NaN if id is not an axial element of a
  * compiled model, or y is NULL. */
-double mech_axial_energy(const bgr_model *m, int id, const double *y);
+BG_API double mech_axial_energy(const bgr_model *m, int id, const double *y);
 /* Tension at a state vector y (after bgr_compile); NaN as for the energy. */
-double mech_axial_tension(const bgr_model *m, int id, const double *y);
+BG_API double mech_axial_tension(const bgr_model *m, int id, const double *y);
 
 #ifdef __cplusplus
 }

@@ -35,6 +35,7 @@ typedef struct beam {
     int e[2], s[2];     /* first effort id and orientation of each port */
     int f[2];           /* first flow id of each port (damping) */
     beam_work *work;
+    mech_scales sc; /* stated nominal scales (the chain builder states its weight) */
 } beam;
 
 /* Drops one reference to a scratch; the last frees it. */
@@ -562,6 +563,13 @@ static int beam_declare(bgr_element *el, bgr_model *m)
         for (int mm = 0; st == BG_OK && b->sec.beta > 0 && mm < 12; mm++)
             st = bgr_declare_dep(el, m, r, b->f[mm / 6] + mm % 6, 0);
     }
+    /* Nominal magnitudes of the port loads: the stated force (the chain builder states the
+     * chain's weight; a section alone carries no load); moments: the stated moment, else that
+     * force times L0 (the element's equilibrium M_a + M_b + L0 e1 x F_b = 0 ties its end moments
+     * to its shear forces over its length). */
+    double M = b->sc.moment > 0 ? b->sc.moment : b->sc.force * b->L0;
+    for (int k = 0; k < 2 && st == BG_OK; k++)
+        st = mech_nominal_port(el, m, b->e[k], 6, b->sc.force, M);
     return st;
 }
 
@@ -602,6 +610,11 @@ static const bgr_element_class beam_class = {.type = "beam",
                                              .residual = beam_residual,
                                              .jacobian = beam_jacobian,
                                              .destroy = beam_free};
+
+mech_scales *mech_beam_scales_(bgr_element *el)
+{
+    return el && el->cls == &beam_class ? &((beam *)el->params)->sc : NULL;
+}
 
 static int bad_section(bgr_model *m, const char *name, const mech_section *s)
 {
@@ -747,6 +760,10 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
             work_release(shared);
             return elems[k];
         }
+        /* the weight of the whole chain, rho A L |g|, as the elements' force scale: what a chain
+         * supported at one end carries there (mech_set_nominal may state more, e.g. a load) */
+        double W = sec->rho * sec->A * L * (gravity ? sqrt(mech_dot(gravity, gravity)) : 0.0);
+        if (W > 0 && isfinite(W)) mech_beam_scales_(bgr_element_get(m, elems[k]))->force = W;
         int pa = k > 0 ? 1 : 0; /* node k: next port; node k+1: prev port (0) */
         snprintf(nm, sizeof nm, "ba%02d", k);
         int st = bgr_bond(m, cc, nm, 6, bgr_port_of(m, nodes[k], pa), bgr_port_of(m, elems[k], 0),

@@ -33,6 +33,7 @@
 #ifndef MECH_BEAM_H
 #define MECH_BEAM_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -52,8 +53,8 @@ typedef struct mech_section {
  * states are set to their initial positions with identity orientation), E0: the initial local
  * frame (3x3, column-major: e1 along the beam from a to b, e2, e3), L0 the initial length.
  * Ports 0 and 1 must be bonded to ports of node_a and node_b at their mass centres. */
-int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
-              const mech_section *sec, const double *E0, double L0);
+BG_API int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
+                     const mech_section *sec, const double *E0, double L0);
 
 /* A straight chain of n elements from p0 to p1 in component c (created here with the given
  * name): n + 1 node bodies named node00, node01, ... with lumped masses (gravity may be NULL),
@@ -64,25 +65,26 @@ int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b
  * element ids. Returns the chain's component, or BG_ERR_ARGUMENT (a bad section, n < 1, NULL or
  * coincident end points, up NULL or along the beam, nodes or elems NULL, a negative extra count),
  * or the status of the component, element or bond that failed. */
-int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
-                    const double *p1, const double *up, const mech_section *sec,
-                    const double *gravity, const int *extra, const int *extra3, int *nodes,
-                    int *elems);
+BG_API int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
+                           const double *p1, const double *up, const mech_section *sec,
+                           const double *gravity, const int *extra, const int *extra3, int *nodes,
+                           int *elems);
 /* The j-th extra port of node k (the 6D ones first, then the 3D ones); {-1, -1} if there is no
  * such port (or m, nodes NULL). */
-bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra, int k,
-                              int j);
+BG_API bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra,
+                                     int k, int j);
 /* Positions of the chain's nodes into bgr_y0 (after bgr_compile), orientation identity. BG_OK,
  * or BG_ERR_ARGUMENT (NULL arrays, n < 1, a node that is not a body of a compiled model). */
-int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1);
+BG_API int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0,
+                               const double *p1);
 /* The deformation energy W of an element at a state vector y (after bgr_compile); NaN if elem
  * is not a beam element of a compiled model, or y is NULL. */
-double mech_beam_energy(const bgr_model *m, int elem, const double *y);
+BG_API double mech_beam_energy(const bgr_model *m, int elem, const double *y);
 /* The 12 port loads (F_a, M_a, F_b, M_b) of a beam element at a state vector y, for tests:
  * path 0 as the residual computes them (plain arithmetic, one reverse pass), path 1 by the
  * automatic differentiation the Jacobian uses. BG_OK, or BG_ERR_ARGUMENT (not a beam element of
  * a compiled model, NULL arrays, another path). */
-int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, double g[12]);
+BG_API int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, double g[12]);
 
 #ifdef __cplusplus
 }

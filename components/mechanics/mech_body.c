@@ -19,6 +19,7 @@ typedef struct body {
     int s[MAXPORTS];
     int x, v, w, q; /* first state ids */
     double *zero;   /* zeros, for the declaration pass */
+    mech_scales sc; /* stated nominal scales */
 } body;
 
 static void body_free(void *p)
@@ -210,8 +211,24 @@ static int body_declare(bgr_element *el, bgr_model *m)
     body_partials(el, b->zero, &E);
     free(b->zero);
     b->zero = NULL;
-    return E.status;
+    if (E.status != BG_OK) return E.status;
+    /* Nominal magnitudes. Forces: the stated force, else the weight m |g| (what its ports carry
+     * of the body at rest); moments: the stated moment, else that force times the longest arm
+     * max |r_k| (the weight hung at the farthest port); positions: the stated length only (a
+     * global position has no scale of the body's). Velocities and angular velocities keep 1
+     * (the parameters hold no time scale), the quaternion too (its norm is 1). */
+    double F = b->sc.force > 0 ? b->sc.force : b->m * sqrt(mech_dot(b->g, b->g)), rmax = 0;
+    for (int k = 0; k < b->np; k++)
+        rmax = fmax(rmax, sqrt(mech_dot(b->r + 3 * k, b->r + 3 * k)));
+    double M = b->sc.moment > 0 ? b->sc.moment : F * rmax;
+    int st2 = BG_OK;
+    for (int k = 0; k < b->np && st2 == BG_OK; k++)
+        st2 = mech_nominal_port(el, m, b->ev[k], b->dim[k], F, M);
+    for (int i = 0; i < 3 && st2 == BG_OK; i++)
+        st2 = mech_nominal(el, m, b->x + i, b->sc.length);
+    return st2;
 }
+
 
 static int body_residual(const bgr_element *el, double t, const double *y, const double *yp,
                          double *F)
@@ -283,6 +300,11 @@ static const bgr_element_class body_class = {.type = "body",
                                              .residual = body_residual,
                                              .jacobian = body_jacobian,
                                              .destroy = body_free};
+
+mech_scales *mech_body_scales_(bgr_element *el)
+{
+    return el && el->cls == &body_class ? &((body *)el->params)->sc : NULL;
+}
 
 int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const double *inertia,
               const double *gravity, int nports, const double *r, const int *dims)
@@ -376,5 +398,38 @@ int mech_body_energy(const bgr_model *m, int body_id, const double *y, double *k
     mech_mv(b->J, w, Jw);
     *kinetic = 0.5 * b->m * mech_dot(v, v) + 0.5 * mech_dot(w, Jw);
     *potential = -b->m * mech_dot(b->g, x);
+    return BG_OK;
+}
+
+int mech_set_nominal(bgr_model *m, int id, double force, double moment, double length)
+{
+    const char *w = "mech_set_nominal";
+    bgr_element *el = bgr_element_get(m, id);
+    mech_scales *sc = mech_body_scales_(el);
+    if (!sc) sc = mech_parts_scales_(el);
+    if (!sc) sc = mech_axial_scales_(el);
+    if (!sc) sc = mech_beam_scales_(el);
+    if (!m) return BG_ERR_ARGUMENT;
+    if (!sc)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
+                              "element %d is not a mechanical element (body, point mass, support, "
+                              "joint, axial element or beam)",
+                              id);
+    if (bgr_nvars(m) > 0)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_STATE, w,
+                              "element %s/%s: the model is compiled: state nominal scales before "
+                              "bgr_compile",
+                              bgr_component_path(m, el->comp), el->name);
+    const double v[3] = {force, moment, length};
+    for (int i = 0; i < 3; i++)
+        if (!(v[i] >= 0) || !isfinite(v[i]))
+            return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
+                                  "element %s/%s: the nominal %s %g must be finite and >= 0 (0: "
+                                  "not stated)",
+                                  bgr_component_path(m, el->comp), el->name,
+                                  i == 0 ? "force" : i == 1 ? "moment" : "length", v[i]);
+    if (force > 0) sc->force = force;
+    if (moment > 0) sc->moment = moment;
+    if (length > 0) sc->length = length;
     return BG_OK;
 }

@@ -16,13 +16,14 @@
  *     J w' + w x (J w) = sum_k [ r_k x (R^T s_k F_k) + R^T s_k M_k ]    (Euler, body frame)
  *     q' = q (x) (0, w) / 2
  *     v_k = v + R (w x r_k),    omega_k = R w   (6D ports only)
- * as in the seed paper (shared/crane/PAPER.md: dp/dt = F_C in the global frame, dH/dt + w x H = M
+ * as in the crane paper (docs/crane.md: dp/dt = F_C in the global frame, dH/dt + w x H = M
  * in the body frame, v_k = v_C + w x r_Ck), with the port quantities rotated to the global frame
  * here so that joints and springs need no orientation of their own.
  * J: inertia tensor about the mass centre in the body frame (symmetric positive definite). */
 #ifndef MECH_BODY_H
 #define MECH_BODY_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -32,23 +33,45 @@ extern "C" {
 /* Ports 0..nports-1 at body-frame points r (3 per port); dims[k] = 6 (force and moment) or 3
  * (force only; NULL: all 6). gravity: 3 values (NULL: none). Returns the element id or < 0.
  * States are named x0 x1 x2 v0 v1 v2 w0 w1 w2 q0 q1 q2 q3 under the element's path. */
-int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const double *inertia,
-              const double *gravity, int nports, const double *r, const int *dims);
+BG_API int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const double *inertia,
+                     const double *gravity, int nports, const double *r, const int *dims);
 
 /* Initial state (after bgr_compile): position x and velocity v of the mass centre, body
  * angular velocity w (x, v, w NULL: zero), orientation q (NULL: identity); written into bgr_y0.
  * BG_OK, or BG_ERR_ARGUMENT if body is not a body of a compiled model. */
-int mech_body_set(bgr_model *m, int body, const double *x, const double *v, const double *w,
-                  const double *q);
+BG_API int mech_body_set(bgr_model *m, int body, const double *x, const double *v, const double *w,
+                         const double *q);
 
 /* Kinetic energy (1/2 m v.v + 1/2 w.J w) and the potential of gravity (-m g.x) at a state y;
  * BG_OK or BG_ERR_ARGUMENT if body is not a body of a compiled model or a pointer is NULL. */
-int mech_body_energy(const bgr_model *m, int body, const double *y, double *kinetic,
-                     double *potential);
+BG_API int mech_body_energy(const bgr_model *m, int body, const double *y, double *kinetic,
+                            double *potential);
 
 /* Variable ids of the states (after bgr_compile): first of x, v, w, q; -1 if body is not a body
  * of a compiled model or which is not one of 'x', 'v', 'w', 'q'. */
-int mech_body_var(const bgr_model *m, int body, char which);
+BG_API int mech_body_var(const bgr_model *m, int body, char which);
+
+/* Nominal magnitudes (bgr_declare_nominal: the solver's absolute tolerance of an unknown is atol
+ * times its nominal) of the unknowns of a mechanical element: body, point mass, support,
+ * spherical or revolute joint, spring, truss, rope or beam element. Stated before bgr_compile:
+ * force (N) for its port forces (a support's or joint's reactions), moment (N m) for its port
+ * moments (and a revolute joint's drive torque), length (m) for its positions (body and point
+ * mass x, the vector d of an axial element); 0 keeps what the element has (a later call replaces
+ * a stated value). What each element declares from its own parameters:
+ *   body          forces m |g| (with gravity: its weight), moments that force times its longest
+ *                 port arm max |r_k|; positions only when a length is stated
+ *   point mass    forces m |g|; positions only when stated
+ *   axial         d: L0 (|d| is the member's length); forces only when stated (the stiffness
+ *                 times a deformation the parameters do not give, or the weight it carries)
+ *   beam element  forces only when stated (mech_beam_chain states the chain's weight rho A L |g|
+ *                 when it has gravity); moments that force times L0 (the element's
+ *                 equilibrium ties its end moments to its shear forces over L0)
+ *   support, joints   only what is stated (the reactions depend on what they carry)
+ * Velocities, angular velocities and quaternions keep 1 (no time scale among the parameters;
+ * |q| = 1); a bond shared by two elements gets the larger of their declarations. BG_OK,
+ * BG_ERR_ARGUMENT (id not a mechanical element, a value < 0 or not finite), BG_ERR_STATE (model
+ * compiled). */
+BG_API int mech_set_nominal(bgr_model *m, int id, double force, double moment, double length);
 
 #ifdef __cplusplus
 }

@@ -16,6 +16,7 @@ typedef struct part {
     /* ids filled at declaration */
     int f[3], e[3], s[3]; /* first flow / effort id and orientation of each port */
     int x, v, q;          /* states (point mass), quaternion of body A (revolute) */
+    mech_scales sc;       /* stated nominal scales */
 } part;
 
 enum { PART_MASS, PART_SUPPORT, PART_SPHERICAL, PART_REVOLUTE };
@@ -209,8 +210,23 @@ static int part_declare(bgr_element *el, bgr_model *m)
     mech_emit E = {1, el, m, NULL, 0, BG_OK};
     part_partials(el, zero, &E);
     free(zero);
-    return E.status;
+    if (E.status != BG_OK) return E.status;
+    /* Nominal magnitudes. A point mass: forces the stated force, else its weight m |g| (what
+     * its port carries at rest); positions the stated length. A support's or joint's reactions
+     * depend on what it carries, not on its parameters: the stated force and moment only (a
+     * revolute joint's drive torque is a moment too). Velocities keep 1 (no time scale). */
+    double F = p->sc.force;
+    if (p->kind == PART_MASS && !(F > 0)) F = p->m * sqrt(mech_dot(p->g, p->g));
+    for (int k = 0; k < el->nports && st == BG_OK; k++)
+        st = mech_nominal_port(el, m, p->e[k], bgr_port_dim(el, m, k) == 1 ? 0 : p->dim, F,
+                               p->sc.moment);
+    if (p->kind == PART_REVOLUTE && p->drive && st == BG_OK)
+        st = mech_nominal(el, m, p->e[2], p->sc.moment);
+    for (int i = 0; p->kind == PART_MASS && i < 3 && st == BG_OK; i++)
+        st = mech_nominal(el, m, p->x + i, p->sc.length);
+    return st;
 }
+
 
 static int part_residual(const bgr_element *el, double t, const double *y, const double *yp,
                          double *F)
@@ -282,6 +298,14 @@ static const bgr_element_class support_class = PART_CLASS("support");
 static const bgr_element_class spherical_class = PART_CLASS("spherical joint");
 static const bgr_element_class revolute_class = PART_CLASS("revolute joint");
 #undef PART_CLASS
+
+mech_scales *mech_parts_scales_(bgr_element *el)
+{
+    return el && (el->cls == &mass_class || el->cls == &support_class ||
+                  el->cls == &spherical_class || el->cls == &revolute_class)
+               ? &((part *)el->params)->sc
+               : NULL;
+}
 
 static part *part_new(bgr_model *m, int kind, int dim)
 {

@@ -15,10 +15,11 @@
  * (s_B M_B is the moment on the joint at B, so body B receives s_d e_d about a.) Power is
  * conserved: the bodies receive s_d e_d f_d, the drive's input. The reactions (forces
  * and the moments across the axis) are index-2 unknowns; velocity-level constraints as in the
- * paper (shared/crane/PAPER.md). */
+ * paper (docs/crane.md). */
 #ifndef MECH_PARTS_H
 #define MECH_PARTS_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -26,23 +27,24 @@ extern "C" {
 #endif
 
 /* States x0 x1 x2 v0 v1 v2; gravity may be NULL. */
-int mech_point_mass(bgr_model *m, bgr_comp c, const char *name, double mass, const double *gravity);
-int mech_point_mass_set(bgr_model *m, int id, const double *x, const double *v);
+BG_API int mech_point_mass(bgr_model *m, bgr_comp c, const char *name, double mass,
+                           const double *gravity);
+BG_API int mech_point_mass_set(bgr_model *m, int id, const double *x, const double *v);
 /* Kinetic energy and the potential of gravity (-m g.x) at a state y (BG_ERR_ARGUMENT if id is
  * not a point mass of a compiled model, or a pointer is NULL). */
-int mech_point_mass_energy(const bgr_model *m, int id, const double *y, double *kinetic,
-                           double *potential);
+BG_API int mech_point_mass_energy(const bgr_model *m, int id, const double *y, double *kinetic,
+                                  double *potential);
 
-int mech_support(bgr_model *m, bgr_comp c, const char *name, int dim);
+BG_API int mech_support(bgr_model *m, bgr_comp c, const char *name, int dim);
 
 /* dim 3 or 6: ports 0 (A) and 1 (B). */
-int mech_spherical(bgr_model *m, bgr_comp c, const char *name, int dim);
+BG_API int mech_spherical(bgr_model *m, bgr_comp c, const char *name, int dim);
 
 /* Ports 0 (A, 6D), 1 (B, 6D) and, if drive, 2 (1D: relative rotation rate and drive torque).
  * body_a: the element id of the body whose frame carries the axis axis_a (-1: axis_a is a fixed
  * global axis). */
-int mech_revolute(bgr_model *m, bgr_comp c, const char *name, int body_a, const double *axis_a,
-                  int drive);
+BG_API int mech_revolute(bgr_model *m, bgr_comp c, const char *name, int body_a,
+                         const double *axis_a, int drive);
 
 #ifdef __cplusplus
 }

@@ -4,18 +4,20 @@
  * with theta' = w_a, so that it keeps counting past +-pi (no wrap-around, no kink):
  *     theta' - (R w).a = 0,     w_a - (R w).a = 0.
  * theta starts at its initial value (bgr_y0; 0 by default). Used for the crane's platform angle
- * and rate (shared/crane/PAPER.md, the PID measurement). The outputs are bgr_ref
+ * and rate (docs/crane.md, the PID measurement). The outputs are bgr_ref
  * {BGR_STATE, id, 0} (theta) and {BGR_OWN, id, 0} (w_a). */
 #ifndef MECH_SENSOR_H
 #define MECH_SENSOR_H
 
+#include "bg_api.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-int mech_rotation_sensor(bgr_model *m, bgr_comp c, const char *name, int body, const double *axis);
+BG_API int mech_rotation_sensor(bgr_model *m, bgr_comp c, const char *name, int body,
+                                const double *axis);
 
 #ifdef __cplusplus
 }

@@ -13,7 +13,9 @@
  *    effect (the kinematics q' = q (x) (0, w)/2 preserves |q| exactly; BDF changes it by about
  *    the tolerance per step); dR/dq_k = (dN/dq_k - 2 q_k R)/(q.q).
  *    Reference: J. Diebel, "Representing attitude: Euler angles, unit quaternions, and rotation
- *    vectors" (Stanford, 2006), sec. 6. */
+ *    vectors" (Stanford, 2006), sec. 6.
+ * 4. Nominal magnitudes (bgr_declare_nominal): the scales stated for an element through
+ *    mech_set_nominal (mech_body.h), kept in its parameters, and the declaration helpers. */
 #ifndef MECH_UTIL_H
 #define MECH_UTIL_H
 
@@ -37,6 +39,38 @@ static inline void mech_dep(mech_emit *e, int row, int var, int wrt_yp, double v
     } else {
         e->v[e->n++] = value;
     }
+}
+
+/* Scales stated through mech_set_nominal (0: not stated: the element's own, or none): force (N)
+ * for forces, moment (N m) for moments, length (m) for positions and displacements. */
+typedef struct mech_scales {
+    double force, moment, length;
+} mech_scales;
+
+/* The stated scales of element el if it is one of the file's classes, else NULL (one per source
+ * file, for mech_set_nominal). */
+mech_scales *mech_body_scales_(bgr_element *el);
+mech_scales *mech_parts_scales_(bgr_element *el);
+mech_scales *mech_axial_scales_(bgr_element *el);
+mech_scales *mech_beam_scales_(bgr_element *el);
+
+/* Declares the nominal magnitude nom of unknown var (nothing if nom is no scale, i.e. not > 0,
+ * or var < 0); BG_OK or the status. */
+static inline int mech_nominal(bgr_element *el, bgr_model *m, int var, double nom)
+{
+    if (var < 0 || !(nom > 0) || !isfinite(nom)) return BG_OK;
+    return bgr_declare_nominal(el, m, var, nom);
+}
+
+/* The same for the effort of a port of dimension dim (3 or 6) whose first effort id is e0: force
+ * for its forces (components 0..2), moment for its moments (3..5). */
+static inline int mech_nominal_port(bgr_element *el, bgr_model *m, int e0, int dim, double force,
+                                    double moment)
+{
+    int st = BG_OK;
+    for (int i = 0; i < dim && st == BG_OK && e0 >= 0; i++)
+        st = mech_nominal(el, m, e0 + i, i < 3 ? force : moment);
+    return st;
 }
 
 /* c = a x b */

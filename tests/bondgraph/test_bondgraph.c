@@ -16,6 +16,9 @@
  *   7. bad input: unconnected port, dimension mismatch, port used twice, duplicate names,
  *      invalid names and ports, non-square custom elements, dangling signals, compiling twice,
  *      changes after compilation, empty model: status codes and messages naming the culprit;
+ *   8. nominal magnitudes: declarations reach dae_problem.nominal (two declarations of one
+ *      unknown: the largest; undeclared: 1; a constant Se: |E|), bgr_set_nominal overrides,
+ *      bad values and variables are refused with messages naming the element and the unknown;
  *   and the uniqueness of the names of unknowns and equations in every model built here.
  * Measured numbers are printed as TAP diagnostics. */
 #ifndef _POSIX_C_SOURCE
@@ -1288,6 +1291,165 @@ static void test_errors(void)
 
 /* ------------------------------------------------------------------- main ---- */
 
+/* ------------------------------------------------------- nominal magnitudes ---- */
+
+/* A one-port element that declares nominal magnitudes of its bond's effort and flow (0: none):
+ * a source e = 3 (sink = 0) or a sink f_in = e / 2 (sink = 1); out_of_range declares variable
+ * n (one past the last). */
+typedef struct nomel {
+    int sink, out_of_range;
+    double e_nom, f_nom;
+    int e, f, s;
+} nomel;
+
+static int nomel_declare(bgr_element *el, bgr_model *m)
+{
+    nomel *q = el->params;
+    q->e = bgr_ev(el, m, 0, 0);
+    q->f = bgr_fv(el, m, 0, 0);
+    q->s = el->sign[0];
+    int st = bgr_declare_equations(el, m, 1, NULL);
+    if (!st) st = bgr_declare_dep(el, m, 0, q->e, 0);
+    if (!st && q->sink) st = bgr_declare_dep(el, m, 0, q->f, 0);
+    if (!st && q->e_nom != 0) st = bgr_declare_nominal(el, m, q->e, q->e_nom);
+    if (!st && q->f_nom != 0) st = bgr_declare_nominal(el, m, q->f, q->f_nom);
+    if (!st && q->out_of_range) st = bgr_declare_nominal(el, m, bgr_nvars(m), 2.0);
+    return st;
+}
+
+static int nomel_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *F)
+{
+    (void)t, (void)yp;
+    const nomel *q = el->params;
+    F[0] = q->sink ? q->s * y[q->f] - 0.5 * y[q->e] : y[q->e] - 3.0;
+    return 0;
+}
+
+static int nomel_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *v)
+{
+    (void)t, (void)y, (void)yp;
+    const nomel *q = el->params;
+    v[0] = q->sink ? -0.5 : 1.0;
+    if (q->sink) v[1] = q->s;
+    return 0;
+}
+
+static const bgr_element_class nomel_class = {.type = "nomtest",
+                                              .declare = nomel_declare,
+                                              .residual = nomel_residual,
+                                              .jacobian = nomel_jacobian,
+                                              .destroy = free};
+
+static int add_nomel(bgr_model *m, const char *name, int sink, double e_nom, double f_nom,
+                     int out_of_range)
+{
+    nomel *q = calloc(1, sizeof *q);
+    if (!q) return BG_ERR_MEMORY;
+    q->sink = sink;
+    q->e_nom = e_nom;
+    q->f_nom = f_nom;
+    q->out_of_range = out_of_range;
+    static const int dims[1] = {1};
+    return bgr_element_add(m, 0, name, &nomel_class, q, 1, dims, 0, NULL, 0, NULL);
+}
+
+/* "src" (source, effort nominal e_src) -> "snk" (sink, effort nominal e_snk, flow f_snk) through
+ * bond "b"; a second part: Se of -7e6 -> C (stiffness 2) through bond "bc". Model "nom". */
+static bgr_model *build_nom(double e_src, double e_snk, double f_snk, int out_of_range)
+{
+    bgr_model *m = bgr_model_create("nom");
+    double v = -7e6;
+    int a = add_nomel(m, "src", 0, e_src, 0, 0), b = add_nomel(m, "snk", 1, e_snk, f_snk, out_of_range);
+    int S = bgr_Se(m, 0, "S", 1, &v), C = bgr_C(m, 0, "C", 1, 2.0);
+    if (a < 0 || b < 0 || S < 0 || C < 0 ||
+        bgr_bond(m, 0, "b", 1, P(m, a, 0), P(m, b, 0), NULL, NULL) < 0 ||
+        bgr_bond(m, 0, "bc", 1, P(m, S, 0), P(m, C, 0), NULL, NULL) < 0) {
+        tap_diag("building the nominal test model: %s", msg(m));
+        bgr_model_free(&m);
+    }
+    return m;
+}
+
+static void test_nominals(void)
+{
+    /* declarations: the largest of two wins (5 and 20 on b/e), a single one is kept even below 1
+     * (0.25 on b/f), a constant Se declares |E| (7e6 on bc/e), the rest is 1 */
+    bgr_model *m = build_nom(5.0, 20.0, 0.25, 0);
+    tap_ok(m && bgr_nominals(m) == NULL, "bgr_nominals is NULL before compilation");
+    int st = m ? bgr_compile(m) : BG_ERR_MEMORY;
+    if (!tap_ok(st == BG_OK, "nominal model compiles")) {
+        if (m) tap_diag("%s", msg(m));
+        bgr_model_free(&m);
+        return;
+    }
+    const double *nom = bgr_nominals(m);
+    dae_problem p;
+    int vbe = vid(m, "nom/b/e"), vbf = vid(m, "nom/b/f"), vce = vid(m, "nom/bc/e");
+    int vcf = vid(m, "nom/bc/f"), vq = vid(m, "nom/C/q");
+    tap_ok(bgr_dae_problem(m, &p) == BG_OK && nom && p.nominal == nom,
+           "bgr_dae_problem passes the model's nominals as dae_problem.nominal");
+    tap_ok(nom && vbe >= 0 && nom[vbe] == 20.0,
+           "two declarations of b/e (5 and 20, one from each end): the largest, %g", at(nom, vbe));
+    tap_ok(nom && vbf >= 0 && nom[vbf] == 0.25,
+           "one declaration of b/f below 1 is kept: %g (want 0.25)", at(nom, vbf));
+    tap_ok(nom && vce >= 0 && nom[vce] == 7e6,
+           "a constant Se of -7e6 declares |E| for its effort: %g", at(nom, vce));
+    tap_ok(nom && vcf >= 0 && vq >= 0 && nom[vcf] == 1.0 && nom[vq] == 1.0,
+           "undeclared unknowns (the C's flow and state) get 1: %g, %g", at(nom, vcf), at(nom, vq));
+    /* the solver takes them: a solver made from the problem works */
+    dae_options o;
+    dae_options_default(&o);
+    bg_error err = {0};
+    dae_solver *s = dae_create(&p, &o, &err);
+    tap_ok(s != NULL, "dae_create accepts the model's nominals %s", err.message);
+    dae_free(&s);
+    /* the override after compilation */
+    tap_ok(bgr_set_nominal(m, vq, 3e-3) == BG_OK && nom[vq] == 3e-3 && p.nominal[vq] == 3e-3,
+           "bgr_set_nominal overrides (C/q: %g) and the problem sees it", at(nom, vq));
+    tap_ok(bgr_set_nominal(m, vbe, 1.0) == BG_OK && nom[vbe] == 1.0,
+           "bgr_set_nominal may lower a declared value (b/e back to 1)");
+    static const double bad[4] = {0.0, -2.0, NAN, INFINITY};
+    for (int k = 0; k < 4; k++) {
+        st = bgr_set_nominal(m, vq, bad[k]);
+        tap_ok(st == BG_ERR_ARGUMENT && contains(msg(m), "nom/C/q") && nom[vq] == 3e-3,
+               "bgr_set_nominal(%g) is BG_ERR_ARGUMENT naming the unknown, value kept (%s)",
+               bad[k], msg(m));
+    }
+    tap_ok(bgr_set_nominal(m, -1, 1.0) == BG_ERR_ARGUMENT &&
+               bgr_set_nominal(m, bgr_n(m), 1.0) == BG_ERR_ARGUMENT,
+           "bgr_set_nominal with a variable out of range: BG_ERR_ARGUMENT (%s)", msg(m));
+    tap_ok(bgr_set_nominal(NULL, 0, 1.0) == BG_ERR_ARGUMENT && bgr_nominals(NULL) == NULL,
+           "NULL model: bgr_set_nominal BG_ERR_ARGUMENT, bgr_nominals NULL");
+    /* outside declare() */
+    bgr_element *el = bgr_element_get(m, 0);
+    tap_ok(bgr_declare_nominal(el, m, 0, 2.0) == BG_ERR_STATE,
+           "bgr_declare_nominal after compilation: BG_ERR_STATE (%s)", msg(m));
+    bgr_model_free(&m);
+
+    m = build_nom(5.0, 20.0, 0.25, 0);
+    tap_ok(m && bgr_set_nominal(m, 0, 2.0) == BG_ERR_STATE,
+           "bgr_set_nominal before compilation: BG_ERR_STATE (%s)", m ? msg(m) : "");
+    bgr_model_free(&m);
+
+    /* bad declarations are refused, naming the element and the unknown */
+    for (int k = 0; k < 4; k++) {
+        m = build_nom(5.0, bad[k], 0, 0);
+        st = m ? bgr_compile(m) : BG_ERR_MEMORY;
+        tap_ok(st == BG_ERR_ARGUMENT && contains(msg(m), "nom/snk") && contains(msg(m), "nom/b/e"),
+               "declaring a nominal of %g: bgr_compile BG_ERR_ARGUMENT naming element and unknown "
+               "(%s)",
+               bad[k], m ? msg(m) : "");
+        bgr_model_free(&m);
+    }
+    m = build_nom(5.0, 20.0, 0, 1);
+    st = m ? bgr_compile(m) : BG_ERR_MEMORY;
+    tap_ok(st == BG_ERR_ARGUMENT && contains(msg(m), "nom/snk") && contains(msg(m), "out of range"),
+           "declaring a nominal of a variable out of range: BG_ERR_ARGUMENT (%s)", m ? msg(m) : "");
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     double t0 = now();
@@ -1312,6 +1474,8 @@ int main(void)
            names_models, names_eq_dups, names_eq_dups ? ", e.g. " : "", names_eq_example);
     tap_diag("7. bad input");
     test_errors();
+    tap_diag("8. nominal magnitudes of the unknowns");
+    test_nominals();
     tap_diag("total %.2f s", now() - t0);
     return tap_done();
 }

@@ -1,9 +1,10 @@
-/* The closed hydraulic circuit of the crane's drive (PAPER.md, Fig. 4): a variable-displacement
- * pump (hyd_pump) driven at constant speed feeds a motor (hyd_motor) through a high-pressure line
- * (hyd_volume) with a cross-line leak (hyd_leakage); the low side is held at the charge pressure
- * by a tank (hyd_tank); the motor drives an inertia (rot_inertia) with viscous load friction
- * (rot_damper) through a gear (rot_gear). Steady state against hand-computed values, power
- * conservation of the gear, the power balance of the whole circuit, and the analytic Jacobian. */
+/* The closed hydraulic circuit of the crane's drive (docs/crane.md, the paper's Fig. 4): a
+ * variable-displacement pump (hyd_pump) driven at constant speed feeds a motor (hyd_motor)
+ * through a high-pressure line (hyd_volume) with a cross-line leak (hyd_leakage); the low side is
+ * held at the charge pressure by a tank (hyd_tank); the motor drives an inertia (rot_inertia)
+ * with viscous load friction (rot_damper) through a gear (rot_gear). Steady state against
+ * hand-computed values, power conservation of the gear, the power balance of the whole circuit,
+ * and the analytic Jacobian. */
 #include "cmptest.h"
 #include "hyd_motor.h"
 #include "hyd_pump.h"

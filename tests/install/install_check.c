@@ -1,9 +1,9 @@
-/* Built by tools/test.sh against the installed library through pkg-config: solves a 3x3 system
- * with KLU and checks the answer. */
+/* Built by tools/test.sh against the installed library through pkg-config (bgdae.pc), with a
+ * single header: solves a 3x3 system with KLU and checks the answer. */
 #include <math.h>
 #include <stdio.h>
 
-#include <bg_linsol.h>
+#include <bgdae/bg_linsol.h>
 
 int main(void)
 {

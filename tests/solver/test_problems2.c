@@ -4,7 +4,7 @@
  * differences, the published reference end values. What is asserted, for each problem:
  *   - the table entry: found by name, kinds equal dae_classify's on the declared patterns (a
  *     variable is differential iff its dF/dy' column is not empty), the scored components of the
- *     README, breakpoints ascending inside (t0, tend);
+ *     IVP Test Set (docs/testset.md), breakpoints ascending inside (t0, tend);
  *   - the analytic Jacobians dF/dy and dF/dy' against central differences (bp_check_jacobian) at
  *     (t0, y0, yp0) and at a perturbed point (plus, for pump, points in the other regions of the
  *     transistor charge model);
@@ -62,7 +62,7 @@ static void test_table(void)
                p->name, nalg2);
         sp_csc_free(&jy);
         sp_csc_free(&jyp);
-        /* the README's scored components */
+        /* the scored components (docs/testset.md) */
         int sc = 1;
         for (int j = 0; j < p->n; j++) {
             int want = 1;
@@ -72,8 +72,8 @@ static void test_table(void)
             sc = sc && (p->scored ? p->scored[j] != 0 : 1) == want;
         }
         tap_ok(sc && p->yref && p->ref_source && p->names,
-               "table: %s: reference (%s), names and scored components as in the README", p->name,
-               p->ref_source ? p->ref_source : "none");
+               "table: %s: reference (%s), names and scored components as in docs/testset.md",
+               p->name, p->ref_source ? p->ref_source : "none");
         int bpok = 1;
         for (int k = 0; k < p->nbreakpoints; k++)
             bpok = bpok && p->breakpoints[k] > p->t0 && p->breakpoints[k] < p->tend &&
@@ -339,8 +339,9 @@ typedef struct expect {
  *   periods near 2e-4 s): the global error of their velocities adds up over the steps (no
  *   contraction) and ends far above the tolerance (vq3, vq4: 2e-5 absolute with atol = 1e-6,
  *   1e-4 with atol = 1e-8). IDA does the same (mescd 3.74 at A); MEBDFI's published runs reach
- *   scd 0.08 at 1e-6. The IVP Test Set's own mescd for crank is over y1..y7: that one gets the
- *   plain bound 4.5 in both conventions (measured 6.2..6.5 at A, 5.8 at B). mescd over y1..y14
+ *   scd 0.08 at 1e-6 (docs/mebdfi_stats.md; that scd includes the velocities). The IVP Test
+ *   Set's own mescd for crank is over y1..y7: that one gets the plain bound 4.5 in both
+ *   conventions (measured 6.2..6.5 at A, 5.8 at B). mescd over y1..y14
  *   is held to 3.5 at A (measured 3.8..4.4 over the solver revisions of this work) and to 1.5
  *   at B (measured 2.1..2.4, atol/rtol = 1e-2 makes the denominators of the velocities 1e-2),
  *   scd (relative errors of y1..y7, q ~ 1e-5 against atol = 1e-6) to 2.0 at A (measured 2.7).
