@@ -4,10 +4,12 @@
  *
  *   bench [--problems LIST|none] [--solvers LIST] [--rtols LIST] [--repeat K] [--stability]
  *         [--quick] [--out DIR] [--crane-horizon T] [--crane-realtime K] [--scaling LIST|none]
- *         [--crane-scene FILE] [--stability-filter TEXT] [--strict] [--help]
+ *         [--crane-scene FILE] [--stability-filter TEXT] [--strict] [--crane-full]
+ *         [--crane-full-scene FILE] [--crane-full-rtols LIST] [--help]
  *
  * Problems (default: all): ap102, pendulum2, robertson, vdp_scaled, hires, lin2, smooth_ode,
- * kinks, the IVP Test Set's crank, pump, transamp, chemakzo, nand (bench/problems.h), and crane:
+ * kinks, the IVP Test Set's crank, pump, transamp, chemakzo, nand, the undamped oscillatory
+ * osc_chain and rotating_beam (bench/problems.h), and crane:
  * the paper scene (crane_scene_default, or --crane-scene FILE) from its static equilibrium over
  * [0, T] (--crane-horizon, default 1 s, --quick 0.1 s), reference: our own run at rtol 1e-11
  * checked against IDA-KLU at the same tolerance (bench_crane.h). Solvers (default: all):
@@ -28,7 +30,15 @@
  * the boom elements, the target's measure, and against the unknowns),
  * realtime.csv (the paper scene over its full t_end, 20 s, K = --crane-realtime runs, default 5,
  * 0 with --quick: real-time factor, peak memory, bookkeeping fraction) and, with --stability,
- * stability.csv (bench_stab.h; --stability-filter runs the cases whose name contains TEXT).
+ * stability.csv (bench_stab.h; --stability-filter runs the cases whose name contains TEXT),
+ * steps_vs_tol.csv (steps of every problem, solver and tolerance, flagged MORE STEPS where a
+ * looser tolerance took more than 5 % more steps than a tighter one), mebdfi_compare.csv (the
+ * published MEBDFI statistics of docs/mebdfi_stats.md beside runs of bgdae-klu with the
+ * drivers' tolerance conventions, bench_mebdfi.h) and, with --crane-full, crane_wp.csv (the
+ * crane scene crane/scenes/paper-undamped.ini, or --crane-full-scene FILE, over its full 20 s:
+ * ours and IDA at rtol 1e-4 .. 1e-9, or --crane-full-rtols LIST, against ours at 1e-10, IDA
+ * restarted at each breakpoint from consistent values; bench_crane.h; tools/run.sh asks for
+ * it, minutes per run).
  * --problems none skips the work-precision runs (and, unless asked for, the crane's scaling and
  * real-time runs).
  *

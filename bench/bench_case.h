@@ -26,7 +26,7 @@ typedef void (*bench_score_fn)(const bench_case *bc, const double *y, const doub
 typedef double (*bench_drift_fn)(const bench_case *bc, double t, const double *y, const double *yp);
 
 struct bench_case {
-    char name[64], title[200];
+    char name[64], title[256];
     char ref_source[400]; /* where the reference comes from, for the report */
     int n;
     double t0, tend;
@@ -36,6 +36,7 @@ struct bench_case {
     double *breakpoints; /* inside (t0, tend), ascending (owned), nbreakpoints of them */
     int nbreakpoints;
     int exclude_alg; /* ours: index-1 algebraic unknowns out of the error test too */
+    int stability_guard; /* ours: options.stability_guard (the crane: as its scene says) */
     /* tolerances: atol = atol_factor * rtol, or (atol_fn) a scalar and a vector */
     double atol_factor;
     void (*atol_fn)(const bench_case *bc, double rtol, double *atol, double *atolv);

@@ -121,9 +121,9 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
     bgr_get_stats(m, &st);
     snprintf(bc->title, sizeof bc->title,
              "rotary crane, scene %s, %d boom elements, %s start, [0, %g] s (%d differential, %d "
-             "index-1, %d index-2 unknowns)",
+             "index-1, %d index-2 unknowns), our stability guard %s",
              s.name, s.boom_elements, settle ? "static-equilibrium" : "geometric", tend,
-             st.differential, st.algebraic, st.index2);
+             st.differential, st.algebraic, st.index2, s.stability_guard ? "on" : "off");
     snprintf(bc->ref_source, sizeof bc->ref_source, "none");
     bc->t0 = 0;
     bc->tend = tend;
@@ -148,6 +148,7 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
     memcpy(bc->ys, bc->y0, sz);
     memcpy(bc->yps, bc->yp0, sz);
     bc->exclude_alg = 1;
+    bc->stability_guard = s.stability_guard; /* as crane/crane.c runs the scene */
     bc->atol_factor = s.rtol > 0 ? s.atol / s.rtol : 1.0;
     bc->score = crane_score;
     bc->drift = crane_drift;
@@ -290,6 +291,7 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
             dae_options_default(&o);
             o.rtol = o.atol = 1e-6;
             o.exclude_alg = 1;
+            o.stability_guard = bc.stability_guard;
             o.has_t_stop = 1;
             o.t_stop = t_max;
             o.max_steps = 10000000;
@@ -460,6 +462,7 @@ int bench_crane_realtime_child(const crane_scene *s0)
     o.rtol = s.rtol;
     o.atol = s.atol;
     o.exclude_alg = 1;
+    o.stability_guard = bc.stability_guard;
     o.has_t_stop = 1;
     o.t_stop = s.t_end;
     o.breakpoints = bc.breakpoints;

@@ -108,6 +108,7 @@ void crane_scene_default(crane_scene *s)
     s->atol = 1e-6;
     s->output_step = 1e-3;
     s->nominal_scales = 1;
+    s->stability_guard = 1;
 }
 
 static int fail_here(bg_error *err, const char *what, bgr_model *m)

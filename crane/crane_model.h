@@ -73,6 +73,10 @@ typedef struct crane_scene {
                          * absolute tolerance of unknown i is atol * nominal_i: a millionth of a
                          * pressure's 35 MPa, of a beam force's 0.85 MN, ... with atol = 1e-6);
                          * 0: all 1, atol in SI units for every unknown (the old behaviour) */
+    int stability_guard; /* 1: dae_options.stability_guard, the order lowered to 2 where the
+                          * boom's and the lines' undamped fast modes hold BDF orders 3..5 at
+                          * their stability limit (numerical dissipation of those modes); 0: the
+                          * order follows the error estimates alone */
 } crane_scene;
 
 /* The paper scene's defaults (docs/crane.md, with the choices stated there and in

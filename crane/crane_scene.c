@@ -146,6 +146,9 @@ static const key_def KEYS[] = {
     KBOOL("solver", "nominal_scales", nominal_scales,
           "absolute tolerance of each unknown atol times its nominal magnitude (false: atol in SI "
           "units)"),
+    KBOOL("solver", "stability_guard", stability_guard,
+          "order lowered to 2 where undamped fast modes hold BDF orders 3..5 at their stability "
+          "limit, which damps them (false: the order follows the error estimates alone)"),
 };
 #define NKEYS ((int)(sizeof KEYS / sizeof *KEYS))
 

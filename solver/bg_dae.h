@@ -182,6 +182,9 @@ typedef struct dae_stats {
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
     long restarts;                 /* restarts at unannounced jumps (see dae_solve_to) */
     long stab_lowered;             /* times the stability guard lowered the order */
+    long newton_fails_stale;       /* Newton failures on a matrix from an earlier step, each
+                                      answered by a fresh Jacobian at the same step (not counted
+                                      in newton_fails) */
     double t_last_restart;         /* time of the last of them (NAN: none) */
 } dae_stats;
 

@@ -206,7 +206,7 @@ int daei_largest_weighted(const dae_solver *s, const double *v, const double *w)
         (st)->steps_at_order[2], (st)->steps_at_order[3], (st)->steps_at_order[4],                 \
         (st)->steps_at_order[5], (st)->steps ? (st)->h_min_used : 0.0, (st)->h_max_used,           \
         (st)->max_drift, (st)->init_residual, (st)->rcond_min, (st)->t_res, (st)->t_jac,           \
-        (st)->t_linalg, (st)->restarts
+        (st)->t_linalg, (st)->restarts, (st)->newton_fails_stale, (st)->stab_lowered
 
 int dae_stats_line(const dae_stats *st, char *buf, size_t size)
 {
@@ -216,7 +216,7 @@ int dae_stats_line(const dae_stats *st, char *buf, size_t size)
         "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
         "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
         "h=[%.3g,%.3g] drift=%.3g init_res=%.3g rcond_min=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs "
-        "restarts=%ld",
+        "restarts=%ld stale_fails=%ld stab_lowered=%ld",
         DAE_STATS_FIELDS(st));
 }
 
@@ -226,7 +226,8 @@ int dae_stats_csv_header(char *buf, size_t size)
     return snprintf(buf, size,
                     "steps,rejected,newton,conv_fails,res,res_fd,jac,symbolic,factor,refactor,"
                     "solves,order1,order2,order3,order4,order5,h_min,h_max,max_drift,"
-                    "init_residual,rcond_min,t_res,t_jac,t_linalg,restarts");
+                    "init_residual,rcond_min,t_res,t_jac,t_linalg,restarts,stale_fails,"
+                    "stab_lowered");
 }
 
 int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
@@ -234,7 +235,7 @@ int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
     if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
     return snprintf(buf, size,
                     "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,"
-                    "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld",
+                    "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%ld,%ld",
                     DAE_STATS_FIELDS(st));
 }
 

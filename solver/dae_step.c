@@ -301,6 +301,7 @@ static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
         return RETRY;
     }
     if (nl == NL_RECOVER && !s->jac_current) { /* stale Jacobian: refresh, same step */
+        s->st.newton_fails_stale++;
         s->need_setup = 1;
         return RETRY;
     }

@@ -1293,7 +1293,8 @@ static void test_errors(void)
 
 /* ------------------------------------------------------- nominal magnitudes ---- */
 
-/* A one-port element that declares nominal magnitudes of its bond's effort and flow (0: none):
+/* A one-port element that declares nominal magnitudes of its bond's effort (e_nom, always for
+ * the sink) and flow (f_nom, 0: none):
  * a source e = 3 (sink = 0) or a sink f_in = e / 2 (sink = 1); out_of_range declares variable
  * n (one past the last). */
 typedef struct nomel {
@@ -1311,7 +1312,7 @@ static int nomel_declare(bgr_element *el, bgr_model *m)
     int st = bgr_declare_equations(el, m, 1, NULL);
     if (!st) st = bgr_declare_dep(el, m, 0, q->e, 0);
     if (!st && q->sink) st = bgr_declare_dep(el, m, 0, q->f, 0);
-    if (!st && q->e_nom != 0) st = bgr_declare_nominal(el, m, q->e, q->e_nom);
+    if (!st && (q->sink || q->e_nom != 0)) st = bgr_declare_nominal(el, m, q->e, q->e_nom);
     if (!st && q->f_nom != 0) st = bgr_declare_nominal(el, m, q->f, q->f_nom);
     if (!st && q->out_of_range) st = bgr_declare_nominal(el, m, bgr_nvars(m), 2.0);
     return st;
@@ -1406,10 +1407,12 @@ static void test_nominals(void)
     tap_ok(s != NULL, "dae_create accepts the model's nominals %s", err.message);
     dae_free(&s);
     /* the override after compilation */
-    tap_ok(bgr_set_nominal(m, vq, 3e-3) == BG_OK && nom[vq] == 3e-3 && p.nominal[vq] == 3e-3,
+    st = bgr_set_nominal(m, vq, 3e-3);
+    tap_ok(st == BG_OK && nom[vq] == 3e-3 && p.nominal[vq] == 3e-3,
            "bgr_set_nominal overrides (C/q: %g) and the problem sees it", at(nom, vq));
-    tap_ok(bgr_set_nominal(m, vbe, 1.0) == BG_OK && nom[vbe] == 1.0,
-           "bgr_set_nominal may lower a declared value (b/e back to 1)");
+    st = bgr_set_nominal(m, vbe, 1.0);
+    tap_ok(st == BG_OK && nom[vbe] == 1.0,
+           "bgr_set_nominal may lower a declared value (b/e back to %g)", at(nom, vbe));
     static const double bad[4] = {0.0, -2.0, NAN, INFINITY};
     for (int k = 0; k < 4; k++) {
         st = bgr_set_nominal(m, vq, bad[k]);

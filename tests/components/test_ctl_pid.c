@@ -363,6 +363,42 @@ static void test_jacobian(void)
     bgr_model_free(&L.m);
 }
 
+/* Nominal magnitudes (ctl_pid.h): with limits [-0.5, 2] and Ki = 4 the output's scale is the
+ * range 2 and the integral's 2 / 4 = 0.5; without limits, and for the filter state, nothing
+ * (1). */
+static void test_nominals(void)
+{
+    bgr_model *m = bgr_model_create("nom");
+    int r = sig_step(m, 0, "r", 1.0, 0.0, 1.0, SIG_VALUE), y = sig_constant(m, 0, "y", 0.4, SIG_VALUE);
+    ctl_pid_spec sp = {.kp = 3.0,
+                       .ki = 4.0,
+                       .kd = 0.5,
+                       .reference = {BGR_OWN, r, 0},
+                       .measurement = {BGR_OWN, y, 0},
+                       .derivative_filter = 0.1};
+    int a = ctl_pid(m, 0, "free", &sp);
+    sp.limit = 1;
+    sp.out_min = -0.5;
+    sp.out_max = 2.0;
+    sp.smoothing = 0.01;
+    int b = ctl_pid(m, 0, "limited", &sp);
+    tap_ok(a >= 0 && b >= 0, "nominals: controllers created");
+    if (!compile_ok(m, "nominals")) {
+        bgr_model_free(&m);
+        return;
+    }
+    const double *nom = bgr_nominals(m);
+    int lu = V(m, "nom/limited/out"), li = V(m, "nom/limited/integral");
+    int lz = V(m, "nom/limited/filter"), fu = V(m, "nom/free/out"), fi = V(m, "nom/free/integral");
+    tap_ok(lu >= 0 && nom[lu] == 2.0, "limited output: nominal max(|-0.5|, |2|) = 2 (%g)",
+           lu >= 0 ? nom[lu] : NAN);
+    tap_ok(li >= 0 && nom[li] == 0.5, "limited integral: nominal 2 / Ki = 0.5 (%g)",
+           li >= 0 ? nom[li] : NAN);
+    tap_ok(lz >= 0 && fu >= 0 && fi >= 0 && nom[lz] == 1.0 && nom[fu] == 1.0 && nom[fi] == 1.0,
+           "filter state and the unlimited controller's output and integral: 1");
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_tracking();
@@ -371,5 +407,6 @@ int main(void)
     test_derivative_filter();
     test_arguments();
     test_jacobian();
+    test_nominals();
     return tap_done();
 }

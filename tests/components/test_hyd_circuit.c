@@ -4,7 +4,9 @@
  * held at the charge pressure by a tank (hyd_tank); the motor drives an inertia (rot_inertia)
  * with viscous load friction (rot_damper) through a gear (rot_gear). Steady state against
  * hand-computed values, power conservation of the gear, the power balance of the whole circuit,
- * and the analytic Jacobian. */
+ * and the analytic Jacobian. The nominal magnitudes the components declare (stated pressures and
+ * speeds, the relief valve's full-flow pressure and rated flow, a tank's pressure) against the
+ * rules of their headers applied by hand. */
 #include "cmptest.h"
 #include "hyd_motor.h"
 #include "hyd_pump.h"
@@ -226,6 +228,107 @@ static void test_arguments(void)
     bgr_model_free(&m);
 }
 
+/* Nominal magnitudes of the hydraulic and rotational components: a drive (Sf, 150 rad/s) turns a
+ * pump (command x = 0.5) that feeds a line volume; a motor returns the flow to a 0-junction held
+ * at 1 MPa by a tank; a relief valve (cracking 3e7, full flow 3.5e7 Pa at 0.02 m^3/s) from the
+ * line to the junction; the motor drives an inertia. Stated: pump 3e7 Pa and 150 rad/s, motor
+ * 2.5e7 Pa and 80 rad/s, line 2e7 Pa, inertia 80 rad/s. Every expected value below is the
+ * documented rule applied by hand; a bond seen from two elements gets the larger. */
+static void test_nominals(void)
+{
+    const double Dp = 5e-5, Dm = 1e-4, J = 50.0, wp = 150.0, pL = 1e6;
+    bgr_model *m = bgr_model_create("nh");
+    int drive = bgr_Sf(m, 0, "drive", 1, &wp);
+    int cmd = sig_constant(m, 0, "x", 0.5, SIG_VALUE);
+    int pump = hyd_pump(m, 0, "pump", Dp, 1e-12, (bgr_ref){BGR_OWN, cmd, 0});
+    int line = hyd_volume(m, 0, "line", 3, 1e-3, 1.4e9);
+    int motor = hyd_motor(m, 0, "motor", Dm, 1e-12, 0.0);
+    int low = bgr_zero(m, 0, "low", 4, 1);
+    int tank = hyd_tank(m, 0, "tank", pL);
+    int relief = hyd_relief_valve(m, 0, "relief", 3e7, 3.5e7, 0.02, 1e5);
+    int in = rot_inertia(m, 0, "inertia", J);
+    B(m, "shaft_p", drive, 0, pump, 0);
+    B(m, "pump_out", pump, 2, line, 0);
+    B(m, "motor_in", line, 1, motor, 0);
+    B(m, "relief_in", line, 2, relief, 0);
+    B(m, "relief_out", relief, 1, low, 0);
+    B(m, "motor_out", motor, 1, low, 1);
+    B(m, "charge", tank, 0, low, 2);
+    B(m, "pump_in", low, 3, pump, 1);
+    B(m, "shaft_m", motor, 2, in, 0);
+    /* bad statements first: nothing is changed by them */
+    tap_ok(hyd_pump_set_nominal(m, motor, 1e7, 1.0) == BG_ERR_ARGUMENT &&
+               hyd_motor_set_nominal(m, pump, 1e7, 1.0) == BG_ERR_ARGUMENT &&
+               hyd_volume_set_nominal(m, pump, 1e7) == BG_ERR_ARGUMENT &&
+               rot_inertia_set_nominal(m, line, 1.0) == BG_ERR_ARGUMENT,
+           "the nominal setters refuse an element of another kind (%s)",
+           bgr_model_error(m)->message);
+    int bad = hyd_volume_set_nominal(m, line, -2e7);
+    tap_ok(bad == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "nh/line"),
+           "a negative nominal pressure is refused naming the element (%s)",
+           bgr_model_error(m)->message);
+    bad = hyd_pump_set_nominal(m, pump, 3e7, NAN);
+    tap_ok(bad == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "nh/pump"),
+           "a NaN nominal speed is refused naming the element (%s)", bgr_model_error(m)->message);
+    tap_ok(hyd_pump_set_nominal(m, pump, 3e7, wp) == BG_OK &&
+               hyd_motor_set_nominal(m, motor, 2.5e7, 80.0) == BG_OK &&
+               hyd_volume_set_nominal(m, line, 2e7) == BG_OK &&
+               rot_inertia_set_nominal(m, in, 80.0) == BG_OK,
+           "the nominal setters accept pump, motor, volume and inertia scales");
+    if (!compile_ok(m, "nominal circuit")) {
+        bgr_model_free(&m);
+        return;
+    }
+    tap_ok(hyd_volume_set_nominal(m, line, 1e7) == BG_ERR_STATE,
+           "stating a scale after compilation: BG_ERR_STATE (%s)", bgr_model_error(m)->message);
+    const double *nom = bgr_nominals(m);
+    const double k_p = Dp / (2 * PI), k_m = Dm / (2 * PI);
+    struct {
+        const char *path;
+        double want;
+        const char *why;
+    } t[] = {
+        {"nh/line/p", 2e7, "line pressure: the stated 2e7"},
+        {"nh/pump_out/e", 3e7, "pump outlet: pump 3e7 > line 2e7"},
+        {"nh/motor_in/e", 2.5e7, "motor inlet: motor 2.5e7 > line 2e7"},
+        {"nh/relief_in/e", 3.5e7, "relief inlet: its full-flow pressure 3.5e7 > line 2e7"},
+        {"nh/relief_out/e", 3.5e7, "relief outlet: its full-flow pressure"},
+        {"nh/relief_in/f", 0.02, "relief flow: its rated flow"},
+        {"nh/pump_in/e", 3e7, "pump inlet: the stated pressure"},
+        {"nh/motor_out/e", 2.5e7, "motor outlet: the stated pressure"},
+        {"nh/charge/e", pL, "tank: its pressure (a constant Se)"},
+        {"nh/shaft_p/e", k_p * 3e7, "pump torque Dp p / (2 pi)"},
+        {"nh/shaft_p/f", wp, "pump speed: the stated one and the drive's 150"},
+        {"nh/pump_out/f", k_p * wp, "pump flow Dp w / (2 pi)"},
+        {"nh/motor_in/f", k_m * 80.0, "motor flow Dm w / (2 pi)"},
+        {"nh/shaft_m/e", k_m * 2.5e7, "motor torque Dm p / (2 pi)"},
+        {"nh/shaft_m/f", 80.0, "motor speed"},
+        {"nh/inertia/p", J * 80.0, "inertia momentum J w"},
+        {"nh/inertia/angle", 1.0, "angle: no scale"},
+        {"nh/x/value", 0.5, "constant signal: its value"},
+        {"nh/charge/f", 1.0, "the tank's flow: no scale"},
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        int v = V(m, t[i].path);
+        tap_close(v >= 0 ? nom[v] : NAN, t[i].want, 1e-15, 0, "nominal of %s = %g (%s)",
+                  t[i].path, t[i].want, t[i].why);
+    }
+    bgr_model_free(&m);
+
+    /* unstated: the same circuit keeps 1 (SI) where no parameter gives a scale */
+    m = bgr_model_create("plain");
+    line = hyd_volume(m, 0, "line", 1, 1e-3, 1.4e9);
+    int src = hyd_flow_source(m, 0, "q", 0.0);
+    B(m, "b", src, 0, line, 0);
+    if (compile_ok(m, "volume without a stated pressure")) {
+        nom = bgr_nominals(m);
+        int vp = V(m, "plain/line/p"), ve = V(m, "plain/b/e");
+        tap_ok(vp >= 0 && ve >= 0 && nom[vp] == 1.0 && nom[ve] == 1.0,
+               "a volume without a stated pressure declares nothing: p and its port 1 Pa");
+    }
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     /* 50 cm^3/rev pump at 150 rad/s, 60 % displacement; 100 cm^3/rev motor; 1 l line; gear 10:1
@@ -251,5 +354,6 @@ int main(void)
     run_steady(&P, "with motor friction, reversed bonds");
     test_jacobian();
     test_arguments();
+    test_nominals();
     return tap_done();
 }

@@ -272,6 +272,59 @@ static void test_arguments(void)
     bgr_model_free(&m);
 }
 
+/* Nominal magnitudes (sig_sources.h): the largest |output| the parameters bound, by hand. */
+static void test_nominals(void)
+{
+    bgr_model *m = bgr_model_create("nom");
+    const double pt[3] = {-1.0, 0.0, 2.0}, pv[3] = {1.0, 3.0, 3.0};
+    struct {
+        const char *name;
+        int id;
+        double want;
+        const char *why;
+    } t[] = {
+        {"crane_value", sig_trapezoid(m, 0, "crane_value", 0, 2, 10, 12, 0.5, SIG_VALUE), 0.5,
+         "trapezoid value: its height"},
+        {"crane_rate", sig_trapezoid(m, 0, "crane_rate", 0, 2, 10, 12, 0.5, SIG_RATE), 0.25,
+         "trapezoid rate: 0.5 / 2 s"},
+        {"crane_integral", sig_trapezoid(m, 0, "crane_integral", 0, 2, 10, 12, 0.5, SIG_INTEGRAL),
+         5.0, "trapezoid integral: the area 0.5 (12 + 10 - 2) / 2 = 5 rad"},
+        {"late_rate", sig_trapezoid(m, 0, "late_rate", 1, 3, 5, 9, -2.0, SIG_RATE), 1.0,
+         "trapezoid rate: the steeper ramp, 2 / 2 s"},
+        {"late_integral", sig_trapezoid(m, 0, "late_integral", 1, 3, 5, 9, -2.0, SIG_INTEGRAL),
+         10.0, "trapezoid integral: |area| 2 (9 + 5 - 3 - 1) / 2 = 10"},
+        {"sine_value", sig_sine(m, 0, "sine_value", 3.0, 4.0, 0.3, -1.0, SIG_VALUE), 4.0,
+         "sine value: |a| + |offset|"},
+        {"sine_rate", sig_sine(m, 0, "sine_rate", 3.0, 4.0, 0.3, -1.0, SIG_RATE), 12.0,
+         "sine rate: |a omega|"},
+        {"sine_integral", sig_sine(m, 0, "sine_integral", 3.0, 4.0, 0.3, -1.0, SIG_INTEGRAL), 1.0,
+         "sine integral: unbounded (offset), 1"},
+        {"step_value", sig_step(m, 0, "step_value", 1.0, 2.0, -5.0, SIG_VALUE), 5.0,
+         "step value: the larger |level|"},
+        {"ramp_value", sig_ramp(m, 0, "ramp_value", 1.0, 0.3, 2.0, SIG_VALUE), 1.0,
+         "ramp value: unbounded, 1"},
+        {"ramp_rate", sig_ramp(m, 0, "ramp_rate", 1.0, 0.3, 2.0, SIG_RATE), 0.3,
+         "ramp rate: |slope|"},
+        {"zero", sig_constant(m, 0, "zero", 0.0, SIG_VALUE), 1.0, "constant 0: no scale, 1"},
+        {"pwl_value", sig_pwl(m, 0, "pwl_value", 3, pt, pv, SIG_VALUE), 3.0, "pwl value: max |v|"},
+        {"pwl_rate", sig_pwl(m, 0, "pwl_rate", 3, pt, pv, SIG_RATE), 2.0,
+         "pwl rate: the steepest slope (3 - 1) / 1"},
+        {"pwl_integral", sig_pwl(m, 0, "pwl_integral", 3, pt, pv, SIG_INTEGRAL), 1.0,
+         "pwl integral: ends at 3, unbounded, 1"},
+    };
+    if (!compile_ok(m, "nominal sources")) {
+        bgr_model_free(&m);
+        return;
+    }
+    const double *nom = bgr_nominals(m);
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        int v = bgr_ref_var(m, (bgr_ref){BGR_OWN, t[i].id, 0});
+        tap_close(v >= 0 ? nom[v] : NAN, t[i].want, 1e-14, 0, "nominal of %s = %g (%s)",
+                  t[i].name, t[i].want, t[i].why);
+    }
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_values();
@@ -279,5 +332,6 @@ int main(void)
     test_step_in_solver();
     test_jacobian();
     test_arguments();
+    test_nominals();
     return tap_done();
 }

@@ -6,7 +6,9 @@
  *   - analytic derivatives of the whole crane against central differences;
  *   - prescribed rate: the platform's angle follows the integral of the trapezoid (Eq. 8);
  *   - hydraulic drive: pump flow = motor flow + leakage + compression of the high-pressure line,
- *     and the rate tracks the reference on the plateau. */
+ *     and the rate tracks the reference on the plateau;
+ *   - the nominal scales of the unknowns from the scene's parameters (crane_scene.h), and all
+ *     ones with nominal_scales = false. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -184,7 +186,10 @@ static void test_prescribed(void)
         finish(&r);
         return;
     }
-    tap_ok(r.out[O_DRIFT] < 0.1 * drift6 && drift6 < RTOL * s.boom_length,
+    /* a global error: with the stability guard (the crane's default) BDF2 takes the steps its
+     * local error test allows, and the mismatch reaches a few local tolerances rtol x length
+     * (5 measured) instead of the 1e-3 of one that order 5 at its stability limit left */
+    tap_ok(r.out[O_DRIFT] < 0.1 * drift6 && drift6 < 10 * RTOL * s.boom_length,
            "hinge position mismatch after 3 s: %.2e m at rtol %g, %.2e m at rtol %g", drift6, RTOL,
            r.out[O_DRIFT], 1e-2 * RTOL);
     finish(&r);
@@ -353,9 +358,75 @@ static void test_convergence(void)
            r2, peak(c, 1), peak(c, 2));
 }
 
+/* The nominal scales of the paper crane (crane_scene.h, "Tolerances"), each from the scene's
+ * parameters by the rule stated there, and all ones with nominal_scales = false. */
+static void test_nominal_scales(void)
+{
+    crane_scene s;
+    bg_error err = {0};
+    crane_scene_default(&s);
+    tap_ok(s.nominal_scales == 1, "the paper scene has nominal_scales on by default");
+    crane *c = crane_build(&s, &err);
+    bgr_model *m = crane_model(c);
+    if (!tap_ok(c != NULL, "paper crane builds %s", err.message)) return;
+    const double *nom = bgr_nominals(m);
+    dae_problem p;
+    tap_ok(bgr_dae_problem(m, &p) == BG_OK && p.nominal == nom && nom,
+           "the crane's problem carries the model's nominal scales");
+    double g = s.g, W_load = s.load_mass * g;
+    double W_boom = s.boom_rho * s.boom_A * s.boom_length * g + W_load;
+    double W_all = W_boom + (s.cw_mass + s.platform_mass) * g;
+    double M_all = fmax(W_boom * s.boom_tip_radius, s.cw_mass * g * fabs(s.cw_pos[0]));
+    double p_full = s.relief_pressure + 5e6;
+    struct {
+        const char *path;
+        double want;
+        const char *why;
+    } t[] = {
+        {"crane/hydraulics/line_high/p", p_full, "line pressure: the reliefs' full-flow pressure"},
+        {"crane/hydraulics/b_motor_in/e", p_full, "motor inlet pressure"},
+        {"crane/hydraulics/b_pump_out/f", s.pump_disp * s.pump_speed / (2 * PI),
+         "pump flow: full displacement x drive speed"},
+        {"crane/hydraulics/b_motor_in/f", s.motor_disp * s.ref_rate * s.gear_ratio / (2 * PI),
+         "motor flow: displacement x plateau speed"},
+        {"crane/hydraulics/motor_inertia/p", s.motor_inertia * s.ref_rate * s.gear_ratio,
+         "motor momentum: J x plateau speed"},
+        {"crane/hydraulics/pid/out", s.x_limit, "PID output: the pump's full displacement"},
+        {"crane/b_rope_tip/e2", W_load, "rope force: the load's weight"},
+        {"crane/b_tie_left_tip/e0", W_boom, "tie force: weight of boom and load"},
+        {"crane/boom/ba08/e1", W_boom, "beam force: weight of boom and load"},
+        {"crane/boom/ba08/e4", W_boom * s.boom_length / s.boom_elements,
+         "beam moment: that weight x the element length"},
+        {"crane/b_base/e2", W_all, "slewing joint force: the total weight"},
+        {"crane/b_base/e3", M_all, "slewing joint moment: the larger overturning moment"},
+        {"crane/b_cw/e2", s.cw_mass * g, "counterweight force: its weight"},
+        {"crane/ties_left/d2", crane_tie_length(c), "tie vector: its length"},
+        {"crane/boom/node08/x0", 1.0, "positions: 1 m"},
+        {"crane/boom/node08/v0", 1.0, "velocities: 1 m/s"},
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        int v = bgr_find_var(m, t[i].path);
+        if (v < 0) tap_diag("no variable %s", t[i].path);
+        tap_close(v >= 0 ? nom[v] : NAN, t[i].want, 1e-12, 0, "nominal of %s = %.4g (%s)",
+                  t[i].path, t[i].want, t[i].why);
+    }
+    crane_free(&c);
+
+    s.nominal_scales = 0;
+    c = crane_build(&s, &err);
+    m = crane_model(c);
+    nom = bgr_nominals(m);
+    int ones = 0, n = bgr_n(m);
+    for (int i = 0; nom && i < n; i++)
+        ones += nom[i] == 1.0;
+    tap_ok(c && n > 0 && ones == n, "nominal_scales = 0: all %d nominals are 1 (%d)", n, ones);
+    crane_free(&c);
+}
+
 int main(void)
 {
     test_unreachable();
+    test_nominal_scales();
     test_statics_rigid();
     test_statics_beam();
     test_jacobian();

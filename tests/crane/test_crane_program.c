@@ -279,10 +279,13 @@ static void test_scene_runs(int gnuplot)
                "%s)",
                name, sc[i].rows, sc[i].t_end, rows, why);
         tap_ok(first_line_is(out, "model_stats.txt", "# crane model statistics") &&
-                   file_contains(out, "model_stats.txt", "equations"),
-               "%s: model_stats.txt", name);
+                   file_contains(out, "model_stats.txt", "equations") &&
+                   file_contains(out, "model_stats.txt", "nominal scales by quantity") &&
+                   file_contains(out, "model_stats.txt", "force [N]"),
+               "%s: model_stats.txt (with the nominal scales by quantity)", name);
         tap_ok(first_line_is(out, "solver_stats.txt", "# crane solver statistics") &&
-                   file_contains(out, "solver_stats.txt", "steps="),
+                   file_contains(out, "solver_stats.txt", "steps=") &&
+                   file_contains(out, "solver_stats.txt", "nominal_scales: true"),
                "%s: solver_stats.txt", name);
         tap_ok(first_line_is(out, "status.txt", "status: completed"), "%s: status.txt completed",
                name);

@@ -375,6 +375,32 @@ static void test_parts(void)
     tap_ok(fine > paper, "64 elements make a larger model than 16 (%d > %d)", fine, paper);
 }
 
+/* [solver] nominal_scales: on by default, false turns the scales off, anything but a boolean is
+ * refused naming the key, and crane_scene_write writes it back. */
+static void test_nominal_scales_key(void)
+{
+    crane_scene s, d;
+    bg_error err = {0};
+    crane_scene_default(&d);
+    tap_ok(d.nominal_scales == 1, "nominal_scales defaults to true");
+    int rc = parse_text(&s, "[solver]\nnominal_scales = false ; SI units\n", &err);
+    tap_ok(rc == BG_OK && s.nominal_scales == 0, "[solver] nominal_scales = false parses to 0 %s",
+           err.message);
+    rc = parse_text(&s, "[solver]\nnominal_scales = sometimes\n", &err);
+    tap_ok(rc == BG_ERR_ARGUMENT && strstr(err.message, "nominal_scales") &&
+               strstr(err.message, "boolean"),
+           "nominal_scales = sometimes is refused (%s)", err.message);
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    s = d;
+    s.nominal_scales = 0;
+    crane_scene_write(&s, f);
+    fclose(f);
+    tap_ok(buf && strstr(buf, "nominal_scales = false"), "crane_scene_write writes nominal_scales");
+    free(buf);
+}
+
 int main(void)
 {
     test_keys();
@@ -386,5 +412,6 @@ int main(void)
     test_catalogue();
     test_set_and_check();
     test_parts();
+    test_nominal_scales_key();
     return tap_done();
 }

@@ -1,14 +1,17 @@
 /* Tests of the mechanical components against closed forms and conservation laws: torque-free
  * rigid body (angular momentum and energy, stability of the principal axes), a body on a driven
  * revolute joint (theta = T t^2/(2 I)), the physical pendulum (period and joint reaction),
- * a truss under an end force (F L/(E A)), a rope going slack, and every element's analytic
- * Jacobian against finite differences. */
+ * a truss under an end force (F L/(E A)), a rope going slack, every element's analytic
+ * Jacobian against finite differences, and the nominal magnitudes the elements declare (their
+ * weights, lengths, stated forces and moments, a beam chain's weight) against the documented
+ * rules applied by hand. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bgr_elements.h"
 #include "mech_axial.h"
+#include "mech_beam.h"
 #include "mech_body.h"
 #include "mech_parts.h"
 #include "mech_sensor.h"
@@ -557,6 +560,127 @@ static void test_energies(void)
     bgr_model_free(&m);
 }
 
+/* Nominal magnitudes (mech_set_nominal in mech_body.h), by hand from the documented rules: a body
+ * of 100 kg under gravity with ports at |r| = 1, 5 and 1 m on a driven revolute joint (stated
+ * 3000 N, 7e4 N m) over a support (stated 5000 N, 2e4 N m), a wall support, a truss (stated
+ * 1.5e4 N) to a 10 kg point mass (stated length 0.5 m); a bond seen from two elements gets the
+ * larger declaration. Then a chain of 4 beam elements under gravity: the chain's weight, and a
+ * stated force on one element. */
+static void test_nominals(void)
+{
+    const double g[3] = {0, 0, -9.81}, z[3] = {0, 0, 1}, J[9] = {10, 0, 0, 0, 20, 0, 0, 0, 30};
+    const double r[9] = {0, 0, -1, 3, 4, 0, 1, 0, 0};
+    const int dims[3] = {6, 6, 3};
+    const double W = 100 * 9.81, zero = 0;
+    bgr_model *m = bgr_model_create("nom");
+    int body = mech_body(m, 0, "body", 100, J, g, 3, r, dims);
+    int ground = mech_support(m, 0, "ground", 6), wall = mech_support(m, 0, "wall", 6);
+    int joint = mech_revolute(m, 0, "joint", -1, z, 1);
+    int drive = bgr_Sf(m, 0, "drive", 1, &zero);
+    int tie = mech_truss(m, 0, "tie", 2e11, 1e-4, 2.0, 0);
+    int bob = mech_point_mass(m, 0, "bob", 10, g);
+    int ok = body >= 0 && ground >= 0 && wall >= 0 && joint >= 0 && drive >= 0 && tie >= 0 &&
+             bob >= 0 &&
+             bgr_bond(m, 0, "b_base", 6, bgr_port_of(m, ground, 0), bgr_port_of(m, joint, 0), NULL,
+                      NULL) >= 0 &&
+             bgr_bond(m, 0, "b_slew", 6, bgr_port_of(m, joint, 1), bgr_port_of(m, body, 0), NULL,
+                      NULL) >= 0 &&
+             bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, drive, 0), bgr_port_of(m, joint, 2), NULL,
+                      NULL) >= 0 &&
+             bgr_bond(m, 0, "b_wall", 6, bgr_port_of(m, wall, 0), bgr_port_of(m, body, 1), NULL,
+                      NULL) >= 0 &&
+             bgr_bond(m, 0, "b_tie_a", 3, bgr_port_of(m, body, 2), bgr_port_of(m, tie, 0), NULL,
+                      NULL) >= 0 &&
+             bgr_bond(m, 0, "b_tie_b", 3, bgr_port_of(m, tie, 1), bgr_port_of(m, bob, 0), NULL,
+                      NULL) >= 0;
+    tap_ok(ok, "nominal model built %s", ok ? "" : bgr_model_error(m)->message);
+    int st = mech_set_nominal(m, drive, 1.0, 0, 0);
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "not a mechanical"),
+           "mech_set_nominal on an Sf: BG_ERR_ARGUMENT (%s)", bgr_model_error(m)->message);
+    st = mech_set_nominal(m, tie, -1.0, 0, 0);
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "nom/tie"),
+           "a negative force is refused naming the element (%s)", bgr_model_error(m)->message);
+    st = mech_set_nominal(m, bob, 0, NAN, 0);
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "nom/bob"),
+           "a NaN moment is refused naming the element (%s)", bgr_model_error(m)->message);
+    ok = mech_set_nominal(m, joint, 3000, 7e4, 0) == BG_OK &&
+         mech_set_nominal(m, ground, 5000, 2e4, 0) == BG_OK &&
+         mech_set_nominal(m, tie, 1.5e4, 0, 0) == BG_OK &&
+         mech_set_nominal(m, bob, 0, 0, 0.5) == BG_OK;
+    tap_ok(ok, "mech_set_nominal accepts joint, support, truss and point mass scales");
+    if (!tap_ok(bgr_compile(m) == BG_OK, "nominal model compiles")) {
+        tap_diag("%s", bgr_model_error(m)->message);
+        bgr_model_free(&m);
+        return;
+    }
+    tap_ok(mech_set_nominal(m, tie, 1.0, 0, 0) == BG_ERR_STATE,
+           "mech_set_nominal after compilation: BG_ERR_STATE (%s)", bgr_model_error(m)->message);
+    const double *nom = bgr_nominals(m);
+    struct {
+        const char *path;
+        double want;
+        const char *why;
+    } t[] = {
+        {"nom/b_slew/e0", 3000, "joint force 3000 > body weight 981"},
+        {"nom/b_slew/e5", 7e4, "joint moment 7e4 > weight x arm 981 x 5"},
+        {"nom/b_base/e2", 5000, "support force 5000 > joint 3000"},
+        {"nom/b_base/e3", 7e4, "joint moment 7e4 > support 2e4"},
+        {"nom/b_drive/e", 7e4, "drive torque: the joint's moment"},
+        {"nom/b_drive/f", 1.0, "drive speed: no scale"},
+        {"nom/b_wall/e1", W, "unstated wall: the body's weight m |g|"},
+        {"nom/b_wall/e4", W * 5, "unstated wall: weight x longest arm |(3, 4, 0)| = 5"},
+        {"nom/b_wall/f0", 1.0, "velocity: 1"},
+        {"nom/b_tie_a/e0", 1.5e4, "truss force 1.5e4 > body weight"},
+        {"nom/b_tie_b/e2", 1.5e4, "truss force 1.5e4 > point mass weight 98.1"},
+        {"nom/tie/d1", 2.0, "truss vector d: L0 = 2"},
+        {"nom/bob/x2", 0.5, "point mass position: the stated 0.5"},
+        {"nom/bob/v2", 1.0, "point mass velocity: 1"},
+        {"nom/body/x0", 1.0, "body position: nothing stated, 1"},
+        {"nom/body/q0", 1.0, "quaternion: 1"},
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        int v = bgr_find_var(m, t[i].path);
+        tap_close(v >= 0 ? nom[v] : NAN, t[i].want, 1e-14, 0, "nominal of %s = %g (%s)",
+                  t[i].path, t[i].want, t[i].why);
+    }
+    bgr_model_free(&m);
+
+    /* chain of 4 elements of 2 m under gravity: W = rho A L |g| for every element's forces and
+     * W L_e for its moments; a stated 1e5 N on el03 gives its bonds 1e5 N and 2e5 N m */
+    m = bgr_model_create("ch");
+    mech_section sec = {.E = 2e11, .G = 8e10, .A = 0.01, .Iy = 1e-5, .Iz = 2e-5, .J = 3e-5,
+                        .rho = 7850};
+    const double p0[3] = {0, 0, 0}, p1[3] = {8, 0, 0}, up[3] = {0, 0, 1};
+    int extra[5] = {1, 0, 0, 0, 0}, nodes[5], elems[4];
+    int c = mech_beam_chain(m, 0, "boom", 4, p0, p1, up, &sec, g, extra, NULL, nodes, elems);
+    int sup = mech_support(m, 0, "clamp", 6);
+    ok = c >= 0 && sup >= 0 &&
+         bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, sup, 0),
+                  mech_beam_chain_port(m, nodes, 4, extra, 0, 0), NULL, NULL) >= 0 &&
+         mech_set_nominal(m, elems[3], 1e5, 0, 0) == BG_OK && bgr_compile(m) == BG_OK;
+    tap_ok(ok, "beam chain with nominals compiles %s", ok ? "" : bgr_model_error(m)->message);
+    nom = ok ? bgr_nominals(m) : NULL;
+    const double Wc = 7850 * 0.01 * 8 * 9.81;
+    struct {
+        const char *path;
+        double want;
+        const char *why;
+    } u[] = {
+        {"ch/boom/ba00/e2", Wc, "element force: the chain's weight"},
+        {"ch/boom/ba00/e4", 2 * Wc, "element moment: the chain's weight x L_e = 2 m"},
+        {"ch/boom/bb02/e0", Wc, "element force: the chain's weight"},
+        {"ch/boom/bb03/e1", 1e5, "el03: the stated force"},
+        {"ch/boom/bb03/e3", 2e5, "el03: the stated force x L_e"},
+        {"ch/b_clamp/e2", 7850 * 0.01 * 1 * 9.81, "clamp: the end node's weight (half an element)"},
+    };
+    for (size_t i = 0; nom && i < sizeof u / sizeof u[0]; i++) {
+        int v = bgr_find_var(m, u[i].path);
+        tap_close(v >= 0 ? nom[v] : NAN, u[i].want, 1e-14, 0, "nominal of %s = %g (%s)",
+                  u[i].path, u[i].want, u[i].why);
+    }
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     rng = tap_rng_seed(20261122);
@@ -566,5 +690,6 @@ int main(void)
     test_pendulum();
     test_truss_rope();
     test_energies();
+    test_nominals();
     return tap_done();
 }
