@@ -545,14 +545,11 @@ static int write_solver_stats(run *r, const dae_options *dopt, int nbk, const do
     fprintf(f, "scene: %s (%s)\nstatus: %s\n", r->scene.name, r->scene_path, r->status);
     fprintf(f, "rtol: %g\natol: %g\nt_end: %g s\noutput_step: %g s\n", dopt->rtol, dopt->atol,
             r->scene.t_end, r->scene.output_step);
-    fprintf(f, "nominal_scales: %s\n",
-            r->scene.nominal_scales ? "true (absolute tolerance atol x each unknown's nominal "
-                                      "magnitude; the scales by quantity in model_stats.txt)"
-                                    : "false (absolute tolerance atol in SI units)");
     fprintf(f, "error test: algebraic and index-2 variables excluded\n");
     fprintf(f, "absolute tolerances: %s\nstability guard: %s\nbreakpoints:",
-            r->scene.nominal_scales ? "atol times each unknown's nominal magnitude"
-                                    : "atol in SI units",
+            r->scene.nominal_scales
+                ? "atol times each unknown's nominal magnitude (the scales in model_stats.txt)"
+                : "atol in SI units",
             dopt->stability_guard ? "on (order 2 where fast modes hold orders 3..5)" : "off");
     for (int i = 0; i < nbk; i++)
         fprintf(f, " %g", bk[i]);
