@@ -184,7 +184,12 @@ void daei_clip_to_stop(dae_solver *s)
 {
     int isb;
     double ts = daei_next_stop(s, s->hh > 0 ? 1.0 : -1.0, &isb);
-    if (!isnan(ts) && (s->tn + 1.0001 * s->hh - ts) * s->hh >= 0) s->hh = ts - s->tn;
+    if (!isnan(ts)) {
+        if ((s->tn + 1.0001 * s->hh - ts) * s->hh >= 0)
+            s->hh = ts - s->tn; /* lands on it */
+        else if (!isb && (s->tn + 1.25 * s->hh - ts) * s->hh > 0)
+            s->hh = 0.5 * (ts - s->tn); /* two equal steps rather than one and a sliver */
+    }
     if (s->o.h_max > 0 && fabs(s->hh) > s->o.h_max) s->hh = copysign(s->o.h_max, s->hh);
 }
 
