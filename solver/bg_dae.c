@@ -31,6 +31,8 @@
 
 #include "bg_dae_impl.h"
 
+#define DETECT_POINTS 3 /* points at which the residual is probed for its patterns */
+
 bg_error *dae_get_error(dae_solver *s)
 {
     return s ? &s->err : NULL;
@@ -39,6 +41,29 @@ double dae_current_time(const dae_solver *s)
 {
     return s && s->initialized ? s->tn : NAN;
 }
+const int *dae_get_kinds(const dae_solver *s)
+{
+    return s && s->structured ? s->kind : NULL;
+}
+
+int dae_get_patterns(const dae_solver *s, const sp_csc **jy, const sp_csc **jyp)
+{
+    if (!s || !jy || !jyp) return BG_ERR_ARGUMENT;
+    if (!s->structured) return BG_ERR_STATE;
+    *jy = s->Jy;
+    *jyp = s->Jyp;
+    return BG_OK;
+}
+
+int dae_get_consistent(const dae_solver *s, double *y, double *yp)
+{
+    if (!s) return BG_ERR_ARGUMENT;
+    if (!s->yc) return BG_ERR_STATE;
+    if (y) memcpy(y, s->yc, (size_t)s->n * sizeof *y);
+    if (yp) memcpy(yp, s->yc + s->n, (size_t)s->n * sizeof *yp);
+    return BG_OK;
+}
+
 const dae_stats *dae_get_stats(const dae_solver *s)
 {
     return s ? &s->st : NULL;
@@ -49,6 +74,9 @@ const dae_stats *dae_get_stats(const dae_solver *s)
 int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
 {
     if (!s) return BG_ERR_ARGUMENT;
+    if (s->busy)
+        return bg_error_raise(&s->err, BG_ERR_STATE, "dae_init",
+                              "called from within a callback of the same solver");
     if (!y0) return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_init", "y0 is NULL");
     if (!isfinite(t0))
         return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_init", "t0 = %g is not finite", t0);
@@ -62,6 +90,12 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->st.h_min_used = INFINITY;
     s->st.rcond_min = INFINITY;
     s->st.t_last_restart = NAN;
+    if (s->detect && !s->structured) { /* no patterns given: found from the residual here */
+        long added;
+        int r = daei_probe_patterns(s, t0, y0, yp0, DETECT_POINTS, &added);
+        if (r == BG_OK) r = daei_setup_structure(s, &s->err);
+        if (r != BG_OK) return r;
+    }
     memcpy(s->phi[0], y0, (size_t)s->n * sizeof *y0);
     if (yp0)
         memcpy(s->phi[1], yp0, (size_t)s->n * sizeof *yp0);
@@ -159,6 +193,12 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
             daei_output_state(s, s->tn, tret, y, yp);
             return DAE_SUCCESS;
         }
+        double dir0 = tout >= s->tn ? 1.0 : -1.0;
+        if (s->o.has_t_stop && (s->o.t_stop - s->tn) * dir0 < 0)
+            return bg_error_raise(&s->err, BG_ERR_ARGUMENT, w,
+                                  "t_stop = %.17g lies behind the start t = %.17g in the direction "
+                                  "of tout = %.17g: the integration could never stop there",
+                                  s->o.t_stop, s->tn, tout);
         int r = daei_first_step(s, tout, 0, 0);
         if (r != BG_OK) return r;
     }
@@ -246,7 +286,14 @@ static int advance(dae_solver *s, double tout, double *tret, double *y, double *
                               "the integration stopped with %s at t = %.17g: call dae_reinit (or "
                               "dae_init) before integrating again",
                               dae_return_name(s->failed), s->tn);
+    if (s->busy)
+        return bg_error_raise(&s->err, BG_ERR_STATE, w,
+                              "called from within a callback of the same solver (its residual, "
+                              "Jacobian, constraint or root function): the solver is not "
+                              "re-entrant; use a second solver for a nested integration");
+    s->busy = 1;
     int r = advance_run(s, tout, tret, y, yp, one);
+    s->busy = 0;
     if (r < 0 && r != DAE_TOO_MUCH_WORK && r != BG_ERR_ARGUMENT) s->failed = r;
     return r;
 }

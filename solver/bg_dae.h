@@ -182,6 +182,15 @@ typedef struct dae_stats {
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
     long restarts;                 /* restarts at unannounced jumps (see dae_solve_to) */
     long stab_lowered;             /* times the stability guard lowered the order */
+    long pattern_nnz;              /* entries of the patterns found from the residual (dF/dy
+                                      and dF/dy' together; 0 when both were given) */
+    long pattern_probes;           /* points at which the residual was probed for them */
+    long pattern_res_evals;        /* residual evaluations that cost (also in res_evals_fd) */
+    double t_pattern;              /* and the seconds */
+    long pattern_reprobes;         /* times a Newton failure on a current finite-difference
+                                      Jacobian had the residual probed again there and the
+                                      patterns grew */
+    long pattern_added;            /* entries those probes added */
     long newton_fails_stale;       /* Newton failures on a matrix from an earlier step, each
                                       answered by a fresh Jacobian at the same step (not counted
                                       in newton_fails) */
@@ -265,6 +274,18 @@ BG_API int dae_dense(const dae_solver *s, double t, double *y, double *yp);
 /* After DAE_ROOT_RETURN: found[i] = +1 or -1 (direction) for the functions that changed sign.
  * BG_OK or BG_ERR_ARGUMENT (s or found NULL). */
 BG_API int dae_roots_found(const dae_solver *s, int *found);
+
+/* The kinds of the unknowns the solver works with (dae_var_kind: as given, or classified from
+ * the patterns); NULL if s is NULL or the patterns are still to be found (dae_problem without
+ * patterns: they are found from the residual in dae_init). */
+BG_API const int *dae_get_kinds(const dae_solver *s);
+/* The patterns of dF/dy and dF/dy' the solver works with (as given, or found from the residual;
+ * their values are scratch). BG_OK, BG_ERR_ARGUMENT (a NULL argument), BG_ERR_STATE (not found
+ * yet: before dae_init). */
+BG_API int dae_get_patterns(const dae_solver *s, const sp_csc **jy, const sp_csc **jyp);
+/* The consistent initial values the last successful dae_consistent_init found (y and y', n
+ * values each; either may be NULL). BG_OK, BG_ERR_ARGUMENT (s NULL), BG_ERR_STATE (none). */
+BG_API int dae_get_consistent(const dae_solver *s, double *y, double *yp);
 
 /* Time of the last step (or of dae_init); NaN if s is NULL or not initialised. */
 BG_API double dae_current_time(const dae_solver *s);

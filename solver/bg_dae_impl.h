@@ -27,6 +27,7 @@
 #define NPHI (MAXORD + 2)
 #define MAX_NEF 10 /* error-test failures in one step */
 #define MAX_NCF 10 /* Newton failures in one step */
+#define MAX_REPROBE 20 /* probes of the residual for missing pattern entries in a run */
 #define EPS_NEWT 0.33
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
@@ -116,6 +117,13 @@ struct dae_solver {
     double t_fail;       /* end of the last step whose Newton iteration failed */
     int init_side;       /* consistent init: 0 at t, +1/-1 just after/before t (breakpoints) */
     int initialized;
+    int detect;     /* patterns not given: found from the residual (dae_struct.c) */
+    int structured; /* patterns, Newton matrix structure, row classes built */
+    int nreprobe;   /* patterns probed again after Newton failures */
+    long fact_off[3]; /* factorization counts of the linear solvers of an earlier structure */
+    double *yc;       /* y and y' of the last dae_consistent_init (2n), NULL if none */
+    int busy;         /* inside dae_solve_to, dae_step, dae_consistent_init: a callback that
+                         calls them again gets BG_ERR_STATE */
     int failed; /* the failure that stopped the integration (< 0), 0 if none */
     /* what the last failed attempt found (names and values), for the final message */
     char note[BG_MESSAGE_SIZE / 2];
@@ -236,7 +244,22 @@ int daei_project_vec(dae_solver *s, double t, double *y);
 /* Drift after an accepted step, and projection of y_n if asked. */
 int daei_project_step(dae_solver *s);
 
+/* ---- dae_create.c: creation ---- */
+/* The structure from s->Jy, s->Jyp: kinds (classified when not given), the Newton matrix's
+ * pattern, the matching, finite differences, the linear solver, row classes and the matrices
+ * of consistent initialisation. */
+int daei_setup_structure(dae_solver *s, bg_error *err);
+void daei_free_structure(dae_solver *s);
+
 /* ---- dae_struct.c: structure ---- */
+/* The patterns of dF/dy and dF/dy' from the residual alone: each unknown and each derivative is
+ * perturbed in turn at npts points (the first at (t, y, yp), the others around it) and the rows
+ * whose residual changes are its entries; the union with s->Jy, s->Jyp where they exist
+ * replaces them. *added: entries that were not in them. BG_OK, BG_ERR_MEMORY, BG_ERR_ARGUMENT
+ * (more entries than an int counts), or DAE_RES_FAIL / DAE_CALLBACK_FAIL when the residual fails
+ * at (t, y, yp) itself; the message is in s->err. */
+int daei_probe_patterns(dae_solver *s, double t, const double *y, const double *yp, int npts,
+                        long *added);
 /* Maximum matching of the rows and columns of A restricted to the rows with rowmask[i] != 0
  * and the columns with colmask[j] != 0 (NULL: all), by BTF's maxtrans with each column's
  * diagonal entry tried first: rowvar[i] = the column matched to row i, -1 if none. Returns the

@@ -23,18 +23,47 @@ int dae_options_default(dae_options *o)
     return BG_OK;
 }
 
-/* Dense n x n pattern; with kind, only the columns of differential variables. */
-static sp_csc *dense_pattern(int n, const int *kind)
+int daei_setup_structure(dae_solver *s, bg_error *err)
 {
-    sp_builder *b = sp_builder_create(n, n, n * n);
-    if (!b) return NULL;
-    for (int j = 0; j < n; j++)
-        if (!kind || kind[j] == DAE_DIFF)
-            for (int i = 0; i < n; i++)
-                sp_builder_add(b, i, j, 0.0);
-    sp_csc *P = sp_builder_finish(b, NULL);
-    sp_builder_free(&b);
-    return P;
+    const char *w = s->initialized || s->detect ? "dae_init" : "dae_create";
+    int n = s->n;
+    if (!s->p.kind && dae_classify(s->Jy, s->Jyp, s->kind) < 0) goto nomem;
+    sp_csc_zero(s->Jy);
+    sp_csc_zero(s->Jyp);
+    if (!(s->U = sp_union_create(s->Jy, s->Jyp))) goto nomem;
+    if (!s->rowvar && !(s->rowvar = malloc((size_t)n * sizeof *s->rowvar))) goto nomem;
+    if (daei_match(s->U->M, NULL, NULL, s->rowvar) < 0) goto nomem;
+    if (!s->p.jac) {
+        s->fdy = sp_fdjac_create(s->Jy);
+        s->fdyp = sp_fdjac_create(s->Jyp);
+        if (!s->fdy || !s->fdyp) goto nomem;
+    }
+    if (!(s->ls = ls_create(s->o.linsol, s->U->M, err))) return err ? err->status : BG_ERR_LIBRARY;
+    s->has_alg2 = 0;
+    for (int i = 0; i < n; i++)
+        s->has_alg2 |= s->kind[i] == DAE_ALG2;
+    int r = daei_init_setup(s, err);
+    if (r != BG_OK) return r;
+    s->structured = 1;
+    return BG_OK;
+nomem:
+    return bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory (n = %d)", n);
+}
+
+void daei_free_structure(dae_solver *s)
+{
+    if (s->structured) { /* the counts of the solvers freed here stay in the statistics */
+        daei_sync_stats(s);
+        s->fact_off[0] = s->st.factor_symbolic;
+        s->fact_off[1] = s->st.factor_full;
+        s->fact_off[2] = s->st.factor_refactor;
+    }
+    sp_union_free(&s->U);
+    sp_fdjac_free(&s->fdy);
+    sp_fdjac_free(&s->fdyp);
+    ls_free(&s->ls);
+    daei_init_free(s);
+    s->structured = 0;
 }
 
 void dae_free(dae_solver **sp)
@@ -57,11 +86,7 @@ void dae_free(dae_solver **sp)
     free(s->bkpt);
     sp_csc_free(&s->Jy);
     sp_csc_free(&s->Jyp);
-    sp_union_free(&s->U);
-    sp_fdjac_free(&s->fdy);
-    sp_fdjac_free(&s->fdyp);
-    ls_free(&s->ls);
-    daei_init_free(s);
+    daei_free_structure(s);
     sp_csc_free(&s->G);
     aat_free(&s->aat_proj);
     free(s->gv);
@@ -82,6 +107,7 @@ void dae_free(dae_solver **sp)
     free(s->tmp);
     free(s->tmp2);
     free(s->typ);
+    free(s->yc);
     free(s->stab_e[0]);
     free(s->stab_e[1]);
     free(s->glo);
@@ -205,8 +231,12 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "fixed_step needs h_init > 0");
         return NULL;
     }
-    if (p->jac && (!p->jac_y_pattern) != (!p->jac_yp_pattern)) {
-        bg_error_raise(err, BG_ERR_ARGUMENT, w, "give both Jacobian patterns or neither");
+    if (p->jac && (!p->jac_y_pattern || !p->jac_yp_pattern)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "an analytic Jacobian needs both its patterns (jac_y_pattern %s, "
+                       "jac_yp_pattern %s); without a Jacobian the patterns are found from the "
+                       "residual",
+                       p->jac_y_pattern ? "given" : "NULL", p->jac_yp_pattern ? "given" : "NULL");
         return NULL;
     }
     dae_solver *s = calloc(1, sizeof *s);
@@ -265,33 +295,18 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         qsort(s->bkpt, (size_t)o->nbreakpoints, sizeof *s->bkpt, cmp_double);
         s->nbkpt = o->nbreakpoints;
     }
-    /* Jacobian patterns: dense where not given (dF/dy' in the differential columns only) */
-    s->Jy = p->jac_y_pattern ? sp_csc_copy(p->jac_y_pattern) : dense_pattern(n, NULL);
-    s->Jyp = p->jac_yp_pattern ? sp_csc_copy(p->jac_yp_pattern) : dense_pattern(n, p->kind);
-    if (!s->Jy || !s->Jyp) goto nomem;
-    /* no kinds given: classify from the structure */
-    if (!p->kind && dae_classify(s->Jy, s->Jyp, s->kind) < 0) goto nomem;
-    sp_csc_zero(s->Jy);
-    sp_csc_zero(s->Jyp);
-    s->U = sp_union_create(s->Jy, s->Jyp);
-    if (!s->U) goto nomem;
-    s->rowvar = malloc((size_t)n * sizeof *s->rowvar);
-    if (!s->rowvar || daei_match(s->U->M, NULL, NULL, s->rowvar) < 0) goto nomem;
-    if (!p->jac) {
-        s->fdy = sp_fdjac_create(s->Jy);
-        s->fdyp = sp_fdjac_create(s->Jyp);
-        if (!s->fdy || !s->fdyp) goto nomem;
-    }
-    s->ls = ls_create(o->linsol, s->U->M, err);
-    if (!s->ls) {
-        dae_free(&s);
-        return NULL;
-    }
-    for (int i = 0; i < n; i++)
-        s->has_alg2 |= s->kind[i] == DAE_ALG2;
-    if (daei_init_setup(s, err) != BG_OK) {
-        dae_free(&s);
-        return NULL;
+    /* Jacobian patterns: as given, or found from the residual at dae_init (dae_struct.c) */
+    if (p->jac_y_pattern && p->jac_yp_pattern) {
+        s->Jy = sp_csc_copy(p->jac_y_pattern);
+        s->Jyp = sp_csc_copy(p->jac_yp_pattern);
+        if (!s->Jy || !s->Jyp) goto nomem;
+        int r = daei_setup_structure(s, err);
+        if (r != BG_OK) {
+            dae_free(&s);
+            return NULL;
+        }
+    } else {
+        s->detect = 1; /* the given pattern, if any, joins the detected one */
     }
     if (p->cons && p->ncons > 0) {
         s->G = sp_csc_copy(p->cons_pattern);

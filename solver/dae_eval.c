@@ -172,7 +172,9 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
 void daei_sync_stats(dae_solver *s)
 {
     ls_solver *all[3] = {s->ls, s->kls, s->kktls};
-    s->st.factor_symbolic = s->st.factor_full = s->st.factor_refactor = 0;
+    s->st.factor_symbolic = s->fact_off[0];
+    s->st.factor_full = s->fact_off[1];
+    s->st.factor_refactor = s->fact_off[2];
     for (int k = 0; k < 3; k++) {
         if (!all[k]) continue;
         const ls_stats *a = ls_get_stats(all[k]);

@@ -48,22 +48,19 @@
 
 void daei_init_free(dae_solver *s)
 {
-    free(s->rowkind);
-    free(s->rowscaled);
-    free(s->srows);
-    free(s->a2cols);
-    free(s->a1cols);
+    int **iv[] = {&s->rowkind, &s->rowscaled, &s->srows,    &s->a2cols, &s->a1cols,
+                  &s->kslot_yp, &s->kslot_y, &s->arow,     &s->kkt_diag, &s->kkt_b,
+                  &s->kkt_bt};
+    for (size_t k = 0; k < sizeof iv / sizeof *iv; k++) {
+        free(*iv[k]);
+        *iv[k] = NULL;
+    }
     sp_csc_free(&s->K);
-    free(s->kslot_yp);
-    free(s->kslot_y);
     ls_free(&s->kls);
-    free(s->arow);
     sp_csc_free(&s->kkt);
-    free(s->kkt_diag);
-    free(s->kkt_b);
-    free(s->kkt_bt);
     ls_free(&s->kktls);
     free(s->kkt_rhs);
+    s->kkt_rhs = NULL;
 }
 
 /* K: column j is y'_j (differential, index 1) or y_j (index 2). */
@@ -366,7 +363,19 @@ int dae_consistent_init(dae_solver *s)
                               !s->initialized ? "call dae_init first"
                                               : "the integration has started (or dae_set_history "
                                                 "set a history); call dae_reinit");
-    return daei_consistent_init(s);
+    if (s->busy)
+        return bg_error_raise(&s->err, BG_ERR_STATE, w,
+                              "called from within a callback of the same solver");
+    s->busy = 1;
+    int r = daei_consistent_init(s);
+    s->busy = 0;
+    if (r == BG_OK) { /* kept for dae_get_consistent */
+        if (!s->yc && !(s->yc = malloc(2 * (size_t)s->n * sizeof *s->yc)))
+            return bg_error_raise(&s->err, BG_ERR_MEMORY, w, "out of memory (n = %d)", s->n);
+        memcpy(s->yc, s->phi[0], (size_t)s->n * sizeof *s->yc);
+        memcpy(s->yc + s->n, s->phi[1], (size_t)s->n * sizeof *s->yc);
+    }
+    return r;
 }
 
 int daei_consistent_init(dae_solver *s)

@@ -231,6 +231,17 @@ static void note_step_limit(dae_solver *s)
                   daei_vname(s, i, nb, sizeof nb), s->ck * fabs(s->ee[i]), 1.0 / s->werr[i]);
 }
 
+/* What a user can supply when the Newton iteration fails on finite differences. */
+static const char *fd_hint(const dae_solver *s)
+{
+    if (s->p.jac) return "";
+    return s->detect ? "; the Jacobian is by finite differences on patterns found from the "
+                       "residual: an analytic Jacobian (dae_problem.jac, with its patterns) may "
+                       "let the iteration converge"
+                     : "; the Jacobian is by finite differences: an analytic one (dae_problem.jac) "
+                       "may let the iteration converge";
+}
+
 /* The checks before a step: h clipped to the next stop, tolerances above round-off, no crawl. */
 static int check_before(dae_solver *s)
 {
@@ -267,8 +278,9 @@ static int check_floor(dae_solver *s, const step_attempt *a, int landing)
     if (a->nef + a->ncf == 0) note_step_limit(s);
     return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
                           "step size %.3g at t = %.17g is below the minimum %.3g (%d error-test "
-                          "and %d Newton failures in this step)%s%s",
-                          s->hh, s->tn, hmin, a->nef, a->ncf, s->note[0] ? ": " : "", s->note);
+                          "and %d Newton failures in this step)%s%s%s",
+                          s->hh, s->tn, hmin, a->nef, a->ncf, s->note[0] ? ": " : "", s->note,
+                          a->ncf > 0 ? fd_hint(s) : "");
 }
 
 /* The failure policy of a step: after the attempt to tnew ended with nl (NL_OK: the error test
@@ -310,6 +322,28 @@ static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
         s->need_setup = 1;
         return RETRY;
     }
+    /* a Newton matrix evaluated at this step that does not contract: with finite differences,
+     * an entry the pattern lacks would explain it; probe the residual here and rebuild */
+    if (!s->p.jac && nl == NL_RECOVER && s->nreprobe < MAX_REPROBE) {
+        s->nreprobe++;
+        long added = 0;
+        char keep[sizeof s->note];
+        snprintf(keep, sizeof keep, "%s", s->note);
+        if (daei_probe_patterns(s, tnew, s->y, s->yp, 1, &added) == BG_OK && added > 0) {
+            daei_free_structure(s);
+            if (daei_setup_structure(s, &s->err) != BG_OK)
+                return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w,
+                                      "at t = %.17g the Jacobian patterns were missing %ld "
+                                      "entries (found by probing the residual where the Newton "
+                                      "iteration failed), and the new structure failed: %s",
+                                      tnew, added, s->err.message);
+            s->st.pattern_reprobes++;
+            s->st.pattern_added += added;
+            s->need_setup = 1;
+            return RETRY;
+        }
+        snprintf(s->note, sizeof s->note, "%s", keep);
+    }
     a->ncf++;
     s->st.newton_fails++;
     s->t_fail = tnew;
@@ -326,8 +360,8 @@ static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
                                   "%.3g: %s",
                                   a->ncf, s->tn, s->hh, s->note);
         return bg_error_raise(&s->err, DAE_CONV_FAIL, w,
-                              "Newton iteration failed %d times at t = %.17g, h = %.3g: %s", a->ncf,
-                              s->tn, s->hh, s->note);
+                              "Newton iteration failed %d times at t = %.17g, h = %.3g: %s%s", a->ncf,
+                              s->tn, s->hh, s->note, fd_hint(s));
     }
     s->hh *= 0.25;
     s->need_setup = 1;

@@ -15,6 +15,8 @@
  * unknown matched to row i in a maximum matching of the Newton matrix's pattern (daei_match on
  * it, each column's diagonal entry tried first). */
 #include <btf.h>
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "bg_dae_impl.h"
@@ -99,5 +101,123 @@ done:
     free(matchrow);
     free(matched);
     free(queue);
+    return ret;
+}
+
+/* ------------------------------------------------------------- detection ---- */
+
+/* A pseudo-random number in [-1, 1] (a fixed sequence: detection is reproducible). */
+static double rnd(unsigned long *state)
+{
+    *state = *state * 6364136223846793005ul + 1442695040888963407ul;
+    return (double)((*state >> 11) & 0xfffffffffffffUL) / (double)0xfffffffffffffUL * 2.0 - 1.0;
+}
+
+/* Marks in mark[] (stamp) the rows whose residual at (t, yb, ypb) with x[j] += d differs from
+ * Fb, trying d / 1e3 when the residual fails there. x is yb or ypb. Returns 0, or 1 if the
+ * residual failed at both. */
+static int probe_column(dae_solver *s, double t, double *yb, double *ypb, double *x, int j,
+                        double d, const double *Fb, double *F1, int *mark, int stamp)
+{
+    double keep = x[j];
+    for (int tries = 0; tries < 2; tries++, d *= 1e-3) {
+        x[j] = keep + d;
+        int r = daei_call_res(s, t, yb, ypb, F1, 1);
+        x[j] = keep;
+        s->st.pattern_res_evals++;
+        if (r < 0) continue;
+        if (r > 0) { /* recoverable: rows left NaN still show what depends on x[j] */
+            int any = 0;
+            for (int i = 0; i < s->n; i++)
+                if (!isfinite(F1[i])) mark[i] = stamp, any = 1;
+            if (!any) continue;
+            return 0;
+        }
+        for (int i = 0; i < s->n; i++)
+            if (F1[i] != Fb[i]) mark[i] = stamp;
+        return 0;
+    }
+    return 1;
+}
+
+int daei_probe_patterns(dae_solver *s, double t, const double *y, const double *yp, int npts,
+                        long *added)
+{
+    const char *w = "dae_init";
+    int n = s->n, ret = BG_ERR_MEMORY;
+    *added = 0;
+    double *yb = malloc(4 * (size_t)n * sizeof *yb);
+    int *mark = malloc((size_t)n * sizeof *mark);
+    sp_builder *b[2] = {sp_builder_create(n, n, 4 * n), sp_builder_create(n, n, 2 * n)};
+    sp_csc *P[2] = {NULL, NULL};
+    if (!yb || !mark || !b[0] || !b[1]) goto done;
+    double *ypb = yb + n, *Fb = yb + 2 * (size_t)n, *F1 = yb + 3 * (size_t)n;
+    const sp_csc *old[2] = {s->Jy ? s->Jy : s->p.jac_y_pattern,
+                            s->Jyp ? s->Jyp : s->p.jac_yp_pattern};
+    for (int m = 0; m < 2; m++) /* what is known already */
+        if (old[m])
+            for (int j = 0; j < n; j++)
+                for (int p = old[m]->colptr[j]; p < old[m]->colptr[j + 1]; p++)
+                    if (sp_builder_add(b[m], old[m]->rowind[p], j, 0.0) < 0) goto done;
+    for (int i = 0; i < n; i++)
+        mark[i] = -1;
+    unsigned long seed = 12345;
+    int stamp = 0, done_pts = 0;
+    double t0 = daei_clock(s);
+    for (int k = 0; k < npts; k++) {
+        /* the first point as given, the others moved by 1 % of the unknowns' sizes (entries
+         * whose derivative vanishes at the given point, as d(y1 y2)/dy1 at y2 = 0) */
+        for (int i = 0; i < n; i++) {
+            double a = k ? 1e-2 * rnd(&seed) : 0.0;
+            yb[i] = y[i] + a * (fabs(y[i]) + 1.0);
+            ypb[i] = (yp ? yp[i] : 0.0) + a * ((yp ? fabs(yp[i]) : 0.0) + 1.0);
+        }
+        int r = daei_call_res(s, t, yb, ypb, Fb, 1);
+        s->st.pattern_res_evals++;
+        if (r != 0 || daei_first_nonfinite(Fb, n) >= 0) {
+            if (k > 0) continue; /* a moved point the residual does not take: skip it */
+            char m[BG_MESSAGE_SIZE];
+            snprintf(m, sizeof m, "%s", s->note);
+            ret = bg_error_raise(&s->err, r < 0 ? DAE_CALLBACK_FAIL : DAE_RES_FAIL, w,
+                                 "finding the Jacobian patterns from the residual (none were "
+                                 "given): the residual fails at the initial values: %s",
+                                 m);
+            goto done;
+        }
+        done_pts++;
+        for (int m = 0; m < 2; m++) {
+            double *x = m ? ypb : yb;
+            for (int j = 0; j < n; j++) {
+                double d = 1e-3 * (fabs(x[j]) + 1.0);
+                stamp++;
+                probe_column(s, t, yb, ypb, x, j, d, Fb, F1, mark, stamp);
+                for (int i = 0; i < n; i++)
+                    if (mark[i] == stamp && sp_builder_add(b[m], i, j, 0.0) < 0) goto done;
+            }
+        }
+    }
+    s->st.pattern_probes += done_pts;
+    s->st.t_pattern += daei_clock(s) - t0;
+    for (int m = 0; m < 2; m++) {
+        if (!(P[m] = sp_builder_finish(b[m], NULL))) goto done;
+        sp_builder_free(&b[m]);
+        *added += P[m]->nnz - (old[m] ? old[m]->nnz : 0);
+    }
+    sp_csc_free(&s->Jy);
+    sp_csc_free(&s->Jyp);
+    s->Jy = P[0];
+    s->Jyp = P[1];
+    P[0] = P[1] = NULL;
+    s->st.pattern_nnz = (long)s->Jy->nnz + s->Jyp->nnz;
+    ret = BG_OK;
+done:
+    if (ret == BG_ERR_MEMORY)
+        bg_error_raise(&s->err, ret, w, "out of memory finding the Jacobian patterns (n = %d)", n);
+    free(yb);
+    free(mark);
+    sp_builder_free(&b[0]);
+    sp_builder_free(&b[1]);
+    sp_csc_free(&P[0]);
+    sp_csc_free(&P[1]);
     return ret;
 }
