@@ -41,6 +41,11 @@ double dae_current_time(const dae_solver *s)
 {
     return s && s->initialized ? s->tn : NAN;
 }
+const char *dae_get_warning(const dae_solver *s)
+{
+    return s ? s->warn.message : NULL;
+}
+
 const int *dae_get_kinds(const dae_solver *s)
 {
     return s && s->structured ? s->kind : NULL;

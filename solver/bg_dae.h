@@ -153,6 +153,11 @@ typedef struct dae_options {
                                   quarter of a step's cost on a problem of five unknowns */
     int newton_index2_scale_h; /* 1: index-2 corrections weigh |h| times less in the Newton
                                   convergence test (default 0: full weight, see dae_nls.c) */
+    int check_jacobian;        /* 1: the first analytic Jacobian is compared with central
+                                  differences of the residual (sp_jac_check, 2n residual
+                                  evaluations); a disagreement of more than 1e-3 relative is a
+                                  warning (DAE_WARNING to the error handler, dae_get_warning)
+                                  that names the equation and the unknown; the run goes on */
     int stability_guard;       /* 1: where a lightly damped oscillation holds BDF orders 3..5
                                   at their stability limit, the order is lowered to 2, which
                                   damps it (numerical dissipation of the unresolved high
@@ -191,6 +196,7 @@ typedef struct dae_stats {
                                       Jacobian had the residual probed again there and the
                                       patterns grew */
     long pattern_added;            /* entries those probes added */
+    long warnings;                 /* warnings issued (dae_get_warning) */
     long newton_fails_stale;       /* Newton failures on a matrix from an earlier step, each
                                       answered by a fresh Jacobian at the same step (not counted
                                       in newton_fails) */
@@ -274,6 +280,10 @@ BG_API int dae_dense(const dae_solver *s, double t, double *y, double *yp);
 /* After DAE_ROOT_RETURN: found[i] = +1 or -1 (direction) for the functions that changed sign.
  * BG_OK or BG_ERR_ARGUMENT (s or found NULL). */
 BG_API int dae_roots_found(const dae_solver *s, int *found);
+
+/* The last warning (the Jacobian check of options.check_jacobian), "" if none; NULL if s is
+ * NULL. Warnings never stop the integration; stats.warnings counts them. */
+BG_API const char *dae_get_warning(const dae_solver *s);
 
 /* The kinds of the unknowns the solver works with (dae_var_kind: as given, or classified from
  * the patterns); NULL if s is NULL or the patterns are still to be found (dae_problem without

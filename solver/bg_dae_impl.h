@@ -122,6 +122,8 @@ struct dae_solver {
     int nreprobe;   /* patterns probed again after Newton failures */
     long fact_off[3]; /* factorization counts of the linear solvers of an earlier structure */
     double *yc;       /* y and y' of the last dae_consistent_init (2n), NULL if none */
+    int jac_checked;  /* options.check_jacobian done */
+    bg_error warn;    /* the last warning */
     int busy;         /* inside dae_solve_to, dae_step, dae_consistent_init: a callback that
                          calls them again gets BG_ERR_STATE */
     int failed; /* the failure that stopped the integration (< 0), 0 if none */
@@ -161,6 +163,12 @@ int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, do
 /* Jy, Jyp at (t, y, yp); F = F(t, y, yp) is needed by the finite-difference path. */
 int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F);
 void daei_sync_stats(dae_solver *s);
+/* Records a warning (printf format) in s->warn, counts it and passes it to the error handler
+ * with DAE_WARNING. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+void daei_warn(dae_solver *s, const char *where, const char *fmt, ...);
 
 /* ---- dae_err.c: error control ---- */
 void daei_set_weights(dae_solver *s, const double *y);

@@ -51,6 +51,7 @@ extern "C" {
     X(DAE_SUCCESS, 0, "reached tout")                                                             \
     X(DAE_TSTOP_RETURN, 2, "reached t_stop")                                                      \
     X(DAE_ROOT_RETURN, 3, "an event function changed sign (see dae_roots_found)")                 \
+    X(DAE_WARNING, 4, "a warning, passed to the error handler (see dae_get_warning)")             \
     X(DAE_TOO_MUCH_WORK, -20, "max_steps steps taken before tout")                                \
     X(DAE_TOO_MUCH_ACC, -21, "the tolerances are below round-off")                                \
     X(DAE_ERR_FAIL, -22, "the error test failed repeatedly (10 times in one step)")               \

@@ -52,6 +52,17 @@ void daei_note(dae_solver *s, const char *fmt, ...)
     va_end(ap);
 }
 
+void daei_warn(dae_solver *s, const char *where, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    s->warn.handler = s->err.handler;
+    s->warn.user = s->err.user;
+    bg_error_vraise(&s->warn, DAE_WARNING, where, fmt, ap);
+    va_end(ap);
+    s->st.warnings++;
+}
+
 /* ---------------------------------------------------------------- callbacks ---- */
 
 int daei_first_nonfinite(const double *v, int n)
@@ -124,6 +135,43 @@ static int fd_res_yp(void *u, const double *x, double *f)
     return daei_call_res(s, s->fd_t, s->fd_y, x, f, 1);
 }
 
+/* options.check_jacobian: the analytic Jy, Jyp just evaluated against central differences of
+ * the residual; a relative disagreement above 1e-3 (against |fd| + 1e-8 times the largest
+ * entry) is a warning that names the worst entry. */
+static void check_jacobian(dae_solver *s, double t, const double *y, const double *yp)
+{
+    s->jac_checked = 1;
+    s->fd_t = t;
+    s->fd_y = y;
+    s->fd_yp = yp;
+    double worst = 0;
+    sp_jac_entry we = {0};
+    int wm = -1;
+    for (int m = 0; m < 2; m++) {
+        const sp_csc *J = m ? s->Jyp : s->Jy;
+        double big = 0, err = 0;
+        for (int p = 0; p < J->nnz; p++)
+            big = fmax(big, fabs(J->val[p]));
+        sp_jac_entry e;
+        int r = sp_jac_check(J, m ? fd_res_yp : fd_res_y, s, s->n, m ? yp : y,
+                             1e-8 * (big > 0 ? big : 1.0), 1e-3, &e, 1, &err);
+        if (r > 0 && err > worst) {
+            worst = err;
+            we = e;
+            wm = m;
+        }
+    }
+    if (wm >= 0) {
+        char eb[192], nb[32];
+        daei_warn(s, "dae_solve_to",
+                  "the analytic Jacobian disagrees with central differences of the residual at t "
+                  "= %.17g: d(%s)/d(%s%s) is %.6g, the differences give %.6g (relative error "
+                  "%.2g)",
+                  t, daei_ename(s, we.row, eb, sizeof eb), daei_vname(s, we.col, nb, sizeof nb),
+                  wm ? "'" : "", we.analytic, we.fd, worst);
+    }
+}
+
 /* Jy, Jyp at (t, y, yp); F = F(t, y, yp) must be given (used by finite differences). */
 int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F)
 {
@@ -150,6 +198,7 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
     if (r != 0 && s->p.jac)
         daei_note(s, "the Jacobian function returned the %s status %d at t = %.17g",
                   r < 0 ? "fatal" : "recoverable", r, t);
+    if (r == 0 && s->p.jac && s->o.check_jacobian && !s->jac_checked) check_jacobian(s, t, y, yp);
     if (r == 0) {
         for (int m = 0; m < 2 && r == 0; m++) {
             const sp_csc *J = m ? s->Jyp : s->Jy;

@@ -325,7 +325,7 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the algebraic equations could not be satisfied at t = %.17g: "
                                   "%s keeps a scaled residual of %.3g",
-                                  t, daei_ename(s, imax, eb, sizeof eb), gmax);
+                                  s->tn, daei_ename(s, imax, eb, sizeof eb), gmax);
         }
         sp_csc_zero(s->kkt);
         for (int j = 0; j < n; j++)
@@ -346,7 +346,7 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the algebraic equations are dependent or contradict each other "
                                   "at t = %.17g (%s)",
-                                  t, ls_get_error(s->kktls)->message);
+                                  s->tn, ls_get_error(s->kktls)->message);
         for (int j = 0; j < n; j++)
             y[j] += z[j];
     }
@@ -446,7 +446,7 @@ int daei_consistent_init(dae_solver *s)
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the equations for the derivatives and the index-2 unknowns are "
                                   "singular at t = %.17g: nothing determines %s%s%s (%s)",
-                                  t, c >= 0 && s->kind[c] != DAE_ALG2 ? "the derivative of " : "",
+                                  s->tn, c >= 0 && s->kind[c] != DAE_ALG2 ? "the derivative of " : "",
                                   daei_vname(s, c, nb, sizeof nb),
                                   c >= 0 && s->kind[c] == DAE_ALG2
                                       ? "; is it really index 2, and is the index at most 2?"
@@ -467,12 +467,35 @@ int daei_consistent_init(dae_solver *s)
     if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
     row_scales(s, y, yp, s->tmp2);
     double m = 0;
-    int im = -1;
+    int im = -1, hidden = 0;
     for (int i = 0; i < n; i++)
         if (fabs(F[i]) / s->tmp2[i] > m || im < 0) {
             m = fmax(m, fabs(F[i]) / s->tmp2[i]);
             im = i;
         }
+    /* the hidden constraints too, measured at the values returned: the time derivative of each
+     * constraint row, dF_i/dt + sum_j dF_i/dy_j y'_j, against the size of its terms */
+    if (s->nalg1_rows > 0) {
+        double *D = s->typ, *den = s->tmp2;
+        if ((r = rows_dt(s, t, dt, y, yp, F, D)) != BG_OK) return r;
+        for (int i = 0; i < n; i++)
+            den[i] = 1.0 + fabs(D[i]);
+        for (int j = 0; j < n; j++)
+            if (s->kind[j] != DAE_ALG2)
+                for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
+                    int i = s->Jy->rowind[p];
+                    if (s->rowkind[i] != ROW_ALG1) continue;
+                    D[i] += s->Jy->val[p] * yp[j];
+                    den[i] += fabs(s->Jy->val[p] * yp[j]);
+                }
+        for (int i = 0; i < n; i++)
+            if (s->rowkind[i] == ROW_ALG1 && fabs(D[i]) / den[i] > m) {
+                m = fabs(D[i]) / den[i];
+                im = i;
+                hidden = 1;
+            }
+        if ((r = eval_all(s, t, y, yp)) != BG_OK) return r; /* F back at the values */
+    }
     s->st.init_residual = m;
     daei_sync_stats(s);
     memcpy(s->phi[0], y, (size_t)n * sizeof *y);
@@ -485,8 +508,9 @@ int daei_consistent_init(dae_solver *s)
         char eb[192];
         return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                               "Newton iteration for consistent values did not converge at t = "
-                              "%.17g: %s keeps a scaled residual of %.3g",
-                              t, daei_ename(s, im, eb, sizeof eb), m);
+                              "%.17g: %s keeps a scaled residual of %.3g%s",
+                              s->tn, daei_ename(s, im, eb, sizeof eb), m,
+                              hidden ? " in its time derivative (a hidden constraint)" : "");
     }
     return BG_OK;
 }

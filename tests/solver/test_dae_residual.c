@@ -129,6 +129,62 @@ static int res_many(void *user, double t, const double *y, const double *yp, dou
     return 0;
 }
 
+static int res_two(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user, (void)t;
+    F[0] = yp[0] + 2 * y[0] - y[1];
+    F[1] = yp[1] + y[0] + 3 * y[1];
+    return 0;
+}
+
+/* dF/dy with the entry d(F[1])/d(y[0]) three times too large */
+static int jac_two(void *user, double t, const double *y, const double *yp, sp_csc *Jy,
+                   sp_csc *Jyp)
+{
+    (void)user, (void)t, (void)y, (void)yp;
+    static const double vy[4] = {2, 3, -1, 3}; /* column-major: (0,0) (1,0) (0,1) (1,1) */
+    for (int p = 0; p < 4; p++)
+        Jy->val[p] = vy[p];
+    Jyp->val[0] = Jyp->val[1] = 1;
+    return 0;
+}
+
+static void test_jacobian_check(void)
+{
+    static const double full[4] = {1, 1, 1, 1}, diag[4] = {1, 0, 0, 1};
+    static const char *const names[2] = {"a", "b"};
+    sp_csc *jy = sp_csc_from_dense(2, 2, full, 0.0), *jyp = sp_csc_from_dense(2, 2, diag, 0.0);
+    dae_problem p = {0};
+    p.n = 2;
+    p.res = res_two;
+    p.jac = jac_two;
+    p.jac_y_pattern = jy;
+    p.jac_yp_pattern = jyp;
+    p.names = names;
+    for (int check = 0; check < 2; check++) {
+        dae_options o;
+        dae_options_default(&o);
+        o.check_jacobian = check;
+        bg_error e = {0};
+        dae_solver *s = dae_create(&p, &o, &e);
+        const double y0[2] = {1, 0}, yp0[2] = {-2, -1};
+        double t, y[2];
+        dae_init(s, 0, y0, yp0);
+        int r = dae_solve_to(s, 1.0, &t, y, NULL);
+        const char *wmsg = dae_get_warning(s);
+        long nw = dae_get_stats(s)->warnings;
+        if (check)
+            tap_ok(r == 0 && nw == 1 && strstr(wmsg, "d(equation 1") && strstr(wmsg, "/d(a)") &&
+                       strstr(wmsg, "is 3"),
+                   "check_jacobian: the entry three times too large is named: %s", wmsg);
+        else
+            tap_ok(r == 0 && nw == 0 && !*wmsg, "without check_jacobian no warning (%ld)", nw);
+        dae_free(&s);
+    }
+    sp_csc_free(&jy);
+    sp_csc_free(&jyp);
+}
+
 static void test_guards(void)
 {
     nest u = {NULL, 1};
@@ -230,5 +286,6 @@ int main(void)
     dae_free(&s);
     bp_instance_free(&in);
     test_guards();
+    test_jacobian_check();
     return tap_done();
 }
