@@ -63,6 +63,17 @@ if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
   else
     echo "not ok - install check: outside program with pkg-config failed"; extra_fail=$((extra_fail+1))
   fi
+  # the README's example: a pendulum given as a residual alone (examples/residual_only.c)
+  # shellcheck disable=SC2046 # pkg-config's flags are words
+  if cc -std=c11 -Wall -Werror examples/residual_only.c -o "$dest/residual_only" \
+       $(pc --cflags --libs bgdae) -lm \
+     && LD_LIBRARY_PATH="$dest$libdir" "$dest/residual_only" >"$dest/residual_only.log" 2>&1; then
+    echo "ok - example: a residual alone solved ($(tail -n 1 "$dest/residual_only.log"))"
+    extra_pass=$((extra_pass+1))
+  else
+    echo "not ok - example examples/residual_only.c failed:"; tail -n 5 "$dest/residual_only.log"
+    extra_fail=$((extra_fail+1))
+  fi
   if cmake -S tests/install -B "$dest/cmake-build" -DCMAKE_PREFIX_PATH="$dest$prefix" \
        >"$dest/cmake.log" 2>&1 \
      && cmake --build "$dest/cmake-build" >>"$dest/cmake.log" 2>&1 \
