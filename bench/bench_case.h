@@ -91,7 +91,8 @@ typedef struct run_opts {
     /* IDA: at each breakpoint, the values it restarts from (IDAReInit) made consistent by our
      * dae_consistent_init (as our solver restarts there: the equations one rounding unit after
      * the breakpoint) instead of IDA's own values before it (whose y' belongs to the input
-     * before the jump); the CPU time includes it, IDA's counters do not */
+     * before the jump), and its first step there the last one before it (IDASetInitStep); the
+     * CPU time includes the consistent values, IDA's counters do not */
     int ida_consistent_restart;
 } run_opts;
 

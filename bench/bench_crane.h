@@ -18,7 +18,8 @@
  * force and line pressures (crane_outputs; relative errors as the test set's scd), mescd over
  * the differential unknowns, the index-2 unknowns apart (scd2 over those above 1e-6 of the
  * largest). Drift: the hinge mismatch (output constraint_drift). No reference yet (yref NULL).
- * 0, or a negative status with the message in msg. */
+ * Our stability guard off (bc->stability_guard 0): a caller that runs the crane as the crane
+ * program does sets it from the scene. 0, or a negative status with the message in msg. */
 int bench_crane_case(bench_case *bc, const crane_scene *s, int settle, double tend,
                      const char *name, char *msg, size_t msz);
 

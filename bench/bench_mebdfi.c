@@ -243,7 +243,7 @@ int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, i
             if (o.status < 0) fails++;
             long failed = o.rejected + o.conv_fail;
             long m_nofd = d->mf == 22 ? m->res - (long)bc->n * m->jac : m->res;
-            fprintf(c, "%s,%s,%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,driver\n", bc->name,
+            fprintf(c, "%s,\"%s\",%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,driver\n", bc->name,
                     d->file, m->rtol, m->atol, 0, m->steps, m->failed, m->res, m_nofd, m->jac,
                     m->lu, m->max_order, m->scd);
             fprintf(c, "%s,bgdae-klu,%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,bench\n", bc->name,

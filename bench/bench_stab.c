@@ -188,7 +188,9 @@ typedef struct stab_result {
     char ref[200];
 } stab_result;
 
-/* Error in tolerances: max |y - yref| / (rtol |yref| + atol) over the differential unknowns (the
+/* Error in tolerances: max |y - yref| / (rtol |yref| + atol nominal_i) (nominal_i: the problem's
+ * nominal magnitudes, dae_problem.nominal, as the solver weighs the unknowns; 1 without them)
+ * over the differential unknowns (the
  * crane: its error test has the algebraic ones out) or the unknowns that are not index 2, of a
  * test-set problem those that the test set scores (docs/testset.md: crank's positions
  * y1..y7, whose undamped elastic velocities carry a global error that grows with the number of
@@ -204,7 +206,8 @@ static double err_tol(const bench_case *bc, const double *y, const double *yref,
         int k = bc->dp.kind ? bc->dp.kind[i] : DAE_DIFF;
         if (diff_only ? k != DAE_DIFF : k == DAE_ALG2) continue;
         if (scored && !scored[i]) continue;
-        double r = fabs(y[i] - yref[i]) / (rtol * fabs(yref[i]) + atol);
+        double a = bc->dp.nominal ? atol * bc->dp.nominal[i] : atol;
+        double r = fabs(y[i] - yref[i]) / (rtol * fabs(yref[i]) + a);
         if (!(r <= e)) e = r, w = i;
     }
     if (w >= 0 && bc->dp.names && bc->dp.names[w])

@@ -28,6 +28,13 @@
  *   chemakzo    chemical Akzo Nobel, n = 6, index 1 (semi-explicit).
  *   nand        NAND gate, n = 14, C(y) y' = f with a nonsingular voltage-dependent C, pulsed
  *               inputs with 15 breakpoints.
+ * and, in a third table (bp_osc_get), two undamped oscillatory problems of ours:
+ *   osc_chain   eight masses on stiff springs (59..626 Hz) driven by a sin^2 ramp through a
+ *               velocity constraint, n = 19, index 2, fast modes excited by the start;
+ *               closed-form modal reference.
+ *   rotating_beam  a flexible beam spun up by its hub (Simo and Vu-Quoc 1986), 2 axial and 3
+ *               bending Ritz coordinates, n = 13, index 2 (hub torque), a non-identity mass
+ *               matrix; reference by a long-double extrapolation of its ODE.
  *
  * Accuracy (IVP Test Set, Mazzia, Magherini and Iavernaro, Release 2.4):
  *   scd   = -log10(max_i |y_i - yref_i| / |yref_i|) over the scored components with yref_i != 0,

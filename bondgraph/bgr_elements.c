@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bgr_check.h"
+
 typedef enum law {
     LAW_LINEAR, /* scalar coefficient k */
     LAW_MATRIX, /* d x d matrix */
@@ -142,20 +144,24 @@ static int add(bgr_model *m, bgr_comp c, const char *name, const bgr_element_cla
     return id;
 }
 
-static int check_d(bgr_model *m, const char *name, int d)
+/* BG_ERR_ARGUMENT with a message naming the element unless 1 <= d <= max. */
+static int check_d(bgr_model *m, bgr_comp c, const char *name, const char *where, int d, int max)
 {
-    if (d < 1)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_element_add",
-                              "element %s: dimension %d, expected >= 1", name ? name : "(null)", d);
-    return BG_OK;
+    if (d >= 1 && d <= max) return BG_OK;
+    if (max < 1000)
+        return bgr_refuse(m, c, name, where, "dimension d = %d, expected 1 .. %d", d, max);
+    return bgr_refuse(m, c, name, where, "dimension d = %d, expected >= 1", d);
 }
 
+/* No limit on the dimension beyond the memory (I and C: 16, the names of their states). */
+#define D_ANY 1000000
+
 /* BG_ERR_ARGUMENT with a message if something the element needs is not given (a NULL pointer). */
-static int check_given(bgr_model *m, const char *name, int given, const char *what)
+static int check_given(bgr_model *m, bgr_comp c, const char *name, const char *where, int given,
+                       const char *what)
 {
     if (given) return BG_OK;
-    return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_element_add",
-                          "element %s: %s is NULL", name ? name : "(null)", what);
+    return bgr_refuse(m, c, name, where, "%s is NULL", what);
 }
 
 static void vname2(const bgr_model *m, int v, char *buf, size_t n)
@@ -301,13 +307,17 @@ static int add_state_elem(bgr_model *m, bgr_comp c, const char *name, const bgr_
 
 int bgr_I(bgr_model *m, bgr_comp c, const char *name, int d, double mass)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_I";
+    if (check_d(m, c, name, w, d, 16) || bgr_check_value(m, c, name, w, "mass", mass, BGR_POSITIVE))
+        return BG_ERR_ARGUMENT;
     return add_state_elem(m, c, name, &bgr_class_I, par_new(d, LAW_LINEAR, mass), "p");
 }
 
 int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double *M)
 {
-    if (check_d(m, name, d) || check_given(m, name, M != NULL, "the mass matrix"))
+    const char *w = "bgr_I_matrix";
+    if (check_d(m, c, name, w, d, 16) || check_given(m, c, name, w, M != NULL, "the mass matrix") ||
+        bgr_check_spd(m, c, name, w, "M", M, d))
         return BG_ERR_ARGUMENT;
     par *q = par_new(d, LAW_MATRIX, 0);
     if (q && !(q->vec = malloc((size_t)d * d * sizeof *q->vec))) {
@@ -320,7 +330,7 @@ int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double
 
 int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
 {
-    if (check_given(m, name, phi != NULL, "the function")) return BG_ERR_ARGUMENT;
+    if (check_given(m, c, name, "bgr_I_fn", phi != NULL, "the function")) return BG_ERR_ARGUMENT;
     par *q = par_new(1, LAW_FN, 0);
     if (q) {
         q->fn = phi;
@@ -410,13 +420,16 @@ const bgr_element_class bgr_class_C = {.type = "C",
 
 int bgr_C(bgr_model *m, bgr_comp c, const char *name, int d, double stiffness)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_C";
+    if (check_d(m, c, name, w, d, 16) ||
+        bgr_check_value(m, c, name, w, "stiffness", stiffness, BGR_NONNEGATIVE))
+        return BG_ERR_ARGUMENT;
     return add_state_elem(m, c, name, &bgr_class_C, par_new(d, LAW_LINEAR, stiffness), "q");
 }
 
 int bgr_C_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn psi, void *user)
 {
-    if (check_given(m, name, psi != NULL, "the function")) return BG_ERR_ARGUMENT;
+    if (check_given(m, c, name, "bgr_C_fn", psi != NULL, "the function")) return BG_ERR_ARGUMENT;
     par *q = par_new(1, LAW_FN, 0);
     if (q) {
         q->fn = psi;
@@ -494,13 +507,16 @@ const bgr_element_class bgr_class_R = {.type = "R",
 
 int bgr_R(bgr_model *m, bgr_comp c, const char *name, int d, double resistance)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_R";
+    if (check_d(m, c, name, w, d, D_ANY) ||
+        bgr_check_value(m, c, name, w, "resistance", resistance, BGR_NONNEGATIVE))
+        return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_R, par_new(d, LAW_LINEAR, resistance), 1, 0, NULL, 0, NULL);
 }
 
 int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user)
 {
-    if (check_given(m, name, phi != NULL, "the function")) return BG_ERR_ARGUMENT;
+    if (check_given(m, c, name, "bgr_R_fn", phi != NULL, "the function")) return BG_ERR_ARGUMENT;
     par *q = par_new(1, LAW_FN, 0);
     if (q) {
         q->fn = phi;
@@ -678,13 +694,16 @@ static par *src_signal(bgr_ref r)
 
 int bgr_Se(bgr_model *m, bgr_comp c, const char *name, int d, const double *value)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_Se";
+    if (check_d(m, c, name, w, d, D_ANY) ||
+        bgr_check_values(m, c, name, w, "value", value, d, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_Se, src_const(d, value), 1, 0, NULL, 0, NULL);
 }
 
 int bgr_Se_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user)
 {
-    if (check_given(m, name, fn != NULL, "the function")) return BG_ERR_ARGUMENT;
+    if (check_given(m, c, name, "bgr_Se_fn", fn != NULL, "the function")) return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_Se, src_time(fn, user), 1, 0, NULL, 0, NULL);
 }
 
@@ -695,13 +714,16 @@ int bgr_Se_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal)
 
 int bgr_Sf(bgr_model *m, bgr_comp c, const char *name, int d, const double *value)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_Sf";
+    if (check_d(m, c, name, w, d, D_ANY) ||
+        bgr_check_values(m, c, name, w, "value", value, d, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_Sf, src_const(d, value), 1, 0, NULL, 0, NULL);
 }
 
 int bgr_Sf_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user)
 {
-    if (check_given(m, name, fn != NULL, "the function")) return BG_ERR_ARGUMENT;
+    if (check_given(m, c, name, "bgr_Sf_fn", fn != NULL, "the function")) return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_Sf, src_time(fn, user), 1, 0, NULL, 0, NULL);
 }
 
@@ -800,7 +822,10 @@ const bgr_element_class bgr_class_TF = {.type = "TF",
 
 int bgr_TF(bgr_model *m, bgr_comp c, const char *name, int d, double modulus)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_TF";
+    if (check_d(m, c, name, w, d, D_ANY) ||
+        bgr_check_value(m, c, name, w, "modulus", modulus, BGR_NONZERO))
+        return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_TF, par_new(d, LAW_LINEAR, modulus), 2, 0, NULL, 0, NULL);
 }
 
@@ -880,7 +905,10 @@ const bgr_element_class bgr_class_GY = {.type = "GY",
 
 int bgr_GY(bgr_model *m, bgr_comp c, const char *name, int d, double modulus)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = "bgr_GY";
+    if (check_d(m, c, name, w, d, D_ANY) ||
+        bgr_check_value(m, c, name, w, "modulus", modulus, BGR_NONZERO))
+        return BG_ERR_ARGUMENT;
     return add(m, c, name, &bgr_class_GY, par_new(d, LAW_LINEAR, modulus), 2, 0, NULL, 0, NULL);
 }
 
@@ -1033,11 +1061,11 @@ const bgr_element_class bgr_class_one = {.type = "1",
 static int junction(bgr_model *m, bgr_comp c, const char *name, int nports, int d,
                     const bgr_element_class *cls)
 {
-    if (check_d(m, name, d)) return BG_ERR_ARGUMENT;
+    const char *w = cls == &bgr_class_zero ? "bgr_zero" : "bgr_one";
+    if (check_d(m, c, name, w, d, D_ANY)) return BG_ERR_ARGUMENT;
     if (nports < 2)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_element_add",
-                              "junction %s: %d ports, expected at least 2", name ? name : "(null)",
-                              nports);
+        return bgr_refuse(m, c, name, w, "junction with nports = %d, expected at least 2 ports",
+                          nports);
     return add(m, c, name, cls, par_new(d, LAW_LINEAR, 0), nports, 0, NULL, 0, NULL);
 }
 
@@ -1108,6 +1136,7 @@ const bgr_element_class bgr_class_gain = {.type = "gain",
 
 int bgr_gain(bgr_model *m, bgr_comp c, const char *name, bgr_ref x, double gain)
 {
+    if (bgr_check_value(m, c, name, "bgr_gain", "gain", gain, BGR_FINITE)) return BG_ERR_ARGUMENT;
     par *q = par_new(1, LAW_SIGNAL, gain);
     if (q) q->ref = x;
     static const char *const out[1] = {"out"};

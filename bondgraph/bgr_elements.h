@@ -22,9 +22,14 @@
  * Every constructor returns the element id (>= 0) or a negative status with the message in the
  * model's error record; ports are numbered 0, 1, ... as listed. Statuses: those of
  * bgr_element_add (BG_ERR_ARGUMENT for a NULL model or name, BG_ERR_STATE once the model is
- * compiled), and BG_ERR_ARGUMENT for a dimension d < 1 (I, C: above 16 as well), a NULL mass
- * matrix or function, a junction with fewer than 2 ports. A signal that refers to no unknown is
- * reported by bgr_compile. */
+ * compiled), and BG_ERR_ARGUMENT for a parameter out of the range stated next to it below: a
+ * dimension d < 1 (I, C: above 16 as well), a NULL mass matrix or function, a junction with
+ * fewer than 2 ports, and every number that is NaN or infinite or breaks its rule. The
+ * parameters are checked before anything is built: a refused element is not added (its name
+ * stays free), and the message names the element by its path (component path / name as given),
+ * the constructor, the parameter and what was expected, e.g.
+ *     element model/drive/m (bgr_I): mass = -1, expected a finite number > 0
+ * A signal that refers to no unknown is reported by bgr_compile. */
 #ifndef BGR_ELEMENTS_H
 #define BGR_ELEMENTS_H
 
@@ -40,27 +45,40 @@ typedef double (*bgr_fn)(void *user, double x, double *dfdx);
 /* A function of time. */
 typedef double (*bgr_time_fn)(void *user, double t);
 
+/* d: 1 .. 16; mass: finite, > 0 (0 would make M f = p singular). */
 BG_API int bgr_I(bgr_model *m, bgr_comp c, const char *name, int d, double mass);
-/* M: d x d, column-major, symmetric positive definite. */
+/* d: 1 .. 16; M: d x d, column-major, finite, exactly symmetric (M[i + j d] == M[j + i d]) and
+ * positive definite (its Cholesky factorisation has positive pivots). */
 BG_API int bgr_I_matrix(bgr_model *m, bgr_comp c, const char *name, int d, const double *M);
+/* phi: not NULL (it is the user's to keep finite). */
 BG_API int bgr_I_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
+/* d: 1 .. 16; stiffness: finite, >= 0 (0: no restoring effort; < 0 would store negative
+ * energy). */
 BG_API int bgr_C(bgr_model *m, bgr_comp c, const char *name, int d, double stiffness);
+/* psi: not NULL. */
 BG_API int bgr_C_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn psi, void *user);
+/* d >= 1; resistance: finite, >= 0 (0: no loss; < 0 would generate power). */
 BG_API int bgr_R(bgr_model *m, bgr_comp c, const char *name, int d, double resistance);
+/* phi: not NULL. */
 BG_API int bgr_R_fn(bgr_model *m, bgr_comp c, const char *name, bgr_fn phi, void *user);
-/* value: d constants (NULL: zeros). */
+/* d >= 1; value: d finite constants (NULL: zeros). fn (the _fn forms): not NULL. */
 BG_API int bgr_Se(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
 BG_API int bgr_Se_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
 BG_API int bgr_Se_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
 BG_API int bgr_Sf(bgr_model *m, bgr_comp c, const char *name, int d, const double *value);
 BG_API int bgr_Sf_fn(bgr_model *m, bgr_comp c, const char *name, bgr_time_fn fn, void *user);
 BG_API int bgr_Sf_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref signal);
+/* d >= 1; modulus: finite, != 0 (any sign; 0 would cut the ports apart and leave the system
+ * singular). A signal modulus is not checked: it is an unknown. */
 BG_API int bgr_TF(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
 BG_API int bgr_TF_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref modulus);
+/* d >= 1; modulus: finite, != 0 (as for TF). */
 BG_API int bgr_GY(bgr_model *m, bgr_comp c, const char *name, int d, double modulus);
+/* nports >= 2, d >= 1. */
 BG_API int bgr_zero(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
 BG_API int bgr_one(bgr_model *m, bgr_comp c, const char *name, int nports, int d);
-/* Signal z = gain * x; its output is bgr_ref {BGR_OWN, id, 0}. */
+/* Signal z = gain * x; its output is bgr_ref {BGR_OWN, id, 0}. gain: finite (any sign, 0
+ * too). */
 BG_API int bgr_gain(bgr_model *m, bgr_comp c, const char *name, bgr_ref x, double gain);
 
 /* The classes themselves, for bgr_element_add by hand. */

@@ -21,6 +21,7 @@
 
 #include <math.h>
 
+#include "bgr_check.h"
 #include "bgr_model.h"
 
 #define CMP_DEP(el, m, k, var, wrt_yp)                                                             \

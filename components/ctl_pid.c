@@ -157,34 +157,39 @@ const bgr_element_class ctl_class_pid = {.type = "PID",
 
 int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec)
 {
-    const char *nm = name ? name : "(null)";
-    if (!spec)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
-                              "controller %s: no specification", nm);
-    if (!isfinite(spec->kp) || !isfinite(spec->ki) || !isfinite(spec->kd))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
-                              "controller %s: gains must be finite", nm);
-    if (!(spec->derivative_filter >= 0) || !isfinite(spec->derivative_filter))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
-                              "controller %s: derivative_filter must be finite and >= 0 (got %g)",
-                              nm, spec->derivative_filter);
-    if (spec->derivative_filter > 0 && spec->use_measurement_rate)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
-                              "controller %s: give the measured rate or a derivative filter, not "
-                              "both",
-                              nm);
-    if (spec->kd != 0 && !spec->use_measurement_rate && !(spec->derivative_filter > 0))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
-                              "controller %s: Kd = %g needs the measured rate (e.g. a rot_sensor "
-                              "of the acceleration) or a derivative filter",
-                              nm, spec->kd);
-    if (spec->limit &&
-        (!isfinite(spec->out_min) || !isfinite(spec->out_max) || !(spec->out_max > spec->out_min) ||
-         !(spec->smoothing > 0) || !isfinite(spec->smoothing)))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "ctl_pid",
-                              "controller %s: limits need out_min < out_max (got %g, %g) and a "
-                              "smoothing width > 0 (got %g)",
-                              nm, spec->out_min, spec->out_max, spec->smoothing);
+    const char *w = "ctl_pid";
+    if (!spec) return bgr_refuse(m, c, name, w, "no specification (spec is NULL)");
+    if (bgr_check_value(m, c, name, w, "kp", spec->kp, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "ki", spec->ki, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "kd", spec->kd, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "derivative_filter", spec->derivative_filter,
+                        BGR_NONNEGATIVE))
+        return BG_ERR_ARGUMENT;
+    double tau = spec->derivative_filter;
+    if (tau > 0 && !isfinite(1.0 / tau))
+        return bgr_refuse(m, c, name, w,
+                          "derivative_filter = %g, expected 0 or a finite number > 0 with a "
+                          "finite 1 / derivative_filter",
+                          tau);
+    if (tau > 0 && spec->use_measurement_rate)
+        return bgr_refuse(m, c, name, w,
+                          "use_measurement_rate = %d with derivative_filter = %g: give the "
+                          "measured rate or a derivative filter, not both",
+                          spec->use_measurement_rate, tau);
+    if (spec->kd != 0 && !spec->use_measurement_rate && !(tau > 0))
+        return bgr_refuse(m, c, name, w,
+                          "kd = %g needs the measured rate (use_measurement_rate, e.g. a "
+                          "rot_sensor of the acceleration) or a derivative filter",
+                          spec->kd);
+    if (spec->limit) {
+        if (bgr_check_value(m, c, name, w, "out_min", spec->out_min, BGR_FINITE) ||
+            bgr_check_value(m, c, name, w, "out_max", spec->out_max, BGR_FINITE) ||
+            bgr_check_value(m, c, name, w, "smoothing", spec->smoothing, BGR_POSITIVE))
+            return BG_ERR_ARGUMENT;
+        if (!(spec->out_max > spec->out_min))
+            return bgr_refuse(m, c, name, w, "out_max = %g, expected > out_min = %g",
+                              spec->out_max, spec->out_min);
+    }
     pid *q = calloc(1, sizeof *q);
     if (!q)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "ctl_pid", "out of memory");

@@ -47,7 +47,7 @@ extern "C" {
 #endif
 
 typedef struct ctl_pid_spec {
-    double kp, ki, kd;
+    double kp, ki, kd;      /* gains: finite, any sign */
     bgr_ref reference;      /* r */
     bgr_ref measurement;    /* y */
     int use_reference_rate; /* 1: reference_rate holds r'; 0: r' = 0 */
@@ -56,11 +56,17 @@ typedef struct ctl_pid_spec {
     bgr_ref measurement_rate;
     double derivative_filter; /* tau > 0: y' estimated by the filter (y - z) / tau; 0: none */
     int limit;                /* 1: smooth limits [out_min, out_max] of width smoothing > 0 */
-    double out_min, out_max, smoothing;
+    double out_min, out_max, smoothing; /* with limit: finite, out_min < out_max, smoothing > 0 */
 } ctl_pid_spec;
 
 /* Returns the element id (its output is bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the
- * model's error record). */
+ * model's error record). Accepted: spec not NULL; kp, ki, kd finite (any sign);
+ * derivative_filter finite and >= 0 (0: none; > 0 with a finite 1 / tau), not together with
+ * use_measurement_rate; kd != 0 only with the measured rate or the filter; with limit: out_min
+ * and out_max finite with out_min < out_max, smoothing finite and > 0 (the limits are not read
+ * without limit). Anything else gives BG_ERR_ARGUMENT before anything is built, with a message
+ * naming the controller's path and the parameter (nothing is added to the model). The signals
+ * are resolved by bgr_compile, which reports one that names no unknown. */
 BG_API int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec);
 
 BG_API extern const bgr_element_class ctl_class_pid;

@@ -114,11 +114,11 @@ const bgr_element_class hyd_class_motor = {.type = "motor",
 
 int hyd_motor(bgr_model *m, bgr_comp c, const char *name, double D, double Cl, double b)
 {
-    if (!(D > 0) || !isfinite(D) || !(Cl >= 0) || !isfinite(Cl) || !(b >= 0) || !isfinite(b))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_motor",
-                              "motor %s: displacement %g must be > 0, leakage %g and friction %g "
-                              ">= 0, all finite",
-                              name ? name : "(null)", D, Cl, b);
+    const char *w = "hyd_motor";
+    if (bgr_check_value(m, c, name, w, "D", D, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, w, "Cl", Cl, BGR_NONNEGATIVE) ||
+        bgr_check_value(m, c, name, w, "b", b, BGR_NONNEGATIVE))
+        return BG_ERR_ARGUMENT;
     motor *q = calloc(1, sizeof *q);
     if (!q)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "hyd_motor", "out of memory");

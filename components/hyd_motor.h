@@ -29,7 +29,9 @@
 extern "C" {
 #endif
 
-/* Returns the element id or < 0 (message in the model's error record). */
+/* Returns the element id or < 0 (message in the model's error record). Accepted: D finite and
+ * > 0; Cl and b finite and >= 0. Anything else: BG_ERR_ARGUMENT before anything is built, with a
+ * message naming the element's path and the parameter (nothing is added to the model). */
 BG_API int hyd_motor(bgr_model *m, bgr_comp c, const char *name, double D, double Cl, double b);
 
 /* Optional nominal scales (bgr_declare_nominal), stated before bgr_compile: pressure (Pa) for

@@ -124,10 +124,9 @@ const bgr_element_class hyd_class_pump = {.type = "pump",
 
 int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl, bgr_ref command)
 {
-    if (!(Dp > 0) || !isfinite(Dp) || !(Cl >= 0) || !isfinite(Cl))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_pump",
-                              "pump %s: displacement %g must be > 0 and leakage %g >= 0, finite",
-                              name ? name : "(null)", Dp, Cl);
+    if (bgr_check_value(m, c, name, "hyd_pump", "Dp", Dp, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, "hyd_pump", "Cl", Cl, BGR_NONNEGATIVE))
+        return BG_ERR_ARGUMENT;
     pump *q = calloc(1, sizeof *q);
     if (!q)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "hyd_pump", "out of memory");

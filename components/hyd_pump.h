@@ -7,7 +7,7 @@
  * Signal x: the displacement command, a fraction of the maximum displacement Dp (usually in
  * [-1, 1]; negative x reverses the flow), read from any unknown (bgr_ref).
  * Parameters: Dp, displacement per revolution at x = 1 (m^3/rev); Cl, laminar cross-port leakage
- * conductance (m^3/(s Pa)), >= 0.
+ * conductance (m^3/(s Pa)), >= 0; both finite, Dp > 0.
  *
  * Equations, with dp = p_b - p_a and the flows counted in the port's power direction:
  *   T      = x Dp dp / (2 pi)                          torque drawn       ("torque")
@@ -30,8 +30,10 @@
 extern "C" {
 #endif
 
-/* Returns the element id or < 0 (message in the model's error record): Dp > 0 and Cl >= 0
- * finite are required; the command must name an unknown once the model is compiled. */
+/* Returns the element id or < 0 (message in the model's error record). Accepted: Dp finite and
+ * > 0, Cl finite and >= 0; anything else gives BG_ERR_ARGUMENT before anything is built, with a
+ * message naming the element's path and the parameter (nothing is added to the model). The
+ * command must name an unknown once the model is compiled (bgr_compile reports it). */
 BG_API int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl,
                     bgr_ref command);
 

@@ -3,14 +3,13 @@
 
 #include <math.h>
 
+#include "bgr_check.h"
 #include "bgr_elements.h"
 
 int hyd_tank(bgr_model *m, bgr_comp c, const char *name, double pressure)
 {
-    if (!isfinite(pressure))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_tank",
-                              "tank %s: pressure %g must be finite", name ? name : "(null)",
-                              pressure);
+    if (bgr_check_value(m, c, name, "hyd_tank", "pressure", pressure, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
     return bgr_Se(m, c, name, 1, &pressure);
 }
 
@@ -21,10 +20,8 @@ int hyd_pressure_source_signal(bgr_model *m, bgr_comp c, const char *name, bgr_r
 
 int hyd_flow_source(bgr_model *m, bgr_comp c, const char *name, double flow)
 {
-    if (!isfinite(flow))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_flow_source",
-                              "flow source %s: flow %g must be finite", name ? name : "(null)",
-                              flow);
+    if (bgr_check_value(m, c, name, "hyd_flow_source", "flow", flow, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
     return bgr_Sf(m, c, name, 1, &flow);
 }
 

@@ -19,7 +19,10 @@
 extern "C" {
 #endif
 
-/* Each returns the element id or < 0 (message in the model's error record). */
+/* Each returns the element id or < 0 (message in the model's error record). Accepted: pressure
+ * (Pa) and flow (m^3/s) finite, of any sign; a NaN or an infinity gives BG_ERR_ARGUMENT before
+ * anything is built, with a message naming the element's path and the parameter. The signal
+ * forms check nothing at construction (bgr_compile reports a signal that names no unknown). */
 BG_API int hyd_tank(bgr_model *m, bgr_comp c, const char *name, double pressure);
 BG_API int hyd_pressure_source_signal(bgr_model *m, bgr_comp c, const char *name, bgr_ref pressure);
 BG_API int hyd_flow_source(bgr_model *m, bgr_comp c, const char *name, double flow);

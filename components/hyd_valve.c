@@ -130,24 +130,29 @@ static int add_valve(bgr_model *m, bgr_comp c, const char *name, const bgr_eleme
 
 int hyd_leakage(bgr_model *m, bgr_comp c, const char *name, double G)
 {
-    if (!(G >= 0) || !isfinite(G))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_leakage",
-                              "leakage %s: conductance %g must be >= 0, finite",
-                              name ? name : "(null)", G);
+    if (bgr_check_value(m, c, name, "hyd_leakage", "G", G, BGR_NONNEGATIVE)) return BG_ERR_ARGUMENT;
     return add_valve(m, c, name, &hyd_class_leakage, 0, G, 0.0, 1.0, "hyd_leakage");
 }
 
 int hyd_relief_valve(bgr_model *m, bgr_comp c, const char *name, double p_crack, double p_full,
                      double q_rated, double eps)
 {
-    if (!isfinite(p_crack) || !isfinite(p_full) || !(p_full > p_crack) || !(q_rated > 0) ||
-        !isfinite(q_rated) || !(eps > 0) || !isfinite(eps))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_relief_valve",
-                              "relief valve %s: need p_full > p_crack (got p_full = %g, "
-                              "p_crack = %g), rated flow %g > 0 and width %g > 0, all finite",
-                              name ? name : "(null)", p_full, p_crack, q_rated, eps);
-    int id = add_valve(m, c, name, &hyd_class_relief, 1, q_rated / (p_full - p_crack), p_crack,
-                       eps, "hyd_relief_valve");
+    const char *w = "hyd_relief_valve";
+    if (bgr_check_value(m, c, name, w, "p_crack", p_crack, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "p_full", p_full, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "q_rated", q_rated, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, w, "eps", eps, BGR_POSITIVE))
+        return BG_ERR_ARGUMENT;
+    if (!(p_full > p_crack))
+        return bgr_refuse(m, c, name, w, "p_full = %g, expected > p_crack = %g", p_full, p_crack);
+    /* the conductance of the open valve: the rated flow over the pressure band */
+    double G = q_rated / (p_full - p_crack);
+    if (!(G > 0) || !isfinite(G))
+        return bgr_refuse(m, c, name, w,
+                          "q_rated / (p_full - p_crack) = %g (q_rated = %g, p_full = %g, "
+                          "p_crack = %g), expected a finite number > 0",
+                          G, q_rated, p_full, p_crack);
+    int id = add_valve(m, c, name, &hyd_class_relief, 1, G, p_crack, eps, w);
     bgr_element *el = id >= 0 ? bgr_element_get(m, id) : NULL;
     if (el) {
         valve *q = el->params;

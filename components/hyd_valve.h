@@ -44,11 +44,15 @@
 extern "C" {
 #endif
 
-/* Laminar leakage with conductance G >= 0. Returns the element id or < 0. */
+/* Laminar leakage with conductance G, finite and >= 0. Returns the element id or < 0.
+ * Parameters out of their ranges (here and below) give BG_ERR_ARGUMENT before anything is built,
+ * with a message naming the element's path and the parameter (nothing is added to the model). */
 BG_API int hyd_leakage(bgr_model *m, bgr_comp c, const char *name, double G);
-/* Relief valve: cracking pressure p_crack, full-flow pressure p_full > p_crack at the rated flow
- * q_rated > 0, smoothing width eps > 0 (a small fraction of p_full - p_crack, e.g. 1 %). Returns
- * the element id or < 0. */
+/* Relief valve: cracking pressure p_crack (finite, any sign), full-flow pressure p_full > p_crack
+ * (finite) at the rated flow q_rated > 0 (finite), smoothing width eps > 0 (finite; a small
+ * fraction of p_full - p_crack, e.g. 1 %); the open valve's conductance q_rated / (p_full -
+ * p_crack) must come out finite and > 0 (no overflow of the band). Returns the element id or
+ * < 0. */
 BG_API int hyd_relief_valve(bgr_model *m, bgr_comp c, const char *name, double p_crack,
                             double p_full, double q_rated, double eps);
 

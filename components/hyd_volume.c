@@ -118,11 +118,17 @@ const bgr_element_class hyd_class_volume = {.type = "volume",
 
 int hyd_volume(bgr_model *m, bgr_comp c, const char *name, int nports, double V, double beta)
 {
-    if (nports < 1 || nports > 1000 || !(V > 0) || !isfinite(V) || !(beta > 0) || !isfinite(beta))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_volume",
-                              "volume %s: %d ports (1 .. 1000), V = %g and beta = %g must be > 0, "
-                              "finite",
-                              name ? name : "(null)", nports, V, beta);
+    const char *w = "hyd_volume";
+    if (nports < 1 || nports > 1000)
+        return bgr_refuse(m, c, name, w, "nports = %d, expected 1 .. 1000", nports);
+    if (bgr_check_value(m, c, name, w, "V", V, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, w, "beta", beta, BGR_POSITIVE))
+        return BG_ERR_ARGUMENT;
+    if (!isfinite(beta / V))
+        return bgr_refuse(m, c, name, w,
+                          "beta / V = %g (V = %g, beta = %g), expected a finite number (the "
+                          "pressure's rate per unit inflow)",
+                          beta / V, V, beta);
     volume *q = calloc(1, sizeof *q);
     int *dims = malloc((size_t)nports * sizeof *dims);
     if (!q || !dims) {

@@ -26,7 +26,10 @@
 extern "C" {
 #endif
 
-/* Returns the element id or < 0 (message in the model's error record). */
+/* Returns the element id or < 0 (message in the model's error record). Accepted: nports 1 ..
+ * 1000; V and beta finite and > 0, with beta / V finite. Anything else gives BG_ERR_ARGUMENT
+ * before anything is built, with a message naming the element's path and the parameter (nothing
+ * is added to the model). */
 BG_API int hyd_volume(bgr_model *m, bgr_comp c, const char *name, int nports, double V,
                       double beta);
 

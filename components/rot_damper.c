@@ -3,12 +3,11 @@
 
 #include <math.h>
 
+#include "bgr_check.h"
 #include "bgr_elements.h"
 
 int rot_damper(bgr_model *m, bgr_comp c, const char *name, double b)
 {
-    if (!(b >= 0) || !isfinite(b))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "rot_damper",
-                              "damper %s: b = %g must be >= 0, finite", name ? name : "(null)", b);
+    if (bgr_check_value(m, c, name, "rot_damper", "b", b, BGR_NONNEGATIVE)) return BG_ERR_ARGUMENT;
     return bgr_R(m, c, name, 1, b);
 }

@@ -19,7 +19,9 @@
 extern "C" {
 #endif
 
-/* Returns the element id or < 0 (message in the model's error record). */
+/* Returns the element id or < 0 (message in the model's error record). Accepted: b finite and
+ * >= 0; anything else gives BG_ERR_ARGUMENT before anything is built, with a message naming the
+ * element's path and the parameter (nothing is added to the model). */
 BG_API int rot_damper(bgr_model *m, bgr_comp c, const char *name, double b);
 
 #ifdef __cplusplus

@@ -3,13 +3,16 @@
 
 #include <math.h>
 
+#include "bgr_check.h"
 #include "bgr_elements.h"
 
 int rot_gear(bgr_model *m, bgr_comp c, const char *name, double ratio)
 {
-    if (!(ratio != 0) || !isfinite(ratio))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "rot_gear",
-                              "gear %s: ratio %g must be finite and non-zero",
-                              name ? name : "(null)", ratio);
+    if (bgr_check_value(m, c, name, "rot_gear", "ratio", ratio, BGR_NONZERO))
+        return BG_ERR_ARGUMENT;
+    if (!isfinite(1.0 / ratio))
+        return bgr_refuse(m, c, name, "rot_gear",
+                          "ratio = %g, expected a finite number != 0 with a finite 1 / ratio",
+                          ratio);
     return bgr_TF(m, c, name, 1, 1.0 / ratio);
 }

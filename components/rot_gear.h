@@ -21,7 +21,9 @@
 extern "C" {
 #endif
 
-/* Returns the element id or < 0 (message in the model's error record). */
+/* Returns the element id or < 0 (message in the model's error record). Accepted: ratio finite
+ * and != 0 (any sign), with 1 / ratio finite; anything else gives BG_ERR_ARGUMENT before
+ * anything is built, with a message naming the element's path and the parameter. */
 BG_API int rot_gear(bgr_model *m, bgr_comp c, const char *name, double ratio);
 
 #ifdef __cplusplus

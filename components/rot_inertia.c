@@ -91,9 +91,10 @@ double rot_inertia_moment(const bgr_element *el)
 
 int rot_inertia(bgr_model *m, bgr_comp c, const char *name, double J)
 {
-    if (!(J > 0) || !isfinite(J))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "rot_inertia",
-                              "inertia %s: J = %g must be > 0, finite", name ? name : "(null)", J);
+    if (bgr_check_value(m, c, name, "rot_inertia", "J", J, BGR_POSITIVE)) return BG_ERR_ARGUMENT;
+    if (!isfinite(1.0 / J))
+        return bgr_refuse(m, c, name, "rot_inertia",
+                          "J = %g, expected a finite number > 0 with a finite 1 / J", J);
     inertia *q = calloc(1, sizeof *q);
     if (!q)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "rot_inertia",

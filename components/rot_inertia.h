@@ -26,7 +26,9 @@
 extern "C" {
 #endif
 
-/* Returns the element id or < 0 (message in the model's error record). */
+/* Returns the element id or < 0 (message in the model's error record). Accepted: J finite and
+ * > 0, with 1 / J finite; anything else gives BG_ERR_ARGUMENT before anything is built, with a
+ * message naming the element's path and the parameter (nothing is added to the model). */
 BG_API int rot_inertia(bgr_model *m, bgr_comp c, const char *name, double J);
 /* Optional nominal speed (rad/s; bgr_declare_nominal), stated before bgr_compile: the scale of
  * the speed w and, times J, of the momentum p. J gives no speed of its own: not stated (0), both

@@ -80,12 +80,12 @@ const bgr_element_class rot_class_sensor = {.type = "sensor",
 int rot_sensor(bgr_model *m, bgr_comp c, const char *name, int inertia, rot_quantity q)
 {
     if (q != ROT_ANGLE && q != ROT_VELOCITY && q != ROT_ACCELERATION)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "rot_sensor",
-                              "sensor %s: unknown quantity %d", name ? name : "(null)", (int)q);
+        return bgr_refuse(m, c, name, "rot_sensor",
+                          "quantity q = %d, expected ROT_ANGLE, ROT_VELOCITY or ROT_ACCELERATION",
+                          (int)q);
     if (!(rot_inertia_moment(bgr_element_get(m, inertia)) > 0))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "rot_sensor",
-                              "sensor %s: element %d is not a rot_inertia", name ? name : "(null)",
-                              inertia);
+        return bgr_refuse(m, c, name, "rot_sensor",
+                          "inertia = %d, expected the id of a rot_inertia element", inertia);
     sensor *p = calloc(1, sizeof *p);
     if (!p)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "rot_sensor", "out of memory");

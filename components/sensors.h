@@ -27,7 +27,10 @@ extern "C" {
 typedef enum rot_quantity { ROT_ANGLE = 0, ROT_VELOCITY = 1, ROT_ACCELERATION = 2 } rot_quantity;
 
 /* A sensor of quantity q on the rot_inertia element inertia. Returns the element id (its signal
- * is bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the model's error record). */
+ * is bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the model's error record). Accepted: q one of
+ * the three quantities, inertia the id of a rot_inertia element made before; anything else gives
+ * BG_ERR_ARGUMENT before anything is built, with a message naming the sensor's path and the
+ * parameter. */
 BG_API int rot_sensor(bgr_model *m, bgr_comp c, const char *name, int inertia, rot_quantity q);
 
 BG_API extern const bgr_element_class rot_class_sensor;

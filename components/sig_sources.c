@@ -197,11 +197,30 @@ static int add_source(bgr_model *m, bgr_comp c, const char *name, source *q, con
     return bgr_element_add(m, c, name, &sig_class_source, q, 0, NULL, 0, NULL, 1, an);
 }
 
-static int bad_out(bgr_model *m, const char *name, sig_output out, const char *where)
+static int bad_out(bgr_model *m, bgr_comp c, const char *name, sig_output out, const char *where)
 {
     if (out == SIG_VALUE || out == SIG_RATE || out == SIG_INTEGRAL) return 0;
-    return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, where,
-                          "signal %s: unknown output %d", name ? name : "(null)", (int)out);
+    return bgr_refuse(m, c, name, where,
+                      "unknown output out = %d, expected SIG_VALUE, SIG_RATE or SIG_INTEGRAL",
+                      (int)out);
+}
+
+/* BG_OK if the n points (t_k, v_k), finite with strictly increasing times, make a
+ * piecewise-linear function whose slopes and segment areas are finite (knots not so close, or
+ * values not so large, that they overflow); else the refusal naming the points. */
+static int check_segments(bgr_model *m, bgr_comp c, const char *name, const char *where, int n,
+                          const double *t, const double *v)
+{
+    for (int k = 1; k < n; k++) {
+        double dt = t[k] - t[k - 1], s = (v[k] - v[k - 1]) / dt, a = 0.5 * (v[k - 1] + v[k]) * dt;
+        if (!isfinite(s) || !isfinite(a))
+            return bgr_refuse(m, c, name, where,
+                              "the segment from (t = %g, v = %g) to (t = %g, v = %g) has slope %g "
+                              "and area %g, expected finite numbers (times too close or values "
+                              "too large)",
+                              t[k - 1], v[k - 1], t[k], v[k], s, a);
+    }
+    return BG_OK;
 }
 
 static source *new_source(shape kind, sig_output out, const char *what)
@@ -240,15 +259,19 @@ int sig_pwl(bgr_model *m, bgr_comp c, const char *name, int n, const double *t, 
             sig_output out)
 {
     const char *w = "sig_pwl";
-    if (bad_out(m, name, out, w)) return BG_ERR_ARGUMENT;
-    int ok = n >= 1 && t && v;
-    for (int k = 0; ok && k < n; k++)
-        ok = isfinite(t[k]) && isfinite(v[k]) && (k == 0 || t[k] > t[k - 1]);
-    if (!ok)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
-                              "signal %s: need n >= 1 finite points with strictly increasing "
-                              "times",
-                              name ? name : "(null)");
+    if (bad_out(m, c, name, out, w)) return BG_ERR_ARGUMENT;
+    if (n < 1) return bgr_refuse(m, c, name, w, "n = %d, expected at least 1 point", n);
+    if (!t || !v)
+        return bgr_refuse(m, c, name, w, "the points' %s are NULL", !t ? "times t" : "values v");
+    if (bgr_check_values(m, c, name, w, "t", t, n, BGR_FINITE) ||
+        bgr_check_values(m, c, name, w, "v", v, n, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
+    for (int k = 1; k < n; k++)
+        if (!(t[k] > t[k - 1]))
+            return bgr_refuse(m, c, name, w,
+                              "t[%d] = %g, expected > t[%d] = %g (strictly increasing times)", k,
+                              t[k], k - 1, t[k - 1]);
+    if (check_segments(m, c, name, w, n, t, v)) return BG_ERR_ARGUMENT;
     return add_source(m, c, name, new_pwl(n, t, v, out, "pwl"), w);
 }
 
@@ -256,40 +279,48 @@ int sig_trapezoid(bgr_model *m, bgr_comp c, const char *name, double t0, double 
                   double t3, double height, sig_output out)
 {
     const char *w = "sig_trapezoid";
-    if (bad_out(m, name, out, w)) return BG_ERR_ARGUMENT;
-    if (!isfinite(t0) || !isfinite(t3) || !isfinite(height) || !(t0 < t1) || !(t1 <= t2) ||
-        !(t2 < t3))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
-                              "signal %s: need t0 < t1 <= t2 < t3 (got %g, %g, %g, %g) and a "
-                              "finite height",
-                              name ? name : "(null)", t0, t1, t2, t3);
+    if (bad_out(m, c, name, out, w)) return BG_ERR_ARGUMENT;
+    if (bgr_check_value(m, c, name, w, "t0", t0, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "t1", t1, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "t2", t2, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "t3", t3, BGR_FINITE) ||
+        bgr_check_value(m, c, name, w, "height", height, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
+    if (!(t0 < t1))
+        return bgr_refuse(m, c, name, w, "t1 = %g, expected > t0 = %g (t0 < t1 <= t2 < t3)", t1,
+                          t0);
+    if (!(t1 <= t2))
+        return bgr_refuse(m, c, name, w, "t2 = %g, expected >= t1 = %g (t0 < t1 <= t2 < t3)", t2,
+                          t1);
+    if (!(t2 < t3))
+        return bgr_refuse(m, c, name, w, "t3 = %g, expected > t2 = %g (t0 < t1 <= t2 < t3)", t3,
+                          t2);
     double tk[4] = {t0, t1, t2, t3}, vk[4] = {0.0, height, height, 0.0};
     if (t1 == t2) {
         tk[2] = t3;
         vk[2] = 0.0;
     }
+    if (check_segments(m, c, name, w, t1 == t2 ? 3 : 4, tk, vk)) return BG_ERR_ARGUMENT;
     return add_source(m, c, name, new_pwl(t1 == t2 ? 3 : 4, tk, vk, out, "trapezoid"), w);
 }
 
 int sig_constant(bgr_model *m, bgr_comp c, const char *name, double value, sig_output out)
 {
     const char *w = "sig_constant";
-    if (bad_out(m, name, out, w)) return BG_ERR_ARGUMENT;
-    if (!isfinite(value))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
-                              "signal %s: value %g must be finite", name ? name : "(null)", value);
+    if (bad_out(m, c, name, out, w)) return BG_ERR_ARGUMENT;
+    if (bgr_check_value(m, c, name, w, "value", value, BGR_FINITE)) return BG_ERR_ARGUMENT;
     double t0 = 0.0;
     return add_source(m, c, name, new_pwl(1, &t0, &value, out, "constant"), w);
 }
 
+/* np parameters p named pn, all finite (the unused ones 0). */
 static int add_param_source(bgr_model *m, bgr_comp c, const char *name, shape kind, sig_output out,
-                            const char *what, const double p[4], const char *w)
+                            const char *what, const double p[4], const char *const pn[4], int np,
+                            const char *w)
 {
-    if (bad_out(m, name, out, w)) return BG_ERR_ARGUMENT;
-    for (int k = 0; k < 4; k++)
-        if (!isfinite(p[k]))
-            return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
-                                  "signal %s: parameters must be finite", name ? name : "(null)");
+    if (bad_out(m, c, name, out, w)) return BG_ERR_ARGUMENT;
+    for (int k = 0; k < np; k++)
+        if (bgr_check_value(m, c, name, w, pn[k], p[k], BGR_FINITE)) return BG_ERR_ARGUMENT;
     source *q = new_source(kind, out, what);
     if (q) {
         q->a = p[0];
@@ -304,21 +335,24 @@ int sig_step(bgr_model *m, bgr_comp c, const char *name, double t_step, double b
              sig_output out)
 {
     const double p[4] = {t_step, before, after, 0.0};
-    return add_param_source(m, c, name, SHAPE_STEP, out, "step", p, "sig_step");
+    static const char *const pn[4] = {"t_step", "before", "after", ""};
+    return add_param_source(m, c, name, SHAPE_STEP, out, "step", p, pn, 3, "sig_step");
 }
 
 int sig_ramp(bgr_model *m, bgr_comp c, const char *name, double t_start, double slope,
              double offset, sig_output out)
 {
     const double p[4] = {t_start, slope, offset, 0.0};
-    return add_param_source(m, c, name, SHAPE_RAMP, out, "ramp", p, "sig_ramp");
+    static const char *const pn[4] = {"t_start", "slope", "offset", ""};
+    return add_param_source(m, c, name, SHAPE_RAMP, out, "ramp", p, pn, 3, "sig_ramp");
 }
 
 int sig_sine(bgr_model *m, bgr_comp c, const char *name, double amplitude, double omega,
              double phase, double offset, sig_output out)
 {
     const double p[4] = {amplitude, omega, phase, offset};
-    return add_param_source(m, c, name, SHAPE_SINE, out, "sine", p, "sig_sine");
+    static const char *const pn[4] = {"amplitude", "omega", "phase", "offset"};
+    return add_param_source(m, c, name, SHAPE_SINE, out, "sine", p, pn, 4, "sig_sine");
 }
 
 int sig_evaluate(bgr_model *m, int id, double t, double *value, double *rate, double *integral)

@@ -50,7 +50,12 @@ extern "C" {
 typedef enum sig_output { SIG_VALUE = 0, SIG_RATE = 1, SIG_INTEGRAL = 2 } sig_output;
 
 /* Each returns the element id (signal bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the model's
- * error record). */
+ * error record). Accepted: out one of the three outputs; every number finite (times, values,
+ * height, slope, offset, amplitude, omega, phase: any sign); trapezoid t0 < t1 <= t2 < t3; pwl
+ * n >= 1 points, t and v not NULL, t strictly increasing; pwl and trapezoid with finite slopes
+ * and segment areas (no overflow from knots too close or values too large). Anything else gives
+ * BG_ERR_ARGUMENT before anything is built, with a message naming the signal's path and the
+ * parameter (nothing is added to the model). */
 BG_API int sig_trapezoid(bgr_model *m, bgr_comp c, const char *name, double t0, double t1,
                          double t2, double t3, double height, sig_output out);
 BG_API int sig_pwl(bgr_model *m, bgr_comp c, const char *name, int n, const double *t,

@@ -919,3 +919,140 @@ int crane_stats_print(const crane *c, FILE *f)
             c->s.nominal_scales ? "true" : "false: all 1");
     return BG_OK;
 }
+
+/* ------------------------------------------------------------ geometry ---- */
+
+_Static_assert(CRANE_MAX_NODES == MAXEL + 1, "crane_geom holds every boom node");
+
+/* A point given in the platform frame, global at the state y. */
+static void platform_point(const crane *c, const double *y, const double *r, double *p)
+{
+    double rc[3];
+    sub3(r, c->s.platform_com, rc);
+    body_point(y, c->v_plat_x, c->v_plat_q, rc, p);
+}
+
+/* Boom node k at the state y: a beam node's centre, or the rigid boom's foot (0) and tip (1). */
+static void boom_node(const crane *c, const double *y, int k, double *p)
+{
+    if (c->n > 0)
+        memcpy(p, y + mech_body_var(c->m, c->nodes[k], 'x'), 3 * sizeof *p);
+    else
+        body_point(y, c->v_tip, c->v_tipq, k ? c->tip_r : c->foot_r, p);
+}
+
+static void unit3(double *a)
+{
+    double n = sqrt(mech_dot(a, a));
+    if (n > 0)
+        for (int i = 0; i < 3; i++)
+            a[i] /= n;
+}
+
+int crane_geometry(const crane *c, double t, const double *y, const double *yp, crane_geom *g)
+{
+    if (!c || !y || !g) return BG_ERR_ARGUMENT;
+    (void)yp;
+    const crane_scene *s = &c->s;
+    const double *y0 = bgr_y0(c->m), *A = s->joint_A;
+    memset(g, 0, sizeof *g);
+    g->t = t;
+    g->theta = y[c->v_theta];
+    g->omega = y[c->v_omega];
+    memcpy(g->platform_x, y + c->v_plat_x, sizeof g->platform_x);
+    mech_quat_R(y + c->v_plat_q, g->platform_R, NULL);
+    memcpy(g->joint_A, A, sizeof g->joint_A);
+    /* the platform: deck, hinge, gantry (platform frame, then carried along) */
+    double lo[3], hi[3], p[3];
+    memcpy(lo, A, sizeof lo);
+    memcpy(hi, A, sizeof hi);
+    g->ngantry = c->nties == 2 ? 2 : 1;
+    for (int k = 0; k < 3 + g->ngantry; k++) {
+        if (k == 2 && !s->counterweight) continue;
+        if (k < 3)
+            memcpy(p, k == 0 ? s->boom_foot : k == 1 ? s->gantry_top : s->cw_pos, sizeof p);
+        else
+            gantry_point(s, k - 3, c->nties, p);
+        for (int i = 0; i < 2; i++)
+            lo[i] = fmin(lo[i], p[i] - 1), hi[i] = fmax(hi[i], p[i] + 1);
+    }
+    const double corner[4][2] = {{lo[0], lo[1]}, {hi[0], lo[1]}, {hi[0], hi[1]}, {lo[0], hi[1]}};
+    for (int k = 0; k < 4; k++) {
+        double r[3] = {corner[k][0], corner[k][1], A[2]};
+        platform_point(c, y, r, g->deck[k]);
+    }
+    platform_point(c, y, s->boom_foot, g->hinge);
+    platform_point(c, y, s->gantry_top, g->gantry_top);
+    for (int k = 0; k < g->ngantry; k++) {
+        gantry_point(s, k, c->nties, p);
+        platform_point(c, y, p, g->gantry[k]);
+        p[2] = A[2];
+        platform_point(c, y, p, g->gantry_base[k]);
+    }
+    /* the boom: nodes and their displacements from the start carried round by theta */
+    double cs = cos(g->theta), sn = sin(g->theta), e2[3], e3[3];
+    e2[0] = cs * c->e2[0] - sn * c->e2[1], e2[1] = sn * c->e2[0] + cs * c->e2[1], e2[2] = c->e2[2];
+    e3[0] = cs * c->e3[0] - sn * c->e3[1], e3[1] = sn * c->e3[0] + cs * c->e3[1], e3[2] = c->e3[2];
+    g->beam = c->n > 0;
+    g->nodes = c->n > 0 ? c->n + 1 : 2;
+    for (int k = 0; k < g->nodes; k++) {
+        double p0[3], r[3], *d = g->defl[k];
+        boom_node(c, y, k, g->node[k]);
+        boom_node(c, y0, k, p0);
+        r[0] = A[0] + cs * (p0[0] - A[0]) - sn * (p0[1] - A[1]);
+        r[1] = A[1] + sn * (p0[0] - A[0]) + cs * (p0[1] - A[1]);
+        r[2] = p0[2];
+        sub3(g->node[k], r, d);
+        g->defl_luff[k] = mech_dot(d, e2);
+        g->defl_side[k] = mech_dot(d, e3);
+    }
+    /* section loads: element k's port loads (F_a, M_a, F_b, M_b) act on the element */
+    for (int k = 0; k < c->n; k++) {
+        double L[12];
+        if (mech_beam_loads(c->m, c->elems[k], y, 0, L) != BG_OK) return BG_ERR_ARGUMENT;
+        for (int i = 0; i < 3; i++) {
+            g->force[k][i] -= L[i], g->moment[k][i] -= L[3 + i];
+            g->force[k + 1][i] += L[6 + i], g->moment[k + 1][i] += L[9 + i];
+        }
+    }
+    for (int k = 0; k < g->nodes && g->beam; k++) {
+        double b1[3], b2[3], b3[3], w = k > 0 && k < c->n ? 0.5 : 1.0;
+        sub3(g->node[k < c->n ? k + 1 : k], g->node[k > 0 ? k - 1 : k], b1);
+        unit3(b1);
+        for (int i = 0; i < 3; i++)
+            b2[i] = e2[i] - mech_dot(e2, b1) * b1[i];
+        unit3(b2);
+        mech_cross(b1, b2, b3);
+        if (mech_dot(b3, e3) < 0)
+            for (int i = 0; i < 3; i++)
+                b3[i] = -b3[i];
+        for (int i = 0; i < 3; i++)
+            g->force[k][i] *= w, g->moment[k][i] *= w;
+        const double *b[3] = {b1, b2, b3};
+        for (int i = 0; i < 3; i++) {
+            g->force_local[k][i] = mech_dot(g->force[k], b[i]);
+            g->moment_local[k][i] = mech_dot(g->moment[k], b[i]);
+        }
+    }
+    /* ties, rope and load, counterweight, drive */
+    g->nties = c->nties;
+    for (int k = 0; k < c->nties; k++)
+        g->tie_tension[k] = mech_axial_tension(c->m, c->tie[k], y);
+    g->rope = s->rope;
+    if (s->rope) {
+        memcpy(g->load, y + c->v_load, sizeof g->load);
+        g->load_mass = s->load_mass;
+        g->rope_tension = mech_axial_tension(c->m, c->rope, y);
+    }
+    g->counterweight = s->counterweight;
+    if (s->counterweight) {
+        int v = bgr_ref_var(c->m, (bgr_ref){BGR_STATE, c->cw, 0});
+        if (v < 0) return BG_ERR_ARGUMENT;
+        memcpy(g->cw, y + v, sizeof g->cw);
+        g->cw_mass = s->cw_mass;
+    }
+    g->pump_x = c->v_x >= 0 ? y[c->v_x] : NAN;
+    g->p_high = c->v_ph >= 0 ? y[c->v_ph] : NAN;
+    g->p_low = c->v_pl >= 0 ? y[c->v_pl] : NAN;
+    return BG_OK;
+}

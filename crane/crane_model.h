@@ -127,6 +127,51 @@ double crane_drive_power(const crane *c, const double *y);
 /* Model statistics beside the paper's Table 2, and the counts by component. */
 int crane_stats_print(const crane *c, FILE *f);
 
+/* Positions and forces at a state, for the 3-D output (crane_vtk.h) and the animation
+ * (crane_anim.h). Global frame (Z0 up, the scene's origin), SI units (m, kg, N, N m, Pa). */
+#define CRANE_MAX_NODES 513 /* boom nodes: at most 512 beam elements + 1 */
+typedef struct crane_geom {
+    double t, theta, omega; /* s, platform angle (rad) and rate (rad/s) */
+    double platform_x[3];   /* the platform's mass centre */
+    double platform_R[9];   /* its orientation, platform frame to global (column-major) */
+    double joint_A[3];      /* slewing joint on the axis */
+    /* outline of the platform's deck: a rectangle in the platform's plane through A spanning
+     * the points fixed to the platform (A, hinge, gantry, counterweight) with 1 m margins,
+     * corners counter-clockwise seen from above */
+    double deck[4][3];
+    double hinge[3];      /* boom hinge B on the platform */
+    double gantry_top[3]; /* the scene's gantry top */
+    int ngantry;          /* upper tie ends: 2 for a spread pair of ties, else 1 (the top) */
+    double gantry[2][3], gantry_base[2][3]; /* and the points below them in the deck's plane */
+    /* boom: nodes from the foot (0) to the tip (nodes - 1), boom_elements + 1 of them, or foot
+     * and tip of a rigid boom (2) */
+    int nodes, beam; /* beam: 1 with beam elements (section forces given), 0 rigid boom */
+    double node[CRANE_MAX_NODES][3];
+    /* displacement from the node's start position (the static equilibrium with static_start)
+     * carried round by theta about the axis through A, and its components along the boom's
+     * transverse directions as tip_defl_1 (in the luffing plane) and tip_defl_2 (sideways,
+     * y at theta = 0): at the tip node these are crane_outputs' tip_defl_1/2 */
+    double defl[CRANE_MAX_NODES][3], defl_luff[CRANE_MAX_NODES], defl_side[CRANE_MAX_NODES];
+    /* section force and moment (about the node) that the boom's tip side exerts on its foot
+     * side at the node, from the beam elements' port loads (mean of the two elements at an
+     * inner node); global, and their components along the boom's local directions b1 (along
+     * the boom, foot to tip: the axial force, tension > 0; torsion), b2 (normal to the boom in
+     * the luffing plane, up and outwards) and b3 (sideways: y at theta = 0): a moment about b3
+     * bends the boom in the luffing plane, one about b2 sideways. 0 for a rigid boom. */
+    double force[CRANE_MAX_NODES][3], moment[CRANE_MAX_NODES][3];
+    double force_local[CRANE_MAX_NODES][3], moment_local[CRANE_MAX_NODES][3];
+    int nties; /* 0, 1 or 2; tie k runs from gantry[k] (or gantry_top for one) to the tip */
+    double tie_tension[2];
+    int rope; /* the rope runs from the tip to the load */
+    double load[3], load_mass, rope_tension;
+    int counterweight;
+    double cw[3], cw_mass;
+    double pump_x, p_high, p_low; /* NaN without hydraulics */
+} crane_geom;
+/* Fills g (about 120 kB: allocate it once) at the state y, yp at time t (yp is not used yet).
+ * BG_OK, or BG_ERR_ARGUMENT for a NULL pointer. */
+int crane_geometry(const crane *c, double t, const double *y, const double *yp, crane_geom *g);
+
 #ifdef __cplusplus
 }
 #endif

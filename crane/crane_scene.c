@@ -15,6 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <ini.h>
 
 /* ------------------------------------------------------------------ the keys ---- */
@@ -298,11 +302,16 @@ static void quote(const char *v, char *buf, size_t size)
 
 /* ------------------------------------------------------------------ values ---- */
 
+/* A decimal number: strtod alone would also take hexadecimal ("0x4c", "0x1p3"), "inf" and
+ * "nan"; the scene files' numbers are decimal (digits, sign, point, exponent) and finite. */
 static int parse_double(const char *v, double *out)
 {
     while (isspace((unsigned char)*v))
         v++;
     if (!*v) return 0;
+    const char *q = v;
+    while (*q && !isspace((unsigned char)*q))
+        if (!strchr("0123456789+-.eE", *q++)) return 0;
     char *end;
     errno = 0;
     double x = strtod(v, &end);
@@ -337,14 +346,26 @@ static void expected_text(const key_def *k, char *buf, size_t size)
         snprintf(buf, size, "%s", k->pub.expected);
 }
 
+/* A value written in hexadecimal ("0x4c", also inside a vector), which strtod and strtol with
+ * base 0 would take: the message then says that numbers are decimal. */
+static int looks_hex(const char *v)
+{
+    for (const char *p = v; *p; p++)
+        if (*p == '0' && (p[1] == 'x' || p[1] == 'X') && (p == v || !isalnum((unsigned char)p[-1])))
+            return 1;
+    return 0;
+}
+
 static int value_error(bg_error *err, const char *origin, const key_def *k, const char *got)
 {
     char exp[160], q[80];
     expected_text(k, exp, sizeof exp);
     quote(got, q, sizeof q);
+    int hex = k->pub.type != CRANE_KEY_NAME && k->pub.type != CRANE_KEY_BOOLEAN && looks_hex(got);
     return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene",
-                          "%s%skey '%s' in [%s]: expected %s, got '%s'", origin ? origin : "",
-                          origin ? ": " : "", k->pub.key, k->pub.section, exp, q);
+                          "%s%skey '%s' in [%s]: expected %s, got '%s'%s", origin ? origin : "",
+                          origin ? ": " : "", k->pub.key, k->pub.section, exp, q,
+                          hex ? " (numbers are decimal: hexadecimal is not accepted)" : "");
 }
 
 static int valid_name(const char *v)
@@ -529,6 +550,20 @@ static int check_scene(const crane_scene *s, const origin_map *om, bg_error *err
                               o ? o : "", o ? ": " : "", KEYS[k].pub.key, s->boom_tip_radius,
                               s->boom_foot[0], s->boom_length);
     }
+    /* a flexible boom leans: a vertical one (tip_radius = foot.x) has no luffing plane to orient
+     * its cross-section by (mech_beam_chain: "an up vector not along the beam") */
+    if (s->boom_elements > 0 && !(fabs(dx) > 1e-9 * s->boom_length)) {
+        int k = blame(om, key_index("boom", "tip_radius"), key_index("boom", "foot"),
+                      key_index("boom", "elements"));
+        const char *o = origin_of(om, k, ob, sizeof ob);
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene_check",
+                              "%s%skey '%s' in [boom]: expected a boom that leans (tip_radius != "
+                              "foot.x), got tip_radius %g m = foot.x %g m: a vertical flexible "
+                              "boom (elements = %d) has no luffing plane; move [boom] tip_radius "
+                              "or foot, or make it rigid (elements = 0)",
+                              o ? o : "", o ? ": " : "", KEYS[k].pub.key, s->boom_tip_radius,
+                              s->boom_foot[0], s->boom_elements);
+    }
     /* the reference's times are ordered: 0 < t1 <= t2 < t3 */
     if (!(s->ref_t1 <= s->ref_t2 && s->ref_t2 < s->ref_t3)) {
         int i1 = key_index("reference", "t1"), i2 = key_index("reference", "t2"),
@@ -677,16 +712,31 @@ static int check_line(parse_ctx *c, char *line)
     return 1;
 }
 
+/* Lines end with LF, CR LF or a lone CR (old Mac files): the length of the line at p (without
+ * its end) and of the line end that follows it (0 at the end of the text). */
+static size_t line_length(const char *p, size_t rest)
+{
+    size_t n = 0;
+    while (n < rest && p[n] != '\n' && p[n] != '\r')
+        n++;
+    return n;
+}
+
+static size_t line_end_length(const char *p, size_t rest)
+{
+    if (rest == 0) return 0;
+    return p[0] == '\r' && rest > 1 && p[1] == '\n' ? 2 : 1;
+}
+
 /* The fgets-style reader for inih: one line of the text per call. */
 static char *reader(char *str, int num, void *stream)
 {
     parse_ctx *c = stream;
     if (c->failed || c->pos >= c->len) return NULL;
     const char *p = c->text + c->pos;
-    const char *nl = memchr(p, '\n', c->len - c->pos);
-    size_t n = nl ? (size_t)(nl - p) : c->len - c->pos;
+    size_t rest = c->len - c->pos, n = line_length(p, rest);
     c->line++;
-    c->pos += n + (nl ? 1 : 0);
+    c->pos += n + line_end_length(p + n, rest - n);
     if (memchr(p, '\0', n)) {
         fail_at(c, "the line contains a NUL character (not a text file?)");
         return NULL;
@@ -765,9 +815,12 @@ static int handler(void *user, const char *section, const char *name, const char
     return 1;
 }
 
-int crane_scene_parse_string(crane_scene *s, const char *text, const char *filename, bg_error *err)
+/* The number of keys set (*nkeys, may be NULL) besides the statuses of parse_string. */
+static int parse_counted(crane_scene *s, const char *text, const char *filename, int *nkeys,
+                         bg_error *err)
 {
     const char *file = filename ? filename : "<string>";
+    if (nkeys) *nkeys = 0;
     if (!s || !text)
         return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene_parse", "%s: null argument", file);
     parse_ctx c;
@@ -785,12 +838,22 @@ int crane_scene_parse_string(crane_scene *s, const char *text, const char *filen
         c.line = r;
         return fail_at(&c, "syntax error");
     }
+    if (nkeys)
+        for (int i = 0; i < NKEYS; i++)
+            *nkeys += c.seen[i] > 0;
     origin_map om = {file, c.seen, NULL};
     return check_scene(s, &om, err);
 }
 
-int crane_scene_parse_file(crane_scene *s, FILE *f, const char *filename, bg_error *err)
+int crane_scene_parse_string(crane_scene *s, const char *text, const char *filename, bg_error *err)
 {
+    return parse_counted(s, text, filename, NULL, err);
+}
+
+static int parse_file_counted(crane_scene *s, FILE *f, const char *filename, int *nkeys,
+                              bg_error *err)
+{
+    if (nkeys) *nkeys = 0;
     const char *file = filename ? filename : "<file>";
     if (!s || !f)
         return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene_parse", "%s: null argument", file);
@@ -827,20 +890,44 @@ int crane_scene_parse_file(crane_scene *s, FILE *f, const char *filename, bg_err
     int r;
     if (z < len) {
         int line = 1;
-        for (size_t i = 0; i < z; i++)
-            line += buf[i] == '\n';
+        for (size_t i = 0, e; (i += line_length(buf + i, z - i)) < z; i += e, line++)
+            e = line_end_length(buf + i, z - i);
         r = bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene_parse",
                            "%s:%d: the line contains a NUL character (not a text file?)", file,
                            line);
     } else {
-        r = crane_scene_parse_string(s, buf, file, err);
+        r = parse_counted(s, buf, file, nkeys, err);
     }
     free(buf);
     return r;
 }
 
+int crane_scene_parse_file(crane_scene *s, FILE *f, const char *filename, bg_error *err)
+{
+    return parse_file_counted(s, f, filename, NULL, err);
+}
+
+const char *crane_file_kind(unsigned mode)
+{
+    mode_t m = (mode_t)mode;
+    return S_ISREG(m)    ? "a regular file"
+           : S_ISDIR(m)  ? "a directory"
+           : S_ISFIFO(m) ? "a FIFO (named pipe)"
+           : S_ISCHR(m)  ? "a character device"
+           : S_ISBLK(m)  ? "a block device"
+           : S_ISSOCK(m) ? "a socket"
+           : S_ISLNK(m)  ? "a symbolic link"
+                         : "not a regular file";
+}
+
 int crane_scene_load(crane_scene *s, const char *path, bg_error *err)
 {
+    return crane_scene_load_counted(s, path, NULL, err);
+}
+
+int crane_scene_load_counted(crane_scene *s, const char *path, int *nkeys, bg_error *err)
+{
+    if (nkeys) *nkeys = 0;
     if (!s || !path)
         return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene_load", "null argument");
     crane_scene_default(s);
@@ -856,11 +943,30 @@ int crane_scene_load(crane_scene *s, const char *path, bg_error *err)
     stem[n] = '\0';
     if (n > 4 && !strcmp(stem + n - 4, ".ini")) stem[n - 4] = '\0';
     if (valid_name(stem)) strcpy(s->name, stem);
-    FILE *f = fopen(path, "r");
-    if (!f)
+    /* opened without blocking (a FIFO without a writer would wait for ever), then only a
+     * regular file is read: a directory, FIFO or device is named as what it is */
+    int fd = open(path, O_RDONLY | O_NONBLOCK);
+    if (fd < 0)
         return bg_error_raise(err, BG_ERR_IO, "crane_scene_load", "%s: cannot open: %s", path,
                               strerror(errno));
-    int r = crane_scene_parse_file(s, f, path, err);
+    struct stat st;
+    int e = fstat(fd, &st) != 0 ? errno : 0;
+    if (e || !S_ISREG(st.st_mode)) {
+        close(fd);
+        if (e)
+            return bg_error_raise(err, BG_ERR_IO, "crane_scene_load", "%s: cannot open: %s", path,
+                                  strerror(e));
+        return bg_error_raise(err, BG_ERR_IO, "crane_scene_load", "%s: %s, not a scene file", path,
+                              crane_file_kind((unsigned)st.st_mode));
+    }
+    FILE *f = fdopen(fd, "r");
+    if (!f) {
+        e = errno;
+        close(fd);
+        return bg_error_raise(err, BG_ERR_IO, "crane_scene_load", "%s: cannot open: %s", path,
+                              strerror(e));
+    }
+    int r = parse_file_counted(s, f, path, nkeys, err);
     fclose(f);
     return r;
 }

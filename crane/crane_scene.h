@@ -3,8 +3,10 @@
  * A scene file starts from crane_scene_default() (the paper scene) and changes what it states;
  * every key is optional and may appear at most once. Lines are "key = value", "[section]",
  * blank, or comments starting with ';' or '#'; an inline comment starts with " ;" (a ';' after
- * white space). Keys and section names are matched without regard to case. Values:
- *   number   a finite decimal number, e.g. 76, 0.0443, 1.08e11
+ * white space). Lines end with LF, CR LF or CR. Keys and section names are matched without
+ * regard to case. Values:
+ *   number   a finite decimal number, e.g. 76, 0.0443, 1.08e11 (not hexadecimal: "0x4c" is
+ *            refused, as are "inf" and "nan")
  *   integer  decimal digits with an optional sign
  *   boolean  true/false, yes/no, on/off, 1/0
  *   vector   three numbers "x, y, z"
@@ -102,7 +104,8 @@
  * resolved: false keeps them, at the old cost.
  *
  * Besides the ranges above, a scene must be consistent: the boom must reach its tip radius
- * (|tip_radius - foot.x| < length) and the reference's times must be ordered.
+ * (|tip_radius - foot.x| < length), a flexible boom (elements > 0) must lean (tip_radius !=
+ * foot.x: a vertical beam has no luffing plane) and the reference's times must be ordered.
  *
  * Errors (the library never prints): every function returns BG_OK or a status (BG_ERR_IO: the
  * file cannot be read; BG_ERR_ARGUMENT: the text is wrong; BG_ERR_MEMORY) and writes the
@@ -124,8 +127,14 @@
 extern "C" {
 #endif
 
-/* crane_scene_default(s), then the file at path. */
+/* crane_scene_default(s), then the file at path (a regular file: a directory, FIFO or device
+ * is refused with BG_ERR_IO naming what it is, without blocking on a FIFO). */
 int crane_scene_load(crane_scene *s, const char *path, bg_error *err);
+/* The same, and *nkeys (may be NULL) = the number of keys the file sets (0: the file is empty or
+ * holds only comments and section headers). */
+int crane_scene_load_counted(crane_scene *s, const char *path, int *nkeys, bg_error *err);
+/* "a directory", "a FIFO (named pipe)", "a character device", ... for a stat st_mode. */
+const char *crane_file_kind(unsigned mode);
 /* Apply a scene file's text to s (not reset first); filename is used in messages. */
 int crane_scene_parse_file(crane_scene *s, FILE *f, const char *filename, bg_error *err);
 int crane_scene_parse_string(crane_scene *s, const char *text, const char *filename, bg_error *err);

@@ -151,13 +151,10 @@ mech_scales *mech_axial_scales_(bgr_element *el)
     return el && el->cls == &axial_class ? &((axial *)el->params)->sc : NULL;
 }
 
+/* The parameters are checked by the constructors (where: their names). */
 static int add_axial(bgr_model *m, bgr_comp c, const char *name, int rope, double k, double cd,
                      double L0, double eps)
 {
-    if (!(k >= 0) || !(cd >= 0) || !(L0 > 0) || !isfinite(k) || !isfinite(cd) || !isfinite(L0))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_axial",
-                              "%s: stiffness %g and damping %g must be >= 0, rest length %g > 0",
-                              name ? name : "(null)", k, cd, L0);
     axial *a = calloc(1, sizeof *a);
     if (!a)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "mech_axial", "out of memory");
@@ -173,22 +170,46 @@ static int add_axial(bgr_model *m, bgr_comp c, const char *name, int rope, doubl
 
 int mech_spring(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp, double L0)
 {
+    const char *w = "mech_spring";
+    if (bgr_check_value(m, c, name, w, "k", k, BGR_NONNEGATIVE) ||
+        bgr_check_value(m, c, name, w, "c_damp", c_damp, BGR_NONNEGATIVE) ||
+        bgr_check_value(m, c, name, w, "L0", L0, BGR_POSITIVE))
+        return BG_ERR_ARGUMENT;
     return add_axial(m, c, name, 0, k, c_damp, L0, 0);
 }
 
 int mech_truss(bgr_model *m, bgr_comp c, const char *name, double E, double A, double L0,
                double c_damp)
 {
-    if (!(E > 0) || !(A > 0))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_truss",
-                              "%s: modulus %g and area %g must be > 0", name ? name : "(null)", E,
-                              A);
-    return add_axial(m, c, name, 0, E * A / L0, c_damp, L0, 0);
+    const char *w = "mech_truss";
+    if (bgr_check_value(m, c, name, w, "E", E, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, w, "A", A, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, w, "L0", L0, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, w, "c_damp", c_damp, BGR_NONNEGATIVE))
+        return BG_ERR_ARGUMENT;
+    double k = E * A / L0;
+    if (!(k > 0) || !isfinite(k))
+        return bgr_refuse(m, c, name, w,
+                          "E A / L0 = %g (E = %g, A = %g, L0 = %g), expected a finite stiffness "
+                          "> 0",
+                          k, E, A, L0);
+    return add_axial(m, c, name, 0, k, c_damp, L0, 0);
 }
 
 int mech_rope(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp, double L0,
               double eps)
 {
+    const char *w = "mech_rope";
+    if (bgr_check_value(m, c, name, w, "k", k, BGR_NONNEGATIVE) ||
+        bgr_check_value(m, c, name, w, "c_damp", c_damp, BGR_NONNEGATIVE) ||
+        bgr_check_value(m, c, name, w, "L0", L0, BGR_POSITIVE) ||
+        bgr_check_value(m, c, name, w, "eps", eps, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
+    if (!(eps > 0) && !(1e-4 * L0 > 0))
+        return bgr_refuse(m, c, name, w,
+                          "eps = %g asks for the default width 1e-4 L0 = %g (L0 = %g), expected a "
+                          "width > 0: give eps > 0",
+                          eps, 1e-4 * L0, L0);
     return add_axial(m, c, name, 1, k, c_damp, L0, eps);
 }
 

@@ -26,7 +26,12 @@
 extern "C" {
 #endif
 
-/* Ports 0 (A) and 1 (B), 3D. The state is named d0 d1 d2; set its initial value to x_B - x_A. */
+/* Ports 0 (A) and 1 (B), 3D. The state is named d0 d1 d2; set its initial value to x_B - x_A.
+ * Accepted (all finite): stiffness k >= 0 (N/m), damping c_damp >= 0 (N s/m), rest length
+ * L0 > 0 (m); truss: Young's modulus E > 0 (Pa) and area A > 0 (m^2) with E A / L0 finite;
+ * rope: eps finite (<= 0: the default 1e-4 L0, which must not underflow to 0). Anything else
+ * gives BG_ERR_ARGUMENT before anything is built, with a message naming the element's path and
+ * the parameter (nothing is added to the model). */
 BG_API int mech_spring(bgr_model *m, bgr_comp c, const char *name, double k, double c_damp,
                        double L0);
 BG_API int mech_truss(bgr_model *m, bgr_comp c, const char *name, double E, double A, double L0,

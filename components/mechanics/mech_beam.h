@@ -40,19 +40,26 @@
 extern "C" {
 #endif
 
+/* Accepted: every field finite; E, G, A, Iy, Iz, J > 0; rho, kappa, beta >= 0 (the chain
+ * builder needs rho > 0); the stiffnesses they give (EA/L0, GJ/L0, EI/L0, times beta) finite. */
 typedef struct mech_section {
-    double E, G;      /* Young's and shear modulus */
-    double A, Iy, Iz; /* area; second moments about the local y (e2) and z (e3) axes */
-    double J;         /* torsion constant */
-    double rho;       /* density (for the chain builder's lumped masses) */
+    double E, G;      /* Young's and shear modulus (Pa), > 0 */
+    double A, Iy, Iz; /* area (m^2); second moments about the local y (e2) and z (e3) axes (m^4),
+                         > 0 */
+    double J;         /* torsion constant (m^4), > 0 */
+    double rho;       /* density (kg/m^3; for the chain builder's lumped masses), >= 0 (chain: > 0) */
     double kappa;     /* shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko */
-    double beta;      /* stiffness-proportional damping (s): modal damping ratio beta w/2 */
+    double beta;      /* stiffness-proportional damping (s), >= 0: modal damping ratio beta w/2 */
 } mech_section;
 
 /* One element between node bodies node_a and node_b (element ids of mech_body instances whose
  * states are set to their initial positions with identity orientation), E0: the initial local
  * frame (3x3, column-major: e1 along the beam from a to b, e2, e3), L0 the initial length.
- * Ports 0 and 1 must be bonded to ports of node_a and node_b at their mass centres. */
+ * Ports 0 and 1 must be bonded to ports of node_a and node_b at their mass centres.
+ * Accepted: sec not NULL and as stated above; E0 not NULL, finite, orthonormal to 1e-9 and
+ * right-handed (e3 = e1 x e2); L0 finite and > 0; node_a != node_b, both rigid bodies made
+ * before. Anything else gives BG_ERR_ARGUMENT before anything is built, with a message naming
+ * the element's path and the parameter (nothing is added to the model). */
 BG_API int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
                      const mech_section *sec, const double *E0, double L0);
 
@@ -62,9 +69,13 @@ BG_API int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int
  * local e2 direction. Node k gets extra[k] additional 6D ports, then extra3[k] 3D (force only)
  * ports, at its centre (NULL: none) for the caller to bond (supports, loads, dampers, ties,
  * ropes); their handles come from mech_beam_chain_port. nodes (n+1) and elems (n) receive the
- * element ids. Returns the chain's component, or BG_ERR_ARGUMENT (a bad section, n < 1, NULL or
- * coincident end points, up NULL or along the beam, nodes or elems NULL, a negative extra count),
- * or the status of the component, element or bond that failed. */
+ * element ids. Returns the chain's component, or BG_ERR_ARGUMENT (a bad section or one with
+ * rho = 0, n < 1, NULL, non-finite or coincident end points, up NULL, not finite or along the
+ * beam, gravity not finite, nodes or elems NULL, a negative extra count or more than 64 ports at
+ * a node, lumped node masses or inertias that are not finite and > 0), or the status of the
+ * component, element or bond that failed. The arguments are all checked before the component is
+ * made: a refused chain leaves nothing in the model (the message names the chain's path and the
+ * parameter). */
 BG_API int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
                            const double *p1, const double *up, const mech_section *sec,
                            const double *gravity, const int *extra, const int *extra3, int *nodes,

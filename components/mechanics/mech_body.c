@@ -7,7 +7,7 @@
 
 #include "mech_util.h"
 
-#define MAXPORTS 64
+#define MAXPORTS MECH_MAXPORTS
 
 typedef struct body {
     double m, J[9], g[3];
@@ -311,22 +311,20 @@ int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const dou
 {
     bg_error *err = bgr_model_error_mut(m);
     const char *w = "mech_body";
-    if (!(mass > 0) || !isfinite(mass))
-        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "body %s: mass %g, expected > 0",
-                              name ? name : "(null)", mass);
-    if (!inertia || nports < 0 || nports > MAXPORTS || (nports > 0 && !r))
-        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                              "body %s: needs an inertia tensor and 0..%d ports with points",
-                              name ? name : "(null)", MAXPORTS);
-    /* symmetric positive definite: leading principal minors */
-    const double *J = inertia;
-    double d1 = J[0], d2 = J[0] * J[4] - J[3] * J[1],
-           d3 = J[0] * (J[4] * J[8] - J[7] * J[5]) - J[3] * (J[1] * J[8] - J[7] * J[2]) +
-                J[6] * (J[1] * J[5] - J[4] * J[2]);
-    if (!(d1 > 0 && d2 > 0 && d3 > 0) || J[1] != J[3] || J[2] != J[6] || J[5] != J[7])
-        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                              "body %s: the inertia tensor must be symmetric positive definite",
-                              name ? name : "(null)");
+    if (bgr_check_value(m, c, name, w, "mass", mass, BGR_POSITIVE)) return BG_ERR_ARGUMENT;
+    if (!inertia) return bgr_refuse(m, c, name, w, "the inertia tensor is NULL");
+    if (nports < 0 || nports > MAXPORTS)
+        return bgr_refuse(m, c, name, w, "nports = %d, expected 0 .. %d ports", nports, MAXPORTS);
+    if (nports > 0 && !r)
+        return bgr_refuse(m, c, name, w, "the port points r are NULL (%d ports)", nports);
+    /* finite, exactly symmetric and positive definite */
+    if (bgr_check_spd(m, c, name, w, "inertia", inertia, 3) ||
+        bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE) ||
+        bgr_check_values(m, c, name, w, "r", r, 3 * nports, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
+    for (int k = 0; dims && k < nports; k++)
+        if (dims[k] != 3 && dims[k] != 6)
+            return bgr_refuse(m, c, name, w, "dims[%d] = %d, expected 3 or 6", k, dims[k]);
     body *b = calloc(1, sizeof *b);
     if (!b) return bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory");
     b->m = mass;
@@ -334,16 +332,8 @@ int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const dou
     if (gravity) memcpy(b->g, gravity, sizeof b->g);
     b->np = nports;
     if (nports) memcpy(b->r, r, (size_t)nports * 3 * sizeof *r);
-    for (int k = 0; k < nports; k++) {
+    for (int k = 0; k < nports; k++)
         b->dim[k] = dims ? dims[k] : 6;
-        if (b->dim[k] != 3 && b->dim[k] != 6) {
-            int dk = b->dim[k];
-            free(b);
-            return bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                                  "body %s: port %d has dimension %d, expected 3 or 6",
-                                  name ? name : "(null)", k, dk);
-        }
-    }
     static const char *const sn[13] = {"x0", "x1", "x2", "v0", "v1", "v2", "w0",
                                        "w1", "w2", "q0", "q1", "q2", "q3"};
     return bgr_element_add(m, c, name, &body_class, b, nports, b->dim, 13, sn, 0, NULL);

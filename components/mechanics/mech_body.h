@@ -32,7 +32,11 @@ extern "C" {
 
 /* Ports 0..nports-1 at body-frame points r (3 per port); dims[k] = 6 (force and moment) or 3
  * (force only; NULL: all 6). gravity: 3 values (NULL: none). Returns the element id or < 0.
- * States are named x0 x1 x2 v0 v1 v2 w0 w1 w2 q0 q1 q2 q3 under the element's path. */
+ * States are named x0 x1 x2 v0 v1 v2 w0 w1 w2 q0 q1 q2 q3 under the element's path.
+ * Accepted: mass finite and > 0 (kg); inertia not NULL, 3x3 column-major (kg m^2), finite,
+ * exactly symmetric and positive definite; gravity finite; nports 0 .. 64, r not NULL when
+ * nports > 0 and finite; dims[k] 3 or 6. Anything else gives BG_ERR_ARGUMENT before anything is
+ * built, with a message naming the body's path and the parameter (nothing is added). */
 BG_API int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const double *inertia,
                      const double *gravity, int nports, const double *r, const int *dims);
 

@@ -320,15 +320,12 @@ static part *part_new(bgr_model *m, int kind, int dim)
     return p;
 }
 
-static int bad(bgr_model *m, const char *what, const char *name)
-{
-    return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech", "%s %s",
-                          name ? name : "(null)", what);
-}
-
 int mech_point_mass(bgr_model *m, bgr_comp c, const char *name, double mass, const double *gravity)
 {
-    if (!(mass > 0) || !isfinite(mass)) return bad(m, ": mass must be > 0", name);
+    const char *w = "mech_point_mass";
+    if (bgr_check_value(m, c, name, w, "mass", mass, BGR_POSITIVE) ||
+        bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE))
+        return BG_ERR_ARGUMENT;
     part *p = part_new(m, PART_MASS, 3);
     if (!p) return BG_ERR_MEMORY;
     p->m = mass;
@@ -367,7 +364,8 @@ int mech_point_mass_energy(const bgr_model *m, int id, const double *y, double *
 
 int mech_support(bgr_model *m, bgr_comp c, const char *name, int dim)
 {
-    if (dim != 3 && dim != 6) return bad(m, ": support dimension must be 3 or 6", name);
+    if (dim != 3 && dim != 6)
+        return bgr_refuse(m, c, name, "mech_support", "dim = %d, expected 3 or 6", dim);
     part *p = part_new(m, PART_SUPPORT, dim);
     if (!p) return BG_ERR_MEMORY;
     return bgr_element_add(m, c, name, &support_class, p, 1, &p->dim, 0, NULL, 0, NULL);
@@ -375,7 +373,8 @@ int mech_support(bgr_model *m, bgr_comp c, const char *name, int dim)
 
 int mech_spherical(bgr_model *m, bgr_comp c, const char *name, int dim)
 {
-    if (dim != 3 && dim != 6) return bad(m, ": joint dimension must be 3 or 6", name);
+    if (dim != 3 && dim != 6)
+        return bgr_refuse(m, c, name, "mech_spherical", "dim = %d, expected 3 or 6", dim);
     part *p = part_new(m, PART_SPHERICAL, dim);
     if (!p) return BG_ERR_MEMORY;
     const int dims[2] = {dim, dim};
@@ -385,8 +384,18 @@ int mech_spherical(bgr_model *m, bgr_comp c, const char *name, int dim)
 int mech_revolute(bgr_model *m, bgr_comp c, const char *name, int body_a, const double *axis_a,
                   int drive)
 {
-    double n = axis_a ? sqrt(mech_dot(axis_a, axis_a)) : 0;
-    if (!(n > 0) || !isfinite(n)) return bad(m, ": revolute joint needs a nonzero axis", name);
+    const char *w = "mech_revolute";
+    if (!axis_a) return bgr_refuse(m, c, name, w, "the axis axis_a is NULL");
+    if (bgr_check_values(m, c, name, w, "axis_a", axis_a, 3, BGR_FINITE)) return BG_ERR_ARGUMENT;
+    double n = sqrt(mech_dot(axis_a, axis_a));
+    if (!(n > 0) || !isfinite(n))
+        return bgr_refuse(m, c, name, w,
+                          "axis_a = (%g, %g, %g) has length %g, expected a nonzero finite axis",
+                          axis_a[0], axis_a[1], axis_a[2], n);
+    if (body_a < -1)
+        return bgr_refuse(m, c, name, w,
+                          "body_a = %d, expected -1 (a fixed global axis) or a body's element id",
+                          body_a);
     part *p = part_new(m, PART_REVOLUTE, 6);
     if (!p) return BG_ERR_MEMORY;
     p->body_a = body_a;

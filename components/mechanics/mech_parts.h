@@ -26,7 +26,11 @@
 extern "C" {
 #endif
 
-/* States x0 x1 x2 v0 v1 v2; gravity may be NULL. */
+/* States x0 x1 x2 v0 v1 v2; gravity may be NULL.
+ * Accepted (every constructor of this file): mass finite and > 0; gravity finite; dim 3 or 6;
+ * axis_a not NULL, finite and nonzero; body_a >= -1 (a rigid body's id, checked by
+ * bgr_compile). Anything else gives BG_ERR_ARGUMENT before anything is built, with a message
+ * naming the element's path and the parameter (nothing is added to the model). */
 BG_API int mech_point_mass(bgr_model *m, bgr_comp c, const char *name, double mass,
                            const double *gravity);
 BG_API int mech_point_mass_set(bgr_model *m, int id, const double *x, const double *v);

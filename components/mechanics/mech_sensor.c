@@ -105,10 +105,16 @@ static const bgr_element_class sensor_class = {.type = "rotation sensor",
 
 int mech_rotation_sensor(bgr_model *m, bgr_comp c, const char *name, int body, const double *axis)
 {
-    double n = axis ? sqrt(mech_dot(axis, axis)) : 0;
+    const char *w = "mech_rotation_sensor";
+    if (!axis) return bgr_refuse(m, c, name, w, "the axis is NULL");
+    if (bgr_check_values(m, c, name, w, "axis", axis, 3, BGR_FINITE)) return BG_ERR_ARGUMENT;
+    double n = sqrt(mech_dot(axis, axis));
     if (!(n > 0) || !isfinite(n))
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_rotation_sensor",
-                              "%s: needs a nonzero axis", name ? name : "(null)");
+        return bgr_refuse(m, c, name, w,
+                          "axis = (%g, %g, %g) has length %g, expected a nonzero finite axis",
+                          axis[0], axis[1], axis[2], n);
+    if (body < 0)
+        return bgr_refuse(m, c, name, w, "body = %d, expected a body's element id", body);
     sensor *p = calloc(1, sizeof *p);
     if (!p)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "mech_rotation_sensor",

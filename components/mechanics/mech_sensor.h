@@ -16,6 +16,9 @@
 extern "C" {
 #endif
 
+/* Accepted: axis not NULL, finite and nonzero (normalised here); body >= 0 (a rigid body's id,
+ * checked by bgr_compile). Anything else gives BG_ERR_ARGUMENT before anything is built, with a
+ * message naming the sensor's path and the parameter. */
 BG_API int mech_rotation_sensor(bgr_model *m, bgr_comp c, const char *name, int body,
                                 const double *axis);
 

@@ -22,7 +22,11 @@
 #include <math.h>
 #include <string.h>
 
+#include "bgr_check.h"
 #include "bgr_model.h"
+
+/* The most ports a body (mech_body) takes. */
+#define MECH_MAXPORTS 64
 
 typedef struct mech_emit {
     int declare; /* 1: declare dependencies; 0: store values */

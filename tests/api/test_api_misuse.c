@@ -901,6 +901,11 @@ static void test_bondgraph_states(void)
            "bgr_declare_dep outside bgr_compile");
     expect(bgr_declare_index2(el, m, 0), BG_ERR_STATE, msg, "declare()",
            "bgr_declare_index2 outside bgr_compile");
+    expect(bgr_declare_nominal(el, m, 0, 1.0), BG_ERR_STATE, msg, "declare()",
+           "bgr_declare_nominal outside bgr_compile");
+    expect(bgr_set_nominal(m, 0, 1.0), BG_ERR_STATE, msg, "not compiled",
+           "bgr_set_nominal before compile");
+    tap_ok(bgr_nominals(m) == NULL, "bgr_nominals before compile is NULL");
     tap_ok(bgr_ev(el, m, 0, 0) == -1, "bgr_ev before numbering gives -1");
     expect(bgr_breakpoints(m, 0, 1, NULL, 2), BG_ERR_ARGUMENT, msg, "room",
            "bgr_breakpoints(t NULL, max 2)");
@@ -1048,6 +1053,12 @@ static void test_constructors(void)
         {"mech_spherical", mech_spherical(NULL, 0, "x", 3)},
         {"mech_revolute", mech_revolute(NULL, 0, "x", -1, up, 1)},
         {"mech_rotation_sensor", mech_rotation_sensor(NULL, 0, "x", 0, up)},
+        {"mech_set_nominal", mech_set_nominal(NULL, 0, 1, 1, 1)},
+        {"hyd_volume_set_nominal", hyd_volume_set_nominal(NULL, 0, 1e7)},
+        {"hyd_pump_set_nominal", hyd_pump_set_nominal(NULL, 0, 1e7, 100)},
+        {"hyd_motor_set_nominal", hyd_motor_set_nominal(NULL, 0, 1e7, 100)},
+        {"rot_inertia_set_nominal", rot_inertia_set_nominal(NULL, 0, 100)},
+        {"bgr_set_nominal", bgr_set_nominal(NULL, 0, 1)},
     };
     int bad = 0;
     for (size_t k = 0; k < sizeof null_model / sizeof *null_model; k++)

@@ -78,6 +78,8 @@ int main(int argc, char **argv)
         {"--crane-horizon", "-1", NULL},
         {"--crane-realtime", "x", NULL},
         {"--solvers", "bgdae-klu,bgdae-klu", NULL},
+        {"--crane-full-rtols", "0", NULL},
+        {"--crane-full-scene", "/no/such/scene.ini", NULL},
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         int r = run(bad[i]);
@@ -112,6 +114,21 @@ int main(int argc, char **argv)
            "report.md has the ratio table");
     tap_ok(count_lines(path, "| pendulum2 | 5 |", NULL) == 1,
            "report.md: pendulum2 in the ratio table");
+    tap_ok(count_lines(path, "## Steps against tolerance", NULL) == 1 &&
+               count_lines(path, "| pendulum2 | bgdae-klu |", NULL) == 1,
+           "report.md has the steps against tolerance, pendulum2 with bgdae-klu in it");
+    tap_ok(count_lines(path, "## MEBDFI's published run statistics", NULL) == 1 &&
+               count_lines(path, "### pendulum2 (MEBDFDAE", NULL) == 1 &&
+               count_lines(path, "| 0.0001 | 21 |", NULL) == 1,
+           "report.md has MEBDFI beside ours: pendulum2 at 1e-4 with MEBDFDAE's 21 steps");
+    snprintf(path, sizeof path, "%s/steps_vs_tol.csv", out);
+    tap_ok(count_lines(path, "problem,solver,rtol", NULL) == 1 &&
+               count_lines(path, "pendulum2,bgdae-klu,", NULL) == 2 &&
+               count_lines(path, "ap102,", NULL) == count_lines(path, "pendulum2,", NULL),
+           "steps_vs_tol.csv: header, a row per problem, solver and tolerance");
+    snprintf(path, sizeof path, "%s/mebdfi_compare.csv", out);
+    tap_ok(count_lines(path, "pendulum2,", NULL) == 4 && count_lines(path, "ap102,", NULL) == 0,
+           "mebdfi_compare.csv: pendulum2 at both tolerances, MEBDFDAE's and ours; no ap102");
 
     snprintf(out, sizeof out, "%s/stab", dir);
     const char *stab[] = {"--problems", "none",  "--stability", "--stability-filter",

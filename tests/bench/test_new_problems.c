@@ -15,8 +15,9 @@
  *     problem's residual vanishes on the extrapolated trajectory's end state (so that the
  *     residual and the ODE here are the same model).
  *   - both: analytic Jacobians against central differences; consistent start; with SUNDIALS IDA
- *     built in, IDA and our solver at rtol 1e-10 converge towards the reference (scd >= 5; IDA at
- *     a tighter tolerance closer than at a looser one).
+ *     built in, IDA and our solver at rtol 1e-10 converge towards the reference (scd >= 4.5 for
+ *     the chain, whose 626 periods leave any BDF run a phase error, >= 6 for the beam; IDA at
+ *     rtol 1e-10 at least half a digit closer than at 1e-8).
  * The solver runs go through the benchmark's own runner (bench/bench_case.c). */
 #include <math.h>
 #include <stdio.h>
@@ -293,7 +294,9 @@ static void test_osc_chain(void)
            "osc_chain: closed form = long-double extrapolation at tend: scd %.2f, lam %.2f", dg,
            dg2);
 #ifdef BENCH_HAVE_IDA
-    check_solvers(p, 5.0);
+    /* 626 periods of the fastest mode: the phase error of any BDF run at 1e-10 leaves about 5.3
+     * digits (IDA 5.34, ours 5.31 measured) */
+    check_solvers(p, 4.5);
 #endif
 }
 
@@ -492,7 +495,7 @@ static void test_rotating_beam(void)
     for (int i = 0; i < p->n; i++)
         tap_diag("%-6s % .16e  (stored % .16e)", p->names[i], y[i], p->yref[i]);
 #ifdef BENCH_HAVE_IDA
-    check_solvers(p, 5.0);
+    check_solvers(p, 6.0); /* measured: IDA 7.17, ours 7.20 */
 #endif
 }
 

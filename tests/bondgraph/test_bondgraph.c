@@ -19,6 +19,11 @@
  *   8. nominal magnitudes: declarations reach dae_problem.nominal (two declarations of one
  *      unknown: the largest; undeclared: 1; a constant Se: |E|), bgr_set_nominal overrides,
  *      bad values and variables are refused with messages naming the element and the unknown;
+ *   9. the parameters of every element constructor: NaN, infinities and the numbers its rule
+ *      refuses (0, negative, a matrix not symmetric positive definite, a bad dimension) give
+ *      BG_ERR_ARGUMENT with a message naming the element's path, the constructor and the
+ *      parameter, nothing is added and the name stays free; a model built with a refusal before
+ *      each of its elements compiles and rests where it should;
  *   and the uniqueness of the names of unknowns and equations in every model built here.
  * Measured numbers are printed as TAP diagnostics. */
 #ifndef _POSIX_C_SOURCE
@@ -32,6 +37,7 @@
 
 #include "bgtest.h"
 #include "bg_sparse.h"
+#include "param_check.h"
 
 /* ------------------------------------------------------------ allocation counter ---- */
 
@@ -1453,6 +1459,233 @@ static void test_nominals(void)
     bgr_model_free(&m);
 }
 
+/* --------------------------------------------- 9. parameters of the constructors ---- */
+
+/* The constructors of bgr_elements.h with parameter which replaced by x (which < 0: all valid);
+ * the integer parameters (dimensions, port counts) take (int) x. */
+static double pick(int which, int k, double x, double good)
+{
+    return which == k ? x : good;
+}
+
+static int mk_I(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return bgr_I(m, c, name, which == 1 ? (int)x : 2, pick(which, 0, x, 1.5));
+}
+
+/* which 0..3: entry which of a 2 x 2 matrix; 4: no matrix */
+static int mk_I_matrix(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double M[4] = {2.0, 0.5, 0.5, 1.0};
+    if (which >= 0 && which < 4) M[which] = x;
+    return bgr_I_matrix(m, c, name, 2, which == 4 ? NULL : M);
+}
+
+static int mk_C(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return bgr_C(m, c, name, which == 1 ? (int)x : 1, pick(which, 0, x, 4.0));
+}
+
+static int mk_R(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return bgr_R(m, c, name, which == 1 ? (int)x : 3, pick(which, 0, x, 2.5));
+}
+
+/* which 0..2: value[which] of a 3D source; kind 0 Se, 1 Sf */
+static int mk_src(bgr_model *m, bgr_comp c, const char *name, int which, double x, int flow)
+{
+    double v[3] = {1.0, -2.0, 0.0};
+    if (which >= 0 && which < 3) v[which] = x;
+    int d = which == 3 ? (int)x : 3;
+    return flow ? bgr_Sf(m, c, name, d, v) : bgr_Se(m, c, name, d, v);
+}
+static int mk_Se(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return mk_src(m, c, name, which, x, 0);
+}
+static int mk_Sf(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return mk_src(m, c, name, which, x, 1);
+}
+
+/* the function forms: which 0 gives no function */
+static int mk_fn(bgr_model *m, bgr_comp c, const char *name, int which, int kind)
+{
+    bgr_fn f = which == 0 ? NULL : cubic_fn;
+    bgr_time_fn tf = which == 0 ? NULL : wave_fn;
+    switch (kind) {
+    case 0:
+        return bgr_I_fn(m, c, name, f, &I_law);
+    case 1:
+        return bgr_C_fn(m, c, name, f, &C_law);
+    case 2:
+        return bgr_R_fn(m, c, name, f, &R_law);
+    case 3:
+        return bgr_Se_fn(m, c, name, tf, &Se_wave);
+    default:
+        return bgr_Sf_fn(m, c, name, tf, &Sf_wave);
+    }
+}
+static int mk_I_fn(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    (void)x;
+    return mk_fn(m, c, name, which, 0);
+}
+static int mk_C_fn(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    (void)x;
+    return mk_fn(m, c, name, which, 1);
+}
+static int mk_R_fn(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    (void)x;
+    return mk_fn(m, c, name, which, 2);
+}
+static int mk_Se_fn(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    (void)x;
+    return mk_fn(m, c, name, which, 3);
+}
+static int mk_Sf_fn(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    (void)x;
+    return mk_fn(m, c, name, which, 4);
+}
+
+static int mk_TF(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return bgr_TF(m, c, name, which == 1 ? (int)x : 2, pick(which, 0, x, 1.7));
+}
+
+static int mk_GY(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return bgr_GY(m, c, name, which == 1 ? (int)x : 1, pick(which, 0, x, -0.9));
+}
+
+/* which 0: the number of ports, 1: the dimension */
+static int mk_zero(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return bgr_zero(m, c, name, which == 0 ? (int)x : 3, which == 1 ? (int)x : 2);
+}
+static int mk_one(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return bgr_one(m, c, name, which == 0 ? (int)x : 2, which == 1 ? (int)x : 1);
+}
+
+static int mk_gain(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    bgr_ref r = {BGR_EFFORT, 0, 0};
+    return bgr_gain(m, c, name, r, pick(which, 0, x, GAIN));
+}
+
+/* Every constructor with bad parameters: NaN, infinities, and 0 or negative numbers where its
+ * rule (bgr_elements.h) refuses them; one test point each (param_check.h). Then a model built
+ * with a refusal before each of its elements, under the refused names, compiles and is right. */
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *POS = "expected a finite number > 0", *NNEG = "expected a finite number >= 0";
+    const char *FIN = "expected a finite number", *NZ = "expected a finite number != 0";
+    const char *SPD = "expected a symmetric positive definite matrix";
+    const pc_case cases[] = {
+        {"bgr_I", mk_I, 0, nan, "mass = ", POS},
+        {"bgr_I", mk_I, 0, inf, "mass = ", POS},
+        {"bgr_I", mk_I, 0, 0.0, "mass = ", POS},
+        {"bgr_I", mk_I, 0, -1.5, "mass = ", POS},
+        {"bgr_I", mk_I, 1, 0, "dimension d = 0", "expected 1 .. 16"},
+        {"bgr_I", mk_I, 1, 17, "dimension d = 17", "expected 1 .. 16"},
+        {"bgr_I_matrix", mk_I_matrix, 0, nan, "M[0,0] = ", "finite"},
+        {"bgr_I_matrix", mk_I_matrix, 3, inf, "M[1,1] = ", "finite"},
+        {"bgr_I_matrix", mk_I_matrix, 1, 0.7, "M[1,0] = 0.7 but M[0,1] = 0.5", SPD},
+        {"bgr_I_matrix", mk_I_matrix, 0, 0.1, "M is not positive definite", SPD},
+        {"bgr_I_matrix", mk_I_matrix, 0, -2.0, "M is not positive definite (pivot 0", SPD},
+        {"bgr_I_matrix", mk_I_matrix, 4, 0, "the mass matrix is NULL", "NULL"},
+        {"bgr_I_fn", mk_I_fn, 0, 0, "the function is NULL", "NULL"},
+        {"bgr_C", mk_C, 0, nan, "stiffness = ", NNEG},
+        {"bgr_C", mk_C, 0, inf, "stiffness = ", NNEG},
+        {"bgr_C", mk_C, 0, -4.0, "stiffness = ", NNEG},
+        {"bgr_C", mk_C, 1, 0, "dimension d = 0", "expected 1 .. 16"},
+        {"bgr_C_fn", mk_C_fn, 0, 0, "the function is NULL", "NULL"},
+        {"bgr_R", mk_R, 0, nan, "resistance = ", NNEG},
+        {"bgr_R", mk_R, 0, -inf, "resistance = ", NNEG},
+        {"bgr_R", mk_R, 0, -0.5, "resistance = ", NNEG},
+        {"bgr_R", mk_R, 1, -1, "dimension d = -1", "expected >= 1"},
+        {"bgr_R_fn", mk_R_fn, 0, 0, "the function is NULL", "NULL"},
+        {"bgr_Se", mk_Se, 0, inf, "value[0] = ", FIN},
+        {"bgr_Se", mk_Se, 1, nan, "value[1] = ", FIN},
+        {"bgr_Se", mk_Se, 2, -inf, "value[2] = ", FIN},
+        {"bgr_Se", mk_Se, 3, 0, "dimension d = 0", "expected >= 1"},
+        {"bgr_Se_fn", mk_Se_fn, 0, 0, "the function is NULL", "NULL"},
+        {"bgr_Sf", mk_Sf, 0, nan, "value[0] = ", FIN},
+        {"bgr_Sf", mk_Sf, 2, inf, "value[2] = ", FIN},
+        {"bgr_Sf_fn", mk_Sf_fn, 0, 0, "the function is NULL", "NULL"},
+        {"bgr_TF", mk_TF, 0, nan, "modulus = ", NZ},
+        {"bgr_TF", mk_TF, 0, inf, "modulus = ", NZ},
+        {"bgr_TF", mk_TF, 0, 0.0, "modulus = ", NZ},
+        {"bgr_TF", mk_TF, 1, 0, "dimension d = 0", "expected >= 1"},
+        {"bgr_GY", mk_GY, 0, nan, "modulus = ", NZ},
+        {"bgr_GY", mk_GY, 0, -inf, "modulus = ", NZ},
+        {"bgr_GY", mk_GY, 0, 0.0, "modulus = ", NZ},
+        {"bgr_zero", mk_zero, 0, 1, "nports = 1", "expected at least 2 ports"},
+        {"bgr_zero", mk_zero, 1, 0, "dimension d = 0", "expected >= 1"},
+        {"bgr_one", mk_one, 0, 0, "nports = 0", "expected at least 2 ports"},
+        {"bgr_one", mk_one, 1, -2, "dimension d = -2", "expected >= 1"},
+        {"bgr_gain", mk_gain, 0, nan, "gain = ", FIN},
+        {"bgr_gain", mk_gain, 0, inf, "gain = ", FIN},
+        {"bgr_gain", mk_gain, 0, -inf, "gain = ", FIN},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "sub"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+
+    /* a mass on a spring and a damper driven by a force, each element first refused under its
+     * name: the model compiles, and at rest (p = 0, q = F/k) its residual is zero */
+    const double F = 3.0, mass = 2.0, k = 50.0, b = 0.7;
+    m = bgr_model_create("usable");
+    int refused = 0;
+    refused += bgr_Se(m, 0, "F", 1, &nan) == BG_ERR_ARGUMENT;
+    int S = bgr_Se(m, 0, "F", 1, &F);
+    refused += bgr_I(m, 0, "mass", 1, -mass) == BG_ERR_ARGUMENT;
+    int M = bgr_I(m, 0, "mass", 1, mass);
+    refused += bgr_C(m, 0, "spring", 1, inf) == BG_ERR_ARGUMENT;
+    int K = bgr_C(m, 0, "spring", 1, k);
+    refused += bgr_R(m, 0, "damper", 1, -b) == BG_ERR_ARGUMENT;
+    int D = bgr_R(m, 0, "damper", 1, b);
+    refused += bgr_one(m, 0, "v", 1, 1) == BG_ERR_ARGUMENT;
+    int J = bgr_one(m, 0, "v", 4, 1);
+    bgr_bond(m, 0, "bF", 1, P(m, S, 0), P(m, J, 0), NULL, NULL);
+    bgr_bond(m, 0, "bm", 1, P(m, J, 1), P(m, M, 0), NULL, NULL);
+    bgr_bond(m, 0, "bk", 1, P(m, J, 2), P(m, K, 0), NULL, NULL);
+    bgr_bond(m, 0, "bd", 1, P(m, J, 3), P(m, D, 0), NULL, NULL);
+    int st = bgr_compile(m);
+    double res = NAN;
+    if (st == BG_OK) {
+        int nv = bgr_n(m);
+        double *y = calloc((size_t)nv, sizeof *y), *yp = calloc((size_t)nv, sizeof *yp);
+        double *Fr = calloc((size_t)nv, sizeof *Fr);
+        /* at rest: every flow 0, the spring holds the force: q = F/k, all efforts but the
+         * mass's and the damper's F */
+        y[bgr_find_var(m, "usable/spring/q")] = F / k;
+        y[bgr_find_var(m, "usable/bF/e")] = F;
+        y[bgr_find_var(m, "usable/bk/e")] = F;
+        bgr_residual(m, 0.0, y, yp, Fr);
+        res = 0;
+        for (int i = 0; i < nv; i++)
+            res = fmax(res, fabs(Fr[i]));
+        free(y);
+        free(yp);
+        free(Fr);
+    }
+    tap_ok(refused == 5 && st == BG_OK && bgr_n(m) == 10 && res < 1e-15,
+           "a model built with a refusal before each element (%d of 5 refused) compiles (%d, "
+           "%d unknowns) and rests where it should (residual %.3g): '%s'",
+           refused, st, bgr_n(m), res, msg(m));
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     double t0 = now();
@@ -1479,6 +1712,8 @@ int main(void)
     test_errors();
     tap_diag("8. nominal magnitudes of the unknowns");
     test_nominals();
+    tap_diag("9. parameters of the element constructors");
+    test_param_checks();
     tap_diag("total %.2f s", now() - t0);
     return tap_done();
 }

@@ -1,7 +1,9 @@
 /* PID controller (ctl_pid) with the trapezoidal reference of the crane paper (sig_sources),
  * a rotating inertia (rot_inertia) and its sensors: tracking against the closed-form solution of
  * the closed loop, the solver's stops at the corners of the profile, smooth output limits, and
- * the analytic Jacobian. */
+ * the analytic Jacobian. The parameter checks: bad gains, filter constants and limits refused
+ * with messages naming the controller's path and the parameter. */
+#include "bondgraph/param_check.h"
 #include "cmptest.h"
 #include "ctl_pid.h"
 #include "rot_inertia.h"
@@ -399,6 +401,61 @@ static void test_nominals(void)
     bgr_model_free(&m);
 }
 
+/* The parameters of the controller (ctl_pid.h: the accepted ranges): NaN and infinite gains,
+ * filter time constants < 0, not finite or with an overflowing inverse, limits that are not
+ * finite or not ordered, smoothing widths <= 0; one test point each (param_check.h). */
+static int mk_pid(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    ctl_pid_spec sp = {.kp = 2.0,
+                       .ki = 0.5,
+                       .kd = 0.1,
+                       .reference = {BGR_OWN, 0, 0},
+                       .measurement = {BGR_OWN, 0, 0},
+                       .derivative_filter = 0.05,
+                       .limit = 1,
+                       .out_min = -1.0,
+                       .out_max = 1.0,
+                       .smoothing = 0.01};
+    double *field[7] = {&sp.kp,      &sp.ki,      &sp.kd,      &sp.derivative_filter,
+                        &sp.out_min, &sp.out_max, &sp.smoothing};
+    if (which >= 0 && which < 7) *field[which] = x;
+    return ctl_pid(m, c, name, &sp);
+}
+
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *POS = "expected a finite number > 0", *NNEG = "expected a finite number >= 0";
+    const char *FIN = "expected a finite number";
+    const pc_case cases[] = {
+        {"ctl_pid", mk_pid, 0, nan, "kp = ", FIN},
+        {"ctl_pid", mk_pid, 0, inf, "kp = ", FIN},
+        {"ctl_pid", mk_pid, 1, nan, "ki = ", FIN},
+        {"ctl_pid", mk_pid, 1, -inf, "ki = ", FIN},
+        {"ctl_pid", mk_pid, 2, nan, "kd = ", FIN},
+        {"ctl_pid", mk_pid, 2, inf, "kd = ", FIN},
+        {"ctl_pid", mk_pid, 3, nan, "derivative_filter = ", NNEG},
+        {"ctl_pid", mk_pid, 3, inf, "derivative_filter = ", NNEG},
+        {"ctl_pid", mk_pid, 3, -0.05, "derivative_filter = ", NNEG},
+        {"ctl_pid", mk_pid, 3, 1e-310, "derivative_filter = ", "finite 1 / derivative_filter"},
+        {"ctl_pid", mk_pid, 4, nan, "out_min = ", FIN},
+        {"ctl_pid", mk_pid, 4, -inf, "out_min = ", FIN},
+        {"ctl_pid", mk_pid, 4, 1.0, "out_max = 1", "expected > out_min = 1"},
+        {"ctl_pid", mk_pid, 5, inf, "out_max = ", FIN},
+        {"ctl_pid", mk_pid, 5, -2.0, "out_max = -2", "expected > out_min = -1"},
+        {"ctl_pid", mk_pid, 6, nan, "smoothing = ", POS},
+        {"ctl_pid", mk_pid, 6, inf, "smoothing = ", POS},
+        {"ctl_pid", mk_pid, 6, 0.0, "smoothing = ", POS},
+        {"ctl_pid", mk_pid, 6, -0.01, "smoothing = ", POS},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "control"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_tracking();
@@ -408,5 +465,6 @@ int main(void)
     test_arguments();
     test_jacobian();
     test_nominals();
+    test_param_checks();
     return tap_done();
 }

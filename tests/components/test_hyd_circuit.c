@@ -6,7 +6,9 @@
  * hand-computed values, power conservation of the gear, the power balance of the whole circuit,
  * and the analytic Jacobian. The nominal magnitudes the components declare (stated pressures and
  * speeds, the relief valve's full-flow pressure and rated flow, a tank's pressure) against the
- * rules of their headers applied by hand. */
+ * rules of their headers applied by hand. The parameter checks of the pump, motor, sources and
+ * gear: bad values refused with messages naming the element's path and the parameter. */
+#include "bondgraph/param_check.h"
 #include "cmptest.h"
 #include "hyd_motor.h"
 #include "hyd_pump.h"
@@ -217,7 +219,7 @@ static void test_arguments(void)
     bgr_model *m = bgr_model_create("args");
     int c = sig_constant(m, 0, "x", 1.0, SIG_VALUE);
     tap_ok(hyd_pump(m, 0, "p", -1.0, 0.0, (bgr_ref){BGR_OWN, c, 0}) < 0 &&
-               strstr(bgr_model_error(m)->message, "pump p"),
+               strstr(bgr_model_error(m)->message, "args/p (hyd_pump)"),
            "pump with negative displacement refused: %s", bgr_model_error(m)->message);
     tap_ok(hyd_motor(m, 0, "mo", 1.0, -1.0, 0.0) < 0, "motor with negative leakage refused: %s",
            bgr_model_error(m)->message);
@@ -329,6 +331,76 @@ static void test_nominals(void)
     bgr_model_free(&m);
 }
 
+/* The parameters of the pump, the motor, the sources and the gear (headers: the accepted
+ * ranges): NaN, infinities, 0 and negative numbers where refused; one test point each
+ * (param_check.h: refused with a message naming the element's path and the parameter, nothing
+ * added, the name free afterwards). */
+static double pk(int which, int k, double x, double good)
+{
+    return which == k ? x : good;
+}
+static int mk_pump(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    bgr_ref cmd = {BGR_OWN, 0, 0};
+    return hyd_pump(m, c, name, pk(which, 0, x, 5e-5), pk(which, 1, x, 1e-12), cmd);
+}
+static int mk_motor(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return hyd_motor(m, c, name, pk(which, 0, x, 1e-4), pk(which, 1, x, 1e-12),
+                     pk(which, 2, x, 0.5));
+}
+static int mk_tank(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return hyd_tank(m, c, name, pk(which, 0, x, 1e6));
+}
+static int mk_flow(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return hyd_flow_source(m, c, name, pk(which, 0, x, -1e-3));
+}
+static int mk_gear(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return rot_gear(m, c, name, pk(which, 0, x, 10.0));
+}
+
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *POS = "expected a finite number > 0", *NNEG = "expected a finite number >= 0";
+    const char *FIN = "expected a finite number", *NZ = "expected a finite number != 0";
+    const pc_case cases[] = {
+        {"hyd_pump", mk_pump, 0, nan, "Dp = ", POS},
+        {"hyd_pump", mk_pump, 0, inf, "Dp = ", POS},
+        {"hyd_pump", mk_pump, 0, 0.0, "Dp = ", POS},
+        {"hyd_pump", mk_pump, 0, -5e-5, "Dp = ", POS},
+        {"hyd_pump", mk_pump, 1, nan, "Cl = ", NNEG},
+        {"hyd_pump", mk_pump, 1, inf, "Cl = ", NNEG},
+        {"hyd_pump", mk_pump, 1, -1e-12, "Cl = ", NNEG},
+        {"hyd_motor", mk_motor, 0, nan, "D = ", POS},
+        {"hyd_motor", mk_motor, 0, -inf, "D = ", POS},
+        {"hyd_motor", mk_motor, 0, 0.0, "D = ", POS},
+        {"hyd_motor", mk_motor, 0, -1e-4, "D = ", POS},
+        {"hyd_motor", mk_motor, 1, inf, "Cl = ", NNEG},
+        {"hyd_motor", mk_motor, 1, -1.0, "Cl = ", NNEG},
+        {"hyd_motor", mk_motor, 2, nan, "b = ", NNEG},
+        {"hyd_motor", mk_motor, 2, -0.5, "b = ", NNEG},
+        {"hyd_tank", mk_tank, 0, nan, "pressure = ", FIN},
+        {"hyd_tank", mk_tank, 0, inf, "pressure = ", FIN},
+        {"hyd_tank", mk_tank, 0, -inf, "pressure = ", FIN},
+        {"hyd_flow_source", mk_flow, 0, nan, "flow = ", FIN},
+        {"hyd_flow_source", mk_flow, 0, inf, "flow = ", FIN},
+        {"rot_gear", mk_gear, 0, nan, "ratio = ", NZ},
+        {"rot_gear", mk_gear, 0, inf, "ratio = ", NZ},
+        {"rot_gear", mk_gear, 0, 0.0, "ratio = ", NZ},
+        {"rot_gear", mk_gear, 0, 1e-310, "ratio = ", "with a finite 1 / ratio"},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "drive"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     /* 50 cm^3/rev pump at 150 rad/s, 60 % displacement; 100 cm^3/rev motor; 1 l line; gear 10:1
@@ -354,6 +426,7 @@ int main(void)
     run_steady(&P, "with motor friction, reversed bonds");
     test_jacobian();
     test_arguments();
+    test_param_checks();
     test_nominals();
     return tap_done();
 }

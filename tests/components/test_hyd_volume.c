@@ -1,7 +1,10 @@
 /* Hydraulic volume (hyd_volume) with sources (hyd_source), laminar leakage and the relief valve
  * (hyd_valve), and a motor (hyd_motor) driving an inertia (rot_inertia) read by sensors: the
  * exponential pressure transient, the hydraulic natural frequency, the pressure cap of the relief
- * valve, and the analytic Jacobian. */
+ * valve, and the analytic Jacobian. The parameter checks of the volume, the leakage and the
+ * relief valve: bad values refused with messages naming the element's path and the parameter,
+ * and a model built through refusals works. */
+#include "bondgraph/param_check.h"
 #include "cmptest.h"
 #include "hyd_motor.h"
 #include "hyd_source.h"
@@ -247,7 +250,7 @@ static void test_arguments(void)
 {
     bgr_model *m = bgr_model_create("args");
     tap_ok(hyd_relief_valve(m, 0, "r", 2.0, 1.0, 1.0, 0.1) < 0 &&
-               strstr(bgr_model_error(m)->message, "relief valve r"),
+               strstr(bgr_model_error(m)->message, "args/r (hyd_relief_valve)"),
            "relief valve with p_full < p_crack refused: %s", bgr_model_error(m)->message);
     tap_ok(hyd_relief_valve(m, 0, "r", 1.0, 2.0, 1.0, 0.0) < 0,
            "relief valve without width refused");
@@ -264,6 +267,111 @@ static void test_arguments(void)
     bgr_model_free(&m);
 }
 
+/* The parameters of the volume, the leakage and the relief valve (headers: the accepted
+ * ranges): NaN, infinities, 0 and negative numbers where refused, misordered pressures and
+ * combinations that overflow; one test point each (param_check.h). Then the leaking volume of
+ * test_transient built with a refusal before each element, under the refused names: it
+ * compiles and follows the same transient. */
+static double pk(int which, int k, double x, double good)
+{
+    return which == k ? x : good;
+}
+/* which 0: nports, 1: V, 2: beta */
+static int mk_volume(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return hyd_volume(m, c, name, which == 0 ? (int)x : 2, pk(which, 1, x, 1e-3),
+                      pk(which, 2, x, 1.4e9));
+}
+static int mk_leak(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return hyd_leakage(m, c, name, pk(which, 0, x, 1e-11));
+}
+/* which 0: p_crack, 1: p_full, 2: q_rated, 3: eps; 4: the band overflows (p_crack = -x,
+ * p_full = x); 5: the band is too narrow for the rated flow x */
+static int mk_relief(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double pc = pk(which, 0, x, 2e7), pf = pk(which, 1, x, 2.5e7), q = pk(which, 2, x, 1e-3);
+    if (which == 4) pc = -x, pf = x;
+    if (which == 5) pc = 1.0, pf = nextafter(1.0, 2.0), q = x;
+    return hyd_relief_valve(m, c, name, pc, pf, q, pk(which, 3, x, 5e4));
+}
+
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *POS = "expected a finite number > 0", *NNEG = "expected a finite number >= 0";
+    const char *FIN = "expected a finite number";
+    const pc_case cases[] = {
+        {"hyd_volume", mk_volume, 0, 0, "nports = 0", "expected 1 .. 1000"},
+        {"hyd_volume", mk_volume, 0, 1001, "nports = 1001", "expected 1 .. 1000"},
+        {"hyd_volume", mk_volume, 1, nan, "V = ", POS},
+        {"hyd_volume", mk_volume, 1, inf, "V = ", POS},
+        {"hyd_volume", mk_volume, 1, 0.0, "V = ", POS},
+        {"hyd_volume", mk_volume, 1, -1e-3, "V = ", POS},
+        {"hyd_volume", mk_volume, 1, 1e-300, "beta / V = inf", FIN},
+        {"hyd_volume", mk_volume, 2, nan, "beta = ", POS},
+        {"hyd_volume", mk_volume, 2, inf, "beta = ", POS},
+        {"hyd_volume", mk_volume, 2, 0.0, "beta = ", POS},
+        {"hyd_volume", mk_volume, 2, -1.4e9, "beta = ", POS},
+        {"hyd_leakage", mk_leak, 0, nan, "G = ", NNEG},
+        {"hyd_leakage", mk_leak, 0, inf, "G = ", NNEG},
+        {"hyd_leakage", mk_leak, 0, -1e-12, "G = ", NNEG},
+        {"hyd_relief_valve", mk_relief, 0, nan, "p_crack = ", FIN},
+        {"hyd_relief_valve", mk_relief, 0, -inf, "p_crack = ", FIN},
+        {"hyd_relief_valve", mk_relief, 0, 2.5e7, "p_full = 2.5e+07", "expected > p_crack"},
+        {"hyd_relief_valve", mk_relief, 0, 3e7, "p_full = 2.5e+07", "expected > p_crack"},
+        {"hyd_relief_valve", mk_relief, 1, nan, "p_full = ", FIN},
+        {"hyd_relief_valve", mk_relief, 1, inf, "p_full = ", FIN},
+        {"hyd_relief_valve", mk_relief, 2, nan, "q_rated = ", POS},
+        {"hyd_relief_valve", mk_relief, 2, inf, "q_rated = ", POS},
+        {"hyd_relief_valve", mk_relief, 2, 0.0, "q_rated = ", POS},
+        {"hyd_relief_valve", mk_relief, 2, -1e-3, "q_rated = ", POS},
+        {"hyd_relief_valve", mk_relief, 3, nan, "eps = ", POS},
+        {"hyd_relief_valve", mk_relief, 3, inf, "eps = ", POS},
+        {"hyd_relief_valve", mk_relief, 3, 0.0, "eps = ", POS},
+        {"hyd_relief_valve", mk_relief, 3, -5e4, "eps = ", POS},
+        {"hyd_relief_valve", mk_relief, 4, 1e308, "q_rated / (p_full - p_crack) = 0", POS},
+        {"hyd_relief_valve", mk_relief, 5, 1e300, "q_rated / (p_full - p_crack) = inf", POS},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "circuit"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+
+    const double Q = 1e-4, G = 1e-11, Vol = 1e-3, beta = 1.4e9, tau = Vol / (beta * G);
+    m = bgr_model_create("rc");
+    int refused = 0;
+    refused += hyd_flow_source(m, 0, "pump", nan) == BG_ERR_ARGUMENT;
+    int src = hyd_flow_source(m, 0, "pump", Q);
+    refused += hyd_volume(m, 0, "line", 2, 1e-300, beta) == BG_ERR_ARGUMENT;
+    int vol = hyd_volume(m, 0, "line", 2, Vol, beta);
+    refused += hyd_leakage(m, 0, "leak", -G) == BG_ERR_ARGUMENT;
+    int leak = hyd_leakage(m, 0, "leak", G);
+    refused += hyd_tank(m, 0, "tank", inf) == BG_ERR_ARGUMENT;
+    int tank = hyd_tank(m, 0, "tank", 0.0);
+    B(m, "feed", src, 0, vol, 0);
+    B(m, "out", vol, 1, leak, 0);
+    B(m, "drain", tank, 0, leak, 1);
+    int st = bgr_compile(m);
+    double p = NAN, want = Q / G * (1 - exp(-3.0));
+    if (st == BG_OK) {
+        dae_solver *s = solver_new(m, 1e-10, 1e-12, NULL, NULL, 0, 0.0);
+        int nv = bgr_n(m);
+        double *y = calloc((size_t)nv, sizeof *y), *yp = calloc((size_t)nv, sizeof *yp);
+        if (s && solve_to(s, 3 * tau, y, yp) >= 0) p = at(y, V(m, "rc/line/p"));
+        dae_free(&s);
+        free(y);
+        free(yp);
+    }
+    tap_ok(refused == 4 && st == BG_OK && fabs(p - want) <= 1e-7 * want,
+           "the leaking volume built with a refusal before each element (%d of 4 refused) "
+           "compiles (%d) and reaches p(3 tau) = %.6g Pa (got %.6g): '%s'",
+           refused, st, want, p, bgr_model_error(m)->message);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_transient();
@@ -271,5 +379,6 @@ int main(void)
     test_relief();
     test_jacobian();
     test_arguments();
+    test_param_checks();
     return tap_done();
 }

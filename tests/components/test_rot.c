@@ -1,6 +1,9 @@
 /* Rotational components: inertia with angle (rot_inertia), viscous friction (rot_damper), gear
  * (rot_gear) and the sensors (sensors.h): spin-down and constant-torque runs against their closed
- * forms, power through the gear, and the analytic Jacobian. */
+ * forms, power through the gear, and the analytic Jacobian; the parameter checks of the inertia,
+ * the damper and the sensor (bad values refused with messages naming the element's path and the
+ * parameter). */
+#include "bondgraph/param_check.h"
 #include "cmptest.h"
 #include "rot_damper.h"
 #include "rot_gear.h"
@@ -122,10 +125,65 @@ static void test_jacobian(void)
     bgr_model_free(&m);
 }
 
+/* The parameters of the inertia, the damper and the sensor (headers: the accepted ranges): NaN,
+ * infinities, 0 and negative numbers where refused, a J whose inverse overflows, an unknown
+ * quantity and an element that is no inertia; one test point each (param_check.h). */
+static int pc_inertia = -1, pc_damper = -1; /* a valid inertia and a damper for the sensor */
+static double pk(int which, int k, double x, double good)
+{
+    return which == k ? x : good;
+}
+static int mk_inertia(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return rot_inertia(m, c, name, pk(which, 0, x, 2.0));
+}
+static int mk_damper(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return rot_damper(m, c, name, pk(which, 0, x, 0.5));
+}
+/* which 0: the quantity, 1: the inertia's id, 2: the damper's id */
+static int mk_sensor(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    int q = which == 0 ? (int)x : ROT_VELOCITY;
+    int in = which == 1 ? (int)x : which == 2 ? pc_damper : pc_inertia;
+    return rot_sensor(m, c, name, in, (rot_quantity)q);
+}
+
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *POS = "expected a finite number > 0", *NNEG = "expected a finite number >= 0";
+    const char *RI = "expected the id of a rot_inertia element";
+    const pc_case cases[] = {
+        {"rot_inertia", mk_inertia, 0, nan, "J = ", POS},
+        {"rot_inertia", mk_inertia, 0, inf, "J = ", POS},
+        {"rot_inertia", mk_inertia, 0, 0.0, "J = ", POS},
+        {"rot_inertia", mk_inertia, 0, -2.0, "J = ", POS},
+        {"rot_inertia", mk_inertia, 0, 1e-310, "J = ", "with a finite 1 / J"},
+        {"rot_damper", mk_damper, 0, nan, "b = ", NNEG},
+        {"rot_damper", mk_damper, 0, inf, "b = ", NNEG},
+        {"rot_damper", mk_damper, 0, -0.5, "b = ", NNEG},
+        {"rot_sensor", mk_sensor, 0, 3, "quantity q = 3", "expected ROT_ANGLE"},
+        {"rot_sensor", mk_sensor, 0, -1, "quantity q = -1", "expected ROT_ANGLE"},
+        {"rot_sensor", mk_sensor, 1, -1, "inertia = -1", RI},
+        {"rot_sensor", mk_sensor, 1, 99, "inertia = 99", RI},
+        {"rot_sensor", mk_sensor, 2, 0, "inertia = ", RI},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    pc_inertia = rot_inertia(m, 0, "disk", 1.0);
+    pc_damper = rot_damper(m, 0, "bearing", 1.0);
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "shaft"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_spin_down();
     test_gear();
     test_jacobian();
+    test_param_checks();
     return tap_done();
 }

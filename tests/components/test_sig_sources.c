@@ -1,6 +1,9 @@
 /* Signal sources (sig_sources): value, rate and integral of every source against hand values,
  * the rate against central differences and the integral against Simpson's rule of the value,
- * the breakpoints they expose, a step driving a volume through the solver, and the Jacobian. */
+ * the breakpoints they expose, a step driving a volume through the solver, and the Jacobian. The
+ * parameter checks: bad times, values and outputs refused with messages naming the signal's path
+ * and the parameter. */
+#include "bondgraph/param_check.h"
 #include "cmptest.h"
 #include "hyd_source.h"
 #include "hyd_volume.h"
@@ -325,6 +328,95 @@ static void test_nominals(void)
     bgr_model_free(&m);
 }
 
+/* The parameters of the sources (sig_sources.h: the accepted ranges): NaN and infinite times and
+ * values, misordered trapezoid corners and pwl times, too few points, slopes that overflow, an
+ * unknown output; one test point each (param_check.h). */
+static double pk(int which, int k, double x, double good)
+{
+    return which == k ? x : good;
+}
+/* which 0..4: t0, t1, t2, t3, height; 5: the output (int) x */
+static int mk_trapezoid(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return sig_trapezoid(m, c, name, pk(which, 0, x, 0.0), pk(which, 1, x, 2.0),
+                         pk(which, 2, x, 10.0), pk(which, 3, x, 12.0), pk(which, 4, x, 0.5),
+                         which == 5 ? (sig_output)(int)x : SIG_RATE);
+}
+/* which 0..2: t[which], 3..5: v[which - 3]; 6: n = (int) x */
+static int mk_pwl(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double t[3] = {0.0, 1.0, 6.0}, v[3] = {1.0, -1.0, 2.0};
+    if (which >= 0 && which < 3) t[which] = x;
+    if (which >= 3 && which < 6) v[which - 3] = x;
+    return sig_pwl(m, c, name, which == 6 ? (int)x : 3, t, v, SIG_INTEGRAL);
+}
+static int mk_step(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return sig_step(m, c, name, pk(which, 0, x, 1.0), pk(which, 1, x, 0.0), pk(which, 2, x, 2.0),
+                    SIG_VALUE);
+}
+static int mk_ramp(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return sig_ramp(m, c, name, pk(which, 0, x, 1.0), pk(which, 1, x, 0.5), pk(which, 2, x, 1.0),
+                    SIG_VALUE);
+}
+static int mk_sine(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return sig_sine(m, c, name, pk(which, 0, x, 2.0), pk(which, 1, x, 3.0), pk(which, 2, x, 0.1),
+                    pk(which, 3, x, -1.0), SIG_RATE);
+}
+static int mk_constant(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return sig_constant(m, c, name, pk(which, 0, x, 4.0), SIG_VALUE);
+}
+
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *FIN = "expected a finite number", *ORD = "(t0 < t1 <= t2 < t3)";
+    const char *SEG = "expected finite numbers (times too close or values too large)";
+    const pc_case cases[] = {
+        {"sig_trapezoid", mk_trapezoid, 0, nan, "t0 = ", FIN},
+        {"sig_trapezoid", mk_trapezoid, 1, inf, "t1 = ", FIN},
+        {"sig_trapezoid", mk_trapezoid, 2, nan, "t2 = ", FIN},
+        {"sig_trapezoid", mk_trapezoid, 3, -inf, "t3 = ", FIN},
+        {"sig_trapezoid", mk_trapezoid, 4, nan, "height = ", FIN},
+        {"sig_trapezoid", mk_trapezoid, 4, inf, "height = ", FIN},
+        {"sig_trapezoid", mk_trapezoid, 1, 0.0, "t1 = 0, expected > t0 = 0", ORD},
+        {"sig_trapezoid", mk_trapezoid, 2, 1.0, "t2 = 1, expected >= t1 = 2", ORD},
+        {"sig_trapezoid", mk_trapezoid, 3, 10.0, "t3 = 10, expected > t2 = 10", ORD},
+        {"sig_trapezoid", mk_trapezoid, 1, 1e-310, "slope", SEG},
+        {"sig_trapezoid", mk_trapezoid, 5, 7, "unknown output out = 7", "expected SIG_VALUE"},
+        {"sig_pwl", mk_pwl, 0, nan, "t[0] = ", FIN},
+        {"sig_pwl", mk_pwl, 2, inf, "t[2] = ", FIN},
+        {"sig_pwl", mk_pwl, 4, nan, "v[1] = ", FIN},
+        {"sig_pwl", mk_pwl, 5, -inf, "v[2] = ", FIN},
+        {"sig_pwl", mk_pwl, 1, 6.0, "t[2] = 6, expected > t[1] = 6", "strictly increasing"},
+        {"sig_pwl", mk_pwl, 1, -1.0, "t[1] = -1, expected > t[0] = 0", "strictly increasing"},
+        {"sig_pwl", mk_pwl, 6, 0, "n = 0", "expected at least 1 point"},
+        {"sig_pwl", mk_pwl, 1, 1e-310, "slope", SEG},
+        {"sig_pwl", mk_pwl, 5, 1.5e308, "area", SEG},
+        {"sig_step", mk_step, 0, nan, "t_step = ", FIN},
+        {"sig_step", mk_step, 1, inf, "before = ", FIN},
+        {"sig_step", mk_step, 2, -inf, "after = ", FIN},
+        {"sig_ramp", mk_ramp, 0, inf, "t_start = ", FIN},
+        {"sig_ramp", mk_ramp, 1, nan, "slope = ", FIN},
+        {"sig_ramp", mk_ramp, 2, -inf, "offset = ", FIN},
+        {"sig_sine", mk_sine, 0, nan, "amplitude = ", FIN},
+        {"sig_sine", mk_sine, 1, inf, "omega = ", FIN},
+        {"sig_sine", mk_sine, 2, nan, "phase = ", FIN},
+        {"sig_sine", mk_sine, 3, -inf, "offset = ", FIN},
+        {"sig_constant", mk_constant, 0, nan, "value = ", FIN},
+        {"sig_constant", mk_constant, 0, inf, "value = ", FIN},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "reference"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_values();
@@ -333,5 +425,6 @@ int main(void)
     test_jacobian();
     test_arguments();
     test_nominals();
+    test_param_checks();
     return tap_done();
 }

@@ -61,6 +61,16 @@ static const bad_scene BAD_SCENES[] = {
     {"negative-gain", "[controller]\nkd = -50\n", 2, "key 'kd' in [controller]", NULL},
     {"hash-comment-inline", "[rope]\nlength = 71.51 # m\n", 2, "key 'length' in [rope]",
      "got '71.51 # m'"},
+    {"hex-number", "[boom]\nlength = 0x4c\n", 2, "key 'length' in [boom]",
+     "numbers are decimal"},
+    {"hex-in-vector", "[platform]\ncom = 0, 0x1p3, 1\n", 2, "key 'com' in [platform]",
+     "numbers are decimal"},
+    {"hex-integer", "[boom]\nelements = 0x10\n", 2, "key 'elements' in [boom]",
+     "numbers are decimal"},
+    {"vertical-boom", "[boom]\ntip_radius = 1.5\n", 2, "key 'tip_radius' in [boom]",
+     "vertical flexible boom"},
+    {"cr-only-line-ends", "[boom]\rlength = 76\rrho = -1\r", 3, "key 'rho' in [boom]",
+     "got '-1'"},
 };
 #define NBAD ((int)(sizeof BAD_SCENES / sizeof *BAD_SCENES))
 

@@ -4,200 +4,15 @@
  * output folder and bare scene names, bad command lines (exit 2 with a clear message), the
  * catalogue of malformed scene files (exit 2, message naming file, line and key, no crash), a
  * solver failure (exit 1, status.txt with the solver's message), and an interrupted run (SIGTERM:
- * the rows written are kept whole, status.txt says so).
+ * the rows written are kept whole, status.txt says so). test_crane_robust.c provokes the faults
+ * (write failures, signals at every stage, old folders, bad numbers and paths); crane_spawn.h
+ * starts the program for both.
  *
  *   test_crane_program CRANE_EXECUTABLE SCENES_DIR */
-#include <errno.h>
-#include <fcntl.h>
-#include <math.h>
-#include <signal.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
-
-#include "crane_model.h"
+#include "crane_spawn.h"
 #include "tap.h"
 
 #include "bad_scenes.h"
-
-static char exe[2048], scenes[2048], tmp[1024];
-
-typedef struct result {
-    int exited, code, signaled, sig, timed_out;
-    char out[8192], err[8192];
-} result;
-
-static void sleep_ms(int ms)
-{
-    struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
-    nanosleep(&ts, NULL);
-}
-
-static void slurp(const char *path, char *buf, size_t size)
-{
-    buf[0] = '\0';
-    FILE *f = fopen(path, "r");
-    if (!f) return;
-    size_t n = fread(buf, 1, size - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-}
-
-/* Starts the program with args (NULL-terminated) in folder cwd (NULL: here). */
-static pid_t start(const char *cwd, const char *const *args, const char *tag)
-{
-    char so[4200], se[4200];
-    snprintf(so, sizeof so, "%s/%s.out", tmp, tag);
-    snprintf(se, sizeof se, "%s/%s.err", tmp, tag);
-    fflush(stdout);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fo = open(so, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int fe = open(se, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int fi = open("/dev/null", O_RDONLY);
-        if (fo < 0 || fe < 0 || fi < 0) _exit(127);
-        dup2(fi, 0);
-        dup2(fo, 1);
-        dup2(fe, 2);
-        if (cwd && chdir(cwd) != 0) _exit(127);
-        const char *argv[64];
-        int n = 0;
-        argv[n++] = exe;
-        for (int i = 0; args[i] && n < 63; i++)
-            argv[n++] = args[i];
-        argv[n] = NULL;
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    return pid;
-}
-
-static void finish(pid_t pid, double timeout, const char *tag, result *r)
-{
-    memset(r, 0, sizeof *r);
-    int status = 0;
-    double waited = 0;
-    for (;;) {
-        pid_t w = waitpid(pid, &status, WNOHANG);
-        if (w == pid) break;
-        if (w < 0 && errno != EINTR) break;
-        if (waited > timeout) {
-            kill(pid, SIGKILL);
-            waitpid(pid, &status, 0);
-            r->timed_out = 1;
-            break;
-        }
-        sleep_ms(10);
-        waited += 0.01;
-    }
-    r->exited = WIFEXITED(status);
-    r->code = r->exited ? WEXITSTATUS(status) : -1;
-    r->signaled = WIFSIGNALED(status);
-    r->sig = r->signaled ? WTERMSIG(status) : 0;
-    char p[8192];
-    snprintf(p, sizeof p, "%s/%s.out", tmp, tag);
-    slurp(p, r->out, sizeof r->out);
-    snprintf(p, sizeof p, "%s/%s.err", tmp, tag);
-    slurp(p, r->err, sizeof r->err);
-}
-
-static void run(const char *cwd, const char *const *args, const char *tag, double timeout,
-                result *r)
-{
-    finish(start(cwd, args, tag), timeout, tag, r);
-}
-
-static int file_nonempty(const char *dir, const char *name)
-{
-    char p[8192];
-    struct stat st;
-    snprintf(p, sizeof p, "%s/%s", dir, name);
-    return stat(p, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
-}
-
-static int first_line_is(const char *dir, const char *name, const char *want)
-{
-    char p[8192], line[4096];
-    snprintf(p, sizeof p, "%s/%s", dir, name);
-    FILE *f = fopen(p, "r");
-    if (!f) return 0;
-    int ok = fgets(line, sizeof line, f) && !strncmp(line, want, strlen(want));
-    fclose(f);
-    return ok;
-}
-
-static int file_contains(const char *dir, const char *name, const char *want)
-{
-    char p[8192];
-    static char buf[1 << 16];
-    snprintf(p, sizeof p, "%s/%s", dir, name);
-    slurp(p, buf, sizeof buf);
-    return strstr(buf, want) != NULL;
-}
-
-/* results.csv: the header of crane_output_names, then rows of CRANE_NOUT numbers with
- * increasing t, all finite (allow_nan: or NaN, which the model writes for the parts a scene does
- * not build). Returns the number of rows (< 0: malformed) and the last t. */
-static long check_csv(const char *dir, int allow_nan, double *t_last, char *why, size_t wsize)
-{
-    char p[8192], header[4096] = "";
-    size_t len = 0;
-    for (int i = 0; i < CRANE_NOUT; i++)
-        len += (size_t)snprintf(header + len, sizeof header - len, "%s%s", i ? "," : "",
-                                crane_output_names[i]);
-    snprintf(p, sizeof p, "%s/results.csv", dir);
-    FILE *f = fopen(p, "r");
-    snprintf(why, wsize, "ok");
-    if (!f) {
-        snprintf(why, wsize, "no results.csv");
-        return -1;
-    }
-    static char line[1 << 14];
-    long rows = 0;
-    double tprev = -1;
-    *t_last = NAN;
-    if (!fgets(line, sizeof line, f) || strncmp(line, header, strlen(header)) ||
-        line[strlen(header)] != '\n') {
-        snprintf(why, wsize, "header is not crane_output_names");
-        fclose(f);
-        return -1;
-    }
-    while (fgets(line, sizeof line, f)) {
-        size_t n = strlen(line);
-        if (n == 0 || line[n - 1] != '\n') {
-            snprintf(why, wsize, "row %ld is cut short", rows + 1);
-            fclose(f);
-            return -1;
-        }
-        char *s = line, *end;
-        int fields = 0, finite = 1;
-        double t = NAN;
-        for (;;) {
-            double v = strtod(s, &end);
-            if (end == s) break;
-            if (fields == 0) t = v;
-            finite = finite && (isfinite(v) || (allow_nan && isnan(v) && fields > 0));
-            fields++;
-            if (*end != ',') break;
-            s = end + 1;
-        }
-        if (fields != CRANE_NOUT || *end != '\n' || !finite || !(t > tprev)) {
-            snprintf(why, wsize, "row %ld: %d fields, finite %d, t %g after %g", rows + 1, fields,
-                     finite, t, tprev);
-            fclose(f);
-            return -1;
-        }
-        tprev = t;
-        rows++;
-    }
-    fclose(f);
-    *t_last = tprev;
-    return rows;
-}
 
 static void test_help_and_bad_command_lines(void)
 {
@@ -407,36 +222,13 @@ static void test_interrupt(void)
            "solver_stats.txt is written after an interruption");
 }
 
-/* path made absolute (the program runs in other folders too) */
-static int absolute(const char *path, char *buf, size_t size)
-{
-    char cwd[1024];
-    int n;
-    if (path[0] == '/')
-        n = snprintf(buf, size, "%s", path);
-    else if (getcwd(cwd, sizeof cwd))
-        n = snprintf(buf, size, "%s/%s", cwd, path);
-    else
-        return 0;
-    return n > 0 && (size_t)n < size;
-}
-
 int main(int argc, char **argv)
 {
     if (argc < 3) {
         printf("1..0 # SKIP usage: test_crane_program CRANE_EXECUTABLE SCENES_DIR\n");
         return 0;
     }
-    if (!absolute(argv[1], exe, sizeof exe) || !absolute(argv[2], scenes, sizeof scenes)) {
-        printf("Bail out! cannot resolve %s or %s\n", argv[1], argv[2]);
-        return 1;
-    }
-    const char *tdir = getenv("TMPDIR");
-    snprintf(tmp, sizeof tmp, "%s/crane_test_XXXXXX", tdir && *tdir ? tdir : "/tmp");
-    if (!mkdtemp(tmp)) {
-        printf("Bail out! mkdtemp failed\n");
-        return 1;
-    }
+    if (spawn_setup(argc, argv, "crane_test") != 0) return 1;
     tap_diag("working folder %s", tmp);
     int gnuplot = system("command -v gnuplot >/dev/null 2>&1") == 0;
 

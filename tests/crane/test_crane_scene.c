@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "crane_model.h"
 #include "crane_scene.h"
@@ -216,6 +217,44 @@ static void test_scenes(void)
     tap_ok(crane_scene_load(&s, CRANE_SCENES_DIR "/no-such-scene.ini", &err) == BG_ERR_IO &&
                strstr(err.message, "no-such-scene.ini"),
            "a missing file is BG_ERR_IO naming the file (%s)", err.message);
+    bg_error_clear(&err);
+    tap_ok(crane_scene_load(&s, CRANE_SCENES_DIR, &err) == BG_ERR_IO &&
+               strstr(err.message, "a directory, not a scene file"),
+           "a directory is BG_ERR_IO saying what it is (%s)", err.message);
+    bg_error_clear(&err);
+    tap_ok(crane_scene_load(&s, "/dev/null", &err) == BG_ERR_IO &&
+               strstr(err.message, "a character device, not a scene file"),
+           "a device is BG_ERR_IO saying what it is (%s)", err.message);
+}
+
+/* crane_scene_load_counted: the keys a file sets (0: nothing but comments and sections). */
+static void test_counted(void)
+{
+    static const struct {
+        const char *text;
+        int nkeys;
+    } cases[] = {{"", 0},
+                 {"; only a comment\n[boom]\n# and another\n", 0},
+                 {"[boom]\nlength = 70\nelements = 4\n[solver]\nt_end = 1\n", 3},
+                 {"[boom]\r\nlength = 70\r\n", 1},
+                 {"[boom]\rlength = 70\rrho = 7000\r", 2}};
+    const char *tdir = getenv("TMPDIR");
+    char path[1024];
+    snprintf(path, sizeof path, "%s/crane_counted_%ld.ini", tdir && *tdir ? tdir : "/tmp",
+             (long)time(NULL));
+    for (int i = 0; i < 5; i++) {
+        FILE *f = fopen(path, "w");
+        if (f) {
+            fputs(cases[i].text, f);
+            fclose(f);
+        }
+        crane_scene s;
+        bg_error err = {0};
+        int n = -1, rc = crane_scene_load_counted(&s, path, &n, &err);
+        tap_ok(rc == BG_OK && n == cases[i].nkeys, "a file that sets %d keys: counted %d %s",
+               cases[i].nkeys, n, err.message);
+    }
+    remove(path);
 }
 
 static void test_syntax_variants(void)
@@ -408,6 +447,7 @@ int main(void)
     test_round_trip();
     test_coverage();
     test_scenes();
+    test_counted();
     test_syntax_variants();
     test_catalogue();
     test_set_and_check();

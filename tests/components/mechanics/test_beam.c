@@ -1,11 +1,14 @@
 /* Tests of the co-rotational beam: its Jacobian against finite differences, no deformation
  * energy under large rigid motions, and cantilevers against Euler-Bernoulli closed forms (tip
- * load P L^3/(3 E I), own weight q L^4/(8 E I)), reached by a damped transient. */
+ * load P L^3/(3 E I), own weight q L^4/(8 E I)), reached by a damped transient; the parameter
+ * checks of mech_beam and mech_beam_chain (bad values refused with messages naming the element's
+ * path and the parameter, nothing added). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bgr_elements.h"
+#include "bondgraph/param_check.h"
 #include "mech_beam.h"
 #include "mech_body.h"
 #include "mech_parts.h"
@@ -552,6 +555,127 @@ static void test_damping(void)
     bgr_model_free(&m);
 }
 
+/* ---- parameter checks of mech_beam and mech_beam_chain ---- */
+
+static int pc_na = -1, pc_nb = -1, pc_sup = -1; /* two bodies and a support for mech_beam */
+
+/* which 0..8: the section's E, G, A, Iy, Iz, J, rho, kappa, beta; 9: no section */
+static void pc_section(int which, double x, mech_section *s)
+{
+    *s = steel;
+    s->beta = 1e-4;
+    double *f[9] = {&s->E, &s->G, &s->A, &s->Iy, &s->Iz, &s->J, &s->rho, &s->kappa, &s->beta};
+    if (which >= 0 && which < 9) *f[which] = x;
+}
+
+/* mech_beam: which 0..9 as pc_section; 10: no frame; 11: E0[4] = x; 12: E0[0] = x (not
+ * orthonormal); 13: left-handed; 14: L0; 15: node_a, 16: node_b (int) x; 17: node_b = node_a;
+ * 18: E = A = x (the stiffness overflows) */
+static int mk_beam(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    mech_section s;
+    pc_section(which, x, &s);
+    if (which == 18) s.E = s.A = x;
+    double E0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    if (which == 11) E0[4] = x;
+    if (which == 12) E0[0] = x;
+    if (which == 13) E0[8] = -1;
+    int na = which == 15 ? (int)x : pc_na, nb = which == 16 ? (int)x : which == 17 ? na : pc_nb;
+    return mech_beam(m, c, name, na, nb, which == 9 ? NULL : &s, which == 10 ? NULL : E0,
+                     which == 14 ? x : 1.0);
+}
+
+/* mech_beam_chain: which 0..9 as pc_section; 10: n; 11: p0[0]; 12: p1 = p0; 13: up along the
+ * beam; 14: up[2]; 15: gravity[1]; 16: extra[1] (int) x; 17: extra[0] (int) x; 18: no id
+ * arrays */
+static int mk_chain(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    mech_section s;
+    pc_section(which, x, &s);
+    double p0[3] = {0, 0, 0}, p1[3] = {2, 0, 0}, up[3] = {0, 0, 1}, g[3] = {0, 0, -9.81};
+    int extra[3] = {1, 0, 0}, nodes[3], elems[2];
+    if (which == 11) p0[0] = x;
+    if (which == 12) p1[0] = 0;
+    if (which == 13) up[0] = 1, up[2] = 0;
+    if (which == 14) up[2] = x;
+    if (which == 15) g[1] = x;
+    if (which == 16) extra[1] = (int)x;
+    if (which == 17) extra[0] = (int)x;
+    return mech_beam_chain(m, c, name, which == 10 ? (int)x : 2, p0, p1, up,
+                           which == 9 ? NULL : &s, g, extra, NULL, which == 18 ? NULL : nodes,
+                           elems);
+}
+
+/* The section, frame, length and nodes of a beam element and the arguments of the chain
+ * builder: NaN, infinities, 0 and negative numbers where refused, frames that are not
+ * orthonormal or right-handed, nodes that are not bodies, stiffnesses and lumped inertias that
+ * overflow or vanish; one test point each (tests/bondgraph/param_check.h; a refused chain leaves
+ * no component, element or bond). */
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *POS = "expected a finite number > 0", *NNEG = "expected a finite number >= 0";
+    const char *FIN = "expected a finite number", *BODY = "expected the element id of a rigid body";
+    const char *ENDS = "expected two distinct end points";
+    const pc_case cases[] = {
+        {"mech_beam", mk_beam, 0, nan, "section.E = ", POS},
+        {"mech_beam", mk_beam, 0, 0.0, "section.E = ", POS},
+        {"mech_beam", mk_beam, 1, -8.1e10, "section.G = ", POS},
+        {"mech_beam", mk_beam, 2, inf, "section.A = ", POS},
+        {"mech_beam", mk_beam, 3, 0.0, "section.Iy = ", POS},
+        {"mech_beam", mk_beam, 4, nan, "section.Iz = ", POS},
+        {"mech_beam", mk_beam, 5, -1.0, "section.J = ", POS},
+        {"mech_beam", mk_beam, 6, -1.0, "section.rho = ", NNEG},
+        {"mech_beam", mk_beam, 6, inf, "section.rho = ", NNEG},
+        {"mech_beam", mk_beam, 7, nan, "section.kappa = ", NNEG},
+        {"mech_beam", mk_beam, 8, -1e-4, "section.beta = ", NNEG},
+        {"mech_beam", mk_beam, 9, 0, "the section is NULL", "NULL"},
+        {"mech_beam", mk_beam, 10, 0, "the initial frame E0 is NULL", "NULL"},
+        {"mech_beam", mk_beam, 11, nan, "E0[4] = ", FIN},
+        {"mech_beam", mk_beam, 12, 2.0, "E0's columns 0 and 0 have the product 4",
+         "expected an orthonormal frame"},
+        {"mech_beam", mk_beam, 13, 0, "E0 is left-handed", "expected e3 = e1 x e2"},
+        {"mech_beam", mk_beam, 14, 0.0, "L0 = ", POS},
+        {"mech_beam", mk_beam, 14, nan, "L0 = ", POS},
+        {"mech_beam", mk_beam, 14, -1.0, "L0 = ", POS},
+        {"mech_beam", mk_beam, 15, -1, "node_a = -1", BODY},
+        {"mech_beam", mk_beam, 16, 99, "node_b = 99", BODY},
+        {"mech_beam", mk_beam, 16, 2, "node_b = 2", BODY},
+        {"mech_beam", mk_beam, 17, 0, "node_a = node_b = 0", "expected two different bodies"},
+        {"mech_beam", mk_beam, 18, 1e200, "the local stiffness of the section over L0 = 1",
+         "are finite"},
+        {"mech_beam_chain", mk_chain, 0, nan, "section.E = ", POS},
+        {"mech_beam_chain", mk_chain, 6, 0.0, "section.rho = 0", "the chain lumps the mass"},
+        {"mech_beam_chain", mk_chain, 6, -7850, "section.rho = ", NNEG},
+        {"mech_beam_chain", mk_chain, 6, 1e-320, "a node standing for l = ", "finite and > 0"},
+        {"mech_beam_chain", mk_chain, 2, 1e300, "the local stiffness of the section", "finite"},
+        {"mech_beam_chain", mk_chain, 9, 0, "the section is NULL", "NULL"},
+        {"mech_beam_chain", mk_chain, 10, 0, "n = 0", "expected at least 1 element"},
+        {"mech_beam_chain", mk_chain, 11, nan, "p0[0] = ", FIN},
+        {"mech_beam_chain", mk_chain, 11, -inf, "p0[0] = ", FIN},
+        {"mech_beam_chain", mk_chain, 12, 0, "p1 = (0, 0, 0)", ENDS},
+        {"mech_beam_chain", mk_chain, 13, 0, "up = (1, 0, 0)", "not along the beam"},
+        {"mech_beam_chain", mk_chain, 14, inf, "up[2] = ", FIN},
+        {"mech_beam_chain", mk_chain, 15, nan, "gravity[1] = ", FIN},
+        {"mech_beam_chain", mk_chain, 16, -1, "node 1 has a negative number of extra ports",
+         "(-1)"},
+        {"mech_beam_chain", mk_chain, 17, 64, "node 0 has 65 ports", "expected at most 64"},
+        {"mech_beam_chain", mk_chain, 18, 0, "the arrays for the node and element ids", "NULL"},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    double J[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, r[3] = {0, 0, 0};
+    pc_na = mech_body(m, 0, "a", 1.0, J, NULL, 1, r, NULL);
+    pc_nb = mech_body(m, 0, "b", 1.0, J, NULL, 1, r, NULL);
+    pc_sup = mech_support(m, 0, "ground", 6);
+    tap_ok(pc_na == 0 && pc_nb == 1 && pc_sup == 2, "two nodes and a support (%d, %d, %d)", pc_na,
+           pc_nb, pc_sup);
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "boom"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_rigid_motion_and_jacobian();
@@ -559,5 +683,6 @@ int main(void)
     test_frequencies();
     test_spinning();
     test_damping();
+    test_param_checks();
     return tap_done();
 }

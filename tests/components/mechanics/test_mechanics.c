@@ -4,12 +4,15 @@
  * a truss under an end force (F L/(E A)), a rope going slack, every element's analytic
  * Jacobian against finite differences, and the nominal magnitudes the elements declare (their
  * weights, lengths, stated forces and moments, a beam chain's weight) against the documented
- * rules applied by hand. */
+ * rules applied by hand, and the parameter checks of every constructor (bad values refused with
+ * messages naming the element's path and the parameter; a model built through refusals
+ * works). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bgr_elements.h"
+#include "bondgraph/param_check.h"
 #include "mech_axial.h"
 #include "mech_beam.h"
 #include "mech_body.h"
@@ -681,6 +684,189 @@ static void test_nominals(void)
     bgr_model_free(&m);
 }
 
+/* ---- parameter checks of the constructors ---- */
+
+/* The constructors of mech_body.h, mech_parts.h, mech_sensor.h and mech_axial.h with parameter
+ * which replaced by x (which < 0: all valid; integer parameters take (int) x). */
+static double pk(int which, int k, double x, double good)
+{
+    return which == k ? x : good;
+}
+/* which 0: mass; 1..9: inertia[which - 1]; 10: gravity[1]; 11: r[4]; 12: dims[1];
+ * 13: nports; 14: no inertia */
+static int mk_body(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double J[9] = {1.0, 0.1, 0.0, 0.1, 2.0, 0.0, 0.0, 0.0, 3.0}, g[3] = {0, 0, -9.81};
+    double r[6] = {0.5, 0, 0, -0.5, 0, 0};
+    int dims[2] = {6, 3}, np = which == 13 ? (int)x : 2;
+    if (which >= 1 && which <= 9) J[which - 1] = x;
+    if (which == 10) g[1] = x;
+    if (which == 11) r[4] = x;
+    if (which == 12) dims[1] = (int)x;
+    return mech_body(m, c, name, pk(which, 0, x, 3.0), which == 14 ? NULL : J, g, np, r, dims);
+}
+static int mk_point_mass(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double g[3] = {0, 0, -9.81};
+    if (which == 1) g[0] = x;
+    return mech_point_mass(m, c, name, pk(which, 0, x, 10.0), g);
+}
+static int mk_support(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return mech_support(m, c, name, which == 0 ? (int)x : 6);
+}
+static int mk_spherical(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return mech_spherical(m, c, name, which == 0 ? (int)x : 3);
+}
+/* which 0..2: axis[which]; 3: a zero axis; 4: the body (int) x */
+static void pc_axis(int which, double x, double *a)
+{
+    a[0] = 0.0, a[1] = 0.0, a[2] = 2.0;
+    if (which >= 0 && which < 3) a[which] = x;
+    if (which == 3) a[2] = 0.0;
+}
+static int mk_revolute(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double a[3];
+    pc_axis(which, x, a);
+    return mech_revolute(m, c, name, which == 4 ? (int)x : -1, a, 1);
+}
+static int mk_rot_sensor(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double a[3];
+    pc_axis(which, x, a);
+    return mech_rotation_sensor(m, c, name, which == 4 ? (int)x : 0, a);
+}
+static int mk_spring(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    return mech_spring(m, c, name, pk(which, 0, x, 100.0), pk(which, 1, x, 3.0),
+                       pk(which, 2, x, 0.5));
+}
+/* which 0: E, 1: A, 2: L0, 3: c_damp; 4: E = A = x (their product overflows) */
+static int mk_truss(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double E = which == 4 ? x : pk(which, 0, x, 2.1e11), A = which == 4 ? x : pk(which, 1, x, 1e-4);
+    return mech_truss(m, c, name, E, A, pk(which, 2, x, 2.0), pk(which, 3, x, 0.0));
+}
+/* which 0: k, 1: c_damp, 2: L0, 3: eps; 4: L0 = x with the default width */
+static int mk_rope(bgr_model *m, bgr_comp c, const char *name, int which, double x)
+{
+    double L0 = which == 4 ? x : pk(which, 2, x, 2.0), eps = which == 4 ? 0.0 : pk(which, 3, x, 0.01);
+    return mech_rope(m, c, name, pk(which, 0, x, 1e6), pk(which, 1, x, 10.0), L0, eps);
+}
+
+/* Every constructor with bad parameters (NaN, infinities, 0 and negative numbers where refused,
+ * an inertia tensor that is not symmetric positive definite, bad dimensions, zero axes, products
+ * that overflow); one test point each (param_check.h). Then the hanging truss of
+ * test_truss_rope built with a refusal before each element, under the refused names: it
+ * compiles and stretches by F L / (E A). */
+static void test_param_checks(void)
+{
+    const double nan = NAN, inf = INFINITY;
+    const char *POS = "expected a finite number > 0", *NNEG = "expected a finite number >= 0";
+    const char *FIN = "expected a finite number", *SPD = "symmetric positive definite matrix";
+    const char *AX = "expected a nonzero finite axis";
+    const pc_case cases[] = {
+        {"mech_body", mk_body, 0, nan, "mass = ", POS},
+        {"mech_body", mk_body, 0, inf, "mass = ", POS},
+        {"mech_body", mk_body, 0, 0.0, "mass = ", POS},
+        {"mech_body", mk_body, 0, -3.0, "mass = ", POS},
+        {"mech_body", mk_body, 5, nan, "inertia[1,1] = nan", SPD},
+        {"mech_body", mk_body, 9, inf, "inertia[2,2] = inf", SPD},
+        {"mech_body", mk_body, 2, 0.3, "inertia[1,0] = 0.3 but inertia[0,1] = 0.1", SPD},
+        {"mech_body", mk_body, 1, -1.0, "inertia is not positive definite (pivot 0", SPD},
+        {"mech_body", mk_body, 9, 0.0, "inertia is not positive definite (pivot 2", SPD},
+        {"mech_body", mk_body, 1, 0.005, "inertia is not positive definite (pivot 1", SPD},
+        {"mech_body", mk_body, 14, 0, "the inertia tensor is NULL", "NULL"},
+        {"mech_body", mk_body, 10, nan, "gravity[1] = ", FIN},
+        {"mech_body", mk_body, 11, -inf, "r[4] = ", FIN},
+        {"mech_body", mk_body, 12, 4, "dims[1] = 4", "expected 3 or 6"},
+        {"mech_body", mk_body, 13, 65, "nports = 65", "expected 0 .. 64"},
+        {"mech_body", mk_body, 13, -1, "nports = -1", "expected 0 .. 64"},
+        {"mech_point_mass", mk_point_mass, 0, nan, "mass = ", POS},
+        {"mech_point_mass", mk_point_mass, 0, inf, "mass = ", POS},
+        {"mech_point_mass", mk_point_mass, 0, 0.0, "mass = ", POS},
+        {"mech_point_mass", mk_point_mass, 0, -10.0, "mass = ", POS},
+        {"mech_point_mass", mk_point_mass, 1, inf, "gravity[0] = ", FIN},
+        {"mech_support", mk_support, 0, 4, "dim = 4", "expected 3 or 6"},
+        {"mech_spherical", mk_spherical, 0, 0, "dim = 0", "expected 3 or 6"},
+        {"mech_revolute", mk_revolute, 0, nan, "axis_a[0] = ", FIN},
+        {"mech_revolute", mk_revolute, 2, inf, "axis_a[2] = ", FIN},
+        {"mech_revolute", mk_revolute, 3, 0, "has length 0", AX},
+        {"mech_revolute", mk_revolute, 4, -2, "body_a = -2", "expected -1"},
+        {"mech_rotation_sensor", mk_rot_sensor, 1, -inf, "axis[1] = ", FIN},
+        {"mech_rotation_sensor", mk_rot_sensor, 3, 0, "has length 0", AX},
+        {"mech_rotation_sensor", mk_rot_sensor, 4, -1, "body = -1", "expected a body's"},
+        {"mech_spring", mk_spring, 0, nan, "k = ", NNEG},
+        {"mech_spring", mk_spring, 0, inf, "k = ", NNEG},
+        {"mech_spring", mk_spring, 0, -100.0, "k = ", NNEG},
+        {"mech_spring", mk_spring, 1, nan, "c_damp = ", NNEG},
+        {"mech_spring", mk_spring, 1, -3.0, "c_damp = ", NNEG},
+        {"mech_spring", mk_spring, 2, 0.0, "L0 = ", POS},
+        {"mech_spring", mk_spring, 2, -0.5, "L0 = ", POS},
+        {"mech_spring", mk_spring, 2, inf, "L0 = ", POS},
+        {"mech_truss", mk_truss, 0, nan, "E = ", POS},
+        {"mech_truss", mk_truss, 0, 0.0, "E = ", POS},
+        {"mech_truss", mk_truss, 0, -2.1e11, "E = ", POS},
+        {"mech_truss", mk_truss, 1, inf, "A = ", POS},
+        {"mech_truss", mk_truss, 1, 0.0, "A = ", POS},
+        {"mech_truss", mk_truss, 2, 0.0, "L0 = ", POS},
+        {"mech_truss", mk_truss, 2, nan, "L0 = ", POS},
+        {"mech_truss", mk_truss, 3, -1.0, "c_damp = ", NNEG},
+        {"mech_truss", mk_truss, 4, 1e200, "E A / L0 = inf", "expected a finite stiffness"},
+        {"mech_rope", mk_rope, 0, nan, "k = ", NNEG},
+        {"mech_rope", mk_rope, 0, -1e6, "k = ", NNEG},
+        {"mech_rope", mk_rope, 1, inf, "c_damp = ", NNEG},
+        {"mech_rope", mk_rope, 2, 0.0, "L0 = ", POS},
+        {"mech_rope", mk_rope, 2, nan, "L0 = ", POS},
+        {"mech_rope", mk_rope, 3, nan, "eps = ", FIN},
+        {"mech_rope", mk_rope, 3, inf, "eps = ", FIN},
+        {"mech_rope", mk_rope, 4, 1e-321, "eps = 0 asks for the default width", "give eps > 0"},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]);
+    bgr_model *m = bgr_model_create("params");
+    bgr_comp c = bgr_component(m, bgr_component(m, 0, "frame"), "bad");
+    int passed = pc_run(m, c, "x", cases, n);
+    tap_diag("%d of %d refusals as required", passed, n);
+    bgr_model_free(&m);
+
+    /* the hanging truss, each element first refused under its name */
+    const double E = 2.1e11, A = 1e-4, L = 2.0;
+    double F[3] = {5e4, 0, 0}, Fbad[3] = {5e4, nan, 0};
+    m = bgr_model_create("hang");
+    int refused = 0;
+    refused += mech_support(m, 0, "ground", 5) == BG_ERR_ARGUMENT;
+    int gnd = mech_support(m, 0, "ground", 3);
+    refused += mech_truss(m, 0, "bar", E, -A, L, 2e5) == BG_ERR_ARGUMENT;
+    int ax = mech_truss(m, 0, "bar", E, A, L, 2e5);
+    refused += mech_point_mass(m, 0, "mass", 0.0, NULL) == BG_ERR_ARGUMENT;
+    int pm = mech_point_mass(m, 0, "mass", 10.0, NULL);
+    int j = bgr_one(m, 0, "end", 3, 3);
+    refused += bgr_Se(m, 0, "load", 3, Fbad) == BG_ERR_ARGUMENT;
+    int src = bgr_Se(m, 0, "load", 3, F);
+    bgr_bond(m, 0, "b0", 3, bgr_port_of(m, gnd, 0), bgr_port_of(m, ax, 0), NULL, NULL);
+    bgr_bond(m, 0, "b1", 3, bgr_port_of(m, j, 0), bgr_port_of(m, ax, 1), NULL, NULL);
+    bgr_bond(m, 0, "b2", 3, bgr_port_of(m, j, 1), bgr_port_of(m, pm, 0), NULL, NULL);
+    bgr_bond(m, 0, "b3", 3, bgr_port_of(m, src, 0), bgr_port_of(m, j, 2), NULL, NULL);
+    int st = bgr_compile(m), r = -1;
+    double dl = NAN, want = F[0] * L / (E * A);
+    if (st == BG_OK) {
+        const double xa[3] = {0, 0, 0}, xb[3] = {L, 0, 0};
+        mech_axial_set(m, ax, xa, xb);
+        mech_point_mass_set(m, pm, xb, NULL);
+        last_ctx l = {{0}, bgr_n(m)};
+        double tout[1] = {0.5};
+        r = integrate(m, 1e-7, tout, 1, last_probe, &l, NULL);
+        dl = l.y[bgr_find_var(m, "hang/bar/d0")] - L;
+    }
+    tap_ok(refused == 4 && st == BG_OK && r == 0 && fabs(dl - want) / want < 1e-4,
+           "the hanging truss built with a refusal before each element (%d of 4 refused) "
+           "compiles (%d) and stretches by F L/(E A) = %.6e (got %.6e): '%s'",
+           refused, st, want, dl, bgr_model_error(m)->message);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     rng = tap_rng_seed(20261122);
@@ -691,5 +877,6 @@ int main(void)
     test_truss_rope();
     test_energies();
     test_nominals();
+    test_param_checks();
     return tap_done();
 }

@@ -1,0 +1,134 @@
+/* Jacobians of a dae_problem at a point, analytic or by coloured differences (bg_jaceval.h). */
+#include "bg_jaceval.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A dense n x n pattern. */
+static sp_csc *dense_pattern(int n)
+{
+    sp_csc *A = sp_csc_alloc(n, n, n * n);
+    if (!A) return NULL;
+    for (int j = 0; j < n; j++) {
+        A->colptr[j + 1] = (j + 1) * n;
+        for (int i = 0; i < n; i++)
+            A->rowind[j * n + i] = i;
+    }
+    A->nnz = n * n;
+    memset(A->val, 0, (size_t)n * (size_t)n * sizeof *A->val);
+    return A;
+}
+
+int bg_jaceval_init(bg_jaceval *J, const dae_problem *p, bg_error *err)
+{
+    memset(J, 0, sizeof *J);
+    if (!p || p->n < 1 || !p->res)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "dae_linearize",
+                              "the problem needs n >= 1 and a residual");
+    J->p = p;
+    J->n = p->n;
+    int n = p->n;
+    if (n > 4000 && (!p->jac_y_pattern || !p->jac_yp_pattern)) {
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "dae_linearize",
+                              "a problem of %d unknowns needs its Jacobian patterns (dense ones "
+                              "would take %g MB)",
+                              n, 16.0 * n * (double)n / 1e6);
+    }
+    J->Jy = p->jac_y_pattern ? sp_csc_copy(p->jac_y_pattern) : dense_pattern(n);
+    J->Jyp = p->jac_yp_pattern ? sp_csc_copy(p->jac_yp_pattern) : dense_pattern(n);
+    J->F0 = malloc((size_t)n * sizeof *J->F0);
+    J->F1 = malloc((size_t)n * sizeof *J->F1);
+    J->ycopy = malloc((size_t)n * sizeof *J->ycopy);
+    if (!J->Jy || !J->Jyp || !J->F0 || !J->F1 || !J->ycopy) goto nomem;
+    bg_error perr = {0};
+    if (J->Jy->nrow != n || J->Jy->ncol != n || J->Jyp->nrow != n || J->Jyp->ncol != n ||
+        sp_csc_check(J->Jy, &perr) != BG_OK || sp_csc_check(J->Jyp, &perr) != BG_OK) {
+        bg_jaceval_free(J);
+        return bg_error_raise(err, BG_ERR_PATTERN, "dae_linearize",
+                              "the Jacobian patterns must be well-formed %d x %d matrices%s%s", n,
+                              n, perr.message[0] ? ": " : "", perr.message);
+    }
+    if (!p->jac) {
+        J->fdy = sp_fdjac_create(J->Jy);
+        J->fdyp = sp_fdjac_create(J->Jyp);
+        if (!J->fdy || !J->fdyp) goto nomem;
+    }
+    return BG_OK;
+nomem:
+    bg_jaceval_free(J);
+    return bg_error_raise(err, BG_ERR_MEMORY, "dae_linearize", "out of memory");
+}
+
+void bg_jaceval_free(bg_jaceval *J)
+{
+    if (!J) return;
+    sp_csc_free(&J->Jy);
+    sp_csc_free(&J->Jyp);
+    sp_fdjac_free(&J->fdy);
+    sp_fdjac_free(&J->fdyp);
+    free(J->F0);
+    free(J->F1);
+    free(J->ycopy);
+    memset(J, 0, sizeof *J);
+}
+
+int bg_jaceval_res(bg_jaceval *J, double t, const double *y, const double *yp, double *F)
+{
+    memset(F, 0, (size_t)J->n * sizeof *F);
+    J->res_evals++;
+    return J->p->res(J->p->user, t, y, yp, F);
+}
+
+static int fd_wrt_y(void *user, const double *x, double *f)
+{
+    bg_jaceval *J = user;
+    int st = bg_jaceval_res(J, J->t, x, J->yp, f);
+    if (st) J->status = st;
+    return st;
+}
+
+static int fd_wrt_yp(void *user, const double *x, double *f)
+{
+    bg_jaceval *J = user;
+    int st = bg_jaceval_res(J, J->t, J->y, x, f);
+    if (st) J->status = st;
+    return st;
+}
+
+int bg_jaceval_eval(bg_jaceval *J, double t, const double *y, const double *yp, const double *F)
+{
+    J->jac_evals++;
+    if (J->p->jac) {
+        sp_csc_zero(J->Jy);
+        sp_csc_zero(J->Jyp);
+        return J->p->jac(J->p->user, t, y, yp, J->Jy, J->Jyp);
+    }
+    int st;
+    if (F)
+        memcpy(J->F0, F, (size_t)J->n * sizeof *F);
+    else if ((st = bg_jaceval_res(J, t, y, yp, J->F0)) != 0)
+        return st;
+    J->t = t;
+    J->y = y;
+    J->yp = yp;
+    J->status = 0;
+    st = sp_fdjac_eval(J->fdy, fd_wrt_y, J, y, J->F0, J->p->nominal, J->Jy);
+    if (st == 0) st = sp_fdjac_eval(J->fdyp, fd_wrt_yp, J, yp, J->F0, NULL, J->Jyp);
+    return st;
+}
+
+const char *bg_var_label(const dae_problem *p, int i, char *buf, size_t size)
+{
+    if (p && p->names && i >= 0 && i < p->n && p->names[i]) return p->names[i];
+    snprintf(buf, size, "y[%d]", i);
+    return buf;
+}
+
+const char *bg_eq_label(const dae_problem *p, int i, char *buf, size_t size)
+{
+    if (p && p->eq_names && i >= 0 && i < p->n && p->eq_names[i]) return p->eq_names[i];
+    snprintf(buf, size, "equation %d", i);
+    return buf;
+}

@@ -1,0 +1,37 @@
+/* Internal (not installed): the Jacobians dF/dy and dF/dy' of a dae_problem at a point, from the
+ * problem's analytic Jacobian on its patterns or, without one, by coloured forward differences
+ * (dense patterns when none are declared), and the names of unknowns and equations for messages.
+ * Shared by the static solver (bg_static.c) and the modal analysis (bg_modes.c). */
+#ifndef BG_JACEVAL_H
+#define BG_JACEVAL_H
+
+#include "bg_dae.h"
+#include "bg_fdjac.h"
+
+typedef struct bg_jaceval {
+    const dae_problem *p;
+    int n;
+    sp_csc *Jy, *Jyp;       /* values at the last evaluation, on the problem's patterns */
+    sp_fdjac *fdy, *fdyp;   /* finite differences (no analytic Jacobian) */
+    double *F0, *F1, *ycopy; /* n each: scratch of the differences */
+    double t;               /* the point of the differences */
+    const double *y, *yp;
+    long res_evals, jac_evals;
+    int status; /* the residual's last non-zero status inside the differences */
+} bg_jaceval;
+
+/* BG_OK, or BG_ERR_ARGUMENT / BG_ERR_PATTERN / BG_ERR_MEMORY with the reason in err (J is then
+ * freed). */
+int bg_jaceval_init(bg_jaceval *J, const dae_problem *p, bg_error *err);
+void bg_jaceval_free(bg_jaceval *J);
+/* The residual F(t, y, yp) into F (zeroed first); the callback's status. */
+int bg_jaceval_res(bg_jaceval *J, double t, const double *y, const double *yp, double *F);
+/* J->Jy, J->Jyp at (t, y, yp); F = F(t, y, yp) may be given (NULL: evaluated when the
+ * differences need it). The callback's status, or BG_ERR_MEMORY. */
+int bg_jaceval_eval(bg_jaceval *J, double t, const double *y, const double *yp, const double *F);
+
+/* The name of unknown i / equation i: the problem's, else "y[i]" / "equation i" written into buf. */
+const char *bg_var_label(const dae_problem *p, int i, char *buf, size_t size);
+const char *bg_eq_label(const dae_problem *p, int i, char *buf, size_t size);
+
+#endif

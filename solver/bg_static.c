@@ -1,0 +1,435 @@
+/* Static equilibrium of a DAE by pseudo-transient and load continuation with a damped Newton
+ * iteration (the method and its reasons are in bg_static.h). */
+#include "bg_static.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bg_jaceval.h"
+
+int dae_static_options_default(dae_static_options *o)
+{
+    if (!o) return BG_ERR_ARGUMENT;
+    memset(o, 0, sizeof *o);
+    o->rtol = 1e-8;
+    o->atol = 1e-8;
+    o->max_newton = 12;
+    o->max_steps = 400;
+    o->continuation = 1;
+    o->dlambda = 1.0;
+    o->dlambda_min = 1e-5;
+    o->h0 = 1e3;
+    o->h_max = 1e9;
+    o->linsol = LS_KLU;
+    return BG_OK;
+}
+
+typedef struct st_ctx {
+    const dae_problem *p;
+    const dae_static_options *o;
+    int n;
+    double t;
+    bg_jaceval J;
+    sp_union *u;
+    ls_solver *ls;
+    double *r0;        /* F(t, y_start, yp_s): the homotopy's offset (NULL with a load callback) */
+    double *yps;       /* yp_s */
+    double *ypw;       /* yp of the current evaluation */
+    double *yprev;     /* last accepted state */
+    double *G, *Gt, *d, *dt, *yt, *w;
+    double lambda_set; /* the load factor the callback was last given (NAN: none yet) */
+    dae_static_result *r;
+    bg_error *err;
+    int singular_col;
+    int fatal; /* a callback's fatal status */
+} st_ctx;
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void weights(st_ctx *c, const double *y)
+{
+    const double *nom = c->p->nominal;
+    for (int i = 0; i < c->n; i++)
+        c->w[i] = c->o->rtol * fabs(y[i]) + c->o->atol * (nom ? nom[i] : 1.0);
+}
+
+/* Weighted max norm of v; *arg (may be NULL) the index of the largest entry. */
+static double wnorm(const st_ctx *c, const double *v, int *arg)
+{
+    double m = 0;
+    int k = -1;
+    for (int i = 0; i < c->n; i++) {
+        double a = fabs(v[i]) / c->w[i];
+        if (!(a <= m)) { /* NaN wins */
+            m = a;
+            k = i;
+            if (isnan(a)) break;
+        }
+    }
+    if (arg) *arg = k;
+    return m;
+}
+
+/* G(y) for the load factor lam and pseudo-time step H from c->yprev (H = INFINITY: yp = yp_s).
+ * 0, > 0 (recoverable failure or a value not finite), < 0 fatal (c->fatal). */
+static int geval(st_ctx *c, const double *y, double lam, double H, double *G)
+{
+    const dae_static_options *o = c->o;
+    for (int i = 0; i < c->n; i++)
+        c->ypw[i] = c->yps[i] + (isinf(H) ? 0.0 : (y[i] - c->yprev[i]) / H);
+    if (o->load && lam != c->lambda_set) {
+        int st = o->load(o->load_user, lam);
+        if (st < 0) return c->fatal = st;
+        c->lambda_set = lam;
+    }
+    int st = bg_jaceval_res(&c->J, c->t, y, c->ypw, G);
+    if (st < 0) return c->fatal = st;
+    if (st > 0) return st;
+    if (c->r0)
+        for (int i = 0; i < c->n; i++)
+            G[i] -= (1.0 - lam) * c->r0[i];
+    for (int i = 0; i < c->n; i++)
+        if (!isfinite(G[i])) return 1;
+    return 0;
+}
+
+/* Newton matrix dF/dy + dF/dy'/H at y (c->ypw set by the last geval at y), factored. */
+static int newton_matrix(st_ctx *c, const double *y, double H, const double *F)
+{
+    int st = bg_jaceval_eval(&c->J, c->t, y, c->ypw, F);
+    if (st < 0) return c->fatal = st;
+    if (st > 0) return st;
+    sp_union_combine(c->u, c->J.Jy, 1.0, c->J.Jyp, isinf(H) ? 0.0 : 1.0 / H);
+    c->r->factorizations++;
+    st = ls_factor(c->ls, c->u->M);
+    if (st == BG_ERR_SINGULAR) {
+        c->singular_col = ls_singular_col(c->ls);
+        return st;
+    }
+    if (st == BG_ERR_NONFINITE) return 1;
+    return st;
+}
+
+/* One continuation step: Newton on G from y (in place). 0 converged, 1 not converged, < 0 a
+ * fatal error (BG_ERR_SINGULAR, a callback's, the linear solver's). *iters: the iterations. */
+static int newton(st_ctx *c, double *y, double lam, double H, int *iters)
+{
+    const int n = c->n;
+    dae_static_result *r = c->r;
+    *iters = 0;
+    int st = geval(c, y, lam, H, c->G);
+    if (st) return st < 0 ? st : 1;
+    for (int it = 0; it < c->o->max_newton; it++) {
+        (*iters)++;
+        r->newton_iters++;
+        weights(c, y);
+        /* the Jacobian at y with the residual of the finite differences: F = G + offset */
+        st = newton_matrix(c, y, H, NULL);
+        if (st) return st < 0 ? st : 1;
+        for (int i = 0; i < n; i++)
+            c->d[i] = -c->G[i];
+        if ((st = ls_solve(c->ls, c->d, 1)) != BG_OK) return st;
+        double nd = wnorm(c, c->d, &r->worst_var);
+        r->correction = nd;
+        if (!isfinite(nd)) return 1;
+        if (nd <= 1.0) {
+            for (int i = 0; i < n; i++)
+                y[i] += c->d[i];
+            return 0;
+        }
+        /* damping: the simplified correction at the trial point must shrink */
+        double alpha = 1.0, ndt = INFINITY;
+        for (;;) {
+            for (int i = 0; i < n; i++)
+                c->yt[i] = y[i] + alpha * c->d[i];
+            st = geval(c, c->yt, lam, H, c->Gt);
+            if (st < 0) return st;
+            if (st == 0) {
+                for (int i = 0; i < n; i++)
+                    c->dt[i] = -c->Gt[i];
+                if ((st = ls_solve(c->ls, c->dt, 1)) != BG_OK) return st;
+                ndt = wnorm(c, c->dt, NULL);
+                if (ndt <= (1.0 - 0.25 * alpha) * nd) break;
+            }
+            alpha *= 0.5;
+            if (alpha < 1e-4) return 1;
+        }
+        memcpy(y, c->yt, (size_t)n * sizeof *y);
+        memcpy(c->G, c->Gt, (size_t)n * sizeof *c->G);
+        if (alpha == 1.0 && ndt <= 1.0) { /* the simplified correction finishes it */
+            for (int i = 0; i < n; i++)
+                y[i] += c->dt[i];
+            r->correction = ndt;
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The scaled residual of F(t, y, yp_s) at the end (or at the last state on failure). */
+static void final_residual(st_ctx *c, const double *y)
+{
+    dae_static_result *r = c->r;
+    int n = c->n;
+    r->residual = NAN;
+    r->residual_eq = -1;
+    r->residual_abs = NAN;
+    if (geval(c, y, 1.0, INFINITY, c->G) < 0) return; /* lambda = 1: F itself */
+    weights(c, y);
+    if (bg_jaceval_eval(&c->J, c->t, y, c->ypw, NULL) != 0) return;
+    /* sum_j |M_ij| w_j with M = dF/dy (at rest) */
+    double *s = c->Gt;
+    memset(s, 0, (size_t)n * sizeof *s);
+    const sp_csc *A = c->J.Jy;
+    for (int j = 0; j < n; j++)
+        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
+            s[A->rowind[p]] += fabs(A->val[p]) * c->w[j];
+    double best = -1;
+    for (int i = 0; i < n; i++) {
+        double v = fabs(c->G[i]) / (s[i] > 0 ? s[i] : 1e-300);
+        if (!(v <= best)) {
+            best = v;
+            r->residual_eq = i;
+            if (isnan(v)) break;
+        }
+    }
+    r->residual = best;
+    r->residual_abs = r->residual_eq >= 0 ? fabs(c->G[r->residual_eq]) : NAN;
+}
+
+static void ctx_free(st_ctx *c)
+{
+    bg_jaceval_free(&c->J);
+    sp_union_free(&c->u);
+    ls_free(&c->ls);
+    free(c->r0);
+    free(c->yps);
+    free(c->ypw);
+    free(c->yprev);
+    free(c->G);
+    free(c->Gt);
+    free(c->d);
+    free(c->dt);
+    free(c->yt);
+    free(c->w);
+}
+
+static int check_options(const dae_static_options *o, int n, bg_error *err)
+{
+    const char *w = "dae_static_solve";
+    if (!(o->rtol >= 0 && o->rtol < 1) || !(o->atol >= 0 && isfinite(o->atol)) ||
+        !(o->rtol > 0 || o->atol > 0))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "tolerances rtol in [0, 1) and atol >= 0, not both 0 (got %g, %g)",
+                              o->rtol, o->atol);
+    if (o->max_newton < 1 || o->max_steps < 1)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "max_newton and max_steps must be >= 1 (got %d, %ld)", o->max_newton,
+                              o->max_steps);
+    if (!(o->dlambda > 0 && o->dlambda <= 1) || !(o->dlambda_min > 0 && o->dlambda_min <= o->dlambda))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "dlambda in (0, 1] and dlambda_min in (0, dlambda] (got %g, %g)",
+                              o->dlambda, o->dlambda_min);
+    if (!(o->h0 > 0) || !(o->h_max >= o->h0) || isinf(o->h_max) || isinf(o->h0))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "pseudo-time steps 0 < h0 <= h_max, finite (got %g, %g)", o->h0,
+                              o->h_max);
+    if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "unknown linear solver %d", (int)o->linsol);
+    for (int i = 0; o->yp_steady && i < n; i++)
+        if (!isfinite(o->yp_steady[i]))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, w, "yp_steady[%d] is not finite", i);
+    return BG_OK;
+}
+
+int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double t, double *y,
+                     double *yp, dae_static_result *res, bg_error *err)
+{
+    const char *where = "dae_static_solve";
+    dae_static_result rloc;
+    dae_static_result *r = res ? res : &rloc;
+    memset(r, 0, sizeof *r);
+    r->residual_eq = r->worst_var = -1;
+    r->residual = r->residual_abs = NAN;
+    double t_start = now_seconds();
+    if (!p || !y)
+        return r->status = bg_error_raise(err, BG_ERR_ARGUMENT, where, "%s is NULL",
+                                          !p ? "the problem" : "y");
+    if (p->n < 1 || !p->res)
+        return r->status = bg_error_raise(err, BG_ERR_ARGUMENT, where,
+                                          "the problem needs n >= 1 and a residual");
+    if (!isfinite(t))
+        return r->status = bg_error_raise(err, BG_ERR_ARGUMENT, where, "t is not finite");
+    dae_static_options od;
+    if (!opt) dae_static_options_default(&od);
+    const dae_static_options *o = opt ? opt : &od;
+    int st = check_options(o, p->n, err);
+    if (st) return r->status = st;
+    const int n = p->n;
+    for (int i = 0; i < n; i++)
+        if (!isfinite(y[i]))
+            return r->status = bg_error_raise(err, BG_ERR_NONFINITE, where,
+                                              "the starting value of unknown %d is not finite", i);
+
+    st_ctx c;
+    memset(&c, 0, sizeof c);
+    c.p = p;
+    c.o = o;
+    c.n = n;
+    c.t = t;
+    c.r = r;
+    c.err = err;
+    c.lambda_set = NAN;
+    c.singular_col = -1;
+    if ((st = bg_jaceval_init(&c.J, p, err)) != BG_OK) return r->status = st;
+    size_t sz = (size_t)n * sizeof(double);
+    c.yps = calloc(1, sz);
+    c.ypw = malloc(sz);
+    c.yprev = malloc(sz);
+    c.G = malloc(sz);
+    c.Gt = malloc(sz);
+    c.d = malloc(sz);
+    c.dt = malloc(sz);
+    c.yt = malloc(sz);
+    c.w = malloc(sz);
+    c.u = sp_union_create(c.J.Jy, c.J.Jyp);
+    if (!c.yps || !c.ypw || !c.yprev || !c.G || !c.Gt || !c.d || !c.dt || !c.yt || !c.w || !c.u) {
+        st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+        goto done;
+    }
+    c.ls = ls_create(o->linsol, c.u->M, err);
+    if (!c.ls) {
+        st = err && err->status < 0 ? err->status : BG_ERR_LIBRARY;
+        goto done;
+    }
+    if (o->yp_steady) memcpy(c.yps, o->yp_steady, sz);
+    memcpy(c.yprev, y, sz);
+
+    double lam = o->continuation ? 0.0 : 1.0, dlam = o->dlambda, H = o->h0;
+    if (!o->load) { /* the homotopy's offset: the residual at the start */
+        c.r0 = malloc(sz);
+        if (!c.r0) {
+            st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+            goto done;
+        }
+        memset(c.r0, 0, sz);
+        if (o->continuation) {
+            st = geval(&c, y, 1.0, INFINITY, c.r0);
+            if (st != 0) {
+                char nb[64];
+                int bad = -1;
+                for (int i = 0; i < n && bad < 0; i++)
+                    if (!isfinite(c.r0[i])) bad = i;
+                st = st < 0 ? BG_ERR_CALLBACK : BG_ERR_NONFINITE;
+                bg_error_raise(err, st, where,
+                               "the residual cannot be evaluated at the starting state%s%s",
+                               bad >= 0 ? ": not finite in " : "",
+                               bad >= 0 ? bg_eq_label(p, bad, nb, sizeof nb) : "");
+                goto done;
+            }
+        }
+    }
+    double *ytry = malloc(sz);
+    if (!ytry) {
+        st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+        goto done;
+    }
+    const double h_min = o->h0 * 1e-8;
+    int ok = 0;
+    st = DAE_TOO_MUCH_WORK;
+    while (r->steps + r->rejected < o->max_steps) {
+        double lt = lam < 1.0 ? fmin(1.0, lam + dlam) : 1.0;
+        if (lt > 1.0 - 1e-12) lt = 1.0;
+        memcpy(ytry, c.yprev, sz);
+        int iters = 0;
+        int nst = newton(&c, ytry, lt, H, &iters);
+        if (nst < 0 && nst != BG_ERR_SINGULAR) { /* fatal */
+            st = c.fatal ? BG_ERR_CALLBACK : nst;
+            if (c.fatal)
+                bg_error_raise(err, st, where, "the residual or Jacobian failed (status %d) at "
+                               "load factor %g", c.fatal, lt);
+            else
+                bg_error_raise(err, st, where, "linear solver: %s", ls_get_error(c.ls)->message);
+            goto out;
+        }
+        if (nst != 0) { /* not converged (or singular): a smaller step */
+            r->rejected++;
+            if (lam < 1.0 && dlam > o->dlambda_min) {
+                dlam = fmax(0.5 * dlam, o->dlambda_min);
+                if (nst == BG_ERR_SINGULAR) H = fmax(0.25 * H, h_min);
+                continue;
+            }
+            if (H > h_min) {
+                H = fmax(0.25 * H, h_min);
+                continue;
+            }
+            if (nst == BG_ERR_SINGULAR) {
+                char nb[256];
+                st = bg_error_raise(err, BG_ERR_SINGULAR, where,
+                                    "the Newton matrix is singular at load factor %g: nothing "
+                                    "determines %s at rest (a mechanism, or a free motion under "
+                                    "a load)",
+                                    lt, bg_var_label(p, c.singular_col, nb, sizeof nb));
+                r->worst_var = c.singular_col;
+                goto out;
+            }
+            st = DAE_CONV_FAIL;
+            break;
+        }
+        /* accepted */
+        r->steps++;
+        weights(&c, ytry);
+        for (int i = 0; i < n; i++)
+            c.d[i] = ytry[i] - c.yprev[i];
+        r->change = wnorm(&c, c.d, NULL);
+        r->h = H;
+        memcpy(c.yprev, ytry, sz);
+        memcpy(y, ytry, sz);
+        lam = lt;
+        r->lambda = lam;
+        if (lam >= 1.0 && r->change <= 1.0) {
+            ok = 1;
+            st = BG_OK;
+            break;
+        }
+        if (iters <= (o->max_newton + 2) / 3) dlam = fmin(1.0, 2.0 * dlam);
+        if (iters <= (o->max_newton + 1) / 2) H = fmin(o->h_max, 10.0 * H);
+    }
+    final_residual(&c, y);
+    if (!ok) {
+        char eb[256], vb[256];
+        const char *why = st == DAE_TOO_MUCH_WORK ? "max_steps continuation steps taken"
+                                                  : "the Newton iteration did not converge";
+        bg_error_raise(err, st, where,
+                       "no static equilibrium found: %s; the load factor reached %.4g%s; the "
+                       "largest scaled residual is in %s (|F| = %.4g, %.3g tolerance units), the "
+                       "largest Newton correction on %s (%.3g tolerance units)",
+                       why, r->lambda,
+                       r->lambda < 1 ? " (the equilibrium path ends there: a limit point, "
+                                       "a mechanism or a part that cannot carry the load)"
+                                     : "",
+                       r->residual_eq >= 0 ? bg_eq_label(p, r->residual_eq, eb, sizeof eb) : "-",
+                       r->residual_abs, r->residual,
+                       r->worst_var >= 0 ? bg_var_label(p, r->worst_var, vb, sizeof vb) : "-",
+                       r->correction);
+    }
+out:
+    free(ytry);
+done:
+    if (yp && st == BG_OK) memcpy(yp, c.yps, sz);
+    if (c.J.n) {
+        r->res_evals = c.J.res_evals;
+        r->jac_evals = c.J.jac_evals;
+    }
+    ctx_free(&c);
+    r->seconds = now_seconds() - t_start;
+    return r->status = st;
+}

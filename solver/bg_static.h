@@ -1,0 +1,116 @@
+/* Static (equilibrium) solutions of DAEs F(t, y, y') = 0 of the integrator's form (bg_dae.h).
+ *
+ * What "at rest" means. An equilibrium is a state y with F(t, y, yp_s) = 0 where yp_s is zero
+ * (the default: every differential unknown at rest) or a given vector of constant rates (steady
+ * motion under constant prescribed rates: a shaft angle that grows at a constant speed while
+ * everything else is at rest, options.yp_steady). For a model whose constraints hold at velocity
+ * level (the joints of the mechanical components: v_A = v_B, not x_A = x_B; axial elements that
+ * integrate their own stretch vector d' = v_B - v_A) the equations at rest do not determine the
+ * state: with every velocity zero the constraint rows are satisfied whatever the positions, and
+ * the positions of two bodies joined by a joint, or a member's d and its end points, are free
+ * to drift apart. Such a model keeps invariants instead (x_A - x_B, d - (x_B - x_A), |q| of a
+ * quaternion, an integrated angle against the body it measures): combinations of the rows of
+ * dF/dy' whose rows of dF/dy vanish. The equilibrium sought is the one that keeps them at the
+ * values of the starting state y (the model as assembled): momenta and velocities zero,
+ * positions free but joined, constraint forces free.
+ *
+ * Method. Pseudo-transient continuation (Kelley and Keyes, SIAM J. Numer. Anal. 35 (1998) 508;
+ * for DAEs Coffey, Kelley and Keyes, SIAM J. Sci. Comput. 25 (2003) 553) combined with load
+ * continuation. Each step solves
+ *     G(y) = F(t, y, yp_s + (y - y_prev)/H) - (1 - lambda) F(t, y_start, yp_s) = 0
+ * by Newton's method: a backward-Euler step of pseudo-time H from the last accepted state, which
+ * keeps every invariant of the kind above (exactly where it is linear, to second order in the
+ * step's rotations otherwise) and makes the Newton matrix dF/dy + dF/dy'/H regular where dF/dy
+ * alone is singular; and a Newton homotopy in the load factor lambda from 0 (y_start solves it)
+ * to 1 (the equations themselves). For a structure assembled unstressed, F(t, y_start, yp_s) is
+ * exactly minus the applied loads (gravity, forces of sources), so lambda is the load factor of
+ * structural mechanics without any help from the model; a model that scales its own loads may
+ * give a callback instead (options.load: then the offset term is dropped). lambda grows in steps
+ * that adapt (doubled after an easy step, halved after a failed one) and H grows by switched
+ * evolution relaxation (by the ratio of successive residual norms) up to options.h_max; once
+ * lambda = 1 the steps go on until a step changes the state by less than the tolerance. Each
+ * Newton step is damped by the affine-invariant monotonicity test of Deuflhard (the next
+ * simplified correction must be smaller than (1 - alpha/4) times the current one; alpha halved
+ * down to 1e-4), so a large deflection is followed instead of jumped over. The Newton matrix is
+ * factored by the integrator's linear solvers (KLU by default) at every iteration; Jacobians
+ * come from the problem's analytic ones, or coloured finite differences without them.
+ *
+ * Tolerances: the weight of unknown i is rtol |y_i| + atol nominal_i (dae_problem.nominal, else
+ * 1); a Newton iteration has converged when its correction is at most 1 in that weighted max
+ * norm, the equilibrium when a step at lambda = 1 changes y by at most 1 too. The residual
+ * reached is reported per equation in the same units: |F_i| divided by sum_j |M_ij| w_j, the
+ * change of equation i when every unknown moves by its weight (an equation within 1 is satisfied
+ * to the tolerance of its unknowns).
+ *
+ * Errors: BG_ERR_ARGUMENT (a NULL problem, y or result, n < 1, no residual, options out of
+ * range: the message names them), BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton
+ * matrix is singular: the message names the unknown of the singular column, which nothing
+ * determines at rest even with the pseudo-time term: a mechanism or a free rigid motion under
+ * a load), BG_ERR_CALLBACK (the residual or Jacobian returned < 0), DAE_CONV_FAIL (the
+ * continuation could not reach lambda = 1 or the equilibrium: the message gives the load factor
+ * reached and names the equation with the largest scaled residual and the unknown with the
+ * largest weighted Newton correction; res has them as indices), DAE_TOO_MUCH_WORK (max_steps
+ * continuation steps). On failure y holds the last accepted state (the equilibrium under the
+ * load factor res->lambda). The library never prints. */
+#ifndef BG_STATIC_H
+#define BG_STATIC_H
+
+#include "bg_api.h"
+#include "bg_dae.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The model's own load factor (options.load): scale every applied load (gravity, sources) by
+ * lambda in [0, 1] for the residual calls that follow. 0 success, < 0 fatal. */
+typedef int (*dae_load_fn)(void *user, double lambda);
+
+typedef struct dae_static_options {
+    double rtol;             /* default 1e-8 */
+    double atol;             /* default 1e-8 (times the problem's nominal magnitudes) */
+    int max_newton;          /* Newton iterations per step, default 12 */
+    long max_steps;          /* continuation steps, default 400 */
+    int continuation;        /* 1 (default): lambda from 0 to 1 in adaptive steps; 0: the full
+                                load at once (pseudo-time steps only) */
+    double dlambda;          /* first load increment, default 1 (the whole load, halved until
+                                Newton converges) */
+    double dlambda_min;      /* smallest increment before giving up, default 1e-5 */
+    double h0;               /* first pseudo-time step, default 1e3 (the problem's time unit) */
+    double h_max;            /* largest pseudo-time step, default 1e9 */
+    const double *yp_steady; /* n constant rates (NULL: all zero) */
+    dae_load_fn load;        /* NULL: the Newton homotopy above */
+    void *load_user;
+    ls_kind linsol;          /* default LS_KLU */
+} dae_static_options;
+
+/* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */
+BG_API int dae_static_options_default(dae_static_options *o);
+
+typedef struct dae_static_result {
+    int status;          /* as returned */
+    double lambda;       /* load factor reached (1 on success) */
+    double residual;     /* largest scaled residual |F_i| / sum_j |M_ij| w_j at the end (see
+                            above; <= 1: within the tolerance) */
+    int residual_eq;     /* its equation (-1: none evaluated) */
+    double residual_abs; /* |F_i| of that equation, in its own units */
+    double correction;   /* weighted max norm of the last Newton correction */
+    int worst_var;       /* unknown with the largest weighted correction in the last Newton
+                            iteration (-1: none) */
+    double change;       /* weighted max norm of the last accepted step's change */
+    double h;            /* pseudo-time step of the last step */
+    long steps, rejected, newton_iters, res_evals, jac_evals, factorizations;
+    double seconds;      /* wall time */
+} dae_static_result;
+
+/* The equilibrium of p at time t, from y (n values: the starting state, the model as
+ * assembled; the result on return). yp (may be NULL) receives yp_s (zeros by default). res may
+ * be NULL; err receives the message (may be NULL). o NULL: the defaults. Returns BG_OK or an
+ * error above. */
+BG_API int dae_static_solve(const dae_problem *p, const dae_static_options *o, double t, double *y,
+                            double *yp, dae_static_result *res, bg_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
