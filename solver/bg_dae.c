@@ -130,6 +130,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->failed = 0;
     s->note[0] = '\0';
     bg_error_clear(&s->err);
+    bg_error_clear(&s->warn);
     if (s->p.nroots > 0) {
         int r = s->p.roots(s->p.user, t0, y0, s->phi[1], s->glo);
         if (r < 0)

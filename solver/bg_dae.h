@@ -281,8 +281,11 @@ BG_API int dae_dense(const dae_solver *s, double t, double *y, double *yp);
  * BG_OK or BG_ERR_ARGUMENT (s or found NULL). */
 BG_API int dae_roots_found(const dae_solver *s, int *found);
 
-/* The last warning (the Jacobian check of options.check_jacobian), "" if none; NULL if s is
- * NULL. Warnings never stop the integration; stats.warnings counts them. */
+/* The last warning, "" if none; NULL if s is NULL: the Jacobian check of
+ * options.check_jacobian, or dae_consistent_init's algebraic unknowns that ended far from the
+ * values given (by more than half their size and 100 tolerances, from a value other than 0: a
+ * possible other solution of the algebraic equations). Warnings never stop the integration and
+ * go to the error handler with DAE_WARNING; stats.warnings counts them. */
 BG_API const char *dae_get_warning(const dae_solver *s);
 
 /* The kinds of the unknowns the solver works with (dae_var_kind: as given, or classified from

@@ -352,6 +352,35 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
     }
 }
 
+/* A warning when algebraic unknowns given a value (not 0) ended far from it: by more than half
+ * their size and 100 tolerances. The algebraic equations may have several solutions (a
+ * mechanism's other assembly, a constraint force of the other sign), and the one found may not
+ * be the one meant; the message names the unknown that moved most and says how many did. */
+static void warn_moved(dae_solver *s, const double *guess, const double *y)
+{
+    int count = 0, worst = -1;
+    double wrel = 0;
+    for (int i = 0; i < s->n; i++) {
+        if (s->kind[i] == DAE_DIFF || guess[i] == 0) continue;
+        double d = fabs(y[i] - guess[i]), size = fmax(fabs(guess[i]), fabs(y[i]));
+        if (d > 0.5 * size && d > 100 * (s->o.rtol * fabs(guess[i]) + s->atol[i])) {
+            count++;
+            if (d / fabs(guess[i]) > wrel) {
+                wrel = d / fabs(guess[i]);
+                worst = i;
+            }
+        }
+    }
+    if (count > 0) {
+        char nb[32];
+        daei_warn(s, "dae_consistent_init",
+                  "%d algebraic unknown%s ended far from the values given (another solution of "
+                  "the algebraic equations?): %s went from %.6g to %.6g",
+                  count, count > 1 ? "s" : "", daei_vname(s, worst, nb, sizeof nb), guess[worst],
+                  y[worst]);
+    }
+}
+
 int dae_consistent_init(dae_solver *s)
 {
     const char *w = "dae_consistent_init";
@@ -366,15 +395,20 @@ int dae_consistent_init(dae_solver *s)
     if (s->busy)
         return bg_error_raise(&s->err, BG_ERR_STATE, w,
                               "called from within a callback of the same solver");
+    if (!s->yc && !(s->yc = malloc(2 * (size_t)s->n * sizeof *s->yc)))
+        return bg_error_raise(&s->err, BG_ERR_MEMORY, w, "out of memory (n = %d)", s->n);
+    memcpy(s->yc, s->phi[0], (size_t)s->n * sizeof *s->yc); /* the guess, compared below */
     s->busy = 1;
     int r = daei_consistent_init(s);
     s->busy = 0;
-    if (r == BG_OK) { /* kept for dae_get_consistent */
-        if (!s->yc && !(s->yc = malloc(2 * (size_t)s->n * sizeof *s->yc)))
-            return bg_error_raise(&s->err, BG_ERR_MEMORY, w, "out of memory (n = %d)", s->n);
-        memcpy(s->yc, s->phi[0], (size_t)s->n * sizeof *s->yc);
-        memcpy(s->yc + s->n, s->phi[1], (size_t)s->n * sizeof *s->yc);
+    if (r != BG_OK) {
+        free(s->yc); /* dae_get_consistent: none */
+        s->yc = NULL;
+        return r;
     }
+    warn_moved(s, s->yc, s->phi[0]);
+    memcpy(s->yc, s->phi[0], (size_t)s->n * sizeof *s->yc); /* kept for dae_get_consistent */
+    memcpy(s->yc + s->n, s->phi[1], (size_t)s->n * sizeof *s->yc);
     return r;
 }
 

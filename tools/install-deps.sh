@@ -3,6 +3,7 @@
 set -euo pipefail
 pkgs=(build-essential meson ninja-build pkg-config python3 libsuitesparse-dev liblapack-dev
       libblas-dev libsundials-dev libinih-dev gnuplot-nox
+      libarpack2-dev  # the sparse modal analysis (solver/bg_modes.c)
       cmake  # the CMake package's version file (meson) and the CMake install check (tools/test.sh)
       valgrind gcovr clang libclang-rt-14-dev)  # CI jobs (tools/ci-*.sh, tools/coverage.sh)
 missing=()

@@ -22,7 +22,7 @@
 typedef int (*pc_make)(bgr_model *m, bgr_comp c, const char *name, int which, double x);
 
 typedef struct pc_case {
-    const char *ctor;   /* the constructor, named in the message as "(ctor)" */
+    const char *ctor; /* the constructor, named in the message as "(ctor)" */
     pc_make make;
     int which;          /* the parameter replaced (the make function's numbering) */
     double x;           /* its bad value */
@@ -42,8 +42,7 @@ TAP_UNUSED static void pc_counts(const bgr_model *m, int *cnt)
 
 /* The n cases in component c of m, the elements named <prefix>00, <prefix>01, ...; one test
  * point each. Returns how many passed. */
-TAP_UNUSED static int pc_run(bgr_model *m, bgr_comp c, const char *prefix, const pc_case *t,
-                             int n)
+TAP_UNUSED static int pc_run(bgr_model *m, bgr_comp c, const char *prefix, const pc_case *t, int n)
 {
     int passed = 0;
     for (int k = 0; k < n; k++) {
@@ -60,7 +59,8 @@ TAP_UNUSED static int pc_run(bgr_model *m, bgr_comp c, const char *prefix, const
         int ok = st == BG_ERR_ARGUMENT && strstr(text, path) && strstr(text, t[k].param) &&
                  strstr(text, t[k].expect) && same && again >= 0;
         passed += ok;
-        tap_ok(ok, "%s, bad value %g: refused (%d), names %s and '%s', nothing added%s, the "
+        tap_ok(ok,
+               "%s, bad value %g: refused (%d), names %s and '%s', nothing added%s, the "
                "name then accepted (%d): '%s'",
                t[k].ctor, t[k].x, st, path, t[k].param, same ? "" : " (but the model changed)",
                again, text);

@@ -129,6 +129,39 @@ static int res_many(void *user, double t, const double *y, const double *yp, dou
     return 0;
 }
 
+/* dae_consistent_init's warning: the pendulum from its consistent values gives none; with its
+ * rod force given as -50 (the consistent value is found again from the hidden constraint), the
+ * unknown that ended far from the value given is named. */
+static void test_moved_warning(void)
+{
+    const bp_problem *bp = bp_find("pendulum2");
+    for (int wrong = 0; wrong < 2; wrong++) {
+        bp_instance in = {0};
+        bp_instance_init(&in, bp);
+        dae_options o;
+        dae_options_default(&o);
+        bg_error e = {0};
+        dae_solver *s = dae_create(&in.dp, &o, &e);
+        double y0[64];
+        int lam = -1;
+        memcpy(y0, bp->y0, (size_t)bp->n * sizeof *y0);
+        for (int i = 0; i < bp->n; i++)
+            if (bp->kind[i] == DAE_ALG2) lam = i;
+        if (wrong && lam >= 0) y0[lam] = -50;
+        int r = dae_init(s, bp->t0, y0, NULL);
+        if (r == 0) r = dae_consistent_init(s);
+        const char *wmsg = dae_get_warning(s);
+        if (wrong)
+            tap_ok(r == 0 && lam >= 0 && strstr(wmsg, "ended far from the values given") &&
+                       strstr(wmsg, bp->names[lam]),
+                   "pendulum with its rod force given as -50: a warning naming it: %s", wmsg);
+        else
+            tap_ok(r == 0 && !*wmsg, "pendulum from its consistent values: no warning (%s)", wmsg);
+        dae_free(&s);
+        bp_instance_free(&in);
+    }
+}
+
 static int res_two(void *user, double t, const double *y, const double *yp, double *F)
 {
     (void)user, (void)t;
@@ -287,5 +320,6 @@ int main(void)
     bp_instance_free(&in);
     test_guards();
     test_jacobian_check();
+    test_moved_warning();
     return tap_done();
 }

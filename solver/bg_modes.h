@@ -1,0 +1,144 @@
+/* Linearisation and modes of a DAE F(t, y, y') = 0 at a state (t, y, y').
+ *
+ * The linearisation is the pencil (B, A) = (dF/dy, dF/dy'): dy = z e^(s t) solves
+ * A dy' + B dy = 0 when (s A + B) z = 0. Its eigenvalues s are the modes: a frequency
+ * |s| / (2 pi) (the undamped natural frequency; Hz when the model's time unit is the second) and
+ * a damping ratio -Re(s) / |s| (0 undamped, 1 critically damped or a real decay, < 0 unstable).
+ * Conjugate pairs are listed once (Im s > 0).
+ *
+ * The algebraic part. A is singular: the algebraic unknowns (its zero columns) and the hidden
+ * constraints of index-2 systems give infinite eigenvalues, which a generalized eigensolver
+ * (QZ, LAPACK dggev) returns beside the finite ones, those of index 2 as ill-conditioned
+ * Jordan blocks. Here they never mix with the finite ones: with a shift sigma that is not an
+ * eigenvalue and X = (B + sigma A)^-1, (s A + B) z = 0 is X A z = z / (sigma - s), so the finite
+ * eigenvalues are sigma - 1/mu for the nonzero eigenvalues mu of X A and the infinite ones are
+ * its zeros. A = A_d P_d^T has nonzero columns only at the d differential unknowns, so the
+ * nonzero mu are those of the d x d matrix C = P_d^T X A_d (a reduction to the differential
+ * states: one sparse LU of B + sigma A and d solves), z = X A_d u for C u = mu u. The algebraic
+ * unknowns' infinite eigenvalues are thus removed exactly; the index-2 ones remain as mu = 0 of C
+ * and are reported as constraint modes at infinite frequency.
+ *
+ * Kinds. elastic: a finite, nonzero eigenvalue (oscillations, real decays, anything with a
+ * time scale). rigid: s = 0 and defective (a Jordan chain: position and velocity, the motion of
+ * a free body or mechanism at constant speed). constraint: s = infinite (index-2 constraints), or
+ * s = 0 and semisimple (non-defective): an invariant of the model rather than a motion, which is
+ * what velocity-level constraints leave (two bodies of a joint drifting apart, the stretch state
+ * of an axial element against its end points, the norm of a quaternion, an integrated angle
+ * against the body it measures: the spurious rigid modes of such models). The two kinds of zero
+ * eigenvalue are told apart by the eigenvalue's reciprocal condition number |w^H z| (left and
+ * right eigenvectors w, z normalised; LAPACK dgeevx after balancing): O(1) for a semisimple
+ * eigenvalue, of the order of sqrt(machine epsilon) for a Jordan block.
+ *
+ * Naming. Each mode is described by the differential unknowns that dominate it: amplitude
+ * |z_i| / nominal_i (the problem's nominal magnitudes, else 1), shares of the squared amplitudes
+ * summed by component path (the unknown's name cut after `depth` segments: crane/boom,
+ * crane/hydraulics), and the leading unknowns (dae_modes_describe).
+ *
+ * Methods. Dense (up to options.dense_max differential unknowns): every eigenvalue of C by
+ * LAPACK dgeevx with left and right eigenvectors, all three kinds. Sparse (larger models, or on
+ * request): the nev modes of a window by ARPACK (dnaupd/dneupd, implicitly restarted Arnoldi)
+ * on the operator X A - sigma (X A)^2, applied with the sparse LU of B + sigma A (KLU): two
+ * solves per product. Its eigenvalue is -s/(sigma - s)^2, zero for s = 0 and s = infinite, so
+ * the hundreds of zero modes of a model with many bodies (one quaternion norm each) and the
+ * infinite ones never crowd the wanted modes; its magnitude peaks at |s| = sigma and is the same
+ * for |s| and sigma^2/|s|, so the nev largest are the modes in a band of |s| around sigma (a
+ * window), and for sigma^2 <= |s_1| |s_nev| they are the nev lowest. options.sigma > 0 centres
+ * the window; 0 asks for the lowest nev elastic modes, sigma then chosen and lowered until that
+ * condition holds (s is told from sigma^2/s by the Ritz vector's Rayleigh quotient of X A). The
+ * sparse method finds elastic modes only.
+ *
+ * Errors: BG_ERR_ARGUMENT (NULL problem, state or result, options out of range), BG_ERR_PATTERN,
+ * BG_ERR_MEMORY, BG_ERR_CALLBACK (the Jacobian failed), BG_ERR_SINGULAR (B + sigma A singular
+ * for several shifts: the message names the unknown), BG_ERR_LIBRARY (LAPACK or ARPACK failed,
+ * or the library was built without ARPACK and the sparse method is needed), DAE_CONV_FAIL
+ * (ARPACK did not converge within maxiter restarts; the converged modes are returned). */
+#ifndef BG_MODES_H
+#define BG_MODES_H
+
+#include <stddef.h>
+
+#include "bg_api.h"
+#include "bg_dae.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum dae_mode_kind {
+    DAE_MODE_ELASTIC = 0,
+    DAE_MODE_RIGID = 1,
+    DAE_MODE_CONSTRAINT = 2
+} dae_mode_kind;
+
+/* "elastic", "rigid", "constraint"; "unknown" for other values. */
+BG_API const char *dae_mode_kind_name(int kind);
+
+typedef enum dae_modes_method {
+    DAE_MODES_AUTO = 0, /* dense up to dense_max differential unknowns, else sparse */
+    DAE_MODES_DENSE = 1,
+    DAE_MODES_SPARSE = 2
+} dae_modes_method;
+
+typedef struct dae_modes_options {
+    int method;            /* dae_modes_method, default DAE_MODES_AUTO */
+    int dense_max;         /* default 2500 */
+    double sigma;          /* shift (1/time unit). Dense: any real that is not an eigenvalue,
+                              default 0: 1 (raised by 1.618 if B + sigma A is singular). Sparse:
+                              > 0 the centre of the window, 0 (default) the lowest nev modes */
+    int nev;               /* sparse: modes wanted, default 20 */
+    int ncv;               /* sparse: Arnoldi basis, default max(2 nev + 1, nev + 20) */
+    double tol;            /* sparse: ARPACK's relative tolerance, default 1e-10 */
+    int maxiter;           /* sparse: ARPACK's restarts, default 500 */
+    double zero_tol;       /* |s| <= zero_tol * sigma: a zero eigenvalue, default 1e-6 */
+    double inf_tol;        /* |mu| <= inf_tol * max |mu|: an infinite eigenvalue, default 1e-9 */
+    double semisimple_tol; /* a zero eigenvalue with reciprocal condition above it is semisimple
+                              (constraint), below it defective (rigid); default 1e-4 */
+    ls_kind linsol;        /* default LS_KLU */
+} dae_modes_options;
+
+/* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */
+BG_API int dae_modes_options_default(dae_modes_options *o);
+
+typedef struct dae_mode {
+    double re, im;    /* the eigenvalue s (im >= 0); INFINITY for a constraint at infinity */
+    double freq_hz;   /* |s| / (2 pi) (INFINITY at infinity, 0 for s = 0) */
+    double damping;   /* -re / |s| (NaN for s = 0 and at infinity) */
+    int kind;         /* dae_mode_kind */
+    double rcond;     /* reciprocal condition number of the eigenvalue (dense), else NaN */
+    double residual;  /* ||(s A + B) z|| / ((|s| ||A|| + ||B||) ||z||), NaN at infinity */
+} dae_mode;
+
+typedef struct dae_modes dae_modes;
+
+/* The modes of p at (t, y, yp) (yp NULL: zero). *out receives the result (free it with
+ * dae_modes_free), also on DAE_CONV_FAIL. o NULL: the defaults. */
+BG_API int dae_modes_compute(const dae_problem *p, double t, const double *y, const double *yp,
+                             const dae_modes_options *o, dae_modes **out, bg_error *err);
+BG_API void dae_modes_free(dae_modes **m);
+/* Number of modes (conjugate pairs once), in the order: elastic by increasing frequency, then
+ * rigid, then constraint; 0 for NULL. */
+BG_API int dae_modes_count(const dae_modes *m);
+/* Mode k, NULL out of range. */
+BG_API const dae_mode *dae_modes_get(const dae_modes *m, int k);
+/* Counts by kind (any pointer may be NULL), the shift used, the number of differential
+ * unknowns d and the method used (dae_modes_method); BG_OK or BG_ERR_ARGUMENT. */
+BG_API int dae_modes_info(const dae_modes *m, int *elastic, int *rigid, int *constraint,
+                          double *sigma, int *d, int *method);
+/* The eigenvector of mode k (n values each, real and imaginary parts; im may be NULL), scaled
+ * to a largest weighted amplitude |z_i| / nominal_i of 1 among the differential unknowns.
+ * BG_OK or BG_ERR_ARGUMENT. */
+BG_API int dae_modes_vector(const dae_modes *m, int k, double *re, double *im);
+/* "crane/boom 93%, crane/ties_left 4%, ... | crane/boom/node16/x0, ..." : the shares of the
+ * component paths cut after depth segments (depth < 1: whole names) above 1 %, at most ngroups
+ * of them, then the top leading unknowns. The problem's names are used (the problem given to
+ * dae_modes_compute must still exist). The snprintf count, or BG_ERR_ARGUMENT. */
+BG_API int dae_modes_describe(const dae_modes *m, int k, int depth, int ngroups, int top,
+                              char *buf, size_t size);
+/* The share (0..1) of mode k's squared amplitude in the unknowns whose names start with prefix
+ * (the problem's names). NaN for bad arguments. */
+BG_API double dae_modes_share(const dae_modes *m, int k, const char *prefix);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
