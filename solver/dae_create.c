@@ -27,6 +27,7 @@ int daei_setup_structure(dae_solver *s, bg_error *err)
 {
     const char *w = s->initialized || s->detect ? "dae_init" : "dae_create";
     int n = s->n;
+    daei_free_structure(s); /* what an earlier attempt that failed left */
     if (!s->p.kind && dae_classify(s->Jy, s->Jyp, s->kind) < 0) goto nomem;
     sp_csc_zero(s->Jy);
     sp_csc_zero(s->Jyp);
