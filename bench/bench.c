@@ -57,18 +57,27 @@
  * crane/crane.c runs it. Problems with breakpoints are integrated segment by segment (IDA is
  * re-initialised at each; its counters are summed).
  *
+ * Files: every one is checked (bench_file, bench_util.h: the open, each write, fsync, close;
+ * the figures: gnuplot's exit status and a whole PNG). A file that cannot be written is named on
+ * stderr with the system's error and removed (no part of it is left to pass for a result), the
+ * others are written all the same, and report.md lists it under "Files not written".
+ *
  * Exit status: 0 when every file is written (failed runs, missed targets and wrong stability
- * cases are results, reported in the files); 1 if a file could not be written or a stability
- * case crashed, and with --strict also if a run of our solver or of the crane failed or a
- * stability case ended wrong, at its time limit or without its set-up; 2 for a bad command
- * line. */
+ * cases are results, reported in the files); 1 if a file (or the output folder, or the standard
+ * output) could not be written or a stability case crashed, and with --strict also if a run of
+ * our solver or of the crane failed or a stability case ended wrong, at its time limit or
+ * without its set-up; 2 for a bad command line (an --out of more than BENCH_OUT_MAX, 3974,
+ * characters included: never cut). */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/types.h>
 #include <sys/utsname.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -228,41 +237,156 @@ static void write_csv(FILE *f, const row *rows, int n, bench_case **cases)
     }
 }
 
-static void plot(const char *dir, int ci, const char *name, const row *rows, int n,
-                 const char **sol, int ns)
+/* The path of gnuplot (searched in PATH, as the shell would) in buf; 0 if it is not there. */
+static int find_gnuplot(char *buf, size_t size)
 {
-    char dat[600], png[600];
-    snprintf(dat, sizeof dat, "%s/wp_%s.dat", dir, name);
-    snprintf(png, sizeof png, "%s/wp_%s.png", dir, name);
-    FILE *f = fopen(dat, "w");
-    if (!f) return;
+    const char *path = getenv("PATH");
+    if (!path || !*path) path = "/usr/local/bin:/usr/bin:/bin";
+    for (const char *p = path;; p++) {
+        const char *e = strchr(p, ':');
+        size_t n = e ? (size_t)(e - p) : strlen(p);
+        int len = snprintf(buf, size, "%.*s%sgnuplot", (int)n, p, n ? "/" : "./");
+        struct stat st;
+        if (len > 0 && (size_t)len < size && stat(buf, &st) == 0 && S_ISREG(st.st_mode) &&
+            access(buf, X_OK) == 0)
+            return 1;
+        if (!e) return 0;
+        p = e;
+    }
+}
+
+/* A PNG file that is whole: it ends with the IEND chunk. */
+static int png_whole(const char *path)
+{
+    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+    unsigned char tail[12];
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    int ok =
+        fseek(f, -12L, SEEK_END) == 0 && fread(tail, 1, 12, f) == 12 && !memcmp(tail, iend, 12);
+    fclose(f);
+    return ok;
+}
+
+/* Runs gnuplot (exe) in folder dir on the commands of script (no shell between), its output
+ * discarded. 0 if it ended with exit status 0; else -1 and msg says how it ended, with gnuplot's
+ * last message. */
+static int run_gnuplot(const char *exe, const char *dir, const char *script, char *msg, size_t msz)
+{
+    int fd[2];
+    if (pipe(fd) != 0) {
+        snprintf(msg, msz, "cannot start gnuplot: %s", strerror(errno));
+        return -1;
+    }
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(msg, msz, "cannot start gnuplot: %s", strerror(errno));
+        close(fd[0]);
+        close(fd[1]);
+        return -1;
+    }
+    if (pid == 0) {
+        close(fd[0]);
+        int nul = open("/dev/null", O_RDWR);
+        if (chdir(dir) != 0 || nul < 0 || dup2(nul, STDIN_FILENO) < 0 ||
+            dup2(nul, STDOUT_FILENO) < 0 || dup2(fd[1], STDERR_FILENO) < 0)
+            _exit(126);
+        execl(exe, "gnuplot", "-e", script, (char *)NULL);
+        _exit(127);
+    }
+    close(fd[1]);
+    /* its messages: the first 2 kB kept, the rest read and dropped */
+    char buf[2048], drop[512];
+    size_t len = 0;
+    for (;;) {
+        ssize_t k = len + 1 < sizeof buf ? read(fd[0], buf + len, sizeof buf - 1 - len)
+                                         : read(fd[0], drop, sizeof drop);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) break;
+        if (len + 1 < sizeof buf) len += (size_t)k;
+    }
+    buf[len] = '\0';
+    close(fd[0]);
+    int st = 0;
+    while (waitpid(pid, &st, 0) < 0)
+        if (errno != EINTR) {
+            snprintf(msg, msz, "gnuplot: %s", strerror(errno));
+            return -1;
+        }
+    if (WIFEXITED(st) && WEXITSTATUS(st) == 0) return 0;
+    /* the last line with text */
+    while (len > 0 && (buf[len - 1] == '\n' || buf[len - 1] == ' '))
+        buf[--len] = '\0';
+    char *last = strrchr(buf, '\n');
+    last = last ? last + 1 : buf;
+    last += strspn(last, " ");
+    snprintf(msg, msz, "gnuplot %s %d%s%.300s%s",
+             WIFEXITED(st) ? "exited with status" : "ended by signal",
+             WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st), *last ? " (" : "", last,
+             *last ? ")" : "");
+    return -1;
+}
+
+/* wp_<name>.dat (each solver's runs on case ci), then wp_<name>.png drawn from it by gnuplot
+ * (its path; NULL when it is not installed: no figure). Each checked: a failure is said and
+ * counted (bench_util.h), a figure that gnuplot did not write whole is removed. */
+static void plot(const char *dir, const char *gnuplot, int ci, const char *name, const row *rows,
+                 int n, const char **sol, int ns)
+{
+    char dat[BENCH_NAME_MAX + 1], png[BENCH_NAME_MAX + 1];
+    snprintf(dat, sizeof dat, "wp_%s.dat", name); /* a problem's name: under 64 characters */
+    snprintf(png, sizeof png, "wp_%s.png", name);
+    bench_file bf;
+    if (bench_file_open(&bf, dir, dat) != 0) return;
     for (int s = 0; s < ns; s++) {
-        fprintf(f, "# %s\n", sol[s]);
+        fprintf(bf.f, "# %s\n", sol[s]);
         for (int i = 0; i < n; i++)
             if (rows[i].ci == ci && !strcmp(rows[i].sd->name, sol[s]) && row_ok(&rows[i]))
-                fprintf(f, "%.6g %.4f %ld\n", rows[i].cpu_med, capped(rows[i].sc.scd),
+                fprintf(bf.f, "%.6g %.4f %ld\n", rows[i].cpu_med, capped(rows[i].sc.scd),
                         rows[i].r.steps);
-        fprintf(f, "\n\n");
+        fprintf(bf.f, "\n\n");
     }
-    fclose(f);
-    char cmd[6000];
-    int len = snprintf(cmd, sizeof cmd,
-                       "gnuplot -e \"set terminal png size 1000,420; set output '%s'; "
-                       "set multiplot layout 1,2 title '%s'; set logscale x; set grid; "
-                       "set key bottom right; set xlabel 'CPU time [s] (median)'; "
-                       "set ylabel 'scd'; plot ",
-                       png, name);
+    if (bench_file_close(&bf) != 0 || !gnuplot) return;
+    /* the commands, with the files' names only: gnuplot runs in the output folder */
+    char *script = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&script, &len);
+    if (!f) {
+        bench_file_failed(dir, png, strerror(errno));
+        return;
+    }
+    fprintf(f,
+            "set terminal png size 1000,420; set output '%s'; "
+            "set multiplot layout 1,2 title '%s'; set logscale x; set grid; "
+            "set key bottom right; set xlabel 'CPU time [s] (median)'; "
+            "set ylabel 'scd'; plot ",
+            png, name);
     for (int s = 0; s < ns; s++)
-        len += snprintf(cmd + len, sizeof cmd - (size_t)len,
-                        "'%s' index %d using 1:2 with linespoints title '%s'%s", dat, s, sol[s],
-                        s + 1 < ns ? ", " : "; ");
-    len += snprintf(cmd + len, sizeof cmd - (size_t)len, "set xlabel 'steps'; plot ");
+        fprintf(f, "'%s' index %d using 1:2 with linespoints title '%s'%s", dat, s, sol[s],
+                s + 1 < ns ? ", " : "; ");
+    fprintf(f, "set xlabel 'steps'; plot ");
     for (int s = 0; s < ns; s++)
-        len += snprintf(cmd + len, sizeof cmd - (size_t)len,
-                        "'%s' index %d using 3:2 with linespoints title '%s'%s", dat, s, sol[s],
-                        s + 1 < ns ? ", " : "; ");
-    snprintf(cmd + len, sizeof cmd - (size_t)len, "unset multiplot\" >/dev/null 2>&1");
-    if (system(cmd) != 0) remove(png);
+        fprintf(f, "'%s' index %d using 3:2 with linespoints title '%s'%s", dat, s, sol[s],
+                s + 1 < ns ? ", " : "; ");
+    fprintf(f, "unset multiplot; set output");
+    if (fclose(f) != 0) {
+        free(script);
+        bench_file_failed(dir, png, strerror(ENOMEM));
+        return;
+    }
+    char msg[512], path[BENCH_PATH_SIZE];
+    int rc = run_gnuplot(gnuplot, dir, script, msg, sizeof msg);
+    free(script);
+    snprintf(path, sizeof path, "%s/%s", dir, png); /* main has checked that it fits */
+    if (rc == 0 && !png_whole(path)) {
+        snprintf(msg, sizeof msg, "gnuplot ended without writing it whole");
+        rc = -1;
+    }
+    if (rc != 0) {
+        remove(path);
+        bench_file_failed(dir, png, msg);
+    }
 }
 
 /* The ratio at scd target as text: "-" if not measurable, "0.42*" when a side is the cheapest
@@ -549,17 +673,17 @@ static const row *fewest_tighter(const row *rows, int n, const row *A, double *r
 /* steps_vs_tol.csv and the report's section: steps (rejected) of every problem and solver at
  * each tolerance, "MORE STEPS" where a looser tolerance took more than 5 % more steps than a
  * tighter one (failed runs left out: their counts stop where they failed). Returns the number
- * of flagged (problem, solver) pairs, or -1 if the CSV cannot be written. */
+ * of flagged (problem, solver) pairs (a CSV that cannot be written is said and counted by
+ * bench_file_close; the section is written all the same). */
 static int write_steps_vs_tol(const char *dir, FILE *f, const row *rows, int n, bench_case **cases,
                               int nc, const char **sol, int ns, const double *rtols, int nr)
 {
-    char path[600];
-    snprintf(path, sizeof path, "%s/steps_vs_tol.csv", dir);
-    FILE *c = fopen(path, "w");
-    if (!c) return -1;
-    fprintf(c, "problem,solver,rtol,atol,status,steps,rejected,max_order,flag,"
-               "tighter_rtol_fewer_steps,tighter_steps,excess_percent\n");
-    for (int i = 0; i < n; i++) {
+    bench_file bf;
+    FILE *c = bench_file_open(&bf, dir, "steps_vs_tol.csv") == 0 ? bf.f : NULL;
+    if (c)
+        fprintf(c, "problem,solver,rtol,atol,status,steps,rejected,max_order,flag,"
+                   "tighter_rtol_fewer_steps,tighter_steps,excess_percent\n");
+    for (int i = 0; i < n && c; i++) {
         const row *A = &rows[i];
         double q;
         const row *B = fewest_tighter(rows, n, A, &q);
@@ -572,7 +696,7 @@ static int write_steps_vs_tol(const char *dir, FILE *f, const row *rows, int n, 
         else
             fprintf(c, ",,\n");
     }
-    int bad = fclose(c) != 0;
+    if (c) bench_file_close(&bf);
     /* tolerances loosest first */
     double rt[MAXRTOL];
     int k = 0;
@@ -656,7 +780,27 @@ static int write_steps_vs_tol(const char *dir, FILE *f, const row *rows, int n, 
             fprintf(f, " %s |\n", flag ? "MORE STEPS" : "");
         }
     fprintf(f, "\n");
-    return bad ? -1 : nflag;
+    return nflag;
+}
+
+/* The report's list of the files that could not be written (none: nothing), placed after its
+ * head: the report itself is written last. */
+static void write_report_failed_files(FILE *f)
+{
+    int k = bench_file_failures();
+    if (k == 0) return;
+    fprintf(f, "## Files not written\n\n"
+               "These files of the run could not be written (the bench ends with exit status 1); "
+               "none of them is left in the folder:\n\n");
+    for (int i = 0; i < k; i++) {
+        const char *msg, *name = bench_file_failure(i, &msg);
+        if (!name) {
+            fprintf(f, "- and %d more (named in the bench's messages)\n", k - i);
+            break;
+        }
+        fprintf(f, "- %s: %s\n", name, msg);
+    }
+    fprintf(f, "\n");
 }
 
 /* -------------------------------------------------------------------- main ---- */
@@ -694,17 +838,28 @@ static int usage(const char *bad)
     return 2;
 }
 
+/* Creates folder dir and its parents. 0, or -1 with errno (ENOTDIR: dir or a parent is a file). */
 static int mkdirs(const char *dir)
 {
-    char buf[512];
-    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) return -1;
+    char buf[BENCH_PATH_SIZE];
+    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
+        errno = ENAMETOOLONG; /* main refuses such a name first */
+        return -1;
+    }
     for (char *q = buf + 1; *q; q++)
         if (*q == '/') {
             *q = '\0';
             if (mkdir(buf, 0755) != 0 && errno != EEXIST) return -1;
             *q = '/';
         }
-    return mkdir(buf, 0755) != 0 && errno != EEXIST ? -1 : 0;
+    if (mkdir(buf, 0755) != 0 && errno != EEXIST) return -1;
+    struct stat st;
+    if (stat(buf, &st) != 0) return -1;
+    if (!S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return -1;
+    }
+    return 0;
 }
 
 /* A number in [lo, hi] from the whole of s; 0 if it is one. */
@@ -740,6 +895,10 @@ int main(int argc, char **argv)
         int has_val = a + 1 < argc;
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
             usage_text(stdout);
+            if (fflush(stdout) != 0 || ferror(stdout)) {
+                fprintf(stderr, "bench: cannot write the standard output: %s\n", strerror(errno));
+                return 1;
+            }
             return 0;
         } else if (!strcmp(arg, "--stability")) {
             stab = 1;
@@ -769,9 +928,17 @@ int main(int argc, char **argv)
                 slist = v;
             else if (!strcmp(arg, "--rtols"))
                 rlist = v;
-            else if (!strcmp(arg, "--out"))
+            else if (!strcmp(arg, "--out")) {
+                /* never cut: the folder's name and a file's must fit the paths */
+                if (strlen(v) > BENCH_OUT_MAX) {
+                    snprintf(m, sizeof m,
+                             "--out: the folder's name has %zu characters, more "
+                             "than the %d allowed",
+                             strlen(v), BENCH_OUT_MAX);
+                    return usage(m);
+                }
                 out = v;
-            else if (!strcmp(arg, "--scaling"))
+            } else if (!strcmp(arg, "--scaling"))
                 sclist = v;
             else if (!strcmp(arg, "--crane-scene"))
                 scene_file = v;
@@ -972,25 +1139,27 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: cannot create the output folder '%s': %s\n", out, strerror(errno));
         return 1;
     }
-    /* a file that cannot be written fails now, not after the runs */
-    char path[600];
-    snprintf(path, sizeof path, "%s/report.md", out);
-    FILE *rep = fopen(path, "w");
-    if (!rep) {
-        fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno));
-        return 1;
-    }
+    /* a file that cannot be written fails now, not after the runs (said by bench_file_open) */
+    bench_file rep;
+    if (bench_file_open(&rep, out, "report.md") != 0) return 1;
 
-    int failures = 0, io_errors = 0, crashed = 0, stab_bad = 0;
+    int failures = 0, crashed = 0, stab_bad = 0, oom = 0;
     extras ex;
     memset(&ex, 0, sizeof ex);
     load_average(ex.load_start, sizeof ex.load_start);
     /* the crane's real-time check, scaling series and the stability suite write their report
-     * sections into a temporary text, appended to the report at the end */
-    FILE *tail = tmpfile();
-    if (!tail) {
-        fprintf(stderr, "bench: no temporary file: %s\n", strerror(errno));
-        return 1;
+     * sections into a text in memory (tail), appended to the report at the end; the sections of
+     * steps against tolerance and of MEBDFI go into another (mid), placed after the report's
+     * head, which is written last: when every other file has been tried */
+    char *tail_buf = NULL, *mid_buf = NULL;
+    size_t tail_len = 0, mid_len = 0;
+    FILE *tail = open_memstream(&tail_buf, &tail_len), *mid = open_memstream(&mid_buf, &mid_len);
+    bench_case *cases[MAXPROB];
+    int nc = 0, n = 0;
+    row *rows = NULL;
+    if (!tail || !mid) {
+        oom = 1;
+        goto done;
     }
     /* with the crane among the problems, or when asked for explicitly */
     int want_crane = 0;
@@ -1000,8 +1169,8 @@ int main(int argc, char **argv)
      * resident size it was forked with (Linux keeps the high-water mark across execve). */
     if ((want_crane || rt_asked) && rt_K > 0) {
         char exe[4096];
-        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        if (len <= 0) {
+        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe);
+        if (len <= 0 || (size_t)len >= sizeof exe) {
             fprintf(stderr, "bench: cannot find this program for the real-time runs\n");
             failures++;
         } else {
@@ -1012,14 +1181,15 @@ int main(int argc, char **argv)
     }
 
     /* the cases */
-    bench_case *cases[MAXPROB];
-    int nc = 0;
     double wt0 = bench_wall_now();
     for (int q = 0; q < np; q++) {
         bench_case *bc = calloc(1, sizeof *bc);
         char msg[BG_MESSAGE_SIZE] = "";
         int r;
-        if (!bc) return 1;
+        if (!bc) {
+            oom = 1;
+            goto done;
+        }
         if (!strcmp(pnames[q], "crane")) {
             fprintf(stderr, "crane: building and settling the model\n");
             r = bench_crane_case(bc, &scene, scene.static_start, horizon, "crane", msg, sizeof msg);
@@ -1038,6 +1208,7 @@ int main(int argc, char **argv)
             failures++;
             continue;
         }
+        cases[nc++] = bc;
         if (bench_case_start(bc, 1e-10, msg, sizeof msg) != 0)
             fprintf(stderr, "bench: %s: no consistent start (the given values are used): %s\n",
                     bc->name, msg);
@@ -1047,11 +1218,12 @@ int main(int argc, char **argv)
                 fprintf(stderr, "bench: crane: %s\n", msg);
             fprintf(stderr, "crane: reference: %s\n", bc->ref_source);
         }
-        cases[nc++] = bc;
     }
-    row *rows = calloc((size_t)nc * (size_t)ns * (size_t)nr + 1, sizeof *rows);
-    if (!rows) return 1;
-    int n = 0;
+    rows = calloc((size_t)nc * (size_t)ns * (size_t)nr + 1, sizeof *rows);
+    if (!rows) {
+        oom = 1;
+        goto done;
+    }
     double cpu[MAXREP + 1];
     double rtol_max = 0;
     for (int k = 0; k < nr; k++)
@@ -1064,12 +1236,16 @@ int main(int argc, char **argv)
                  * loosest tolerance only */
                 if (sols[s]->ls == LS_DENSE && bc->n > DENSE_MAX_N && rtols[k] != rtol_max)
                     continue;
-                row *r = &rows[n++];
+                row *r = &rows[n];
                 r->ci = c;
                 r->sd = sols[s];
                 r->rtol = rtols[k];
                 bench_case_atol(bc, r->rtol, &r->atol, NULL);
-                if (bench_run_alloc(&r->r, bc->n) != 0) return 1;
+                if (bench_run_alloc(&r->r, bc->n) != 0) {
+                    oom = 1;
+                    goto done;
+                }
+                n++;
                 run_opts ro = {0};
                 ro.rtol = r->rtol;
                 int m2 = bench_run_timed(bc, sols[s], &ro, K, &r->r, cpu);
@@ -1089,19 +1265,19 @@ int main(int argc, char **argv)
     }
     double wall = bench_wall_now() - wt0;
 
-    snprintf(path, sizeof path, "%s/work_precision.csv", out);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno));
-        return 1;
+    /* the files: each checked (bench_file, bench_util.h), a failure said and counted, the others
+     * written all the same */
+    bench_file wp;
+    if (bench_file_open(&wp, out, "work_precision.csv") == 0) {
+        write_csv(wp.f, rows, n, cases);
+        bench_file_close(&wp);
     }
-    write_csv(f, rows, n, cases);
-    if (fclose(f) != 0) {
-        fprintf(stderr, "bench: cannot write %s\n", path);
-        return 1;
-    }
+    char gnuplot[BENCH_PATH_SIZE];
+    int have_gnuplot = nc > 0 && find_gnuplot(gnuplot, sizeof gnuplot);
+    if (nc > 0 && !have_gnuplot)
+        fprintf(stderr, "bench: gnuplot not found: no figures (the wp_*.dat files are written)\n");
     for (int c = 0; c < nc; c++)
-        plot(out, c, cases[c]->name, rows, n, solnames, ns);
+        plot(out, have_gnuplot ? gnuplot : NULL, c, cases[c]->name, rows, n, solnames, ns);
 
     /* the crane's scaling series, into the temporary text for the report */
     if ((want_crane || sclist) && nscale > 0) {
@@ -1122,41 +1298,54 @@ int main(int argc, char **argv)
      * crane_wp.csv as they are measured */
     if (crane_full)
         failures += bench_crane_full(out, tail, &full, full_name, cf_rtols, cf_nr, 1e-10);
+    if (n > 0) write_steps_vs_tol(out, mid, rows, n, cases, nc, solnames, ns, rtols, nr);
+    if (nc > 0) failures += bench_mebdfi_compare(out, mid, cases, nc, rtols, nr);
 
+    /* the report: its head, the files that could not be written, the sections */
     load_average(ex.load_end, sizeof ex.load_end);
-    write_report_head(rep, rows, n, cases, nc, solnames, ns, wall, K, &ex);
-    if (n > 0 && write_steps_vs_tol(out, rep, rows, n, cases, nc, solnames, ns, rtols, nr) < 0) {
-        fprintf(stderr, "bench: cannot write %s/steps_vs_tol.csv\n", out);
-        io_errors++;
+    write_report_head(rep.f, rows, n, cases, nc, solnames, ns, wall, K, &ex);
+    write_report_failed_files(rep.f);
+    if (fclose(mid) != 0)
+        bench_file_fail(&rep, ENOMEM);
+    else
+        fwrite(mid_buf, 1, mid_len, rep.f);
+    mid = NULL;
+    write_report_problems(rep.f, rows, n, cases, nc, solnames, ns);
+    if (fclose(tail) != 0)
+        bench_file_fail(&rep, ENOMEM);
+    else
+        fwrite(tail_buf, 1, tail_len, rep.f);
+    tail = NULL;
+    bench_file_close(&rep);
+
+done:
+    if (oom) {
+        fprintf(stderr, "bench: out of memory\n");
+        bench_file_discard(&rep);
     }
-    if (nc > 0) {
-        int mf = bench_mebdfi_compare(out, rep, cases, nc, rtols, nr);
-        if (mf < 0) {
-            fprintf(stderr, "bench: cannot write %s/mebdfi_compare.csv\n", out);
-            io_errors++;
-        } else
-            failures += mf;
-    }
-    write_report_problems(rep, rows, n, cases, nc, solnames, ns);
-    rewind(tail);
-    char buf[8192];
-    size_t got;
-    while ((got = fread(buf, 1, sizeof buf, tail)) > 0)
-        fwrite(buf, 1, got, rep);
-    fclose(tail);
-    int bad = ferror(rep);
-    if (fclose(rep) != 0 || bad) {
-        fprintf(stderr, "bench: cannot write %s/report.md\n", out);
-        io_errors++;
-    }
+    if (tail) fclose(tail);
+    if (mid) fclose(mid);
+    free(tail_buf);
+    free(mid_buf);
     for (int c = 0; c < nc; c++) {
         bench_case_free(cases[c]);
         free(cases[c]);
     }
-    free(rows);
+    free(rows); /* their solutions are freed after each run (bench_run_free) */
+    if (oom) return 1;
+    int nfiles = bench_file_failures();
     printf("bench: %d runs; %d failed runs of our solver or the crane's; %d stability cases wrong, "
-           "crashed, at the time limit or not set up (%d crashed); results in %s\n",
-           n, failures, stab_bad, crashed, out);
-    if (io_errors || crashed) return 1;
+           "crashed, at the time limit or not set up (%d crashed); ",
+           n, failures, stab_bad, crashed);
+    if (nfiles)
+        printf("%d file%s not written (named above): the results in %s are incomplete\n", nfiles,
+               nfiles > 1 ? "s" : "", out);
+    else
+        printf("results in %s\n", out);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "bench: cannot write the standard output: %s\n", strerror(errno));
+        return 1;
+    }
+    if (nfiles || crashed) return 1;
     return strict && (failures || stab_bad) ? 1 : 0;
 }

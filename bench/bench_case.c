@@ -191,7 +191,9 @@ int bench_run_alloc(run_out *o, int n)
     memset(o, 0, sizeof *o);
     o->y = calloc((size_t)(n > 0 ? n : 1), sizeof *o->y);
     o->yp = calloc((size_t)(n > 0 ? n : 1), sizeof *o->yp);
-    return o->y && o->yp ? 0 : BG_ERR_MEMORY;
+    if (o->y && o->yp) return 0;
+    bench_run_free(o);
+    return BG_ERR_MEMORY;
 }
 
 void bench_run_free(run_out *o)

@@ -231,9 +231,8 @@ static double slope(const double *x, const double *y, int n)
 int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, int skip, int steps,
                         double t_max, double cpu_cap, double *slope_n, double *slope_el)
 {
-    char path[600];
-    snprintf(path, sizeof path, "%s/scaling.csv", dir);
-    FILE *f = fopen(path, "w");
+    bench_file bf;
+    FILE *f = bench_file_open(&bf, dir, "scaling.csv") == 0 ? bf.f : NULL;
     if (f)
         fprintf(f, "elements,unknowns,status,t_reached,steps_total,steps_timed,newton_per_step,"
                    "jac_per_step,fact_per_step,full_fact_per_step,cpu_total_s,cpu_per_step_s,wall_"
@@ -408,7 +407,7 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
                 "iterations, while one iteration (residual, solve and the integrator's vector "
                 "work) grows linearly.\n\n",
                 slope(xe, part[4], np), slope(xe, part[5], np), slope(xe, part[6], np));
-    if (f) fclose(f);
+    if (f) bench_file_close(&bf);
     for (int k = 0; k < NPART; k++)
         free(part[k]);
     free(xn);
@@ -585,9 +584,8 @@ int bench_crane_realtime(const char *exe, const char *scene_file, const crane_sc
 {
     memset(res, 0, sizeof *res);
     res->rt_factor = res->rt_factor_all = res->peak_mb = res->bookkeeping = NAN;
-    char path[600];
-    snprintf(path, sizeof path, "%s/realtime.csv", dir);
-    FILE *f = fopen(path, "w");
+    bench_file bf;
+    FILE *f = bench_file_open(&bf, dir, "realtime.csv") == 0 ? bf.f : NULL;
     if (f)
         fprintf(f, "run,status,unknowns,setup_wall_s,int_wall_s,int_cpu_s,steps,rejected,newton,"
                    "jacobians,res_s,jac_s,linalg_s,other_s,realtime_factor,"
@@ -619,7 +617,7 @@ int bench_crane_realtime(const char *exe, const char *scene_file, const crane_sc
         }
         ok++;
     }
-    if (f) fclose(f);
+    if (f) bench_file_close(&bf);
     fprintf(rep, "## Crane real-time check\n\n");
     fprintf(rep,
             "Scene %s, %d boom elements, %g s at rtol %g, atol %g, output every %g s (computed, "
@@ -740,22 +738,22 @@ typedef struct full_row {
     bp_score sc;
 } full_row;
 
-static void full_csv_row(FILE *f, const full_row *w, double atol)
+static void full_csv_row(bench_file *bf, const full_row *w, double atol)
 {
-    if (!f) return;
-    fprintf(f, "%s,%g,%g,%d,%.9g,%ld,%ld,%ld,%ld,%ld,%.6g,%.3f,%.3f,%.3f,\"%s\"\n", w->solver,
+    if (!bf->f) return;
+    fprintf(bf->f, "%s,%g,%g,%d,%.9g,%ld,%ld,%ld,%ld,%ld,%.6g,%.3f,%.3f,%.3f,\"%s\"\n", w->solver,
             w->rtol, atol, w->r.status, w->r.t, w->r.steps, w->r.rejected, w->r.newton, w->r.jac,
             w->r.res, w->r.cpu, w->sc.scd, w->sc.mescd, w->sc.scd_i2,
             w->r.status < 0 ? w->r.msg : "");
-    fflush(f);
+    bench_file_flush(bf);
 }
 
 int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const char *scene_name,
                      const double *rtols, int nr, double rtol_ref)
 {
-    char path[600], msg[BG_MESSAGE_SIZE] = "";
-    snprintf(path, sizeof path, "%s/crane_wp.csv", dir);
-    FILE *f = fopen(path, "w");
+    char msg[BG_MESSAGE_SIZE] = "";
+    bench_file bf;
+    FILE *f = bench_file_open(&bf, dir, "crane_wp.csv") == 0 ? bf.f : NULL;
     if (f)
         fprintf(f, "solver,rtol,atol,status,t_reached,steps,rejected,newton,jacobians,res_evals,"
                    "cpu_s,scd,mescd,scd_index2,message\n");
@@ -768,7 +766,7 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
     if (r != 0) {
         fprintf(stderr, "crane full: %s\n", msg);
         fprintf(rep, "Not run: %s.\n\n", msg);
-        if (f) fclose(f);
+        if (f) bench_file_close(&bf);
         return 1;
     }
     const solver_def *ours = bench_solver_find("bgdae-klu");
@@ -787,7 +785,7 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
             rtol_ref, s->t_end);
     if (bench_run_alloc(&ref.r, bc.n) != 0) {
         bench_case_free(&bc);
-        if (f) fclose(f);
+        if (f) bench_file_close(&bf);
         return 1;
     }
     run_opts ro = {0};
@@ -795,7 +793,7 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
     ro.max_steps = 100000000;
     bench_run(&bc, ours, &ro, &ref.r);
     ref.sc.scd = ref.sc.mescd = ref.sc.scd_i2 = NAN;
-    full_csv_row(f, &ref, bc.atol_factor * rtol_ref);
+    full_csv_row(&bf, &ref, bc.atol_factor * rtol_ref);
     fprintf(stderr, "crane full: reference %s, %ld steps, %.1f s CPU\n",
             ref.r.status < 0 ? ref.r.msg : "ok", ref.r.steps, ref.r.cpu);
     if (ref.r.status < 0) {
@@ -836,7 +834,7 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
             else
                 w->sc.scd = w->sc.mescd = w->sc.scd_i2 = NAN;
             if (w->r.status < 0 && !sd->ida) fails++;
-            full_csv_row(f, w, atol);
+            full_csv_row(&bf, w, atol);
             fprintf(stderr,
                     "crane full: %-16s rtol %-6g %s t %.4g, %ld steps, %.1f s CPU, scd %.2f, "
                     "mescd %.2f%s%s\n",
@@ -846,7 +844,7 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
             bench_run_free(&w->r);
         }
     double total = bench_cpu_now() - c0;
-    if (f) fclose(f);
+    if (f) bench_file_close(&bf);
     /* the report */
     fprintf(rep,
             "Scene %s (%d boom elements, %d unknowns) over [0, %g] s from its %s start, %d "

@@ -38,7 +38,8 @@ int bench_crane_reference(bench_case *bc, double rtol_ref, int check_ida, char *
  * residual, Jacobian and linear-algebra parts, total time, unknowns. Log-log least-squares slopes
  * of the time per step against the unknowns and against the elements. Writes scaling.csv into
  * dir and a report section into rep; *slope_n, *slope_el receive the slopes (NAN if < 2 points).
- * Returns the number of failed runs. */
+ * Returns the number of failed runs. The CSV files of these functions are checked (bench_file,
+ * bench_util.h): a failure is said and counted there, the runs go on. */
 int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, int skip, int steps,
                         double t_max, double cpu_cap, double *slope_n, double *slope_el);
 

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_util.h"
+
 /* The end statistics printed by J. R. Cash's test drivers for MEBDFI (cranki.f, pumpi.f,
  * transi.f, chemakzoi.f, nandi.f: output files cranki.out, pumpi.out, transi.out, akzoi.out,
  * nandi.out) and MEBDFDAE (pendul2.f: pendul2.res), copied from docs/mebdfi_stats.md, which names
@@ -195,12 +197,12 @@ static void ratio(FILE *f, long ours, long theirs)
 int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, int nc,
                          const double *rtols, int nr)
 {
-    char path[600];
-    snprintf(path, sizeof path, "%s/mebdfi_compare.csv", dir);
-    FILE *c = fopen(path, "w");
-    if (!c) return -1;
-    fprintf(c, "problem,code,rtol,atol,status,steps,failed_steps,res_evals,res_evals_without_fd_"
-               "jacobians,jacobians,lu_factorizations,max_order,scd,scd_measure\n");
+    bench_file bf;
+    FILE *c = bench_file_open(&bf, dir, "mebdfi_compare.csv") == 0 ? bf.f : NULL;
+    if (c)
+        fprintf(c,
+                "problem,code,rtol,atol,status,steps,failed_steps,res_evals,res_evals_without_fd_"
+                "jacobians,jacobians,lu_factorizations,max_order,scd,scd_measure\n");
     const solver_def *ours = bench_solver_find("bgdae-klu");
     int fails = 0, any = 0;
     fprintf(rep,
@@ -243,12 +245,14 @@ int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, i
             if (o.status < 0) fails++;
             long failed = o.rejected + o.conv_fail;
             long m_nofd = d->mf == 22 ? m->res - (long)bc->n * m->jac : m->res;
-            fprintf(c, "%s,\"%s\",%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,driver\n", bc->name,
-                    d->file, m->rtol, m->atol, 0, m->steps, m->failed, m->res, m_nofd, m->jac,
-                    m->lu, m->max_order, m->scd);
-            fprintf(c, "%s,bgdae-klu,%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,bench\n", bc->name,
-                    rtols[k], atol, o.status, o.steps, failed, o.res, o.res, o.jac, o.fact,
-                    o.max_order, sc.scd);
+            if (c) {
+                fprintf(c, "%s,\"%s\",%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,driver\n", bc->name,
+                        d->file, m->rtol, m->atol, 0, m->steps, m->failed, m->res, m_nofd, m->jac,
+                        m->lu, m->max_order, m->scd);
+                fprintf(c, "%s,bgdae-klu,%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,bench\n",
+                        bc->name, rtols[k], atol, o.status, o.steps, failed, o.res, o.res, o.jac,
+                        o.fact, o.max_order, sc.scd);
+            }
             fprintf(stderr, "mebdfi: %-9s rtol %-6g ours %s %ld steps (MEBDFI %ld)\n", bc->name,
                     rtols[k], o.status < 0 ? "FAIL" : "ok", o.steps, m->steps);
             if (!header) {
@@ -290,6 +294,6 @@ int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, i
     if (!any)
         fprintf(rep, "No run: none of crank, pump, transamp, chemakzo, nand, pendulum2 at a "
                      "tolerance of the drivers' sweep (1e-2 .. 1e-10 in steps of sqrt(10)).\n\n");
-    if (fclose(c) != 0) return -1;
+    if (c) bench_file_close(&bf);
     return fails;
 }

@@ -26,8 +26,8 @@ const mebdfi_stat *bench_mebdfi_table(int *n);
  * has a published row (equal to 1e-6 relative), one run of bgdae-klu with the driver's tolerances
  * (atol = rtol, pump: its vector) from the case's consistent start; writes mebdfi_compare.csv
  * into dir and a report section into rep (the published and our steps, failed steps, residual
- * evaluations and Jacobians with their ratios). Returns the number of failed runs of ours, or -1
- * if the CSV cannot be written. */
+ * evaluations and Jacobians with their ratios). Returns the number of failed runs of ours (a CSV
+ * that cannot be written is said and counted by bench_file_close, bench_util.h). */
 int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, int nc,
                          const double *rtols, int nr);
 

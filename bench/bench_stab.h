@@ -28,9 +28,10 @@ typedef struct stab_config {
     const char *filter;       /* run only the cases whose name contains it (NULL: all) */
 } stab_config;
 
-/* Runs the suite: stability.csv into dir, a report section into rep. Returns the number of
- * cases that ended WRONG, CRASHED, at the time limit or could not be set up; *crashed receives
- * the number of crashes (a child ended by a signal other than the time limit's). */
+/* Runs the suite: stability.csv into dir (a failure to write it is said and counted by
+ * bench_file_close, bench_util.h; the suite runs on), a report section into rep. Returns the
+ * number of cases that ended WRONG, CRASHED, at the time limit or could not be set up; *crashed
+ * receives the number of crashes (a child ended by a signal other than the time limit's). */
 int bench_stability(const char *dir, FILE *rep, const stab_config *cfg, int *crashed);
 
 #endif

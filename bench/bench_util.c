@@ -1,8 +1,12 @@
 /* The helpers of bench_util.h. */
 #include "bench_util.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #ifdef BENCH_HAVE_IDA
 #include <sunmatrix/sunmatrix_dense.h>
@@ -33,6 +37,133 @@ double bench_median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, cmpd);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* ------------------------------------------------------------ checked files ---- */
+
+#define MAX_FAILED 32
+static int n_failed;
+static struct {
+    char name[BENCH_NAME_MAX + 1];
+    char msg[160];
+} failed[MAX_FAILED];
+
+static void record_failure(const char *name, const char *msg)
+{
+    if (n_failed < MAX_FAILED) {
+        snprintf(failed[n_failed].name, sizeof failed[n_failed].name, "%s", name);
+        snprintf(failed[n_failed].msg, sizeof failed[n_failed].msg, "%s", msg);
+    }
+    n_failed++;
+}
+
+void bench_file_failed(const char *dir, const char *name, const char *msg)
+{
+    fprintf(stderr, "bench: cannot write %s/%s: %s\n", dir, name, msg);
+    record_failure(name, msg);
+}
+
+int bench_file_failures(void)
+{
+    return n_failed;
+}
+
+const char *bench_file_failure(int i, const char **msg)
+{
+    if (i < 0 || i >= n_failed || i >= MAX_FAILED) return NULL;
+    *msg = failed[i].msg;
+    return failed[i].name;
+}
+
+void bench_file_fail(bench_file *bf, int err)
+{
+    if (bf->err) return;
+    bf->err = err ? err : EIO;
+    fprintf(stderr, "bench: cannot write %s: %s\n", bf->path, strerror(bf->err));
+    record_failure(bf->name, strerror(bf->err));
+}
+
+int bench_file_open(bench_file *bf, const char *dir, const char *name)
+{
+    memset(bf, 0, sizeof *bf);
+    bf->fd = -1;
+    int np = snprintf(bf->name, sizeof bf->name, "%s", name),
+        n = snprintf(bf->path, sizeof bf->path, "%s/%s", dir, name);
+    if (np < 0 || (size_t)np >= sizeof bf->name || n < 0 || (size_t)n >= sizeof bf->path) {
+        /* never cut: say it with the whole name */
+        bench_file_failed(dir, name, strerror(ENAMETOOLONG));
+        return -1;
+    }
+    bf->fd = open(bf->path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (bf->fd < 0) {
+        bench_file_fail(bf, errno);
+        return -1;
+    }
+    bf->f = open_memstream(&bf->buf, &bf->len);
+    if (!bf->f) {
+        bench_file_fail(bf, errno);
+        close(bf->fd);
+        unlink(bf->path);
+        return -1;
+    }
+    return 0;
+}
+
+/* write(2) until all is written; 0, or -1 with errno (EIO for a write of nothing). */
+static int write_all(int fd, const char *p, size_t n)
+{
+    while (n > 0) {
+        ssize_t w = write(fd, p, n);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) {
+            if (w == 0) errno = EIO;
+            return -1;
+        }
+        p += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
+int bench_file_flush(bench_file *bf)
+{
+    if (!bf->f) return -1;
+    /* the stream in memory fails only when memory runs out */
+    if (fflush(bf->f) != 0 || ferror(bf->f)) bench_file_fail(bf, ENOMEM);
+    if (!bf->err && bf->len > bf->done) {
+        if (write_all(bf->fd, bf->buf + bf->done, bf->len - bf->done) != 0)
+            bench_file_fail(bf, errno);
+        bf->done = bf->len;
+    }
+    return bf->err ? -1 : 0;
+}
+
+int bench_file_close(bench_file *bf)
+{
+    if (!bf->f) return -1;
+    bench_file_flush(bf);
+    if (fclose(bf->f) != 0) bench_file_fail(bf, ENOMEM);
+    bf->f = NULL;
+    free(bf->buf);
+    bf->buf = NULL;
+    /* fsync: a delayed write's failure shows here (EINVAL: a special file, nothing to sync) */
+    if (!bf->err && fsync(bf->fd) != 0 && errno != EINVAL) bench_file_fail(bf, errno);
+    if (close(bf->fd) != 0 && !bf->err) bench_file_fail(bf, errno);
+    bf->fd = -1;
+    if (bf->err) unlink(bf->path);
+    return bf->err ? -1 : 0;
+}
+
+void bench_file_discard(bench_file *bf)
+{
+    if (!bf->f) return;
+    fclose(bf->f);
+    bf->f = NULL;
+    free(bf->buf);
+    bf->buf = NULL;
+    close(bf->fd);
+    bf->fd = -1;
+    unlink(bf->path);
 }
 
 #ifdef BENCH_HAVE_IDA

@@ -5,6 +5,8 @@
 #ifndef BG_BENCH_UTIL_H
 #define BG_BENCH_UTIL_H
 
+#include <stdio.h>
+
 #include "bg_dae.h"
 
 #ifdef BENCH_HAVE_IDA
@@ -20,6 +22,48 @@ double bench_wall_now(void);
 
 /* Sorts v[0..n-1] ascending (v[0] is then the minimum) and returns the median; n >= 1. */
 double bench_median(double *v, int n);
+
+/* The longest path the bench builds: an output folder, '/', a file name of at most
+ * BENCH_NAME_MAX characters (wp_<problem>.png the longest), the terminating '\0'. An output
+ * folder longer than BENCH_OUT_MAX characters is refused (never cut). */
+#define BENCH_PATH_SIZE 4096
+#define BENCH_NAME_MAX 120
+#define BENCH_OUT_MAX (BENCH_PATH_SIZE - BENCH_NAME_MAX - 2)
+
+/* A file the bench writes, DIR/NAME: opened (created or emptied) by bench_file_open, its text
+ * printed into f (a stream in memory), written to the file by bench_file_flush and
+ * bench_file_close. Every step is checked (the open, the stream in memory, each write(2), fsync,
+ * close): the first failure is said on stderr, "bench: cannot write PATH: ERROR" (the system's
+ * error), counted in bench_file_failures, and the file is removed when it is closed: no part of
+ * it stays to be taken for a result. */
+typedef struct bench_file {
+    char path[BENCH_PATH_SIZE];
+    char name[BENCH_NAME_MAX + 1];
+    FILE *f;     /* where to print; NULL once closed */
+    char *buf;   /* the text in memory (open_memstream) */
+    size_t len;  /* its length */
+    size_t done; /* the part of it in the file */
+    int fd, err; /* the file; the first error (errno), 0 while none */
+} bench_file;
+
+/* Opens DIR/NAME. 0, or -1 (said and counted; nothing to close). */
+int bench_file_open(bench_file *bf, const char *dir, const char *name);
+/* Writes what was printed so far into the file. 0, or -1 (said and counted once; the file is
+ * removed at bench_file_close). */
+int bench_file_flush(bench_file *bf);
+/* Marks the file as failed with error err (said and counted unless it had failed already). */
+void bench_file_fail(bench_file *bf, int err);
+/* Writes the rest, closes and frees. 0, or -1 if any step failed (the file is then removed). */
+int bench_file_close(bench_file *bf);
+/* Closes and frees without writing the rest, and removes the file (a run given up). */
+void bench_file_discard(bench_file *bf);
+/* A file written by another program (a gnuplot figure) that failed: says "bench: cannot write
+ * DIR/NAME: MSG" and counts it. */
+void bench_file_failed(const char *dir, const char *name, const char *msg);
+/* The number of files that could not be written, and the i-th of them (its name, *msg the
+ * reason); the first 32 are kept. */
+int bench_file_failures(void);
+const char *bench_file_failure(int i, const char **msg);
 
 #ifdef BENCH_HAVE_IDA
 /* IDA's user data for bench_ida_res and bench_ida_jac: the problem (its residual, Jacobian and
