@@ -1,0 +1,289 @@
+/* Cases, rows and the local engine (sweep_engine.h). */
+#include "sweep_engine.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "crane_scene.h"
+
+int sweep_save_atomic(const char *path, const char *text, size_t len)
+{
+    char tmp[SWEEP_DIR_SIZE + 64];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return -1;
+    size_t done = 0;
+    while (done < len) {
+        ssize_t w = write(fd, text + done, len - done);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) {
+            int e = w == 0 ? EIO : errno;
+            close(fd);
+            unlink(tmp);
+            errno = e;
+            return -1;
+        }
+        done += (size_t)w;
+    }
+    if (fsync(fd) != 0) {
+        int e = errno;
+        close(fd);
+        unlink(tmp);
+        errno = e;
+        return -1;
+    }
+    if (close(fd) != 0 || rename(tmp, path) != 0) {
+        int e = errno;
+        unlink(tmp);
+        errno = e;
+        return -1;
+    }
+    return 0;
+}
+
+int sweep_make_folder(const char *dir, char *msg, size_t size)
+{
+    char buf[SWEEP_PATH_SIZE];
+    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
+        snprintf(msg, size, "the name is too long");
+        return -1;
+    }
+    size_t n = strlen(buf);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] != '/' && buf[i] != '\0') continue;
+        if (buf[i - 1] == '/') continue;
+        char keep = buf[i];
+        buf[i] = '\0';
+        struct stat st;
+        if (stat(buf, &st) != 0) {
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+                snprintf(msg, size, "cannot create %s: %s", buf, strerror(errno));
+                return -1;
+            }
+            if (stat(buf, &st) != 0) {
+                snprintf(msg, size, "cannot create %s: %s", buf, strerror(errno));
+                return -1;
+            }
+        }
+        if (!S_ISDIR(st.st_mode)) {
+            snprintf(msg, size, "%s is %s, not a folder", buf,
+                     crane_file_kind((unsigned)st.st_mode));
+            return -1;
+        }
+        buf[i] = keep;
+    }
+    return 0;
+}
+
+void sweep_case_dir(const sweep_run *r, long index, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s/cases/%04ld", r->outdir, index);
+}
+
+static void local_time(char *buf, size_t size)
+{
+    time_t now = time(NULL);
+    struct tm tm;
+    if (!localtime_r(&now, &tm) || !strftime(buf, size, "%Y-%m-%d %H:%M:%S %z", &tm))
+        snprintf(buf, size, "%lld s after 1970", (long long)now);
+}
+
+/* case.txt: what the case is and, once over, how it ended. */
+static void write_case_txt(const sweep_run *r, long index, const char *dir, const char *command,
+                           const sweep_row *row)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    if (!f) return;
+    const sweep_spec *s = r->spec;
+    char now[64];
+    local_time(now, sizeof now);
+    fprintf(f, "# crane-sweep case (the sweep's record; the crane's own is status.txt)\n");
+    fprintf(f, "case: %ld\nsweep: %s\n", index, s->path);
+    for (int p = 0; p < s->nparams; p++)
+        fprintf(f, "%s: %s\n", s->params[p].name, sweep_case_value(s, index, p));
+    char host[256] = "?";
+    gethostname(host, sizeof host - 1);
+    host[sizeof host - 1] = '\0';
+    fprintf(f, "rank: %d\nhost: %s\n", r->rank, host);
+    if (command) {
+        fprintf(f, "command: %s\nstarted: %s\n", command, now);
+    } else { /* the case is over: the command and the start from case.txt "running" */
+        char path[SWEEP_DIR_SIZE + 16], cmd[8192], start[64];
+        snprintf(path, sizeof path, "%s/case.txt", dir);
+        if (sweep_read_field(path, "command", cmd, sizeof cmd)) fprintf(f, "command: %s\n", cmd);
+        if (sweep_read_field(path, "started", start, sizeof start))
+            fprintf(f, "started: %s\n", start);
+    }
+    if (row) {
+        fprintf(f, "status: %s\nmessage: %s\nexit: %d\nended: %s\n", sweep_status_name(row->status),
+                row->message[0] ? row->message : "-", row->exit_code, now);
+        if (isfinite(row->q[SQ_CPU_S])) fprintf(f, "cpu_s: %.3f\n", row->q[SQ_CPU_S]);
+        if (isfinite(row->q[SQ_WALL_S])) fprintf(f, "wall_s: %.3f\n", row->q[SQ_WALL_S]);
+    } else {
+        fprintf(f, "status: running\n");
+    }
+    if (fclose(f) == 0) {
+        char path[SWEEP_DIR_SIZE + 16];
+        snprintf(path, sizeof path, "%s/case.txt", dir);
+        sweep_save_atomic(path, buf, len); /* a record: its failure is not the case's */
+    }
+    free(buf);
+}
+
+/* The crane's command line, for case.txt (arguments with spaces quoted). */
+static void format_command(char *const *argv, char *buf, size_t size)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int i = 0; argv[i] && n < size; i++) {
+        int plain = argv[i][0] && !strpbrk(argv[i], " \t'\"\\$`!*?;&|<>()");
+        int k = snprintf(buf + n, size - n, "%s%s%s%s", i ? " " : "", plain ? "" : "'", argv[i],
+                         plain ? "" : "'");
+        if (k < 0) break;
+        n += (size_t)k;
+    }
+}
+
+int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
+{
+    const sweep_spec *s = r->spec;
+    char dir[SWEEP_DIR_SIZE], msg[SWEEP_DIR_SIZE + 64], path[SWEEP_DIR_SIZE + 32];
+    sweep_case_dir(r, index, dir, sizeof dir);
+    memset(p, 0, sizeof *p);
+    p->index = index;
+    snprintf(p->dir, sizeof p->dir, "%s", dir);
+    if (sweep_make_folder(dir, msg, sizeof msg) != 0) {
+        p->out.errno_start = errno ? errno : EIO;
+        return -1;
+    }
+    /* the crane writes its status.txt first thing; an older one must not stand for this run */
+    for (int i = 0; i < 2; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, i ? "case.txt" : "status.txt");
+        unlink(path);
+    }
+    char sets[SWEEP_MAX_SETS][SWEEP_SET_ARG_SIZE];
+    int nsets = sweep_case_set_args(s, index, sets);
+    char *argv[2 * SWEEP_MAX_SETS + 16];
+    int a = 0;
+    argv[a++] = r->crane;
+    argv[a++] = (char *)s->scene_path;
+    argv[a++] = "--out";
+    argv[a++] = dir;
+    if (!s->case_figures) argv[a++] = "--no-plots";
+    for (int i = 0; i < nsets; i++) {
+        argv[a++] = "--set";
+        argv[a++] = sets[i];
+    }
+    argv[a] = NULL;
+    char command[8192];
+    format_command(argv, command, sizeof command);
+    write_case_txt(r, index, dir, command, NULL);
+    return sweep_proc_start(p, index, r->crane, argv, dir, r->time_limit);
+}
+
+void sweep_case_finish(sweep_run *r, const sweep_proc *p, sweep_row *row)
+{
+    sweep_row_read(row, p->index, p->dir, &p->out);
+    write_case_txt(r, p->index, p->dir, NULL, row);
+}
+
+void sweep_record(sweep_run *r, const sweep_row *row, int from_rank)
+{
+    if (row->index < 0 || row->index >= r->spec->ncases) return;
+    r->rows[row->index] = *row;
+    if (!r->have[row->index]) r->ndone++;
+    r->have[row->index] = 1;
+    char line[16384];
+    int n = sweep_csv_row(r->spec, row, line, sizeof line);
+    if (n > 0 && r->csv_fd >= 0 && !r->write_failed) {
+        /* one write per row, O_APPEND: the file holds whole rows; a short write is cut back */
+        off_t size = lseek(r->csv_fd, 0, SEEK_END);
+        ssize_t w;
+        do
+            w = write(r->csv_fd, line, (size_t)n);
+        while (w < 0 && errno == EINTR);
+        if (w != n) {
+            int e = w < 0 ? errno : ENOSPC;
+            if (size >= 0 && ftruncate(r->csv_fd, size) != 0) {
+            }
+            r->write_failed = 1;
+            snprintf(r->write_msg, sizeof r->write_msg, "cannot write %s/sweep.csv: %s", r->outdir,
+                     strerror(e));
+            fprintf(stderr,
+                    "crane-sweep: %s (the rows stay in memory and are written at the "
+                    "end)\n",
+                    r->write_msg);
+        }
+    }
+    if (r->quiet) return;
+    const sweep_spec *s = r->spec;
+    char params[1024] = "";
+    size_t len = 0;
+    for (int p = 0; p < s->nparams && len < sizeof params; p++)
+        len += (size_t)snprintf(params + len, sizeof params - len, "%s%s=%s", p ? " " : "",
+                                s->params[p].name, sweep_case_value(s, row->index, p));
+    char where[32] = "";
+    if (r->size > 1) snprintf(where, sizeof where, " (rank %d)", from_rank);
+    printf("[%ld/%ld] case %ld %s: %s%s%s", r->ndone, s->ncases, row->index, params,
+           sweep_status_name(row->status), row->message[0] ? ": " : "", row->message);
+    if (isfinite(row->q[SQ_WALL_S])) printf(", %.1f s", row->q[SQ_WALL_S]);
+    printf("%s\n", where);
+    fflush(stdout);
+}
+
+static void sleep_ms(int ms)
+{
+    struct timespec ts = {0, (long)ms * 1000000L};
+    nanosleep(&ts, NULL);
+}
+
+void sweep_engine_local(sweep_run *r)
+{
+    int jobs = r->jobs;
+    sweep_proc *slots = calloc((size_t)jobs, sizeof *slots);
+    if (!slots) {
+        fprintf(stderr, "crane-sweep: out of memory\n");
+        return;
+    }
+    long next = 0;
+    int stopping = 0, hard = 0;
+    for (;;) {
+        int busy = 0, events = 0;
+        if (sweep_signal && !stopping) stopping = 1;
+        if (sweep_signal_count > 1) hard = 1;
+        for (int j = 0; j < jobs; j++)
+            if (slots[j].pid > 0 && stopping) sweep_proc_stop(&slots[j], (int)sweep_signal, hard);
+        for (int j = 0; j < jobs; j++) {
+            sweep_proc *p = &slots[j];
+            if (p->pid > 0 && sweep_proc_poll(p)) {
+                sweep_row row;
+                sweep_case_finish(r, p, &row);
+                sweep_record(r, &row, 0);
+                events++;
+            }
+            if (p->pid <= 0 && !stopping && next < r->nqueue) {
+                long index = r->queue[next++];
+                r->nrun++;
+                if (sweep_case_start(r, p, index) != 0) {
+                    sweep_row row;
+                    sweep_case_finish(r, p, &row);
+                    sweep_record(r, &row, 0);
+                }
+                events++;
+            }
+            busy += p->pid > 0;
+        }
+        if (!busy && (stopping || next >= r->nqueue)) break;
+        if (!events) sleep_ms(10);
+    }
+    free(slots);
+}

@@ -1,0 +1,71 @@
+/* The engines of crane-sweep: the cases to run are handed to crane processes (sweep_proc.h),
+ * each in its folder OUT/cases/NNNN/; each finished case makes one row (sweep_row.h), which the
+ * process that keeps the rows (the only one locally, rank 0 under MPI) records and appends to
+ * sweep.csv at once.
+ *
+ *   local  --jobs N processes at a time, started from one queue in case order.
+ *   MPI    (sweep_mpi.c, built with MPI) rank 0 holds the queue and hands out one case at a time
+ *          to each rank that asks (itself included), so that a long case holds up only its own
+ *          rank; the ranks send their rows back to rank 0. Every rank runs its cases as crane
+ *          processes of its own, --jobs at a time (default 1), in the shared output folder.
+ *
+ * A signal to the sweep (SIGINT, SIGTERM, SIGHUP; under MPI to any rank, which rank 0 passes on)
+ * stops the start of new cases and passes SIGTERM on to the running ones (a second signal:
+ * SIGKILL); they end as "interrupted" rows, the cases not started as "not_run" rows. */
+#ifndef SWEEP_ENGINE_H
+#define SWEEP_ENGINE_H
+
+#include <signal.h>
+
+#include "sweep_proc.h"
+#include "sweep_row.h"
+#include "sweep_spec.h"
+
+#define SWEEP_MAX_JOBS 1024
+
+/* the first signal received and how many (set by the handler in crane_sweep.c) */
+extern volatile sig_atomic_t sweep_signal, sweep_signal_count;
+
+typedef struct sweep_run {
+    const sweep_spec *spec;
+    char outdir[SWEEP_PATH_SIZE]; /* absolute */
+    char crane[SWEEP_PATH_SIZE];  /* the crane program */
+    double time_limit;            /* s per case, 0: none */
+    int jobs, quiet;
+    int rank, size; /* MPI rank and size (0, 1 locally) */
+    /* the keeper of the rows (rank 0) */
+    sweep_row *rows; /* ncases */
+    char *have;      /* ncases: the row is there */
+    long ndone, nrun;
+    long *queue; /* cases to run, in order */
+    long nqueue;
+    int csv_fd; /* sweep.csv (appended) */
+    int write_failed;
+    char write_msg[SWEEP_PATH_SIZE + 256];
+    double t0;
+} sweep_run;
+
+/* The folder of case index: OUT/cases/NNNN (at least 4 digits). */
+void sweep_case_dir(const sweep_run *r, long index, char *buf, size_t size);
+/* Prepares the case's folder (created, the old status.txt and case.txt removed, case.txt
+ * "running" written) and starts its crane process in p. 0, or -1 when it could not be started
+ * (p->out says why; the case is over). */
+int sweep_case_start(sweep_run *r, sweep_proc *p, long index);
+/* The row of the case whose process p has ended; case.txt final. */
+void sweep_case_finish(sweep_run *r, const sweep_proc *p, sweep_row *row);
+/* Keeps the row (rank 0) and appends it to sweep.csv; prints a line unless quiet. */
+void sweep_record(sweep_run *r, const sweep_row *row, int from_rank);
+
+/* The local engine: every case of the queue. */
+void sweep_engine_local(sweep_run *r);
+#ifdef CRANE_SWEEP_MPI
+/* The MPI engine (every rank calls it; MPI initialised). */
+void sweep_engine_mpi(sweep_run *r);
+#endif
+
+/* Writes text to path atomically (path.tmp, fsync, rename). 0, or -1 with errno. */
+int sweep_save_atomic(const char *path, const char *text, size_t len);
+/* Creates dir and its parents. 0, or -1 with the reason in msg. */
+int sweep_make_folder(const char *dir, char *msg, size_t size);
+
+#endif
