@@ -43,13 +43,19 @@
         }                                                                                          \
     } while (0)
 
-/* The check of the nominal-scale setters of the components: BG_OK if every one of the n values
- * is finite and >= 0 (0: not stated) and the model is still being built; else the status, with
- * a message naming the element (where) and the setter (what). */
-static inline int cmp_check_scales(bgr_model *m, const bgr_element *el, const char *what,
-                                   const double *v, int n)
+/* The check of the nominal-scale setters of the components: element id must be of class cls
+ * (kind names it in the message), the model still being built, and every one of the n values
+ * finite and >= 0 (0: not stated). BG_OK with *params the element's parameters, else the status
+ * with a message naming the element and the setter (what). */
+static inline int cmp_check_scales(bgr_model *m, int id, const bgr_element_class *cls,
+                                   const char *kind, const char *what, const double *v, int n,
+                                   void **params)
 {
     if (!m) return BG_ERR_ARGUMENT;
+    bgr_element *el = bgr_element_get(m, id);
+    if (!el || el->cls != cls)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, what,
+                              "element %d is not %s", id, kind);
     if (bgr_nvars(m) > 0)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_STATE, what,
                               "element %s/%s: the model is compiled: state nominal scales "
@@ -61,6 +67,7 @@ static inline int cmp_check_scales(bgr_model *m, const bgr_element *el, const ch
                                   "element %s/%s: nominal scale %g must be finite and >= 0 "
                                   "(0: not stated)",
                                   bgr_component_path(m, el->comp), el->name, v[i]);
+    *params = el->params;
     return BG_OK;
 }
 

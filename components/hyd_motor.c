@@ -131,15 +131,12 @@ int hyd_motor(bgr_model *m, bgr_comp c, const char *name, double D, double Cl, d
 
 int hyd_motor_set_nominal(bgr_model *m, int id, double pressure, double speed)
 {
-    bgr_element *el = bgr_element_get(m, id);
-    if (!el || el->cls != &hyd_class_motor)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_motor_set_nominal",
-                              "element %d is not a hydraulic motor", id);
     double v[2] = {pressure, speed};
-    int st = cmp_check_scales(m, el, "hyd_motor_set_nominal", v, 2);
+    void *q;
+    int st = cmp_check_scales(m, id, &hyd_class_motor, "a hydraulic motor",
+                              "hyd_motor_set_nominal", v, 2, &q);
     if (st != BG_OK) return st;
-    motor *q = el->params;
-    q->p_nom = pressure;
-    q->w_nom = speed;
+    ((motor *)q)->p_nom = pressure;
+    ((motor *)q)->w_nom = speed;
     return BG_OK;
 }

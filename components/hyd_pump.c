@@ -139,15 +139,12 @@ int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl, b
 
 int hyd_pump_set_nominal(bgr_model *m, int id, double pressure, double speed)
 {
-    bgr_element *el = bgr_element_get(m, id);
-    if (!el || el->cls != &hyd_class_pump)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_pump_set_nominal",
-                              "element %d is not a hydraulic pump", id);
     double v[2] = {pressure, speed};
-    int st = cmp_check_scales(m, el, "hyd_pump_set_nominal", v, 2);
+    void *q;
+    int st = cmp_check_scales(m, id, &hyd_class_pump, "a hydraulic pump", "hyd_pump_set_nominal",
+                              v, 2, &q);
     if (st != BG_OK) return st;
-    pump *q = el->params;
-    q->p_nom = pressure;
-    q->w_nom = speed;
+    ((pump *)q)->p_nom = pressure;
+    ((pump *)q)->w_nom = speed;
     return BG_OK;
 }

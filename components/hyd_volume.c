@@ -149,12 +149,10 @@ int hyd_volume(bgr_model *m, bgr_comp c, const char *name, int nports, double V,
 
 int hyd_volume_set_nominal(bgr_model *m, int id, double pressure)
 {
-    bgr_element *el = bgr_element_get(m, id);
-    if (!el || el->cls != &hyd_class_volume)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "hyd_volume_set_nominal",
-                              "element %d is not a hydraulic volume", id);
-    int st = cmp_check_scales(m, el, "hyd_volume_set_nominal", &pressure, 1);
+    void *q;
+    int st = cmp_check_scales(m, id, &hyd_class_volume, "a hydraulic volume",
+                              "hyd_volume_set_nominal", &pressure, 1, &q);
     if (st != BG_OK) return st;
-    ((volume *)el->params)->p_nom = pressure;
+    ((volume *)q)->p_nom = pressure;
     return BG_OK;
 }

@@ -107,12 +107,10 @@ int rot_inertia(bgr_model *m, bgr_comp c, const char *name, double J)
 
 int rot_inertia_set_nominal(bgr_model *m, int id, double speed)
 {
-    bgr_element *el = bgr_element_get(m, id);
-    if (!el || el->cls != &rot_class_inertia)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "rot_inertia_set_nominal",
-                              "element %d is not a rotational inertia", id);
-    int st = cmp_check_scales(m, el, "rot_inertia_set_nominal", &speed, 1);
+    void *q;
+    int st = cmp_check_scales(m, id, &rot_class_inertia, "a rotational inertia",
+                              "rot_inertia_set_nominal", &speed, 1, &q);
     if (st != BG_OK) return st;
-    ((inertia *)el->params)->w_nom = speed;
+    ((inertia *)q)->w_nom = speed;
     return BG_OK;
 }
