@@ -132,7 +132,7 @@ int hyd_motor(bgr_model *m, bgr_comp c, const char *name, double D, double Cl, d
 int hyd_motor_set_nominal(bgr_model *m, int id, double pressure, double speed)
 {
     double v[2] = {pressure, speed};
-    void *q;
+    void *q = NULL;
     int st = cmp_check_scales(m, id, &hyd_class_motor, "a hydraulic motor",
                               "hyd_motor_set_nominal", v, 2, &q);
     if (st != BG_OK) return st;

@@ -140,7 +140,7 @@ int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl, b
 int hyd_pump_set_nominal(bgr_model *m, int id, double pressure, double speed)
 {
     double v[2] = {pressure, speed};
-    void *q;
+    void *q = NULL;
     int st = cmp_check_scales(m, id, &hyd_class_pump, "a hydraulic pump", "hyd_pump_set_nominal",
                               v, 2, &q);
     if (st != BG_OK) return st;

@@ -149,7 +149,7 @@ int hyd_volume(bgr_model *m, bgr_comp c, const char *name, int nports, double V,
 
 int hyd_volume_set_nominal(bgr_model *m, int id, double pressure)
 {
-    void *q;
+    void *q = NULL;
     int st = cmp_check_scales(m, id, &hyd_class_volume, "a hydraulic volume",
                               "hyd_volume_set_nominal", &pressure, 1, &q);
     if (st != BG_OK) return st;

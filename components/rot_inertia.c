@@ -107,7 +107,7 @@ int rot_inertia(bgr_model *m, bgr_comp c, const char *name, double J)
 
 int rot_inertia_set_nominal(bgr_model *m, int id, double speed)
 {
-    void *q;
+    void *q = NULL;
     int st = cmp_check_scales(m, id, &rot_class_inertia, "a rotational inertia",
                               "rot_inertia_set_nominal", &speed, 1, &q);
     if (st != BG_OK) return st;
