@@ -101,7 +101,7 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
     bc->ext_free = free_crane;
     if (settle) {
         bg_error_clear(&err);
-        int r = crane_settle(c, &err);
+        int r = settle == BENCH_SETTLE_DAMPED ? crane_settle_damped(c, &err) : crane_settle(c, &err);
         if (r != BG_OK) {
             snprintf(msg, msz, "settling the crane: %s", err.message);
             bench_case_free(bc);

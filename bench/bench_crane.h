@@ -20,6 +20,9 @@
  * largest). Drift: the hinge mismatch (output constraint_drift). No reference yet (yref NULL).
  * Our stability guard off (bc->stability_guard 0): a caller that runs the crane as the crane
  * program does sets it from the scene. 0, or a negative status with the message in msg. */
+/* settle: 0 the geometric start, 1 the static start (crane_settle), BENCH_SETTLE_DAMPED the
+ * damped settling run the crane started from before the static solver (crane_settle_damped) */
+#define BENCH_SETTLE_DAMPED 2
 int bench_crane_case(bench_case *bc, const crane_scene *s, int settle, double tend,
                      const char *name, char *msg, size_t msz);
 

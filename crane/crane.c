@@ -4,10 +4,16 @@
  *   crane [SCENE] [--out DIR] [--t-end T] [--rtol R] [--atol A] [--elements N]
  *         [--output-step DT] [--max-rows N] [--set SECTION.KEY=VALUE]... [--no-plots]
  *         [--quiet] [--help] [--version] [--vtk] [--vtk-step DT] [--animate]
- *         [--anim-step DT] [--anim-scale K]
+ *         [--anim-step DT] [--anim-scale K] [--static] [--modes [T]]
+ *
+ * --static and --modes replace the dynamic run by the analyses of crane/crane_static.h: the
+ * static equilibrium (equilibrium.csv, static.txt) and the modes at time T (modes.csv, modes.gp,
+ * modes.png). A static start whose checks fail (scene keys that cannot be met together) ends
+ * with exit status 2, status.txt and static.txt naming the keys.
  *
  * Flow: scene file (crane_scene_load) -> command-line overrides -> crane_build -> static
- * equilibrium (crane_settle, if the scene asks) -> bgr_dae_problem -> bg_dae (rtol, atol, stop at
+ * equilibrium (crane_static_start, if the scene asks: the static solver, the ties corrected, the
+ * start verified, static.txt) -> bgr_dae_problem -> bg_dae (rtol, atol, stop at
  * t_end, the reference's corners as breakpoints, algebraic variables out of the error test) ->
  * consistent initial values -> dae_step up to each output time, one CSV row there
  * (crane_outputs), buffered -> statistics, figures (gnuplot, skipped when it is missing), summary.
@@ -47,6 +53,7 @@
 
 #include "crane_model.h"
 #include "crane_scene.h"
+#include "crane_static.h"
 #include "crane_viz.h"
 
 #ifndef CRANE_VERSION
@@ -151,6 +158,10 @@ static const char *USAGE =
     "                       beyond it is refused\n"
     "  --set SEC.KEY=VALUE  set any scene key, e.g. --set hydraulics.enabled=false\n"
     "  --no-plots           do not draw the figures\n"
+    "  --static             the static equilibrium only: equilibrium.csv and static.txt (the\n"
+    "                       checks of the start), no dynamic run\n"
+    "  --modes [T]          the modes at time T (default 0: the static start) instead of the\n"
+    "                       run: modes.csv, modes.gp, modes.png (frequency against damping)\n"
     "  --quiet              no progress line and no summary (errors only)\n"
     CRANE_VIZ_USAGE
     "  --help               this text\n"
@@ -161,11 +172,14 @@ static const char *USAGE =
     "model_stats.txt, solver_stats.txt, scene.ini (the scene as run), plots.gp,\n"
     "fig5a.png .. "
     "fig5f.png (with gnuplot); crane.pvd, vtk/ (--vtk); anim.dat, anim_track.dat, anim.gp,\n"
-    "crane.gif, crane_frame.png (--animate).\n"
+    "crane.gif, crane_frame.png (--animate); static.txt (the checks of the static start);\n"
+    "equilibrium.csv (--static); modes.csv, modes.gp, modes.png (--modes).\n"
     "The results and figures of an earlier run in DIR are removed at the start.\n"
     "SIGINT, SIGTERM and SIGHUP stop the run within a step; status.txt says so.\n"
     "exit status: 0 completed, 1 the run failed or a file could not be written, 2 bad\n"
-    "command line or scene file (nothing written), 128 + N interrupted by signal N.\n";
+    "command line or scene file (nothing written), or scene keys that cannot be met together\n"
+    "(found at the static start: status.txt and static.txt say which), 128 + N interrupted by\n"
+    "signal N.\n";
 
 /* ------------------------------------------------------------ command line ---- */
 
@@ -180,6 +194,8 @@ typedef struct options {
     set_item sets[MAX_SETS];
     int nsets;
     int no_plots, quiet;
+    int static_only, modes; /* --static, --modes [T] (crane_static.h) */
+    double modes_t;
     crane_viz_options viz; /* --vtk, --animate (crane_viz.h) */
     long long max_rows;    /* --max-rows */
     int argc;              /* the command line, for status.txt */
@@ -223,7 +239,7 @@ static int parse_args(int argc, char **argv, options *o)
                   {"--anim-step", NULL, NULL},
                   {"--anim-scale", NULL, NULL}};
     static const char *flags[] = {"--no-plots", "--quiet", "--help", "--version", "--vtk",
-                                  "--animate"};
+                                  "--animate", "--static", "--modes"};
     const int nvalued = (int)(sizeof valued / sizeof *valued),
               nflags = (int)(sizeof flags / sizeof *flags);
     int positional_only = 0;
@@ -253,13 +269,32 @@ static int parse_args(int argc, char **argv, options *o)
         memcpy(name, a, n);
         name[n] = '\0';
         int found = 0;
+        if (!strcmp(name, "--modes")) { /* --modes [T]: an optional time */
+            const char *tv = eq ? eq + 1 : NULL;
+            if (!tv && i + 1 < argc && argv[i + 1][0] != '-') {
+                char *end;
+                (void)strtod(argv[i + 1], &end);
+                if (end != argv[i + 1] && !*end) tv = argv[++i];
+            }
+            o->modes = 1;
+            if (tv) {
+                char *end;
+                o->modes_t = strtod(tv, &end);
+                if (!*tv || *end || !(o->modes_t >= 0) || isinf(o->modes_t) || strchr(tv, 'x') ||
+                    strchr(tv, 'X'))
+                    return usage_error("option --modes needs a time >= 0 in s (got '%s')%s", tv,
+                                       "");
+            }
+            continue;
+        }
         for (int k = 0; k < nflags && !found; k++)
             if (!strcmp(name, flags[k])) {
                 found = 1;
                 if (eq) return usage_error("option %s takes no value (got '%s')", name, eq + 1);
                 if (k == 0) o->no_plots = 1;
                 if (k == 1) o->quiet = 1;
-                if (k >= 4) crane_viz_option(&o->viz, name, NULL);
+                if (k == 4 || k == 5) crane_viz_option(&o->viz, name, NULL);
+                if (k == 6) o->static_only = 1;
                 if (k == 2) {
                     fputs(USAGE, stdout);
                     return EXIT_OK;
@@ -594,6 +629,7 @@ typedef struct run {
     double reach; /* largest |tip_x - A_x|, |tip_y - A_y| */
     int have_final;
     crane_viz *viz; /* --vtk, --animate (crane_viz.h); NULL when off */
+    int bad_scene;  /* the static start found scene keys that cannot be met together: exit 2 */
 } run;
 
 static void local_time(char *buf, size_t size)
@@ -932,7 +968,7 @@ static int print_scene_copy(run *r, FILE *f, const void *ctx)
 
 /* Runs gnuplot (exe) on plots.gp in the output folder, its messages into gnuplot.log. Stops it
  * when a signal comes. Its wait status, or -1 (with errno) if it could not be started. */
-static int run_gnuplot(run *r, const char *exe)
+static int run_gnuplot(run *r, const char *exe, const char *script)
 {
     sigset_t block, old;
     sigemptyset(&block);
@@ -952,7 +988,7 @@ static int run_gnuplot(run *r, const char *exe)
             fe = open("gnuplot.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
         if (fo < 0 || fe < 0 || dup2(fo, STDOUT_FILENO) < 0 || dup2(fe, STDERR_FILENO) < 0)
             _exit(126);
-        execl(exe, "gnuplot", "plots.gp", (char *)NULL);
+        execl(exe, "gnuplot", script, (char *)NULL);
         _exit(127);
     }
     int e = errno;
@@ -1022,7 +1058,7 @@ static int draw_figures(run *r)
         if (!r->o->quiet) printf("gnuplot not found: figures skipped (plots.gp written)\n");
         return 0;
     }
-    int st = run_gnuplot(r, exe), rc = 0;
+    int st = run_gnuplot(r, exe, "plots.gp"), rc = 0;
     if (st == -1) {
         rc = fail_run(r, "drawing the figures: cannot start gnuplot", strerror(errno));
     } else {
@@ -1099,6 +1135,114 @@ static void set_phase(run *r, int phase, const char *what)
     if (phase == PHASE_SETUP && g_signal) on_signal((int)g_signal); /* arrived just before */
 }
 
+/* static.txt, equilibrium.csv, modes.csv and modes.gp (crane_static.h) */
+static int print_start(run *r, FILE *f, const void *ctx)
+{
+    (void)r;
+    return crane_start_print(ctx, f);
+}
+
+static int print_equilibrium(run *r, FILE *f, const void *ctx)
+{
+    return crane_equilibrium_write(r->c, ctx, f);
+}
+
+static int print_modes(run *r, FILE *f, const void *ctx)
+{
+    (void)r;
+    return crane_modes_write(ctx, f);
+}
+
+static int print_modes_plot(run *r, FILE *f, const void *ctx)
+{
+    return crane_modes_plot_script(ctx, r->scene.name, r->o->modes_t, f);
+}
+
+/* The static start (crane_static_start) with its checks in static.txt, and with --static
+ * equilibrium.csv. Scene keys that cannot be met together end the run with exit 2. 0 or an exit
+ * status. */
+static int static_start(run *r)
+{
+    static crane_start_report rep;
+    bg_error err = {0};
+    int rc = crane_static_start(r->c, &rep, &err);
+    if (rc != BG_OK && rc != CRANE_ERR_START) return fail_run(r, "the static start", err.message);
+    if (save_file(r, "static.txt", print_start, &rep) != 0) return EXIT_RUN;
+    if (r->o->static_only && save_file(r, "equilibrium.csv", print_equilibrium, &rep) != 0)
+        return EXIT_RUN;
+    if (rc == CRANE_ERR_START) {
+        r->bad_scene = 1;
+        fail_run(r, "the static start", err.message);
+        return EXIT_USAGE;
+    }
+    if (!r->o->quiet && (r->o->static_only || r->o->modes))
+        printf("crane: static start verified in %.3f s (%d static solves): tip radius %.9g m, "
+               "ties' unstretched length %.9g m, kinetic energy %.2g J\n",
+               rep.seconds, rep.solves, rep.radius, rep.tie_L0, rep.kinetic);
+    return 0;
+}
+
+static int run_gnuplot(run *r, const char *exe, const char *script);
+static int find_gnuplot(char *buf, size_t size);
+static int png_whole(const char *path);
+
+/* crane --static, crane --modes [T]: the analyses instead of the dynamic run. */
+static int analyse(run *r)
+{
+    bg_error err = {0};
+    r->c = crane_build(&r->scene, &err);
+    if (!r->c) return fail_run(r, "building the model", err.message);
+    if (save_file(r, "model_stats.txt", print_model_stats, NULL) != 0) return EXIT_RUN;
+    set_phase(r, PHASE_SETUP, "finding the static equilibrium");
+    int rc = static_start(r);
+    if (rc != 0) return rc;
+    if (r->o->modes) {
+        set_phase(r, PHASE_SETUP, "computing the modes");
+        dae_modes *M = NULL;
+        double t0 = wall_now();
+        rc = crane_modes(r->c, r->o->modes_t, &M, NULL, &err);
+        if (rc != BG_OK && rc != DAE_CONV_FAIL) {
+            dae_modes_free(&M);
+            return fail_run(r, "the modes", err.message);
+        }
+        r->t = r->o->modes_t;
+        int ne = 0, nr = 0, nc = 0, method = 0;
+        dae_modes_info(M, &ne, &nr, &nc, NULL, NULL, &method);
+        if (save_file(r, "modes.csv", print_modes, M) != 0 ||
+            save_file(r, "modes.gp", print_modes_plot, M) != 0) {
+            dae_modes_free(&M);
+            return EXIT_RUN;
+        }
+        if (!r->o->quiet) {
+            printf("crane: %d elastic, %d rigid, %d constraint modes at t = %g s (%s, %.3f s)\n",
+                   ne, nr, nc, r->o->modes_t,
+                   method == DAE_MODES_DENSE ? "dense" : "lowest 20 by ARPACK",
+                   wall_now() - t0);
+            for (int k = 0; k < dae_modes_count(M) && k < 5; k++) {
+                const dae_mode *md = dae_modes_get(M, k);
+                char d[256];
+                dae_modes_describe(M, k, 2, 2, 0, d, sizeof d);
+                printf("  mode %d: %.6g Hz, damping ratio %.3g, %s\n", k + 1, md->freq_hz,
+                       md->damping, d);
+            }
+        }
+        dae_modes_free(&M);
+        char exe[PATH_SIZE], png[PATH_SIZE];
+        if (!r->o->no_plots && find_gnuplot(exe, sizeof exe)) {
+            int gs = run_gnuplot(r, exe, "modes.gp");
+            path_in(r, "modes.png", png, sizeof png);
+            if (gs == -1 || !WIFEXITED(gs) || WEXITSTATUS(gs) != 0 || !png_whole(png))
+                return fail_run(r, "drawing modes.png", "gnuplot failed (see gnuplot.log)");
+            char log[PATH_SIZE];
+            struct stat sb;
+            path_in(r, "gnuplot.log", log, sizeof log);
+            if (stat(log, &sb) == 0 && sb.st_size == 0) remove(log);
+        }
+    }
+    r->status = "completed";
+    return 0;
+}
+
 static int simulate(run *r)
 {
     const options *o = r->o;
@@ -1117,9 +1261,8 @@ static int simulate(run *r)
     if (r->scene.static_start) {
         if (tty) fprintf(stderr, "crane: static equilibrium under gravity\n");
         set_phase(r, PHASE_SETUP, "finding the static equilibrium");
-        bg_error_clear(&err);
-        int rc = crane_settle(r->c, &err);
-        if (rc != BG_OK) return fail_run(r, "settling", err.message);
+        int rc = static_start(r);
+        if (rc != 0) return rc;
     }
     bgr_model *m = crane_model(r->c);
     dae_problem p;
@@ -1339,6 +1482,7 @@ static const char *const RUN_FILES[] = {
     "gnuplot.log", "fig5a.png",       "fig5b.png",        "fig5c.png",       "fig5d.png",
     "fig5e.png",   "fig5f.png",       "crane.pvd",        "anim.dat",        "anim_track.dat",
     "anim.gp",     "anim.log",        "crane.gif",        "crane_frame.png", "status.txt",
+    "static.txt",  "equilibrium.csv", "modes.csv",        "modes.gp",        "modes.png",
     NULL};
 
 static int remove_old_outputs(run *r)
@@ -1504,7 +1648,7 @@ int main(int argc, char **argv)
     g_status_ready = 1;
     set_phase(&r, PHASE_SETUP, "preparing the output folder");
     if (remove_old_outputs(&r) == 0 && save_file(&r, "scene.ini", print_scene_copy, NULL) == 0)
-        simulate(&r);
+        (o.static_only || o.modes ? analyse : simulate)(&r);
     g_phase = PHASE_OTHER;
     arm_finishing(&r);
 
@@ -1532,5 +1676,6 @@ int main(int argc, char **argv)
     free(r.csv_buf);
     return !strcmp(r.status, "completed")     ? EXIT_OK
            : !strcmp(r.status, "interrupted") ? 128 + r.sig
+           : r.bad_scene                      ? EXIT_USAGE
                                               : EXIT_RUN;
 }

@@ -689,7 +689,9 @@ static double tip_radius(const crane *c, const double *y, double *tip)
     return hypot(tip[0] - c->s.joint_A[0], tip[1] - c->s.joint_A[1]);
 }
 
-int crane_settle(crane *c, bg_error *err)
+/* The damped settling run, the static start before the static solver (crane_static.c); kept for
+ * comparison (crane_settle_damped in crane_model.h). */
+int crane_settle_damped(crane *c, bg_error *err)
 {
     crane *sc = NULL;
     double *y = NULL, L0 = c->tie_L0, R = c->s.boom_tip_radius;
@@ -745,6 +747,36 @@ done:
     free(y);
     crane_free(&sc);
     return status;
+}
+
+/* Hooks of the static start (crane_static.c). */
+crane *crane_build_ties(const crane_scene *s, double tie_L0, bg_error *err)
+{
+    return build(s, 0, tie_L0, err);
+}
+
+void crane_replace(crane *c, crane **from)
+{
+    if (!c || !from || !*from) return;
+    bgr_model_free(&c->m);
+    *c = **from;
+    free(*from);
+    *from = NULL;
+}
+
+void crane_tip_foot(const crane *c, const double *y, double *tip, double *foot)
+{
+    boom_ends(c, y, tip, foot);
+}
+
+void crane_set_reference_tip(crane *c)
+{
+    tip_radius(c, bgr_y0(c->m), c->tip0);
+}
+
+const crane_scene *crane_get_scene(const crane *c)
+{
+    return c ? &c->s : NULL;
 }
 
 const char *const crane_output_names[CRANE_NOUT] = {"t [s]",

@@ -92,13 +92,27 @@ bgr_model *crane_model(crane *c);
 /* Breakpoints of the reference in (0, t_end] (at most max), count returned. */
 int crane_breakpoints(const crane *c, double *t, int max);
 
-/* Static equilibrium under gravity at theta = 0 with the platform held (drive rate 0; extra
- * damping in boom, ties, rope and on the load, 60 s of simulated settling): the ties' unstretched
- * length is corrected until the settled boom tip is at boom_tip_radius from the axis (to 1e-5
- * relative), the model is rebuilt with it (call crane_model again afterwards) and the settled
- * state becomes its initial values (bgr_y0). The deflection outputs are measured from this
- * static tip. Returns BG_OK or a status with err. */
+/* Static equilibrium under gravity at t = 0 (the model itself at rest: the drive holds the
+ * platform, everything else in equilibrium), found by the static solver with the ties'
+ * unstretched length corrected until the tip is at boom_tip_radius from the axis, then verified
+ * (crane_static.h: crane_static_start, of which this is the short form; the errors name the
+ * scene keys that cannot be met together, status CRANE_ERR_START). The model is rebuilt with
+ * the corrected ties (call crane_model again afterwards) and the equilibrium becomes its initial
+ * values (bgr_y0); the deflection outputs are measured from this static tip. BG_OK or a status
+ * with err. */
 int crane_settle(crane *c, bg_error *err);
+/* The same by a damped settling run (the start before the static solver, kept for comparison):
+ * the platform held by a zero drive rate, extra damping in boom, ties, rope and on the load, 60
+ * s of simulated settling, the ties corrected to 1e-5 of the radius; no verification. */
+int crane_settle_damped(crane *c, bg_error *err);
+/* Hooks of the static start (crane_static.c): the model built with the ties' unstretched length
+ * tie_L0 (0: geometric); moving *from into c (c's model freed, *from NULL); boom tip and foot
+ * (global) at the state y; the deflection outputs' reference tip taken from bgr_y0; the scene. */
+crane *crane_build_ties(const crane_scene *s, double tie_L0, bg_error *err);
+void crane_replace(crane *c, crane **from);
+void crane_tip_foot(const crane *c, const double *y, double *tip, double *foot);
+void crane_set_reference_tip(crane *c);
+const crane_scene *crane_get_scene(const crane *c);
 /* Unstretched length of the ties (geometric until crane_settle corrects it); 0 without ties. */
 double crane_tie_length(const crane *c);
 

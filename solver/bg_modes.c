@@ -10,6 +10,8 @@
 
 #include "bg_jaceval.h"
 
+#include <klu.h>
+
 #ifdef BG_HAVE_ARPACK
 #include <arpack.h>
 #endif
@@ -24,7 +26,9 @@ void dgeevx_(const char *balanc, const char *jobvl, const char *jobvr, const cha
 static const double TWO_PI = 6.283185307179586476925286766559;
 
 struct dae_modes {
-    const dae_problem *p;
+    const dae_problem *p;       /* during dae_modes_compute only */
+    const char *const *names;   /* the problem's names (NULL: "y[i]") */
+    double *nominal;            /* copy of the problem's nominal magnitudes (NULL: 1) */
     int n, d, method;
     int *dif;         /* the d differential unknowns */
     double sigma;
@@ -57,7 +61,6 @@ int dae_modes_options_default(dae_modes_options *o)
     o->maxiter = 500;
     o->zero_tol = 1e-6;
     o->inf_tol = 1e-9;
-    o->semisimple_tol = 1e-4;
     o->linsol = LS_KLU;
     return BG_OK;
 }
@@ -67,6 +70,7 @@ void dae_modes_free(dae_modes **mp)
     if (!mp || !*mp) return;
     dae_modes *m = *mp;
     free(m->dif);
+    free(m->nominal);
     free(m->modes);
     free(m->vre);
     free(m->vim);
@@ -107,7 +111,14 @@ int dae_modes_vector(const dae_modes *m, int k, double *re, double *im)
 
 static double nominal(const dae_modes *m, int i)
 {
-    return m->p->nominal ? m->p->nominal[i] : 1.0;
+    return m->nominal ? m->nominal[i] : 1.0;
+}
+
+static const char *mlabel(const dae_modes *m, int i, char *buf, size_t size)
+{
+    if (m->names && m->names[i]) return m->names[i];
+    snprintf(buf, size, "y[%d]", i);
+    return buf;
 }
 
 /* Squared weighted amplitude of unknown i in mode k. */
@@ -127,7 +138,7 @@ double dae_modes_share(const dae_modes *m, int k, const char *prefix)
         int i = m->dif[j];
         double a = amp2(m, k, i);
         tot += a;
-        if (!strncmp(bg_var_label(m->p, i, nb, sizeof nb), prefix, lp)) in += a;
+        if (!strncmp(mlabel(m, i, nb, sizeof nb), prefix, lp)) in += a;
     }
     return tot > 0 ? in / tot : NAN;
 }
@@ -159,7 +170,7 @@ int dae_modes_describe(const dae_modes *m, int k, int depth, int ngroups, int to
         int i = m->dif[j];
         double a = amp2(m, k, i);
         tot += a;
-        const char *nm = bg_var_label(m->p, i, nb, sizeof nb);
+        const char *nm = mlabel(m, i, nb, sizeof nb);
         if (nm == nb) continue; /* unnamed */
         size_t l = prefix_len(nm, depth);
         int g = 0;
@@ -174,8 +185,9 @@ int dae_modes_describe(const dae_modes *m, int k, int depth, int ngroups, int to
     size_t len = 0;
 #define PUT(...)                                                                                   \
     do {                                                                                           \
-        int w_ = snprintf(buf ? buf + (len < size ? len : size) : NULL,                           \
-                          len < size ? size - len : 0, __VA_ARGS__);                               \
+        char nobuf_[1];                                                                            \
+        int w_ = snprintf(buf ? buf + (len < size ? len : size) : nobuf_,                          \
+                          buf && len < size ? size - len : 0, __VA_ARGS__);                        \
         if (w_ > 0) len += (size_t)w_;                                                             \
     } while (0)
     if (size) buf[0] = '\0';
@@ -206,7 +218,7 @@ int dae_modes_describe(const dae_modes *m, int k, int depth, int ngroups, int to
         }
         PUT("%s", len ? " |" : "|");
         for (int t = 0; t < nt; t++)
-            PUT(" %s", bg_var_label(m->p, idx[t], nb, sizeof nb));
+            PUT(" %s", mlabel(m, idx[t], nb, sizeof nb));
     }
 #undef PUT
     return (int)len;
@@ -293,14 +305,14 @@ static int add_mode(dae_modes *M, double re, double im, int kind, double rcond, 
     int ib = 0;
     for (int j = 0; j < M->d; j++) {
         int i = M->dif[j];
-        double s = M->p->nominal ? M->p->nominal[i] : 1.0;
+        double s = nominal(M, i);
         double a = hypot(zr[i], zi ? zi[i] : 0) / s;
         if (a > best) best = a, ib = i;
     }
     double complex f = 1.0;
     if (best > 0) {
         double complex zb = zr[ib] + I * (zi ? zi[ib] : 0);
-        double s = M->p->nominal ? M->p->nominal[ib] : 1.0;
+        double s = nominal(M, ib);
         f = conj(zb) / (cabs(zb) * cabs(zb)) * s;
     }
     double *vr = M->vre + (size_t)M->nmodes * M->n, *vi = M->vim + (size_t)M->nmodes * M->n;
@@ -376,6 +388,114 @@ static void sort_modes(dae_modes *M)
 
 /* ------------------------------------------------------------------- dense ---- */
 
+/* Which zero eigenvalues are defective (Jordan chains: rigid motions) and which semisimple
+ * (invariants: constraint modes). The zero eigenvalues of X A are mu0 = 1/sigma; their algebraic
+ * multiplicity m is the number of computed eigenvalues there, their geometric multiplicity g the
+ * dimension of the null space of C - mu0 I (singular values below 1e-10 of the largest, LAPACK
+ * dgesvd on a copy of C), and m - g Jordan chains of length 2 are the rigid motions. Rounding
+ * splits a chain into a pair +-delta (or +-i delta) of nearly parallel eigenvectors: the m - g
+ * pairs of eigenvectors at the smallest angles are the rigid ones. The reciprocal condition
+ * numbers of the eigenvalues tell the same in isolation, but not inside a cluster of dozens of
+ * semisimple zeros (the drift of every joint and member), where they fall to 1e-5 and where
+ * computed eigenvectors can be nearly parallel too; the multiplicities decide. rigid[j] = 1 for
+ * the eigenvalues (of wr, wi) that are rigid. */
+void dgesvd_(const char *jobu, const char *jobvt, const int *m, const int *n, double *a,
+             const int *lda, double *s, double *u, const int *ldu, double *vt, const int *ldvt,
+             double *work, const int *lwork, int *info, size_t l1, size_t l2);
+
+static double col_angle(const double *a, const double *b, int d)
+{
+    double ab = 0, aa = 0, bb = 0;
+    for (int i = 0; i < d; i++)
+        ab += a[i] * b[i], aa += a[i] * a[i], bb += b[i] * b[i];
+    if (!(aa > 0 && bb > 0)) return 0;
+    double c = fabs(ab) / sqrt(aa * bb);
+    return c >= 1 ? 0 : sqrt(1 - c * c);
+}
+
+static int rigid_analysis(const double *C0, const double *VR, const double *wr, const double *wi,
+                          int d, double sigma, double zero_tol, int *rigid)
+{
+    if (d < 1) return BG_OK;
+    int *zero = calloc((size_t)d, sizeof *zero), m = 0;
+    if (!zero) return BG_ERR_MEMORY;
+    for (int j = 0; j < d; j++) {
+        rigid[j] = 0;
+        double complex mu = wr[j] + I * wi[j];
+        if (cabs(mu) > 0 && cabs(sigma - 1.0 / mu) <= zero_tol * fabs(sigma)) zero[j] = 1, m++;
+    }
+    /* candidate pairs: complex pairs at zero (real and imaginary parts), and real pairs */
+    typedef struct pair {
+        int a, b;
+        double angle;
+    } pair;
+    int np = 0, cap = 16;
+    pair *P = malloc((size_t)cap * sizeof *P);
+    int st = BG_OK;
+    for (int j = 0; j < d && P; j++) {
+        if (!zero[j] || wi[j] < 0) continue;
+        for (int k = j + 1; k < d; k++) {
+            if (!(wi[j] > 0 ? k == j + 1 : zero[k] && wi[k] == 0)) continue;
+            double ang = col_angle(VR + (size_t)j * d, VR + (size_t)k * d, d);
+            if (ang >= 1e-4) continue;
+            if (np == cap) {
+                pair *q = realloc(P, 2 * (size_t)cap * sizeof *q);
+                if (!q) {
+                    free(P);
+                    P = NULL;
+                    break;
+                }
+                P = q, cap *= 2;
+            }
+            P[np++] = (pair){j, k, ang};
+        }
+    }
+    if (!P) st = BG_ERR_MEMORY;
+    if (st == BG_OK && np > 0) { /* the geometric multiplicity */
+        double *A = malloc((size_t)d * d * sizeof *A), *sv = malloc((size_t)d * sizeof *sv), wq;
+        int info = 0, lwork = -1, one = 1;
+        if (!A || !sv) {
+            st = BG_ERR_MEMORY;
+        } else {
+            memcpy(A, C0, (size_t)d * d * sizeof *A);
+            for (int i = 0; i < d; i++)
+                A[(size_t)i * d + i] -= 1.0 / sigma;
+            dgesvd_("N", "N", &d, &d, A, &d, sv, NULL, &one, NULL, &one, &wq, &lwork, &info, 1, 1);
+            lwork = info == 0 ? (int)wq : 5 * d;
+            double *work = malloc((size_t)lwork * sizeof *work);
+            if (!work) {
+                st = BG_ERR_MEMORY;
+            } else {
+                memcpy(A, C0, (size_t)d * d * sizeof *A);
+                for (int i = 0; i < d; i++)
+                    A[(size_t)i * d + i] -= 1.0 / sigma;
+                dgesvd_("N", "N", &d, &d, A, &d, sv, NULL, &one, NULL, &one, work, &lwork, &info,
+                        1, 1);
+                free(work);
+                int g = 0;
+                for (int i = 0; info == 0 && i < d; i++)
+                    g += sv[i] <= 1e-10 * sv[0];
+                int chains = info == 0 ? m - g : 0;
+                /* the pairs at the smallest angles, each eigenvalue once */
+                for (int c = 0; c < chains; c++) {
+                    int best = -1;
+                    for (int q = 0; q < np; q++)
+                        if (!rigid[P[q].a] && !rigid[P[q].b] &&
+                            (best < 0 || P[q].angle < P[best].angle))
+                            best = q;
+                    if (best < 0) break;
+                    rigid[P[best].a] = rigid[P[best].b] = 1;
+                }
+            }
+        }
+        free(A);
+        free(sv);
+    }
+    free(P);
+    free(zero);
+    return st;
+}
+
 static int modes_dense(mctx *c)
 {
     dae_modes *M = c->M;
@@ -383,11 +503,13 @@ static int modes_dense(mctx *c)
     const int n = M->n, d = M->d;
     const sp_csc *A = c->J.Jyp;
     int st;
+    if (n < 1 || d < 1) return BG_OK;
     double sigma = o->sigma > 0 ? o->sigma : (o->sigma < 0 ? o->sigma : 1.0);
     if ((st = factor_shift(c, &sigma)) != BG_OK) return st;
     M->sigma = sigma;
     int *pos = malloc((size_t)n * sizeof *pos); /* position among the differential unknowns */
-    double *C = malloc((size_t)d * d * sizeof *C);
+    double *C = malloc((size_t)d * d * sizeof *C), *C0 = malloc((size_t)d * d * sizeof *C0);
+    int *rigid = malloc((size_t)d * sizeof *rigid);
     const int nb = 32;
     double *blk = malloc((size_t)n * nb * sizeof *blk);
     double *wr = malloc((size_t)d * sizeof *wr), *wi = malloc((size_t)d * sizeof *wi);
@@ -397,7 +519,7 @@ static int modes_dense(mctx *c)
     double *zr = malloc((size_t)n * sizeof *zr), *zi = malloc((size_t)n * sizeof *zi);
     double *work = NULL;
     int *iwork = malloc((size_t)(2 * d + 2) * sizeof *iwork);
-    if (!pos || !C || !blk || !wr || !wi || !VL || !VR || !scale || !rce || !rcv || !zr || !zi ||
+    if (!pos || !C || !C0 || !rigid || !blk || !wr || !wi || !VL || !VR || !scale || !rce || !rcv || !zr || !zi ||
         !iwork) {
         st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
         goto done;
@@ -424,6 +546,7 @@ static int modes_dense(mctx *c)
             for (int j = 0; j < d; j++)
                 C[(size_t)(j0 + k) * d + j] = blk[(size_t)k * n + M->dif[j]];
     }
+    memcpy(C0, C, (size_t)d * d * sizeof *C0); /* dgeevx overwrites C */
     int ilo, ihi, info = 0, lwork = -1;
     double abnrm, wq;
     dgeevx_("B", "V", "V", "E", &d, C, &d, wr, wi, VL, &d, VR, &d, &ilo, &ihi, scale, &abnrm, rce,
@@ -446,6 +569,10 @@ static int modes_dense(mctx *c)
     double mumax = 0;
     for (int j = 0; j < d; j++)
         mumax = fmax(mumax, hypot(wr[j], wi[j]));
+    if ((st = rigid_analysis(C0, VR, wr, wi, d, sigma, o->zero_tol, rigid)) != BG_OK) {
+        st = bg_error_raise(c->err, st, "dae_modes_compute", "out of memory");
+        goto done;
+    }
     double *ur = blk, *ui = blk + n; /* A_d u, real and imaginary, then z */
     for (int j = 0; j < d; j++) {
         if (wi[j] < 0) continue; /* the conjugate of the previous one */
@@ -459,7 +586,7 @@ static int modes_dense(mctx *c)
         } else {
             s = sigma - 1.0 / mu;
             if (cabs(s) <= o->zero_tol * fabs(sigma))
-                kind = rce[j] >= o->semisimple_tol ? DAE_MODE_CONSTRAINT : DAE_MODE_RIGID;
+                kind = rigid[j] ? DAE_MODE_RIGID : DAE_MODE_CONSTRAINT;
             else
                 kind = DAE_MODE_ELASTIC;
         }
@@ -498,6 +625,8 @@ static int modes_dense(mctx *c)
 done:
     free(pos);
     free(C);
+    free(C0);
+    free(rigid);
     free(blk);
     free(wr);
     free(wi);
@@ -530,6 +659,123 @@ static int apply_op(mctx *c, double sigma, const double *x, double *y)
     return BG_OK;
 }
 
+/* Rayleigh-quotient iteration on one mode in complex arithmetic (KLU's complex LU of s A + B on
+ * the union pattern): the window's eigenvalues come from -s/(sigma - s)^2 through solves with
+ * B + sigma A, whose rounding along the model's drift directions (small singular values
+ * sigma |A|) limits them to a relative 1e-4 on the crane with 512 elements; a solve with the
+ * shift at the mode itself does not have that weakness. Two factorizations per mode. */
+typedef struct refiner {
+    klu_common common;
+    klu_symbolic *sym;
+    double *Ax, *rhs, *z; /* interleaved complex: 2 nnz, 2 n, 2 n */
+} refiner;
+
+static void refiner_free(refiner *R)
+{
+    if (R->sym) klu_free_symbolic(&R->sym, &R->common);
+    free(R->Ax);
+    free(R->rhs);
+    free(R->z);
+    memset(R, 0, sizeof *R);
+}
+
+static int refiner_init(mctx *c, refiner *R)
+{
+    memset(R, 0, sizeof *R);
+    const sp_csc *P = c->u->M;
+    int n = c->M->n;
+    klu_defaults(&R->common);
+    R->common.ordering = 1; /* COLAMD, as bg_linsol.c */
+    R->sym = klu_analyze(n, P->colptr, P->rowind, &R->common);
+    R->Ax = malloc(2 * (size_t)(P->nnz > 0 ? P->nnz : 1) * sizeof *R->Ax);
+    R->rhs = malloc(2 * (size_t)n * sizeof *R->rhs);
+    R->z = malloc(2 * (size_t)n * sizeof *R->z);
+    if (!R->sym || !R->Ax || !R->rhs || !R->z) {
+        refiner_free(R);
+        return BG_ERR_MEMORY;
+    }
+    return BG_OK;
+}
+
+/* rhs = A z (complex, interleaved) */
+static void cplx_matvec(const sp_csc *A, const double *z, double *y)
+{
+    memset(y, 0, 2 * (size_t)A->nrow * sizeof *y);
+    for (int j = 0; j < A->ncol; j++)
+        for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
+            y[2 * A->rowind[p]] += A->val[p] * z[2 * j];
+            y[2 * A->rowind[p] + 1] += A->val[p] * z[2 * j + 1];
+        }
+}
+
+/* Refines s, zr, zi in place; 0 if it improved them, else the inputs are kept. */
+static int refine_mode(mctx *c, refiner *R, double complex *s, double *zr, double *zi)
+{
+    const sp_csc *P = c->u->M;
+    const sp_union *u = c->u;
+    int n = c->M->n;
+    double complex s0 = *s;
+    for (int i = 0; i < n; i++)
+        R->z[2 * i] = zr[i], R->z[2 * i + 1] = zi[i];
+    int improved = 0;
+    for (int it = 0; it < 3; it++) {
+        memset(R->Ax, 0, 2 * (size_t)P->nnz * sizeof *R->Ax);
+        for (int p = 0; p < c->J.Jy->nnz; p++)
+            R->Ax[2 * u->map_a[p]] += c->J.Jy->val[p];
+        for (int p = 0; p < c->J.Jyp->nnz; p++) {
+            R->Ax[2 * u->map_b[p]] += creal(s0) * c->J.Jyp->val[p];
+            R->Ax[2 * u->map_b[p] + 1] += cimag(s0) * c->J.Jyp->val[p];
+        }
+        klu_numeric *num = klu_z_factor(P->colptr, P->rowind, R->Ax, R->sym, &R->common);
+        if (!num) break; /* s0 is an eigenvalue to working precision: keep it */
+        double complex nu = 0, zz = 0;
+        for (int k = 0; k < 2; k++) { /* two steps of inverse iteration at this shift */
+            cplx_matvec(c->J.Jyp, R->z, R->rhs);
+            if (!klu_z_solve(R->sym, num, n, 1, R->rhs, &R->common)) break;
+            /* nu = z^H y / z^H z ~ 1 / (s0 - s) */
+            nu = 0, zz = 0;
+            double big = 0;
+            for (int i = 0; i < n; i++) {
+                double complex zi_ = R->z[2 * i] + I * R->z[2 * i + 1];
+                double complex yi = R->rhs[2 * i] + I * R->rhs[2 * i + 1];
+                nu += conj(zi_) * yi;
+                zz += conj(zi_) * zi_;
+                big = fmax(big, cabs(yi));
+            }
+            if (!(big > 0) || !isfinite(big)) break;
+            for (int i = 0; i < 2 * n; i++)
+                R->z[i] = R->rhs[i] / big;
+            nu /= big;
+            zz /= big;
+        }
+        klu_z_free_numeric(&num, &R->common);
+        if (!(cabs(nu) > 0) || !isfinite(cabs(nu))) break;
+        double complex s1 = s0 - zz / nu;
+        double step = cabs(s1 - s0);
+        s0 = s1;
+        improved = 1;
+        if (step <= 1e-13 * cabs(s0)) break;
+    }
+    if (!improved) return 1;
+    double *tr = c->w1, *ti = c->w2;
+    /* keep the refined pair only if its residual is smaller */
+    double *nr = malloc(2 * (size_t)n * sizeof *nr);
+    if (!nr) return 1;
+    for (int i = 0; i < n; i++)
+        nr[i] = R->z[2 * i], nr[n + i] = R->z[2 * i + 1];
+    (void)tr;
+    (void)ti;
+    double e_old = pencil_residual(c, *s, zr, zi), e_new = pencil_residual(c, s0, nr, nr + n);
+    int ok = e_new <= e_old || !isfinite(e_old);
+    if (ok) {
+        *s = s0;
+        memcpy(zr, nr, (size_t)n * sizeof *zr);
+        memcpy(zi, nr + n, (size_t)n * sizeof *zi);
+    }
+    free(nr);
+    return ok ? 0 : 1;
+}
+
 typedef struct found {
     double complex s;
     double res;
@@ -544,6 +790,7 @@ static int arpack_run(mctx *c, double sigma, int nev_a, found *f, int cap, int *
     const dae_modes_options *o = c->o;
     const int n = M->n;
     *nf = 0;
+    if (n < 1) return BG_OK;
     int ncv = o->ncv > 0 ? o->ncv : (2 * nev_a + 1 > nev_a + 20 ? 2 * nev_a + 1 : nev_a + 20);
     if (ncv > n) ncv = n;
     if (nev_a > ncv - 2) nev_a = ncv - 2;
@@ -565,7 +812,7 @@ static int arpack_run(mctx *c, double sigma, int nev_a, found *f, int cap, int *
     /* a start vector of the model's scale: the nominal magnitudes with a deterministic pattern */
     for (int i = 0; i < n; i++) {
         unsigned h = (unsigned)i * 2654435761u;
-        resid[i] = ((double)(h >> 8) / 16777216.0 - 0.5) * (M->p->nominal ? M->p->nominal[i] : 1.0);
+        resid[i] = ((double)(h >> 8) / 16777216.0 - 0.5) * nominal(M, i);
     }
     int ipntr[14] = {0}, iparam[11] = {0}, ido = 0, info = 1;
     iparam[0] = 1;
@@ -668,6 +915,141 @@ done:
 }
 #endif
 
+#ifdef BG_HAVE_ARPACK
+/* The window: the nev eigenvalues nearest i wc by complex shift-invert, OP = (B + i wc A)^-1 A
+ * (KLU's complex LU, ARPACK znaupd/zneupd): mu = 1 / (i wc - s). Zero modes are at distance wc
+ * from the shift, so every mode in the disc |s - i wc| < wc comes before them, and a mode's
+ * conjugate is farther than the mode. The found modes go to f as in arpack_run. */
+static int arpack_window(mctx *c, refiner *R, double wc, int nev, found *f, int cap, int *nf)
+{
+    dae_modes *M = c->M;
+    const dae_modes_options *o = c->o;
+    const sp_csc *P = c->u->M;
+    const sp_union *u = c->u;
+    const int n = M->n;
+    *nf = 0;
+    if (n < 1) return BG_OK;
+    int ncv = o->ncv > 0 ? o->ncv : (2 * nev + 1 > nev + 20 ? 2 * nev + 1 : nev + 20);
+    if (ncv > n) ncv = n;
+    if (nev > ncv - 2) nev = ncv - 2;
+    if (nev < 1)
+        return bg_error_raise(c->err, BG_ERR_ARGUMENT, "dae_modes_compute",
+                              "the model is too small for the sparse method (n = %d)", n);
+    memset(R->Ax, 0, 2 * (size_t)P->nnz * sizeof *R->Ax);
+    for (int p = 0; p < c->J.Jy->nnz; p++)
+        R->Ax[2 * u->map_a[p]] += c->J.Jy->val[p];
+    for (int p = 0; p < c->J.Jyp->nnz; p++)
+        R->Ax[2 * u->map_b[p] + 1] += wc * c->J.Jyp->val[p];
+    klu_numeric *num = klu_z_factor(P->colptr, P->rowind, R->Ax, R->sym, &R->common);
+    if (!num)
+        return bg_error_raise(c->err, BG_ERR_SINGULAR, "dae_modes_compute",
+                              "B + i %g A is singular (KLU status %d): an eigenvalue at the "
+                              "window's centre; move it",
+                              wc, R->common.status);
+    int lworkl = 3 * ncv * ncv + 5 * ncv, st = BG_OK;
+    double complex *resid = malloc((size_t)n * sizeof *resid);
+    double complex *V = malloc((size_t)n * ncv * sizeof *V);
+    double complex *workd = malloc(3 * (size_t)n * sizeof *workd);
+    double complex *workl = malloc((size_t)lworkl * sizeof *workl);
+    double complex *dv = malloc((size_t)(nev + 1) * sizeof *dv);
+    double complex *Z = malloc((size_t)n * (nev + 1) * sizeof *Z);
+    double complex *workev = malloc(2 * (size_t)ncv * sizeof *workev);
+    double *rwork = malloc((size_t)ncv * sizeof *rwork);
+    int *select = calloc((size_t)ncv, sizeof *select);
+    double *zr = malloc((size_t)n * sizeof *zr), *zi = malloc((size_t)n * sizeof *zi);
+    if (!resid || !V || !workd || !workl || !dv || !Z || !workev || !rwork || !select || !zr ||
+        !zi) {
+        st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
+        goto done;
+    }
+    for (int i = 0; i < n; i++) {
+        unsigned h = (unsigned)i * 2654435761u;
+        resid[i] = ((double)(h >> 8) / 16777216.0 - 0.5) * nominal(M, i);
+    }
+    int ipntr[14] = {0}, iparam[11] = {0}, ido = 0, info = 1;
+    iparam[0] = 1;
+    iparam[2] = o->maxiter;
+    iparam[6] = 1;
+    for (;;) {
+        znaupd_c(&ido, "I", n, "LM", nev, o->tol, resid, ncv, V, n, iparam, ipntr, workd, workl,
+                 lworkl, rwork, &info);
+        if (ido != -1 && ido != 1) break;
+        const double complex *x = workd + ipntr[0] - 1;
+        double complex *y = workd + ipntr[1] - 1;
+        cplx_matvec(c->J.Jyp, (const double *)x, (double *)y);
+        if (!klu_z_solve(R->sym, num, n, 1, (double *)y, &R->common)) {
+            st = bg_error_raise(c->err, BG_ERR_LIBRARY, "dae_modes_compute",
+                                "complex solve failed (KLU status %d)", R->common.status);
+            goto done;
+        }
+    }
+    if (info < 0) {
+        st = bg_error_raise(c->err, BG_ERR_LIBRARY, "dae_modes_compute",
+                            "ARPACK znaupd failed (info %d)", info);
+        goto done;
+    }
+    int conv_fail = info == 1;
+    if (iparam[4] < 1) {
+        st = bg_error_raise(c->err, DAE_CONV_FAIL, "dae_modes_compute",
+                            "ARPACK found no eigenvalue within %d restarts", o->maxiter);
+        goto done;
+    }
+    int rinfo = 0;
+    zneupd_c(1, "A", select, dv, Z, n, 0.0, workev, "I", n, "LM", nev, o->tol, resid, ncv, V, n,
+             iparam, ipntr, workd, workl, lworkl, rwork, &rinfo);
+    if (rinfo != 0) {
+        st = bg_error_raise(c->err, BG_ERR_LIBRARY, "dae_modes_compute",
+                            "ARPACK zneupd failed (info %d)", rinfo);
+        goto done;
+    }
+    int nconv = iparam[4];
+    for (int j = 0; j < nconv && *nf < cap; j++) {
+        if (!(cabs(dv[j]) * wc > 1e-10)) continue; /* at infinity */
+        double complex s = I * wc - 1.0 / dv[j];
+        int flip = cimag(s) < 0;
+        for (int i = 0; i < n; i++) {
+            double complex z = Z[(size_t)j * n + i];
+            zr[i] = creal(z);
+            zi[i] = flip ? -cimag(z) : cimag(z);
+        }
+        if (flip) s = conj(s);
+        int dup = 0;
+        for (int k = 0; k < *nf; k++)
+            if (cabs(f[k].s - s) <= 1e-8 * cabs(s)) dup = 1;
+        if (dup) continue;
+        found *fd = &f[*nf];
+        fd->zr = malloc((size_t)n * sizeof *fd->zr);
+        fd->zi = malloc((size_t)n * sizeof *fd->zi);
+        if (!fd->zr || !fd->zi) {
+            free(fd->zr);
+            free(fd->zi);
+            st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
+            goto done;
+        }
+        memcpy(fd->zr, zr, (size_t)n * sizeof *zr);
+        memcpy(fd->zi, zi, (size_t)n * sizeof *zi);
+        fd->s = s;
+        fd->res = pencil_residual(c, s, zr, zi);
+        (*nf)++;
+    }
+    st = conv_fail ? DAE_CONV_FAIL : BG_OK;
+done:
+    klu_z_free_numeric(&num, &R->common);
+    free(resid);
+    free(V);
+    free(workd);
+    free(workl);
+    free(dv);
+    free(Z);
+    free(workev);
+    free(rwork);
+    free(select);
+    free(zr);
+    free(zi);
+    return st;
+}
+#endif
+
 static int modes_sparse(mctx *c)
 {
 #ifndef BG_HAVE_ARPACK
@@ -685,7 +1067,16 @@ static int modes_sparse(mctx *c)
     found *f = calloc((size_t)cap, sizeof *f);
     if (!f) return bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
     int nf = 0;
-    for (int round = 0; round < 6; round++) {
+    refiner R;
+    if (refiner_init(c, &R) != BG_OK) {
+        free(f);
+        return bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
+    }
+    if (!auto_sigma) { /* a window around the frequency sigma (complex shift) */
+        st = arpack_window(c, &R, sigma, nev, f, cap, &nf);
+        nev = nf;
+    }
+    for (int round = 0; auto_sigma && round < 6; round++) {
         for (int k = 0; k < nf; k++)
             free(f[k].zr), free(f[k].zi);
         nf = 0;
@@ -712,8 +1103,37 @@ static int modes_sparse(mctx *c)
     }
     M->sigma = sigma;
     int keep = st == BG_OK || st == DAE_CONV_FAIL;
+    if (keep && nf > 0) { /* accurate eigenvalues: Rayleigh-quotient iteration per mode */
+        {
+            for (int k = 0; k < nf; k++) {
+                double complex sk = f[k].s;
+                if (refine_mode(c, &R, &sk, f[k].zr, f[k].zi) == 0) {
+                    if (cimag(sk) < 0) { /* the conjugate, with its vector */
+                        sk = conj(sk);
+                        for (int i = 0; i < M->n; i++)
+                            f[k].zi[i] = -f[k].zi[i];
+                    }
+                    f[k].s = sk;
+                    f[k].res = pencil_residual(c, sk, f[k].zr, f[k].zi);
+                }
+            }
+        }
+    }
+    refiner_free(&R);
+    /* the same mode found twice (a window's copies converge to one eigenvalue when refined):
+     * the one with the larger residual goes */
+    for (int k = 0; k < nf; k++)
+        for (int j = 0; j < nf; j++)
+            if (j != k && f[j].zr && f[k].zr && cabs(f[j].s - f[k].s) <= 1e-8 * cabs(f[k].s) &&
+                (f[j].res < f[k].res || (f[j].res == f[k].res && j < k))) {
+                free(f[k].zr), free(f[k].zi);
+                f[k].zr = f[k].zi = NULL;
+                f[k].s = INFINITY;
+                break;
+            }
     /* keep the nev lowest (auto) or all found (window) */
     for (int k = 0; keep && k < nf; k++) {
+        if (!f[k].zr) continue;
         int rank = 0;
         for (int j = 0; j < nf; j++)
             if (cabs(f[j].s) < cabs(f[k].s) || (cabs(f[j].s) == cabs(f[k].s) && j < k)) rank++;
@@ -751,7 +1171,7 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     const dae_modes_options *o = opt ? opt : &od;
     if (o->method < DAE_MODES_AUTO || o->method > DAE_MODES_SPARSE || o->dense_max < 1 ||
         !isfinite(o->sigma) || o->nev < 1 || o->ncv < 0 || !(o->tol >= 0) || o->maxiter < 1 ||
-        !(o->zero_tol >= 0) || !(o->inf_tol >= 0) || !(o->semisimple_tol >= 0) ||
+        !(o->zero_tol >= 0) || !(o->inf_tol >= 0) ||
         (o->linsol != LS_KLU && o->linsol != LS_DENSE))
         return bg_error_raise(err, BG_ERR_ARGUMENT, where, "modes options out of range");
     if (!isfinite(t)) return bg_error_raise(err, BG_ERR_ARGUMENT, where, "t is not finite");
@@ -774,6 +1194,15 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     }
     M->p = p;
     M->n = n;
+    M->names = p->names;
+    if (p->nominal) {
+        M->nominal = malloc((size_t)n * sizeof *M->nominal);
+        if (!M->nominal) {
+            st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+            goto done;
+        }
+        memcpy(M->nominal, p->nominal, (size_t)n * sizeof *M->nominal);
+    }
     c.M = M;
     st = bg_jaceval_eval(&c.J, t, y, yp ? yp : ypz, NULL);
     if (st != 0) {
@@ -813,6 +1242,7 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     if (st == BG_OK || st == DAE_CONV_FAIL) sort_modes(M);
 done:
     if (st == BG_OK || st == DAE_CONV_FAIL) {
+        M->p = NULL;
         *out = M;
     } else {
         dae_modes_free(&M);

@@ -45,6 +45,10 @@ typedef struct st_ctx {
     bg_error *err;
     int singular_col;
     int fatal; /* a callback's fatal status */
+    /* position constraints of the problem (dae_problem.cons): kept at their starting values */
+    aat_solver *aat;
+    sp_csc *Gc;
+    double *g0, *gv, *gw;
 } st_ctx;
 
 static double now_seconds(void)
@@ -205,8 +209,39 @@ static void final_residual(st_ctx *c, const double *y)
     r->residual_abs = r->residual_eq >= 0 ? fabs(c->G[r->residual_eq]) : NAN;
 }
 
+/* Minimum-norm Gauss-Newton correction of y onto g(t, y) = g(t, y_start) (3 iterations at
+ * most): the invariants the pseudo-time steps keep only to second order in the rotations,
+ * restored for the problems that declare them. 0, or a status. */
+static int project_cons(st_ctx *c, double *y)
+{
+    const dae_problem *p = c->p;
+    for (int it = 0; it < 3; it++) {
+        int st = p->cons(p->user, c->t, y, c->gv, c->Gc);
+        if (st != 0) return st < 0 ? (c->fatal = st) : st;
+        double gmax = 0;
+        for (int k = 0; k < p->ncons; k++) {
+            c->gv[k] -= c->g0[k];
+            gmax = fmax(gmax, fabs(c->gv[k]));
+        }
+        if (gmax == 0) break;
+        if ((st = aat_factor(c->aat, c->Gc, 0.0)) != BG_OK) return st;
+        if ((st = aat_solve(c->aat, c->gv, c->gw)) != BG_OK) return st;
+        sp_matvec_t(c->Gc, -1.0, c->gw, 0.0, c->dt);
+        for (int i = 0; i < c->n; i++)
+            y[i] += c->dt[i];
+        weights(c, y);
+        if (wnorm(c, c->dt, NULL) < 1e-3) break;
+    }
+    return 0;
+}
+
 static void ctx_free(st_ctx *c)
 {
+    aat_free(&c->aat);
+    sp_csc_free(&c->Gc);
+    free(c->g0);
+    free(c->gv);
+    free(c->gw);
     bg_jaceval_free(&c->J);
     sp_union_free(&c->u);
     ls_free(&c->ls);
@@ -313,6 +348,23 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
     if (o->yp_steady) memcpy(c.yps, o->yp_steady, sz);
     memcpy(c.yprev, y, sz);
 
+    if (p->ncons > 0 && p->cons && p->cons_pattern) { /* declared position constraints */
+        c.aat = aat_create(p->cons_pattern, err);
+        c.Gc = sp_csc_copy(p->cons_pattern);
+        c.g0 = malloc((size_t)p->ncons * sizeof *c.g0);
+        c.gv = malloc((size_t)p->ncons * sizeof *c.gv);
+        c.gw = malloc((size_t)p->ncons * sizeof *c.gw);
+        if (!c.aat || !c.Gc || !c.g0 || !c.gv || !c.gw) {
+            st = c.aat ? bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory")
+                       : (err && err->status < 0 ? err->status : BG_ERR_LIBRARY);
+            goto done;
+        }
+        if ((st = p->cons(p->user, t, y, c.g0, NULL)) != 0) {
+            st = bg_error_raise(err, BG_ERR_CALLBACK, where,
+                                "the constraint function returned %d at the start", st);
+            goto done;
+        }
+    }
     double lam = o->continuation ? 0.0 : 1.0, dlam = o->dlambda, H = o->h0;
     if (!o->load) { /* the homotopy's offset: the residual at the start */
         c.r0 = malloc(sz);
@@ -343,10 +395,24 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         goto done;
     }
     const double h_min = o->h0 * 1e-8;
+    /* The last state at rest (an equilibrium under lam_rest); a step to a larger load factor
+     * whose end is still moving (beyond a limit point the pseudo-time steps follow the motion
+     * instead of failing) is followed by settling steps at the same load factor, and given up
+     * for a smaller increment after SETTLE_MAX of them. */
+    enum { SETTLE_MAX = 8 };
+    double *yrest = malloc(sz), lam_rest = lam, lam_cur = lam;
+    int settling = 0, can_shrink = o->continuation;
+    if (!yrest) {
+        free(ytry);
+        st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+        goto done;
+    }
+    memcpy(yrest, y, sz);
     int ok = 0;
     st = DAE_TOO_MUCH_WORK;
     while (r->steps + r->rejected < o->max_steps) {
-        double lt = lam < 1.0 ? fmin(1.0, lam + dlam) : 1.0;
+        double lt = settling ? lam_cur : (lam_rest < 1.0 ? fmin(1.0, lam_rest + dlam) : 1.0);
+        if (!o->continuation) lt = 1.0;
         if (lt > 1.0 - 1e-12) lt = 1.0;
         memcpy(ytry, c.yprev, sz);
         int iters = 0;
@@ -360,14 +426,71 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                 bg_error_raise(err, st, where, "linear solver: %s", ls_get_error(c.ls)->message);
             goto out;
         }
+        int back_off = 0;
         if (nst != 0) { /* not converged (or singular): a smaller step */
             r->rejected++;
-            if (lam < 1.0 && dlam > o->dlambda_min) {
+            back_off = 1;
+        } else {
+            /* accepted */
+            if (c.aat) {
+                int pst = project_cons(&c, ytry);
+                if (pst < 0) {
+                    st = c.fatal ? BG_ERR_CALLBACK : pst;
+                    bg_error_raise(err, st, where, "projection onto the position constraints: %s",
+                                   c.fatal ? "the constraint function failed"
+                                           : aat_get_error(c.aat)->message);
+                    goto out;
+                }
+            }
+            r->steps++;
+            weights(&c, ytry);
+            for (int i = 0; i < n; i++)
+                c.d[i] = ytry[i] - c.yprev[i];
+            r->change = wnorm(&c, c.d, NULL);
+            r->h = H;
+            /* at rest? the Newton correction towards the equilibrium at this load factor
+             * (y' = yp_s exactly) against the step's change */
+            double defect = INFINITY;
+            if (geval(&c, ytry, lt, INFINITY, c.Gt) == 0) {
+                for (int i = 0; i < n; i++)
+                    c.dt[i] = -c.Gt[i];
+                if (ls_solve(c.ls, c.dt, 1) == BG_OK) defect = wnorm(&c, c.dt, NULL);
+            }
+            memcpy(c.yprev, ytry, sz);
+            memcpy(y, ytry, sz);
+            if (defect <= fmax(1.0, 1e-2 * r->change)) { /* at rest */
+                settling = 0;
+                lam_rest = lt;
+                memcpy(yrest, ytry, sz);
+                r->lambda = lam_rest;
+                if (lt >= 1.0 && r->change <= 1.0) {
+                    ok = 1;
+                    st = BG_OK;
+                    break;
+                }
+                if (iters <= (o->max_newton + 2) / 3) dlam = fmin(1.0, 2.0 * dlam);
+                if (iters <= (o->max_newton + 1) / 2) H = fmin(o->h_max, 10.0 * H);
+                continue;
+            }
+            /* still moving: settle at this load factor with longer pseudo-time steps */
+            lam_cur = lt;
+            H = fmin(o->h_max, 10.0 * H);
+            if (++settling <= SETTLE_MAX) continue;
+            back_off = 1; /* no equilibrium near: a smaller increment from the last rest */
+            r->rejected++;
+        }
+        if (back_off) {
+            if (settling) { /* back to the last state at rest */
+                settling = 0;
+                memcpy(c.yprev, yrest, sz);
+                memcpy(y, yrest, sz);
+            }
+            if (can_shrink && lam_rest < 1.0 && dlam > o->dlambda_min) {
                 dlam = fmax(0.5 * dlam, o->dlambda_min);
                 if (nst == BG_ERR_SINGULAR) H = fmax(0.25 * H, h_min);
                 continue;
             }
-            if (H > h_min) {
+            if (nst != 0 && H > h_min) {
                 H = fmax(0.25 * H, h_min);
                 continue;
             }
@@ -379,30 +502,17 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                                     "a load)",
                                     lt, bg_var_label(p, c.singular_col, nb, sizeof nb));
                 r->worst_var = c.singular_col;
+                free(yrest);
                 goto out;
             }
             st = DAE_CONV_FAIL;
             break;
         }
-        /* accepted */
-        r->steps++;
-        weights(&c, ytry);
-        for (int i = 0; i < n; i++)
-            c.d[i] = ytry[i] - c.yprev[i];
-        r->change = wnorm(&c, c.d, NULL);
-        r->h = H;
-        memcpy(c.yprev, ytry, sz);
-        memcpy(y, ytry, sz);
-        lam = lt;
-        r->lambda = lam;
-        if (lam >= 1.0 && r->change <= 1.0) {
-            ok = 1;
-            st = BG_OK;
-            break;
-        }
-        if (iters <= (o->max_newton + 2) / 3) dlam = fmin(1.0, 2.0 * dlam);
-        if (iters <= (o->max_newton + 1) / 2) H = fmin(o->h_max, 10.0 * H);
     }
+    if (!ok && settling) { /* the run ended moving: report the last state at rest */
+        memcpy(y, yrest, sz);
+    }
+    free(yrest);
     final_residual(&c, y);
     if (!ok) {
         char eb[256], vb[256];

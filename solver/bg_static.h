@@ -27,13 +27,26 @@
  * structural mechanics without any help from the model; a model that scales its own loads may
  * give a callback instead (options.load: then the offset term is dropped). lambda grows in steps
  * that adapt (doubled after an easy step, halved after a failed one) and H grows by switched
- * evolution relaxation (by the ratio of successive residual norms) up to options.h_max; once
- * lambda = 1 the steps go on until a step changes the state by less than the tolerance. Each
+ * evolution relaxation (tenfold after an easy step) up to options.h_max; once lambda = 1 the
+ * steps go on until a step changes the state by less than the tolerance. A step is at rest when
+ * the Newton correction towards the equilibrium at its load factor (y' = yp_s exactly) is small
+ * against the step's change; beyond a limit point the pseudo-time steps would follow the motion
+ * (the structure falls), so a step that ends moving is followed by up to 8 settling steps at the
+ * same load factor and, still moving, is given up for a smaller increment from the last state at
+ * rest: the load factor reached is that of the limit point. Each
  * Newton step is damped by the affine-invariant monotonicity test of Deuflhard (the next
  * simplified correction must be smaller than (1 - alpha/4) times the current one; alpha halved
  * down to 1e-4), so a large deflection is followed instead of jumped over. The Newton matrix is
  * factored by the integrator's linear solvers (KLU by default) at every iteration; Jacobians
  * come from the problem's analytic ones, or coloured finite differences without them.
+ *
+ * Nonlinear invariants. The backward-Euler steps keep linear invariants exactly and nonlinear
+ * ones (a joint's closure through rotating bodies, the length of a pendulum held at velocity
+ * level) to second order in each step's rotation: a structure loaded from its assembled state
+ * (the crane: hinge gap 1e-11 m) keeps them, a pendulum started 40 degrees off its rest loses
+ * 23 % of its length (tests/solver/test_static.c). Problems that declare their position
+ * constraints (dae_problem.cons, ncons, cons_pattern) are projected back onto g(y) = g(y_start)
+ * after every step (minimum-norm Gauss-Newton by CHOLMOD), which keeps them exactly.
  *
  * Tolerances: the weight of unknown i is rtol |y_i| + atol nominal_i (dae_problem.nominal, else
  * 1); a Newton iteration has converged when its correction is at most 1 in that weighted max

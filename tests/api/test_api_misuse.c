@@ -16,7 +16,10 @@
 #include "bg_dae.h"
 #include "bg_fdjac.h"
 #include "bg_linsol.h"
+#include "bg_modes.h"
 #include "bg_sparse.h"
+#include "bg_static.h"
+#include "bgr_analysis.h"
 #include "bgr_elements.h"
 #include "bgr_model.h"
 #include "ctl_pid.h"
@@ -1143,6 +1146,72 @@ static void test_constructors(void)
     bgr_model_free(&m);
 }
 
+/* ------------------------------------------- static equilibrium and modes ---- */
+
+static void test_static_modes(void)
+{
+    bg_error err = {0};
+    sp_csc *Jy, *Jyp;
+    small_patterns(&Jy, &Jyp);
+    dae_problem p;
+    small_problem(&p, Jy, Jyp);
+    double y[2] = {1, 0}, yp[2];
+    dae_static_result r;
+    tap_ok(dae_static_options_default(NULL) == BG_ERR_ARGUMENT &&
+               dae_modes_options_default(NULL) == BG_ERR_ARGUMENT,
+           "static, modes: options_default(NULL) = BG_ERR_ARGUMENT");
+    expect(dae_static_solve(NULL, NULL, 0, y, yp, &r, &err), BG_ERR_ARGUMENT, err.message,
+           "problem", "dae_static_solve(NULL problem)");
+    expect(dae_static_solve(&p, NULL, 0, NULL, yp, &r, &err), BG_ERR_ARGUMENT, err.message, "y",
+           "dae_static_solve(NULL y)");
+    expect(dae_static_solve(&p, NULL, NAN, y, yp, &r, &err), BG_ERR_ARGUMENT, err.message, "t",
+           "dae_static_solve(t NaN)");
+    dae_static_options so;
+    dae_static_options_default(&so);
+    so.max_newton = 0;
+    expect(dae_static_solve(&p, &so, 0, y, yp, &r, &err), BG_ERR_ARGUMENT, err.message,
+           "max_newton", "dae_static_solve(max_newton 0)");
+    dae_static_options_default(&so);
+    so.h0 = -1;
+    expect(dae_static_solve(&p, &so, 0, y, yp, &r, &err), BG_ERR_ARGUMENT, err.message, "h0",
+           "dae_static_solve(h0 < 0)");
+    dae_static_options_default(&so);
+    so.dlambda = 2;
+    expect(dae_static_solve(&p, &so, 0, y, yp, &r, &err), BG_ERR_ARGUMENT, err.message,
+           "dlambda", "dae_static_solve(dlambda 2)");
+    double bad[2] = {NAN, 0};
+    expect(dae_static_solve(&p, NULL, 0, bad, yp, &r, &err), BG_ERR_NONFINITE, err.message,
+           "unknown 0", "dae_static_solve(y NaN)");
+    dae_modes *M = NULL;
+    expect(dae_modes_compute(NULL, 0, y, NULL, NULL, &M, &err), BG_ERR_ARGUMENT, err.message,
+           "problem", "dae_modes_compute(NULL problem)");
+    expect(dae_modes_compute(&p, 0, y, NULL, NULL, NULL, &err), BG_ERR_ARGUMENT, err.message,
+           "out", "dae_modes_compute(NULL out)");
+    dae_modes_options mo;
+    dae_modes_options_default(&mo);
+    mo.nev = 0;
+    expect(dae_modes_compute(&p, 0, y, NULL, &mo, &M, &err), BG_ERR_ARGUMENT, err.message,
+           "options", "dae_modes_compute(nev 0)");
+    tap_ok(!M && dae_modes_count(NULL) == 0 && !dae_modes_get(NULL, 0) &&
+               dae_modes_info(NULL, NULL, NULL, NULL, NULL, NULL, NULL) == BG_ERR_ARGUMENT &&
+               dae_modes_vector(NULL, 0, y, NULL) == BG_ERR_ARGUMENT &&
+               dae_modes_describe(NULL, 0, 1, 1, 1, NULL, 0) == BG_ERR_ARGUMENT &&
+               isnan(dae_modes_share(NULL, 0, "x")) && !strcmp(dae_mode_kind_name(7), "unknown"),
+           "modes: the queries of NULL and out of range are refused");
+    dae_modes_free(&M);
+    dae_modes_free(NULL);
+    expect(bgr_static(NULL, NULL, 0, NULL, &err), BG_ERR_ARGUMENT, err.message, "model",
+           "bgr_static(NULL)");
+    bgr_model *m = bgr_model_create("uncompiled");
+    expect(bgr_static(m, NULL, 0, NULL, &err), BG_ERR_STATE, err.message, "compiled",
+           "bgr_static(not compiled)");
+    expect(bgr_modes(m, 0, NULL, NULL, NULL, &M, &err), BG_ERR_STATE, err.message, "compiled",
+           "bgr_modes(not compiled)");
+    bgr_model_free(&m);
+    sp_csc_free(&Jy);
+    sp_csc_free(&Jyp);
+}
+
 int main(void)
 {
     test_status();
@@ -1154,5 +1223,6 @@ int main(void)
     test_bondgraph_null();
     test_bondgraph_states();
     test_constructors();
+    test_static_modes();
     return tap_done();
 }

@@ -171,10 +171,10 @@ static void test_bad_numbers_and_paths(void)
     double tl;
     path2(cr, sizeof cr, tmp, "cr-only.ini");
     path2(out, sizeof out, tmp, "cr-only");
-    write_text(cr, "; old Mac line ends\r[solver]\rt_end = 0.02\r[boom]\rlength = 70\r");
+    write_text(cr, "; old Mac line ends\r[solver]\rt_end = 0.02\r[boom]\rlength = 75\r");
     run(NULL, (const char *[]){cr, "--out", out, "--quiet", "--no-plots", NULL}, "cr", 100, &r);
     tap_ok(r.exited && r.code == 0 && check_csv(out, 0, &tl, why, sizeof why) == 21 &&
-               file_contains(out, "scene.ini", "length = 70 "),
+               file_contains(out, "scene.ini", "length = 75 "),
            "a scene file with CR-only line ends runs as written (exit %d, %s, %.200s)", r.code, why,
            r.err);
     path2(out, sizeof out, tmp, "max-rows");

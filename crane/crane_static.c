@@ -1,0 +1,556 @@
+/* The crane's static start and checks, equilibrium.csv, and its modes (crane_static.h). */
+#include "crane_static.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bgr_analysis.h"
+
+/* ------------------------------------------------------------------ helpers ---- */
+
+static void add_key(crane_start_report *rep, const char *key)
+{
+    if (strstr(rep->keys, key)) return;
+    size_t l = strlen(rep->keys);
+    snprintf(rep->keys + l, sizeof rep->keys - l, "%s%s", l ? ", " : "", key);
+}
+
+/* The scene keys of the part an unknown or equation belongs to (its path under crane/). */
+static void keys_of_path(crane_start_report *rep, const crane_scene *s, const char *name)
+{
+    if (!name) return;
+    if (strstr(name, "/ties")) {
+        add_key(rep, "[ties] gantry_top");
+        add_key(rep, "[ties] E");
+        add_key(rep, "[ties] A");
+    }
+    if (strstr(name, "/boom")) {
+        add_key(rep, "[boom] tip_radius");
+        add_key(rep, "[boom] E");
+        add_key(rep, "[boom] I_luff");
+        if (s->ties) add_key(rep, "[ties] gantry_top");
+    }
+    if (strstr(name, "/rope") || strstr(name, "/load")) {
+        add_key(rep, "[rope] length");
+        add_key(rep, "[rope] E");
+        add_key(rep, "[load] mass");
+    }
+    if (strstr(name, "/hydraulics")) {
+        add_key(rep, "[hydraulics] bulk_modulus");
+        add_key(rep, "[hydraulics] line_volume");
+    }
+    if (strstr(name, "/platform") || strstr(name, "/slewing") || strstr(name, "/base") ||
+        strstr(name, "/counterweight")) {
+        add_key(rep, "[platform] com");
+        if (s->counterweight) add_key(rep, "[counterweight] mass");
+    }
+}
+
+/* The tip's distance from the slewing axis at the state y. */
+static double tip_radius_at(const crane *c, const double *y, double *tip, double *foot)
+{
+    const crane_scene *s = crane_get_scene(c);
+    crane_tip_foot(c, y, tip, foot);
+    return hypot(tip[0] - s->joint_A[0], tip[1] - s->joint_A[1]);
+}
+
+/* d L0 / d r of the first tie for a rigid rotation of the boom about the hinge's y axis. */
+static double tie_sensitivity(const crane_scene *s, const double *tip)
+{
+    double g[3] = {s->gantry_top[0], s->gantry_top[1], s->gantry_top[2]};
+    if (s->tie_spread > 0) g[1] -= s->tie_spread;
+    double u[3] = {tip[0] - g[0], tip[1] - g[1], tip[2] - g[2]};
+    double L = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    double dx = tip[0] - s->boom_foot[0], dz = tip[2] - s->boom_foot[2];
+    /* rotation dphi about the hinge's y axis: d tip = dphi (dz, 0, -dx), d r = dphi dz */
+    return (u[0] * dz - u[2] * dx) / (L * dz);
+}
+
+/* ------------------------------------------------------------ static start ---- */
+
+static void checks(crane *c, crane_start_report *rep)
+{
+    const crane_scene *s = crane_get_scene(c);
+    bgr_model *m = crane_model(c);
+    const double *y = bgr_y0(m);
+    double tip[3], foot[3];
+    rep->radius = tip_radius_at(c, y, tip, foot);
+    rep->tip_z = tip[2];
+    rep->foot_z = foot[2];
+    rep->ground_z = s->joint_A[2];
+    crane_geom *g = malloc(sizeof *g);
+    rep->straightness = NAN;
+    rep->load_z = NAN;
+    if (g && crane_geometry(c, 0.0, y, NULL, g) == BG_OK) {
+        double d[3] = {tip[0] - foot[0], tip[1] - foot[1], tip[2] - foot[2]};
+        double L2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], worst = 0;
+        for (int k = 0; k < g->nodes; k++) {
+            double p[3] = {g->node[k][0] - foot[0], g->node[k][1] - foot[1],
+                           g->node[k][2] - foot[2]};
+            double t = L2 > 0 ? (p[0] * d[0] + p[1] * d[1] + p[2] * d[2]) / L2 : 0;
+            double q[3] = {p[0] - t * d[0], p[1] - t * d[1], p[2] - t * d[2]};
+            worst = fmax(worst, sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]));
+        }
+        rep->straightness = worst;
+        if (g->rope) rep->load_z = g->load[2];
+    }
+    free(g);
+    rep->straightness_tol = 0.05 * s->boom_length;
+    double T = NAN, V, U, out[CRANE_NOUT];
+    crane_energy(c, y, &T, &V, &U);
+    rep->kinetic = T;
+    rep->kinetic_tol = 1e-6;
+    double *yp = calloc((size_t)bgr_n(m), sizeof *yp);
+    if (yp) {
+        crane_outputs(c, 0.0, y, yp, out);
+        rep->hinge_gap = out[CRANE_NOUT - 1];
+        free(yp);
+    }
+    rep->ok_radius = fabs(rep->radius - rep->radius_want) <= rep->radius_tol;
+    rep->ok_boom = rep->tip_z > rep->foot_z && rep->straightness <= rep->straightness_tol;
+    rep->ok_load = !s->rope || rep->load_z > rep->ground_z;
+    rep->ok_rest = rep->kinetic <= rep->kinetic_tol;
+}
+
+static void say(crane_start_report *rep, const char *fmt, double a, double b, double c2)
+{
+    size_t l = strlen(rep->message);
+    if (l) l += (size_t)snprintf(rep->message + l, sizeof rep->message - l, "; ");
+    if (l < sizeof rep->message)
+        snprintf(rep->message + l, sizeof rep->message - l, fmt, a, b, c2);
+}
+
+int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
+{
+    crane_start_report rl;
+    crane_start_report *rep = rep_out ? rep_out : &rl;
+    memset(rep, 0, sizeof *rep);
+    if (!c) return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_static_start", "no crane");
+    const crane_scene *s = crane_get_scene(c);
+    crane_scene sc = *s; /* c is replaced below */
+    const double R = sc.boom_tip_radius;
+    rep->radius_want = R;
+    rep->radius_tol = 1e-6 * fmax(R, 1.0);
+    rep->tie_L0_geometric = rep->tie_L0 = crane_tie_length(c);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    dae_static_options o;
+    dae_static_options_default(&o);
+    o.max_steps = 150; /* a crane that can stand needs 3 to 10; a failure is known by then */
+    double L0 = rep->tie_L0, Lp = NAN, rp = NAN;
+    crane *cur = NULL;
+    bg_error serr = {0};
+    int st = BG_OK, tie_fail = 0;
+    /* The drive holds the platform through the PID's integral, whose state and the platform's
+     * angle keep their sum (both integrate the same rate): at rest the integral supplies the
+     * leakage flow, so a start from zero would leave the platform a fraction of a microradian
+     * off theta = 0. The integral starts instead from the holding value of the last solve
+     * (a bumpless start), and the platform rests at theta = 0. */
+    double I0 = 0;
+    for (int it = 0; it < 12; it++) {
+        crane_free(&cur);
+        cur = crane_build_ties(&sc, sc.ties ? L0 : 0.0, err);
+        if (!cur) return err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
+        bgr_model *mc = crane_model(cur);
+        int vI = bgr_find_var(mc, "crane/hydraulics/pid/integral");
+        int vth = bgr_find_var(mc, "crane/platform_sensor/angle");
+        if (vI >= 0) bgr_y0(mc)[vI] = I0;
+        bg_error_clear(&serr);
+        st = bgr_static(mc, &o, 0.0, &rep->solve, &serr);
+        rep->solves++;
+        rep->tie_L0 = L0;
+        if (st != BG_OK) break;
+        double tip[3], foot[3], r = tip_radius_at(cur, bgr_y0(mc), tip, foot);
+        int held = vI < 0 || vth < 0 || fabs(bgr_y0(mc)[vth]) <= 1e-12;
+        if (vI >= 0) I0 = bgr_y0(mc)[vI];
+        if ((!sc.ties || fabs(r - R) <= 1e-9 * fmax(R, 1.0)) && held) break;
+        if (!sc.ties || fabs(r - R) <= 1e-9 * fmax(R, 1.0)) continue; /* the integral only */
+        double dLdr = isfinite(rp) && r != rp ? (L0 - Lp) / (r - rp) : tie_sensitivity(&sc, tip);
+        double Ln = L0 + dLdr * (R - r);
+        if (!(Ln > 0) || !isfinite(Ln) || !(tip[2] > foot[2])) {
+            tie_fail = 1;
+            break;
+        }
+        Lp = L0, rp = r, L0 = Ln;
+    }
+    if (st != BG_OK && st != DAE_CONV_FAIL && st != DAE_TOO_MUCH_WORK && st != BG_ERR_SINGULAR) {
+        crane_free(&cur);
+        return bg_error_raise(err, st, "crane_static_start", "static equilibrium: %s",
+                              serr.message);
+    }
+    /* the state reached (the equilibrium, or the last state at rest) becomes the model's */
+    crane_replace(c, &cur);
+    crane_set_reference_tip(c);
+    rep->ok_solve = st == BG_OK;
+    checks(c, rep);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    rep->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    /* the verdict */
+    bgr_model *m = crane_model(c);
+    if (!sc.ties && (!rep->ok_solve || !rep->ok_boom || !rep->ok_radius)) {
+        add_key(rep, "[ties] enabled");
+        add_key(rep, "[boom] tip_radius");
+        add_key(rep, "[environment] g");
+        say(rep, "nothing holds the boom up without ties", 0, 0, 0);
+    }
+    if (!rep->ok_solve) {
+        /* the ties' moment about the hinge against that of the weights (luffing plane): a tie
+         * anchor behind the boom pulls the tip back; one in front or on the boom's line cannot
+         * hold it */
+        if (sc.ties) {
+            double tip[3], foot[3];
+            crane *g0 = crane_build_ties(&sc, 0.0, NULL);
+            if (g0) {
+                crane_tip_foot(g0, bgr_y0(crane_model(g0)), tip, foot);
+                crane_free(&g0);
+                double gx = sc.gantry_top[0], gz = sc.gantry_top[2];
+                double ux = gx - tip[0], uz = gz - tip[2], lu = hypot(ux, uz);
+                double rx = tip[0] - sc.boom_foot[0], rz = tip[2] - sc.boom_foot[2];
+                /* y-moments about B: tie r x u (per unit tension), weight r x (0, 0, -1) */
+                double mt = lu > 0 ? (rz * ux - rx * uz) / lu : 0, mw = rx;
+                if (!(mt * mw < 0) || fabs(mt) < 0.01 * sc.boom_length) {
+                    add_key(rep, "[ties] gantry_top");
+                    add_key(rep, "[boom] tip_radius");
+                    say(rep, "the ties cannot hold the boom: their moment arm about the hinge is "
+                             "%.3g m ",
+                        fabs(mt), 0, 0);
+                    size_t l = strlen(rep->message);
+                    snprintf(rep->message + l, sizeof rep->message - l, "%s",
+                             mt * mw < 0 ? "(too short)"
+                                         : "on the side of the load (they pull the tip over)");
+                }
+            }
+        }
+        if (sc.ties) {
+            add_key(rep, "[ties] gantry_top");
+            add_key(rep, "[ties] E");
+        }
+        add_key(rep, "[boom] E");
+        add_key(rep, "[boom] I_luff");
+        /* the part whose equation is out of balance (the unknown with the largest correction
+         * is mostly whatever moves most, the load or the drive) */
+        const char *e = rep->solve.residual_eq >= 0 ? bgr_eq_name(m, rep->solve.residual_eq)
+                                                    : NULL;
+        keys_of_path(rep, &sc, e);
+        add_key(rep, "[environment] g");
+        if (sc.rope) add_key(rep, "[load] mass");
+        say(rep, "no static equilibrium: the structure carries only %.3g of the scene's loads", rep->solve.lambda, 0, 0);
+        size_t l = strlen(rep->message);
+        snprintf(rep->message + l, sizeof rep->message - l, " (%s)", serr.message);
+    } else {
+        if (tie_fail || !rep->ok_radius) {
+            add_key(rep, "[boom] tip_radius");
+            if (sc.ties) {
+                add_key(rep, "[ties] gantry_top");
+                add_key(rep, "[ties] E");
+            }
+            if (sc.rope) add_key(rep, "[load] mass");
+            say(rep, "the tip is at %.6g m from the axis, not at the radius %.6g m (within %.2g m)",
+                rep->radius, R, rep->radius_tol);
+        }
+        if (!rep->ok_boom) {
+            add_key(rep, "[boom] tip_radius");
+            add_key(rep, "[boom] E");
+            add_key(rep, "[boom] I_luff");
+            if (sc.ties) add_key(rep, "[ties] gantry_top");
+            if (sc.rope) add_key(rep, "[load] mass");
+            if (!(rep->tip_z > rep->foot_z))
+                say(rep, "the boom hangs below its foot (tip at z = %.4g m, foot at z = %.4g m)",
+                    rep->tip_z, rep->foot_z, 0);
+            else
+                say(rep, "the boom is not straight: a node %.4g m off the line foot-tip (at most "
+                         "%.4g m, 5 %% of the length: buckled)",
+                    rep->straightness, rep->straightness_tol, 0);
+        }
+        if (!rep->ok_load) {
+            add_key(rep, "[rope] length");
+            add_key(rep, "[boom] length");
+            add_key(rep, "[boom] tip_radius");
+            say(rep, "the load hangs at z = %.4g m, below the ground (z = %.4g m at the slewing "
+                     "joint)",
+                rep->load_z, rep->ground_z, 0);
+        }
+        if (!rep->ok_rest) {
+            add_key(rep, "[environment] g");
+            say(rep, "the bodies are not at rest (kinetic energy %.3g J, at most %.3g J)",
+                rep->kinetic, rep->kinetic_tol, 0);
+        }
+    }
+    rep->ok = rep->ok_solve && rep->ok_radius && rep->ok_boom && rep->ok_load && rep->ok_rest;
+    if (!rep->ok)
+        return bg_error_raise(err, CRANE_ERR_START, "crane_static_start",
+                              "scene %s: the keys %s cannot be met together: %s", sc.name,
+                              rep->keys, rep->message);
+    return BG_OK;
+}
+
+int crane_settle(crane *c, bg_error *err)
+{
+    return crane_static_start(c, NULL, err);
+}
+
+int crane_start_print(const crane_start_report *r, FILE *f)
+{
+    const char *ok[2] = {"FAILED", "ok"};
+    fprintf(f, "static start: %s\n", r->ok ? "verified" : "FAILED");
+    fprintf(f, "  static solves (one per tie length)  %d in %.3f s\n", r->solves, r->seconds);
+    fprintf(f, "  last solve: load factor %.6g, %ld steps (%ld rejected), %ld Newton iterations, "
+               "scaled residual %.3g\n",
+            r->solve.lambda, r->solve.steps, r->solve.rejected, r->solve.newton_iters,
+            r->solve.residual);
+    fprintf(f, "  ties' unstretched length            %.9g m (geometric %.9g m)\n", r->tie_L0,
+            r->tie_L0_geometric);
+    fprintf(f, "checks:\n");
+    fprintf(f, "  %-6s the static solve reached the full load and rest\n", ok[r->ok_solve]);
+    fprintf(f, "  %-6s tip at the scene's radius: %.9g m, wanted %.9g m within %.3g m\n",
+            ok[r->ok_radius], r->radius, r->radius_want, r->radius_tol);
+    fprintf(f, "  %-6s boom above its foot: tip at z = %.6g m, foot at z = %.6g m; straight: "
+               "nodes within %.3g m of the line foot-tip (at most %.3g m)\n",
+            ok[r->ok_boom], r->tip_z, r->foot_z, r->straightness, r->straightness_tol);
+    fprintf(f, "  %-6s load above the ground: z = %.6g m, ground (slewing joint) at z = %.6g m\n",
+            ok[r->ok_load], r->load_z, r->ground_z);
+    fprintf(f, "  %-6s every body at rest: kinetic energy %.3g J (at most %.3g J)\n",
+            ok[r->ok_rest], r->kinetic, r->kinetic_tol);
+    fprintf(f, "  (the hinge's position mismatch: %.3g m)\n", r->hinge_gap);
+    if (!r->ok) fprintf(f, "keys that cannot be met together: %s\nwhy: %s\n", r->keys, r->message);
+    return ferror(f) ? BG_ERR_IO : BG_OK;
+}
+
+/* ------------------------------------------------------------ equilibrium ---- */
+
+static void row3(FILE *f, const char *name, const double *p, double value, const char *unit)
+{
+    fprintf(f, "%s,%.10g,%.10g,%.10g,", name, p[0], p[1], p[2]);
+    if (isfinite(value))
+        fprintf(f, "%.10g,%s\n", value, unit);
+    else
+        fprintf(f, ",%s\n", unit);
+}
+
+static void row1(FILE *f, const char *name, double value, const char *unit)
+{
+    fprintf(f, "%s,,,,%.10g,%s\n", name, value, unit);
+}
+
+/* A bond's six efforts by name: force and moment. 0 if absent. */
+static int bond6(const bgr_model *m, const double *y, const char *bond, double *F, double *M)
+{
+    char nm[128];
+    for (int i = 0; i < 6; i++) {
+        snprintf(nm, sizeof nm, "crane/%s/e%d", bond, i);
+        int v = bgr_find_var(m, nm);
+        if (v < 0) return 0;
+        (i < 3 ? F : M)[i % 3] = y[v];
+    }
+    return 1;
+}
+
+int crane_equilibrium_write(const crane *c, const crane_start_report *rep, FILE *f)
+{
+    const crane_scene *s = crane_get_scene(c);
+    bgr_model *m = crane_model((crane *)c);
+    const double *y = bgr_y0(m);
+    crane_geom *g = malloc(sizeof *g);
+    if (!g || crane_geometry(c, 0.0, y, NULL, g) != BG_OK) {
+        free(g);
+        return BG_ERR_ARGUMENT;
+    }
+    fprintf(f, "name,x [m],y [m],z [m],value,unit\n");
+    char nm[64];
+    /* positions */
+    row3(f, "platform_com", g->platform_x, NAN, "m");
+    row3(f, "boom_hinge", g->hinge, NAN, "m");
+    for (int k = 0; k < g->ngantry; k++) {
+        snprintf(nm, sizeof nm, g->ngantry == 2 ? (k ? "gantry_right" : "gantry_left") : "gantry");
+        row3(f, nm, g->gantry[k], NAN, "m");
+    }
+    for (int k = 0; k < g->nodes; k++) {
+        snprintf(nm, sizeof nm, "boom_node%02d", k);
+        double p = hypot(g->node[k][0] - s->joint_A[0], g->node[k][1] - s->joint_A[1]);
+        row3(f, nm, g->node[k], p, "m (position; value: distance from the slewing axis)");
+    }
+    row3(f, "boom_tip", g->node[g->nodes - 1], rep ? rep->radius : NAN,
+         "m (value: the tip's radius)");
+    if (g->rope) row3(f, "load", g->load, g->load_mass, "m (value: mass in kg)");
+    if (g->counterweight) row3(f, "counterweight", g->cw, g->cw_mass, "m (value: mass in kg)");
+    /* tensions */
+    if (g->rope) row1(f, "rope_tension", g->rope_tension, "N");
+    for (int k = 0; k < g->nties; k++)
+        row1(f, g->nties == 2 ? (k ? "tie_right_tension" : "tie_left_tension") : "tie_tension",
+             g->tie_tension[k], "N");
+    /* support forces */
+    double F[3], M[3];
+    if (bond6(m, y, "b_base", F, M)) {
+        row3(f, "base_force_on_crane", F, sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]), "N");
+        row3(f, "base_moment_on_crane", M, sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]), "N m");
+    }
+    if (bond6(m, y, "b_hinge_b", F, M)) {
+        row3(f, "hinge_force_on_boom", F, sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]), "N");
+        row3(f, "hinge_moment_on_boom", M, sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]), "N m");
+    }
+    if (g->beam) {
+        row3(f, "boom_section_force_foot", g->force_local[0], NAN,
+             "N (along the boom (tension > 0), in the luffing plane, sideways)");
+        row3(f, "boom_section_moment_foot", g->moment_local[0], NAN, "N m (boom axes)");
+    }
+    /* drive */
+    if (isfinite(g->p_high)) {
+        row1(f, "p_high", g->p_high, "Pa");
+        row1(f, "p_low", g->p_low, "Pa");
+        row1(f, "pump_x", g->pump_x, "-");
+    }
+    row1(f, "theta", g->theta, "rad");
+    if (rep) {
+        row1(f, "tie_unstretched_length", rep->tie_L0, "m");
+        row1(f, "kinetic_energy", rep->kinetic, "J");
+        row1(f, "hinge_position_mismatch", rep->hinge_gap, "m");
+        row1(f, "static_residual", rep->solve.residual, "tolerance units");
+    }
+    free(g);
+    return ferror(f) ? BG_ERR_IO : BG_OK;
+}
+
+/* ------------------------------------------------------------------ modes ---- */
+
+int crane_modes(crane *c, double T, dae_modes **out, double *yout, bg_error *err)
+{
+    if (out) *out = NULL;
+    if (!c || !out || !(T >= 0))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_modes", "bad arguments (T = %g)", T);
+    const crane_scene *s = crane_get_scene(c);
+    bgr_model *m = crane_model(c);
+    dae_problem p;
+    if (bgr_dae_problem(m, &p) != BG_OK)
+        return bg_error_raise(err, BG_ERR_STATE, "crane_modes", "model not compiled");
+    int n = p.n, st = BG_OK;
+    double *y = malloc((size_t)n * sizeof *y), *yp = calloc((size_t)n, sizeof *yp);
+    if (!y || !yp) {
+        free(y);
+        free(yp);
+        return bg_error_raise(err, BG_ERR_MEMORY, "crane_modes", "out of memory");
+    }
+    memcpy(y, bgr_y0(m), (size_t)n * sizeof *y);
+    if (T > 0) { /* the dynamic run to T, as the crane program sets it up */
+        double bk[64];
+        dae_options o;
+        dae_options_default(&o);
+        o.rtol = s->rtol;
+        o.atol = s->atol;
+        o.has_t_stop = 1;
+        o.t_stop = T;
+        o.nbreakpoints = crane_breakpoints(c, bk, 64);
+        if (o.nbreakpoints > 64) o.nbreakpoints = 64;
+        o.breakpoints = bk;
+        o.exclude_alg = 1;
+        o.stability_guard = s->stability_guard;
+        o.max_steps = 100000000;
+        dae_solver *sol = dae_create(&p, &o, err);
+        double tr;
+        if (!sol) {
+            st = err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
+        } else if ((st = dae_init(sol, 0.0, bgr_y0(m), bgr_yp0(m))) != BG_OK ||
+                   (st = dae_consistent_init(sol)) != BG_OK ||
+                   (st = dae_solve_to(sol, T, &tr, y, yp)) < 0) {
+            bg_error_raise(err, st < 0 ? st : BG_ERR_ARGUMENT, "crane_modes",
+                           "the run to t = %g: %s", T, dae_get_error(sol)->message);
+            st = st < 0 ? st : BG_ERR_ARGUMENT;
+        } else {
+            st = BG_OK;
+        }
+        dae_free(&sol);
+    }
+    if (st == BG_OK) {
+        dae_modes_options mo;
+        dae_modes_options_default(&mo);
+        mo.dense_max = 1200;
+        mo.nev = 20;
+        st = dae_modes_compute(&p, T, y, yp, &mo, out, err);
+    }
+    if (yout && st == BG_OK) memcpy(yout, y, (size_t)n * sizeof *y);
+    free(y);
+    free(yp);
+    return st;
+}
+
+const char *crane_mode_part(const dae_modes *M, int k, char *buf, size_t size)
+{
+    char d[256];
+    snprintf(buf, size, "other");
+    if (dae_modes_describe(M, k, 2, 1, 0, d, sizeof d) <= 0) return buf;
+    const char *a = strchr(d, '/');
+    if (!a) return buf;
+    a++;
+    size_t l = strcspn(a, " /");
+    char part[64];
+    snprintf(part, sizeof part, "%.*s", (int)(l < 63 ? l : 63), a);
+    if (!strncmp(part, "ties", 4)) snprintf(part, sizeof part, "ties");
+    if (!strncmp(part, "platform", 8) || !strncmp(part, "slewing", 7)) snprintf(part, sizeof part, "platform");
+    if (!strncmp(part, "boom", 4)) snprintf(part, sizeof part, "boom");
+    snprintf(buf, size, "%s", part);
+    return buf;
+}
+
+int crane_modes_write(const dae_modes *M, FILE *f)
+{
+    fprintf(f, "index,frequency_hz,damping_ratio,kind,part,dominant\n");
+    char part[64], d[512];
+    for (int k = 0; k < dae_modes_count(M); k++) {
+        const dae_mode *md = dae_modes_get(M, k);
+        dae_modes_describe(M, k, 2, 4, 3, d, sizeof d);
+        for (char *q = d; *q; q++)
+            if (*q == '"') *q = '\'';
+        fprintf(f, "%d,%.10g,%.6g,%s,%s,\"%s\"\n", k + 1, md->freq_hz, md->damping,
+                dae_mode_kind_name(md->kind), crane_mode_part(M, k, part, sizeof part), d);
+    }
+    return ferror(f) ? BG_ERR_IO : BG_OK;
+}
+
+int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, FILE *f)
+{
+    /* the parts present among the elastic modes */
+    enum { MAXP = 16 };
+    char parts[MAXP][64];
+    int np = 0, ne = 0, nr = 0, nc = 0;
+    dae_modes_info(M, &ne, &nr, &nc, NULL, NULL, NULL);
+    for (int k = 0; k < dae_modes_count(M); k++) {
+        if (dae_modes_get(M, k)->kind != DAE_MODE_ELASTIC) continue;
+        char part[64];
+        crane_mode_part(M, k, part, sizeof part);
+        int j = 0;
+        while (j < np && strcmp(parts[j], part))
+            j++;
+        if (j == np && np < MAXP) snprintf(parts[np++], sizeof parts[0], "%s", part);
+    }
+    fprintf(f, "# The crane's modes (modes.csv): damping ratio against frequency, by part.\n"
+               "#   gnuplot modes.gp\n"
+               "set terminal png size 900,600 noenhanced\nset output 'modes.png'\n"
+               "set datafile separator ','\nset grid\nset key outside right top\n"
+               "set logscale x\nset xlabel 'natural frequency |s|/(2 pi) [Hz]'\n"
+               "set ylabel 'damping ratio -Re(s)/|s|'\n");
+    fprintf(f, "set title 'crane modes, scene %s, t = %g s: %d elastic (plotted), %d rigid, %d "
+               "constraint'\n",
+            scene, T, ne, nr, nc);
+    /* labels of the lowest five */
+    int lab = 0;
+    for (int k = 0; k < dae_modes_count(M) && lab < 5; k++) {
+        const dae_mode *md = dae_modes_get(M, k);
+        if (md->kind != DAE_MODE_ELASTIC || !(md->freq_hz > 0)) continue;
+        char part[64];
+        fprintf(f, "set label %d '%d %s %.3g Hz' at %.9g,%.9g offset 1,%d font ',8'\n", lab + 1,
+                k + 1, crane_mode_part(M, k, part, sizeof part), md->freq_hz, md->freq_hz,
+                md->damping, lab % 2 ? -1 : 1);
+        lab++;
+    }
+    /* one series per part */
+    fprintf(f, "plot ");
+    for (int j = 0; j < np; j++)
+        fprintf(f,
+                "%s'modes.csv' skip 1 using (strcol(4) eq 'elastic' && strcol(5) eq '%s' ? $2 : "
+                "1/0):3 title '%s' with points pt 7 ps 1.2",
+                j ? ", \\\n     " : "", parts[j], parts[j]);
+    if (np == 0) fprintf(f, "1/0 title 'no elastic mode'");
+    fprintf(f, "\n");
+    return ferror(f) ? BG_ERR_IO : BG_OK;
+}
