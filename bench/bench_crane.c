@@ -109,7 +109,7 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
         }
     }
     bgr_model *m = crane_model(c);
-    int r = bgr_dae_problem(m, &bc->dp);
+    int r = crane_dae_problem(c, &bc->dp);
     if (r != BG_OK) {
         snprintf(msg, msz, "crane problem: %s", bgr_model_error(m)->message);
         bench_case_free(bc);

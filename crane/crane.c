@@ -1266,7 +1266,8 @@ static int simulate(run *r)
     }
     bgr_model *m = crane_model(r->c);
     dae_problem p;
-    if (bgr_dae_problem(m, &p) != BG_OK) return fail_run(r, "problem", bgr_model_error(m)->message);
+    if (crane_dae_problem(r->c, &p) != BG_OK)
+        return fail_run(r, "problem", bgr_model_error(m)->message);
     int n = p.n;
 
     int cap = 64;

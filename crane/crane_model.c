@@ -488,8 +488,6 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         fail_here(err, "compile", m);
         goto fail;
     }
-    for (int v = 0; !s->nominal_scales && v < bgr_n(m); v++) /* atol in SI units */
-        TRY(bgr_set_nominal(m, v, 1.0), "nominal scales");
     if (set_initial(c) != 0) {
         fail_here(err, "initial values", m);
         goto fail;
@@ -587,6 +585,14 @@ void crane_free(crane **c)
     bgr_model_free(&(*c)->m);
     free(*c);
     *c = NULL;
+}
+
+int crane_dae_problem(crane *c, dae_problem *p)
+{
+    if (!c || !p) return BG_ERR_ARGUMENT;
+    int r = bgr_dae_problem(c->m, p);
+    if (r == BG_OK && !c->s.nominal_scales) p->nominal = NULL;
+    return r;
 }
 
 bgr_model *crane_model(crane *c)

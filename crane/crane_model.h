@@ -89,6 +89,11 @@ typedef struct crane crane;
 crane *crane_build(const crane_scene *s, bg_error *err);
 void crane_free(crane **c);
 bgr_model *crane_model(crane *c);
+/* bgr_dae_problem of the crane's model with the scene's tolerance convention: the unknowns'
+ * nominal magnitudes when [solver] nominal_scales is on, none (p->nominal NULL: atol in SI
+ * units) when it is off. The model keeps its magnitudes either way: the static solve scales
+ * its own iteration by them. BG_OK or bgr_dae_problem's status. */
+int crane_dae_problem(crane *c, dae_problem *p);
 /* Breakpoints of the reference in (0, t_end] (at most max), count returned. */
 int crane_breakpoints(const crane *c, double *t, int max);
 

@@ -59,7 +59,7 @@ static inline int start_tol(run *r, const crane_scene *sc, int settle, double to
     static double bp[32];
     dae_problem p;
     dae_options o;
-    bgr_dae_problem(m, &p);
+    crane_dae_problem(r->c, &p); /* the scene's tolerance convention, as the program */
     dae_options_default(&o);
     o.rtol = tol;
     o.atol = tol;
