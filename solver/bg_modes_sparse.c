@@ -14,6 +14,16 @@
 
 #include "bg_modes_impl.h"
 
+#ifdef BG_HAVE_ARPACK
+/* Entry i of ARPACK's start vector, of the model's scale: the nominal magnitude times a
+ * deterministic pattern in [-0.5, 0.5) (runs repeat exactly). */
+static double start_entry(const dae_modes *M, int i)
+{
+    unsigned h = (unsigned)i * 2654435761u;
+    return ((double)(h >> 8) / 16777216.0 - 0.5) * mode_nominal(M, i);
+}
+#endif
+
 /* ------------------------------------------------------------------ sparse ---- */
 
 #ifdef BG_HAVE_ARPACK
@@ -183,11 +193,8 @@ static int arpack_run(mctx *c, double sigma, int nev_a, found *f, int cap, int *
         st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
         goto done;
     }
-    /* a start vector of the model's scale: the nominal magnitudes with a deterministic pattern */
-    for (int i = 0; i < n; i++) {
-        unsigned h = (unsigned)i * 2654435761u;
-        resid[i] = ((double)(h >> 8) / 16777216.0 - 0.5) * mode_nominal(M, i);
-    }
+    for (int i = 0; i < n; i++)
+        resid[i] = start_entry(M, i);
     int ipntr[14] = {0}, iparam[11] = {0}, ido = 0, info = 1;
     iparam[0] = 1;
     iparam[2] = o->maxiter;
@@ -337,10 +344,8 @@ static int arpack_window(mctx *c, refiner *R, double wc, int nev, found *f, int 
         st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
         goto done;
     }
-    for (int i = 0; i < n; i++) {
-        unsigned h = (unsigned)i * 2654435761u;
-        resid[i] = ((double)(h >> 8) / 16777216.0 - 0.5) * mode_nominal(M, i);
-    }
+    for (int i = 0; i < n; i++)
+        resid[i] = start_entry(M, i);
     int ipntr[14] = {0}, iparam[11] = {0}, ido = 0, info = 1;
     iparam[0] = 1;
     iparam[2] = o->maxiter;
