@@ -34,7 +34,9 @@
  * steps_vs_tol.csv (steps of every problem, solver and tolerance, flagged MORE STEPS where a
  * looser tolerance took more than 5 % more steps than a tighter one), mebdfi_compare.csv (the
  * published MEBDFI statistics of docs/mebdfi_stats.md beside runs of bgdae-klu with the
- * drivers' tolerance conventions, bench_mebdfi.h) and, with --crane-full, crane_wp.csv (the
+ * drivers' tolerance conventions, bench_mebdfi.h), osc_guard.csv (the undamped oscillatory
+ * problems with the usual orders, the stability guard and max order 2, bench_osc.h) and, with
+ * --crane-full, crane_wp.csv (the
  * crane scene crane/scenes/paper-undamped.ini, or --crane-full-scene FILE, over its full 20 s:
  * ours and IDA at rtol 1e-4 .. 1e-9, or --crane-full-rtols LIST, against ours at 1e-10, IDA
  * restarted at each breakpoint from consistent values; bench_crane.h; tools/run.sh asks for
@@ -84,6 +86,7 @@
 #include "bench_case.h"
 #include "bench_crane.h"
 #include "bench_mebdfi.h"
+#include "bench_osc.h"
 #include "bench_stab.h"
 #include "bench_util.h"
 #include "problems.h"
@@ -1300,6 +1303,7 @@ int main(int argc, char **argv)
         failures += bench_crane_full(out, tail, &full, full_name, cf_rtols, cf_nr, 1e-10);
     if (n > 0) write_steps_vs_tol(out, mid, rows, n, cases, nc, solnames, ns, rtols, nr);
     if (nc > 0) failures += bench_mebdfi_compare(out, mid, cases, nc, rtols, nr);
+    if (nc > 0) failures += bench_osc_guard(out, mid, cases, nc, rtols, nr);
 
     /* the report: its head, the files that could not be written, the sections */
     load_average(ex.load_end, sizeof ex.load_end);

@@ -140,7 +140,8 @@ static void our_options(const bench_case *bc, const solver_def *sd, const run_op
     o->linsol = sd ? sd->ls : LS_KLU;
     o->index2 = sd ? sd->pol : DAE_I2_EXCLUDE;
     o->exclude_alg = bc->exclude_alg;
-    o->stability_guard = bc->stability_guard;
+    o->stability_guard = ro->guard ? ro->guard > 0 : bc->stability_guard;
+    if (ro->max_order > 0) o->max_order = ro->max_order;
     o->has_t_stop = 1;
     o->t_stop = tend;
     o->max_steps = ro->max_steps > 0 ? ro->max_steps : 1000000;

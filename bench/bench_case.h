@@ -94,6 +94,8 @@ typedef struct run_opts {
      * before the jump), and its first step there the last one before it (IDASetInitStep); the
      * CPU time includes the consistent values, IDA's counters do not */
     int ida_consistent_restart;
+    int max_order; /* ours: options.max_order (0: the default) */
+    int guard;     /* ours: 0 the case's stability guard setting, 1 on, -1 off */
 } run_opts;
 
 typedef struct run_out {

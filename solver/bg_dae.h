@@ -186,7 +186,7 @@ typedef struct dae_stats {
                                       matrix (KLU: min|Ukk|/max|Ukk|; dense: LAPACK dgecon) */
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
     long restarts;                 /* restarts at unannounced jumps (see dae_solve_to) */
-    long stab_lowered;             /* times the stability guard lowered the order */
+    long stab_lowered;             /* steps whose order the stability guard lowered */
     long pattern_nnz;              /* entries of the patterns found from the residual (dF/dy
                                       and dF/dy' together; 0 when both were given) */
     long pattern_probes;           /* points at which the residual was probed for them */

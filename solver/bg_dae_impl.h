@@ -24,6 +24,7 @@
 #include "bg_fdjac.h"
 
 #define MAXORD 5
+#define STAB_WIN 5 /* error estimates kept by the stability guard (dae_stab.c) */
 #define NPHI (MAXORD + 2)
 #define MAX_NEF 10 /* error-test failures in one step */
 #define MAX_NCF 10 /* Newton failures in one step */
@@ -92,18 +93,22 @@ struct dae_solver {
     double err_k, err_km1;
     double err_next; /* the error estimate of the order chosen for the next step */
     /* stability guard (dae_stab.c) */
-    double *stab_e[2];  /* weighted local error estimates of the last two steps */
+    double *stab_e[STAB_WIN]; /* weighted local error estimates of the last steps, newest first */
     int stab_ns;        /* of them, how many were taken at the current h and order */
     double stab_hs;     /* the step they were taken with */
     int stab_ks;        /* and the order */
     int stab_hits;      /* consecutive fits that found one dominant oscillation */
     double stab_theta;  /* h omega of the last such fit */
     double stab_w;      /* omega of the dominant undamped oscillation, 0: none known */
-    int stab_active;    /* the order was lowered for it */
-    double stab_hleft;  /* the step when it was lowered */
-    long stab_since;    /* accepted steps since then */
-    double stab_tsum;   /* and the time they covered */
-    long stab_quiet;    /* no new lowering before this many accepted steps (stats.steps) */
+    int stab_on;        /* the policy of the current phase: 1 lowering, 0 the usual orders */
+    long stab_len;      /* the phase's length (accepted steps) */
+    long stab_cnt;      /* accepted steps in it so far */
+    double stab_tmark;  /* its start: time */
+    long stab_amark;    /* and step attempts (accepted, rejected, Newton failures) */
+    double stab_pace[2]; /* time per attempt measured in the last phase of each policy, 0: none */
+    long stab_win[2];   /* exploitation length of each policy, doubled at each win */
+    int stab_probe;     /* the current phase measures a policy (1) or uses the better one (0) */
+    int stab_last;      /* the policy the last comparison chose, -1: none yet */
     /* roots */
     double *glo, *ghi, *gmid;
     double tlo;

@@ -109,8 +109,8 @@ void dae_free(dae_solver **sp)
     free(s->tmp2);
     free(s->typ);
     free(s->yc);
-    free(s->stab_e[0]);
-    free(s->stab_e[1]);
+    for (int j = 0; j < STAB_WIN; j++)
+        free(s->stab_e[j]);
     free(s->glo);
     free(s->ghi);
     free(s->gmid);
@@ -324,7 +324,7 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         if (!(s->phi[j] = calloc((size_t)n, sizeof(double)))) goto nomem;
     double **vecs[] = {&s->ewt,    &s->werr, &s->wnewt, &s->wdiff, &s->y,   &s->yp,   &s->ypred,
                        &s->yppred, &s->ee,   &s->delta, &s->res,   &s->tmp, &s->tmp2, &s->typ,
-                       &s->stab_e[0], &s->stab_e[1]};
+                       &s->stab_e[0], &s->stab_e[1], &s->stab_e[2], &s->stab_e[3], &s->stab_e[4]};
     for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
         if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
     if (p->nroots > 0) {

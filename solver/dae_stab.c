@@ -20,40 +20,53 @@
  *     e_{n+1} = a e_n + b e_{n-1},   with roots xi = r exp(+-i theta) of xi^2 = a xi + b,
  * where theta = h omega (for theta < pi) and r the amplification per step (1 undamped). After
  * each accepted step at the same h and order as the two before, a and b are fitted by least
- * squares over all unknowns (a Prony fit of the error sequence, the same idea as STALD's fit of
- * a characteristic root). The fit says "one dominant oscillation" when its residual is below
- * STAB_RESIDUAL of |e_{n+1}|, the roots are complex with r >= STAB_R_MIN (lightly damped, or
- * growing) and STAB_THETA_MIN <= theta <= STAB_THETA_MAX (an oscillation the steps follow),
- * and STAB_HITS fits in a row agree on theta within 25 %.
- * Its omega is then remembered.
+ * squares over all unknowns and over every triple of the last STAB_WIN estimates taken at this
+ * h and order (a Prony fit of the error sequence, the same idea as STALD's fit of a
+ * characteristic root; several triples keep the fit overdetermined when the error lies in two or
+ * three unknowns, where one triple fits any a, b). The fit says "one dominant oscillation" when
+ * its residual is below STAB_RESIDUAL of the fitted norm, the roots are complex with
+ * STAB_R_MIN <= r <= STAB_R_MAX (lightly damped) and STAB_THETA_MIN <= theta <= STAB_THETA_MAX
+ * (an oscillation the steps follow), and STAB_HITS fits in a row agree on theta within 25 %.
+ * Its omega is then remembered (and updated by later detections) until the next restart.
  *
- * Action. With omega known, an order q >= 3 is allowed only while h omega lies outside its
- * unstable band above; the order chosen for the next step is lowered until it is allowed
- * (order 2 always is). The order is also lowered to 2 when the step cannot grow at its order:
- * the error estimate is below STAB_ERR_FREE of the tolerance (the step is not held by accuracy)
- * and twice the step would fall in the band. BDF2 then damps the mode (by e^-1 in 15 steps at
- * h omega = 1, in 4 at 2), the mode leaves the error estimate, and the step grows to what the
- * remaining components need; the order rises again where h omega allows it. This is numerical
- * dissipation of the unresolved high frequencies, as structural dynamics practises it on
- * purpose (HHT-alpha, generalized-alpha): the fast mode's amplitude is not resolved beyond that
- * point, which is why the guard is an option (options.stability_guard, off by default), as the
- * amount of numerical dissipation is the analyst's choice in structural dynamics: on the IVP
- * Test Set's crank, whose elastic modes are part of the scored answer, it costs a digit at rtol
- * 1e-6; on the crane, whose answer is the slow motion, it costs nothing measurable.
+ * Action. With omega known, an order q >= 3 is kept only while h omega lies outside its
+ * unstable band above; otherwise the order of the next step is lowered to 2 (A-stable):
+ *  - when h omega lies in the band and the error estimate is below STAB_ERR_HELD of the
+ *    tolerance (the step is set by stability: an error estimate near the tolerance means the
+ *    error test holds the step, the oscillation is resolved to accuracy, and the usual order
+ *    selection decides);
+ *  - when the step cannot grow at its order: the error estimate is below STAB_ERR_FREE of the
+ *    tolerance and twice the step would fall in the band.
+ * BDF2 then damps the mode (by e^-1 in 15 steps at h omega = 1, in 4 at 2), the mode leaves the
+ * error estimate, and the step grows to what the remaining components need; the order rises
+ * again, by the usual selection, where h omega allows it. This is numerical dissipation of the
+ * unresolved high frequencies, as structural dynamics practises it on purpose (HHT-alpha,
+ * generalized-alpha): the fast mode's amplitude is not resolved beyond that point.
  *
- * Trial. Lowering the order pays only if the step then grows: the mode must be damped faster
- * than the error test holds the step, which depends on its amplitude. The time covered after
- * the lowering is compared with what the step it was lowered at would have covered: below half
- * of it after STAB_CHECK steps, or below all of it after STAB_TRIAL steps, the guard forgets
- * omega, lets the usual order selection act, and lowers no order for the next STAB_QUIET
- * steps (the IVP Test Set's crank, whose elastic modes are large against its tolerance, ends
- * there; the crane's paper scene passes the trial after about 200 steps). */
+ * Measured, not assumed. Lowering pays only if the mode then decays faster than the error test
+ * holds the step: a free mode (a structure's vibration after a transient) does, a mode forced
+ * by the motion or large against the tolerance stays in the error estimate at order 2 and the
+ * steps shrink instead. So once an oscillation is known, the two policies (lowering, and the
+ * usual order selection) are run in phases and compared by their pace, the time covered per
+ * step attempt (accepted and rejected steps and Newton failures): each is measured over
+ * STAB_PHASE accepted steps, then the faster one is used for a phase of 4 STAB_PHASE steps,
+ * doubled (up to STAB_EXPLOIT_MAX) each time the comparison chooses it again, after which the
+ * other one is measured again (the choice between two arms by measured reward, as in an
+ * explore-then-exploit bandit with doubling epochs). Lowering is kept unless the usual orders
+ * are STAB_BIAS times faster: a phase of the usual orders that follows lowering starts with the
+ * mode damped and regrows it only later, which favours it over a phase of STAB_PHASE steps.
+ *
+ * Whether the dissipation is acceptable is the analyst's choice, as the amount of numerical
+ * dissipation is in structural dynamics, hence an option (options.stability_guard, off by
+ * default): on the crane, whose answer is the slow motion, it costs nothing measurable; on the
+ * IVP Test Set's crank, whose elastic modes are scored, it costs up to a digit: leave it off
+ * there. */
 #include <math.h>
 #include <string.h>
 
 #include "bg_dae_impl.h"
 
-#define STAB_RESIDUAL 0.3  /* fit residual / |e_{n+1}| below which one oscillation dominates */
+#define STAB_RESIDUAL 0.3  /* fit residual / fitted norm below which one oscillation dominates */
 #define STAB_R_MIN 0.9     /* amplification per step at least this: lightly damped or growing */
 #define STAB_R_MAX 1.1     /* and at most this (faster growth is a transient, not a mode) */
 #define STAB_THETA_MIN 0.2 /* h omega at least this (30 steps a period): slower ones are resolved
@@ -61,12 +74,13 @@
 #define STAB_THETA_MAX 1.05 /* and at most this (6 steps a period): a sign that alternates from
                                step to step (theta near pi) is the error estimate of a stiff
                                decaying component, not an oscillation the steps follow */
-#define STAB_HITS 6        /* consecutive fits that must agree */
-#define STAB_ERR_FREE 0.25 /* error estimate (in tolerances) below which the step is free */
-#define STAB_CHECK 200     /* steps after which the lowered order must cover half the time the
-                              step it was lowered at would have */
-#define STAB_TRIAL 1000    /* and after which it must cover more */
-#define STAB_QUIET 5000    /* steps without a new lowering after a trial that did not pay */
+#define STAB_HITS 3        /* consecutive fits that must agree */
+#define STAB_ERR_HELD 0.5  /* error estimate (in tolerances) above which the error test holds
+                              the step */
+#define STAB_ERR_FREE 0.25 /* and below which the step is free to grow */
+#define STAB_PHASE 200     /* accepted steps of a phase that measures a policy */
+#define STAB_BIAS 2.0      /* lowering is kept unless the usual orders cover time this much faster */
+#define STAB_EXPLOIT_MAX (32 * STAB_PHASE) /* the longest phase that uses the faster one */
 
 /* h omega bands where BDF of order q amplifies an undamped mode (see above) */
 static const double band_lo[MAXORD + 1] = {0, 0, 0, 0.15, 0.25, 0.72};
@@ -77,29 +91,81 @@ static int unstable(int q, double hw)
     return q >= 3 && hw > band_lo[q] && hw < band_hi[q];
 }
 
+static long attempts(const dae_solver *s)
+{
+    return s->st.steps + s->st.rejected_error + s->st.newton_fails;
+}
+
 void daei_stab_reset(dae_solver *s)
 {
     s->stab_ns = 0;
     s->stab_hits = 0;
     s->stab_w = 0;
-    s->stab_active = 0;
-    s->stab_since = 0;
-    s->stab_quiet = 0;
+    s->stab_on = 0;
+    s->stab_len = 0;
+    s->stab_cnt = 0;
+    s->stab_pace[0] = s->stab_pace[1] = 0;
+    s->stab_win[0] = s->stab_win[1] = 0;
+    s->stab_probe = 0;
+    s->stab_last = -1;
 }
 
-/* Least-squares fit of c = a x + b y over the unknowns: 1 and theta, r when the roots of
- * xi^2 = a xi + b are complex and the residual is small, else 0. */
-static int fit(int n, const double *restrict y, const double *restrict x,
-               const double *restrict c, double *theta, double *r)
+/* Starts a phase of policy on (1: lowering) of len accepted steps. */
+static void phase(dae_solver *s, int on, long len, int probe)
+{
+    s->stab_on = on;
+    s->stab_len = len;
+    s->stab_probe = probe;
+    s->stab_cnt = 0;
+    s->stab_tmark = s->tn;
+    s->stab_amark = attempts(s);
+}
+
+/* The comparison of the two policies (see the header): called after each accepted step once an
+ * oscillation is known. */
+static void compare(dae_solver *s)
+{
+    if (s->stab_len == 0) { /* the oscillation has just been found: measure lowering first */
+        phase(s, 1, STAB_PHASE, 1);
+        return;
+    }
+    if (++s->stab_cnt < s->stab_len) return;
+    long da = attempts(s) - s->stab_amark;
+    s->stab_pace[s->stab_on] = da > 0 ? fabs(s->tn - s->stab_tmark) / (double)da : 0;
+    int other = !s->stab_on;
+    if (!(s->stab_pace[other] > 0)) {
+        phase(s, other, STAB_PHASE, 1); /* the other policy has no measurement yet */
+    } else if (s->stab_probe) { /* both measured: use the faster one */
+        int win = STAB_BIAS * s->stab_pace[1] > s->stab_pace[0];
+        if (win == s->stab_last)
+            s->stab_win[win] = s->stab_win[win] < STAB_EXPLOIT_MAX ? 2 * s->stab_win[win]
+                                                                  : STAB_EXPLOIT_MAX;
+        else
+            s->stab_win[win] = 4 * STAB_PHASE;
+        s->stab_last = win;
+        phase(s, win, s->stab_win[win], 0);
+    } else {
+        phase(s, other, STAB_PHASE, 1); /* measure the other policy again */
+    }
+}
+
+/* Least-squares fit of e_{j} = a e_{j+1} + b e_{j+2} over the unknowns and over the m triples of
+ * the window e[0..m+1] (newest first): 1 and theta, r when the roots of xi^2 = a xi + b are
+ * complex and the residual is small, else 0. Several triples make the fit overdetermined even
+ * when the error lies in few unknowns (two unknowns and one triple fit any a, b exactly). */
+static int fit(int n, double *const *e, int m, double *theta, double *r)
 {
     double xx = 0, yy = 0, xy = 0, cx = 0, cy = 0, cc = 0;
-    for (int i = 0; i < n; i++) {
-        xx += x[i] * x[i];
-        yy += y[i] * y[i];
-        xy += x[i] * y[i];
-        cx += c[i] * x[i];
-        cy += c[i] * y[i];
-        cc += c[i] * c[i];
+    for (int j = 0; j < m; j++) {
+        const double *restrict c = e[j], *restrict x = e[j + 1], *restrict y = e[j + 2];
+        for (int i = 0; i < n; i++) {
+            xx += x[i] * x[i];
+            yy += y[i] * y[i];
+            xy += x[i] * y[i];
+            cx += c[i] * x[i];
+            cy += c[i] * y[i];
+            cc += c[i] * c[i];
+        }
     }
     double det = xx * yy - xy * xy;
     if (!(cc > 0) || !(det > 1e-12 * xx * yy)) return 0;
@@ -121,9 +187,14 @@ void daei_stab_observe(dae_solver *s)
     for (int i = 0; i < n; i++)
         v[i] = s->ee[i] * s->werr[i];
     if (h != s->stab_hs || k != s->stab_ks) s->stab_ns = 0;
-    if (s->stab_ns >= 2) {
+    double *old = s->stab_e[STAB_WIN - 1]; /* shift the window: e[j+1] <- e[j], e[0] <- v */
+    memmove(s->stab_e + 1, s->stab_e, (STAB_WIN - 1) * sizeof *s->stab_e);
+    s->stab_e[0] = old;
+    memcpy(s->stab_e[0], v, (size_t)n * sizeof *v);
+    if (s->stab_ns < STAB_WIN) s->stab_ns++;
+    if (s->stab_ns >= 3) { /* a triple */
         double theta, r;
-        if (fit(n, s->stab_e[1], s->stab_e[0], v, &theta, &r) && r >= STAB_R_MIN && r <= STAB_R_MAX &&
+        if (fit(n, s->stab_e, s->stab_ns - 2, &theta, &r) && r >= STAB_R_MIN && r <= STAB_R_MAX &&
             theta >= STAB_THETA_MIN && theta <= STAB_THETA_MAX) {
             if (s->stab_hits > 0 && fabs(theta - s->stab_theta) > 0.25 * theta) s->stab_hits = 0;
             s->stab_hits++;
@@ -133,47 +204,21 @@ void daei_stab_observe(dae_solver *s)
             s->stab_hits = 0;
         }
     }
-    double *old = s->stab_e[1]; /* shift: e[1] <- e[0] <- v */
-    s->stab_e[1] = s->stab_e[0];
-    s->stab_e[0] = old;
-    memcpy(s->stab_e[0], v, (size_t)n * sizeof *v);
-    if (s->stab_ns < 2) s->stab_ns++;
     s->stab_hs = h;
     s->stab_ks = k;
+    if (s->stab_w > 0) compare(s);
 }
 
 void daei_stab_decide(dae_solver *s)
 {
-    if (!s->o.stability_guard || s->o.fixed_step || s->phase == 0 || !(s->stab_w > 0)) return;
-    double h = fabs(s->hh), hw = h * s->stab_w;
+    if (!s->o.stability_guard || s->o.fixed_step || s->phase == 0 || !(s->stab_w > 0) ||
+        !s->stab_on)
+        return;
+    double hw = fabs(s->hh) * s->stab_w;
     int k = s->kk;
-    if (s->stab_active) { /* the trial: the lowered order must cover time faster */
-        s->stab_since++;
-        s->stab_tsum += fabs(s->hused);
-        double pace = s->stab_tsum / (s->stab_since * s->stab_hleft);
-        int end = s->stab_since >= STAB_TRIAL;
-        if ((s->stab_since == STAB_CHECK && pace < 0.5) || (end && pace < 1)) {
-            s->stab_active = 0; /* it does not pay: forget the oscillation for a while */
-            s->stab_w = 0;
-            s->stab_hits = 0;
-            s->stab_quiet = s->st.steps + STAB_QUIET;
-            return;
-        }
-        if (end) s->stab_active = 0;
-    }
-    int lower = 0;
-    if (unstable(k, hw))
-        lower = 1; /* in the band */
-    else if (k > 2 && s->err_next < STAB_ERR_FREE && unstable(k, 2 * hw))
-        lower = 1; /* held below the band although the error would let the step grow */
-    if (!lower) return;
-    if (!s->stab_active) {
-        if (s->st.steps < s->stab_quiet) return;
-        s->stab_active = 1;
-        s->stab_hleft = fabs(s->hused);
-        s->stab_since = 0;
-        s->stab_tsum = 0;
+    if ((unstable(k, hw) && s->err_next < STAB_ERR_HELD) ||
+        (k > 2 && s->err_next < STAB_ERR_FREE && unstable(k, 2 * hw))) {
+        s->kk = 2;
         s->st.stab_lowered++;
     }
-    s->kk = 2;
 }
