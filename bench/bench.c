@@ -86,6 +86,7 @@
 #include "bench_mebdfi.h"
 #include "bench_stab.h"
 #include "bench_util.h"
+#include "crane_gnuplot.h"
 #include "problems.h"
 
 #ifdef BENCH_HAVE_SCENES
@@ -237,90 +238,19 @@ static void write_csv(FILE *f, const row *rows, int n, bench_case **cases)
     }
 }
 
-/* The path of gnuplot (searched in PATH, as the shell would) in buf; 0 if it is not there. */
-static int find_gnuplot(char *buf, size_t size)
-{
-    const char *path = getenv("PATH");
-    if (!path || !*path) path = "/usr/local/bin:/usr/bin:/bin";
-    for (const char *p = path;; p++) {
-        const char *e = strchr(p, ':');
-        size_t n = e ? (size_t)(e - p) : strlen(p);
-        int len = snprintf(buf, size, "%.*s%sgnuplot", (int)n, p, n ? "/" : "./");
-        struct stat st;
-        if (len > 0 && (size_t)len < size && stat(buf, &st) == 0 && S_ISREG(st.st_mode) &&
-            access(buf, X_OK) == 0)
-            return 1;
-        if (!e) return 0;
-        p = e;
-    }
-}
-
-/* A PNG file that is whole: it ends with the IEND chunk. */
-static int png_whole(const char *path)
-{
-    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
-    unsigned char tail[12];
-    FILE *f = fopen(path, "rb");
-    if (!f) return 0;
-    int ok =
-        fseek(f, -12L, SEEK_END) == 0 && fread(tail, 1, 12, f) == 12 && !memcmp(tail, iend, 12);
-    fclose(f);
-    return ok;
-}
-
-/* Runs gnuplot (exe) in folder dir on the commands of script (no shell between), its output
- * discarded. 0 if it ended with exit status 0; else -1 and msg says how it ended, with gnuplot's
- * last message. */
+/* Runs gnuplot (exe) in folder dir on the commands of script (crane_gnuplot.h: no shell
+ * between, its output discarded). 0 if it ended with exit status 0; else -1 and msg says how it
+ * ended, with gnuplot's last message. */
 static int run_gnuplot(const char *exe, const char *dir, const char *script, char *msg, size_t msz)
 {
-    int fd[2];
-    if (pipe(fd) != 0) {
-        snprintf(msg, msz, "cannot start gnuplot: %s", strerror(errno));
+    char last[512];
+    crane_gnuplot_job job = {exe, dir, NULL, script, NULL, NULL};
+    int st = crane_gnuplot_run(&job, last, sizeof last);
+    if (st == -1) {
+        snprintf(msg, msz, "%s", last);
         return -1;
     }
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0) {
-        snprintf(msg, msz, "cannot start gnuplot: %s", strerror(errno));
-        close(fd[0]);
-        close(fd[1]);
-        return -1;
-    }
-    if (pid == 0) {
-        close(fd[0]);
-        int nul = open("/dev/null", O_RDWR);
-        if (chdir(dir) != 0 || nul < 0 || dup2(nul, STDIN_FILENO) < 0 ||
-            dup2(nul, STDOUT_FILENO) < 0 || dup2(fd[1], STDERR_FILENO) < 0)
-            _exit(126);
-        execl(exe, "gnuplot", "-e", script, (char *)NULL);
-        _exit(127);
-    }
-    close(fd[1]);
-    /* its messages: the first 2 kB kept, the rest read and dropped */
-    char buf[2048], drop[512];
-    size_t len = 0;
-    for (;;) {
-        ssize_t k = len + 1 < sizeof buf ? read(fd[0], buf + len, sizeof buf - 1 - len)
-                                         : read(fd[0], drop, sizeof drop);
-        if (k < 0 && errno == EINTR) continue;
-        if (k <= 0) break;
-        if (len + 1 < sizeof buf) len += (size_t)k;
-    }
-    buf[len] = '\0';
-    close(fd[0]);
-    int st = 0;
-    while (waitpid(pid, &st, 0) < 0)
-        if (errno != EINTR) {
-            snprintf(msg, msz, "gnuplot: %s", strerror(errno));
-            return -1;
-        }
     if (WIFEXITED(st) && WEXITSTATUS(st) == 0) return 0;
-    /* the last line with text */
-    while (len > 0 && (buf[len - 1] == '\n' || buf[len - 1] == ' '))
-        buf[--len] = '\0';
-    char *last = strrchr(buf, '\n');
-    last = last ? last + 1 : buf;
-    last += strspn(last, " ");
     snprintf(msg, msz, "gnuplot %s %d%s%.300s%s",
              WIFEXITED(st) ? "exited with status" : "ended by signal",
              WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st), *last ? " (" : "", last,
@@ -379,7 +309,7 @@ static void plot(const char *dir, const char *gnuplot, int ci, const char *name,
     int rc = run_gnuplot(gnuplot, dir, script, msg, sizeof msg);
     free(script);
     snprintf(path, sizeof path, "%s/%s", dir, png); /* main has checked that it fits */
-    if (rc == 0 && !png_whole(path)) {
+    if (rc == 0 && !crane_png_whole(path)) {
         snprintf(msg, sizeof msg, "gnuplot ended without writing it whole");
         rc = -1;
     }
@@ -1273,7 +1203,7 @@ int main(int argc, char **argv)
         bench_file_close(&wp);
     }
     char gnuplot[BENCH_PATH_SIZE];
-    int have_gnuplot = nc > 0 && find_gnuplot(gnuplot, sizeof gnuplot);
+    int have_gnuplot = nc > 0 && crane_gnuplot_find(gnuplot, sizeof gnuplot);
     if (nc > 0 && !have_gnuplot)
         fprintf(stderr, "bench: gnuplot not found: no figures (the wp_*.dat files are written)\n");
     for (int c = 0; c < nc; c++)
