@@ -5,7 +5,7 @@
  *   bench [--problems LIST|none] [--solvers LIST] [--rtols LIST] [--repeat K] [--stability]
  *         [--quick] [--out DIR] [--crane-horizon T] [--crane-realtime K] [--scaling LIST|none]
  *         [--crane-scene FILE] [--stability-filter TEXT] [--strict] [--crane-full]
- *         [--crane-full-scene FILE] [--crane-full-rtols LIST] [--help]
+ *         [--crane-full-scene FILE] [--crane-full-rtols LIST] [--error-estimate] [--help]
  *
  * Problems (default: all): ap102, pendulum2, robertson, vdp_scaled, hires, lin2, smooth_ode,
  * kinks, the IVP Test Set's crank, pump, transamp, chemakzo, nand, the undamped oscillatory
@@ -38,7 +38,9 @@
  * crane scene crane/scenes/paper-undamped.ini, or --crane-full-scene FILE, over its full 20 s:
  * ours and IDA at rtol 1e-4 .. 1e-9, or --crane-full-rtols LIST, against ours at 1e-10, IDA
  * restarted at each breakpoint from consistent values; bench_crane.h; tools/run.sh asks for
- * it, minutes per run).
+ * it, minutes per run) and, with --error-estimate (and --quick), error_estimate.csv (the estimate
+ * of crane --error-estimate against the true error on the problems and tolerances of the run,
+ * bench_errest.h).
  * --problems none skips the work-precision runs (and, unless asked for, the crane's scaling and
  * real-time runs).
  *
@@ -83,6 +85,7 @@
 
 #include "bench_case.h"
 #include "bench_crane.h"
+#include "bench_errest.h"
 #include "bench_mebdfi.h"
 #include "bench_stab.h"
 #include "bench_util.h"
@@ -741,7 +744,8 @@ static void usage_text(FILE *f)
                "             [--stability] [--quick] [--out DIR] [--crane-horizon T]\n"
                "             [--crane-realtime K] [--scaling LIST|none] [--crane-scene FILE]\n"
                "             [--stability-filter TEXT] [--strict] [--crane-full]\n"
-               "             [--crane-full-scene FILE] [--crane-full-rtols LIST] [--help]\n"
+               "             [--crane-full-scene FILE] [--crane-full-rtols LIST]\n"
+               "             [--error-estimate] [--help]\n"
                "  solvers:");
     for (int s = 0; s < bench_nsolvers; s++)
         fprintf(f, " %s", bench_solvers[s].name);
@@ -756,8 +760,9 @@ static void usage_text(FILE *f)
             " crane\n  --rtols: numbers in (0, 1); --repeat: 1..%d; --crane-horizon: seconds;\n"
             "  --crane-realtime: runs of the full paper scene (0..99); --scaling: boom element\n"
             "  counts 1..512; --crane-full: paper-undamped.ini over 20 s, ours and IDA at\n"
-            "  rtol 1e-4..1e-9 (--crane-full-rtols) against ours at 1e-10; see the header of\n"
-            "  bench/bench.c\n",
+            "  rtol 1e-4..1e-9 (--crane-full-rtols) against ours at 1e-10; --error-estimate:\n"
+            "  crane --error-estimate's estimate against the true error (--quick: always, on\n"
+            "  its tolerances); see the header of bench/bench.c\n",
             MAXREP);
 }
 
@@ -817,7 +822,7 @@ int main(int argc, char **argv)
     const char *out = "results/bench", *scene_file = NULL, *stab_filter = NULL;
     const char *full_scene = NULL;
     int K = 3, stab = 0, quick = 0, rt_K = -1, child = 0, have_K = 0, strict = 0;
-    int crane_full = 0;
+    int crane_full = 0, errest = 0;
     double horizon = 0;
     char m[512];
     for (int a = 1; a < argc; a++) {
@@ -838,6 +843,8 @@ int main(int argc, char **argv)
             strict = 1;
         } else if (!strcmp(arg, "--crane-full")) {
             crane_full = 1;
+        } else if (!strcmp(arg, "--error-estimate")) {
+            errest = 1;
         } else if (!strcmp(arg, "--realtime-child")) { /* internal: one real-time run */
             child = 1;
         } else if (!strcmp(arg, "--problems") || !strcmp(arg, "--solvers") ||
@@ -1209,6 +1216,11 @@ int main(int argc, char **argv)
     for (int c = 0; c < nc; c++)
         plot(out, have_gnuplot ? gnuplot : NULL, c, cases[c]->name, rows, n, solnames, ns);
 
+    /* the error estimate against the true error (bench_errest.h), into the report's tail */
+    if ((errest || quick) && nc > 0) {
+        bench_errest_config ec = {rtols, nr, 0, 0, 0};
+        failures += bench_errest(out, tail, cases, nc, &ec);
+    }
     /* the crane's scaling series, into the temporary text for the report */
     if ((want_crane || sclist) && nscale > 0) {
         failures += bench_crane_scaling(out, tail, scale, nscale, 10, quick ? 60 : 200, 1.0,
