@@ -14,7 +14,8 @@
 #include "crane_program.h"
 
 #define CSV_BUF_SIZE (1 << 16)
-#define CSV_ROW_MAX (32 * CRANE_NOUT) /* a row's text: at most 20 characters a number */
+/* a row's text at most: its numbers, the commas and the newline */
+#define CSV_ROW_MAX ((CP_FMT_SIZE + 1) * CRANE_NOUT + 1)
 
 /* Column of output a, or of b if the model has no a (-1: neither). */
 static int col_any(const char *a, const char *b)
@@ -93,7 +94,8 @@ int cp_csv_flush(cp_run *r)
     return 0;
 }
 
-/* One row: the numbers as %.12g, and the peaks and reach the figures and the summary use. */
+/* One row: the numbers as %.12g (cp_fmt_g12), and the peaks and reach the figures and the
+ * summary use. */
 int cp_csv_row(cp_run *r, double t, const double *out)
 {
     if (r->csv_cap - r->csv_len < CSV_ROW_MAX) {
@@ -101,10 +103,11 @@ int cp_csv_row(cp_run *r, double t, const double *out)
         if (rc) return rc;
     }
     char *p = r->csv_buf + r->csv_len;
-    size_t room = CSV_ROW_MAX - 1, n = (size_t)snprintf(p, room, "%.12g", t);
-    for (int i = 1; i < CRANE_NOUT && n < room; i++)
-        n += (size_t)snprintf(p + n, room - n, ",%.12g", out[i]);
-    if (n >= room) return cp_fail_run(r, "results.csv", "a row longer than expected");
+    size_t n = (size_t)cp_fmt_g12(p, t);
+    for (int i = 1; i < CRANE_NOUT; i++) {
+        p[n++] = ',';
+        n += (size_t)cp_fmt_g12(p + n, out[i]);
+    }
     p[n++] = '\n';
     r->csv_len += n;
     r->rows++;
