@@ -51,13 +51,16 @@ int cp_errest_row(cp_run *r, double t, const double *out)
     return 0;
 }
 
-/* How the estimate stands: "available", "partial", "unavailable", or NULL when not asked for. */
-static const char *state(const cp_run *r)
+/* How the estimate stands (OFF: not asked for), and its word in the files. */
+enum { OFF, AVAILABLE, PARTIAL, UNAVAILABLE };
+static const char *const STATE[] = {"off", "available", "partial", "unavailable"};
+
+static int state(const cp_run *r)
 {
-    if (!r->o->errest) return NULL;
-    if (!r->errest || crane_errest_status(r->errest) < 0) return "unavailable";
-    if (crane_errest_count(r->errest) < r->rows) return "partial";
-    return "available";
+    if (!r->o->errest) return OFF;
+    if (!r->errest || crane_errest_status(r->errest) < 0) return UNAVAILABLE;
+    if (crane_errest_count(r->errest) < r->rows) return PARTIAL;
+    return AVAILABLE;
 }
 
 /* The column with the largest relative error (-1: none) among the model's quantities: not t,
@@ -81,8 +84,7 @@ static int worst_column(const cp_run *r, double *rel)
 static int print_csv(cp_run *r, FILE *f, const void *ctx)
 {
     (void)ctx;
-    const char *st = state(r);
-    int avail = strcmp(st, "unavailable") != 0;
+    int st = state(r), avail = st != UNAVAILABLE;
     double covered = r->errest ? crane_errest_last(r->errest) : NAN;
     fprintf(f, "column,max_abs_error,t_at_max [s],max_abs_value,max_rel_error,t_covered [s],"
                "estimate\n");
@@ -100,7 +102,7 @@ static int print_csv(cp_run *r, FILE *f, const void *ctx)
             fprintf(f, ",");
         else
             fprintf(f, "%.9g,", covered);
-        fprintf(f, "%s\n", c && isnan(c->max_err) ? "no values" : st);
+        fprintf(f, "%s\n", c && isnan(c->max_err) ? "no values" : STATE[st]);
     }
     return 0;
 }
@@ -115,22 +117,22 @@ int cp_errest_write(cp_run *r)
 
 void cp_errest_status_lines(const cp_run *r, FILE *f)
 {
-    const char *st = state(r);
-    if (!st) return;
+    int st = state(r);
+    if (st == OFF) return;
     double covered = r->errest ? crane_errest_last(r->errest) : NAN;
-    if (!strcmp(st, "unavailable"))
+    if (st == UNAVAILABLE)
         fprintf(f, "error_estimate: unavailable: %s\n", r->errest_note);
     else if (crane_errest_count(r->errest) == 0)
-        fprintf(f, "error_estimate: %s (no row compared yet)\n", st);
+        fprintf(f, "error_estimate: %s (no row compared yet)\n", STATE[st]);
     else
-        fprintf(f, "error_estimate: %s over %ld rows up to t = %.9g s\n", st,
+        fprintf(f, "error_estimate: %s over %ld rows up to t = %.9g s\n", STATE[st],
                 crane_errest_count(r->errest), covered);
 }
 
 void cp_errest_stats_lines(const cp_run *r, FILE *f)
 {
-    const char *st = state(r);
-    if (!st) return;
+    int st = state(r);
+    if (st == OFF) return;
     double rtol, atol, K, rel;
     crane_errest_tolerances(r->errest, &rtol, &atol, &K);
     if (!r->errest) K = r->o->errest_factor;
@@ -145,7 +147,7 @@ void cp_errest_stats_lines(const cp_run *r, FILE *f)
         dae_stats_line(cs, line, sizeof line);
         fprintf(f, "error_estimate_run: %s\n", line);
     }
-    int w = strcmp(st, "unavailable") ? worst_column(r, &rel) : -1;
+    int w = st != UNAVAILABLE ? worst_column(r, &rel) : -1;
     if (w >= 0) {
         const crane_errest_col *c = crane_errest_column(r->errest, w);
         fprintf(f,
@@ -157,16 +159,16 @@ void cp_errest_stats_lines(const cp_run *r, FILE *f)
 
 void cp_errest_summary(const cp_run *r)
 {
-    const char *st = state(r);
-    if (!st) return;
-    if (!strcmp(st, "unavailable")) {
+    int st = state(r);
+    if (st == OFF) return;
+    if (st == UNAVAILABLE) {
         printf("  error estimate unavailable: %s\n", r->errest_note);
         return;
     }
     double rtol, rel;
     crane_errest_tolerances(r->errest, &rtol, NULL, NULL);
     int w = worst_column(r, &rel);
-    printf("  error estimate (%s, against rtol %g): ", st, rtol);
+    printf("  error estimate (%s, against rtol %g): ", STATE[st], rtol);
     if (w < 0) {
         printf("no column compared\n");
         return;

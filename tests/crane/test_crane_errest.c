@@ -211,8 +211,8 @@ static int read_estimate(const char *dir, est_line *L)
             s = c + 1;
         }
         if (k != 7) break;
-        snprintf(e->name, sizeof e->name, "%s", fld[0]);
-        snprintf(e->state, sizeof e->state, "%s", fld[6]);
+        snprintf(e->name, sizeof e->name, "%.63s", fld[0]);
+        snprintf(e->state, sizeof e->state, "%.31s", fld[6]);
         double *num[5] = {&e->err, &e->t_at, &e->max_abs, &e->rel, &e->covered};
         for (int i = 0; i < 5; i++)
             *num[i] = *fld[i + 1] ? strtod(fld[i + 1], NULL) : NAN;
