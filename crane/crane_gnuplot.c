@@ -1,5 +1,5 @@
 /* gnuplot for the crane's programs (crane_gnuplot.h). */
-#define _DEFAULT_SOURCE /* posix_spawn_file_actions_addchdir_np (glibc 2.29) */
+#define _GNU_SOURCE /* posix_spawn_file_actions_addchdir_np (glibc 2.29) */
 #include "crane_gnuplot.h"
 
 #include <errno.h>
