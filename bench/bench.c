@@ -5,7 +5,7 @@
  *   bench [--problems LIST|none] [--solvers LIST] [--rtols LIST] [--repeat K] [--stability]
  *         [--quick] [--out DIR] [--crane-horizon T] [--crane-realtime K] [--scaling LIST|none]
  *         [--crane-scene FILE] [--stability-filter TEXT] [--strict] [--crane-full]
- *         [--crane-full-scene FILE] [--crane-full-rtols LIST] [--help]
+ *         [--crane-full-scene FILE] [--crane-full-rtols LIST] [--error-estimate] [--help]
  *
  * Problems (default: all): ap102, pendulum2, robertson, vdp_scaled, hires, lin2, smooth_ode,
  * kinks, the IVP Test Set's crank, pump, transamp, chemakzo, nand, the undamped oscillatory
@@ -40,7 +40,9 @@
  * crane scene crane/scenes/paper-undamped.ini, or --crane-full-scene FILE, over its full 20 s:
  * ours and IDA at rtol 1e-4 .. 1e-9, or --crane-full-rtols LIST, against ours at 1e-10, IDA
  * restarted at each breakpoint from consistent values; bench_crane.h; tools/run.sh asks for
- * it, minutes per run).
+ * it, minutes per run) and, with --error-estimate (and --quick), error_estimate.csv (the estimate
+ * of crane --error-estimate against the true error on the problems and tolerances of the run,
+ * bench_errest.h).
  * --problems none skips the work-precision runs (and, unless asked for, the crane's scaling and
  * real-time runs).
  *
@@ -85,10 +87,12 @@
 
 #include "bench_case.h"
 #include "bench_crane.h"
+#include "bench_errest.h"
 #include "bench_mebdfi.h"
 #include "bench_osc.h"
 #include "bench_stab.h"
 #include "bench_util.h"
+#include "crane_gnuplot.h"
 #include "problems.h"
 
 #ifdef BENCH_HAVE_SCENES
@@ -240,90 +244,19 @@ static void write_csv(FILE *f, const row *rows, int n, bench_case **cases)
     }
 }
 
-/* The path of gnuplot (searched in PATH, as the shell would) in buf; 0 if it is not there. */
-static int find_gnuplot(char *buf, size_t size)
-{
-    const char *path = getenv("PATH");
-    if (!path || !*path) path = "/usr/local/bin:/usr/bin:/bin";
-    for (const char *p = path;; p++) {
-        const char *e = strchr(p, ':');
-        size_t n = e ? (size_t)(e - p) : strlen(p);
-        int len = snprintf(buf, size, "%.*s%sgnuplot", (int)n, p, n ? "/" : "./");
-        struct stat st;
-        if (len > 0 && (size_t)len < size && stat(buf, &st) == 0 && S_ISREG(st.st_mode) &&
-            access(buf, X_OK) == 0)
-            return 1;
-        if (!e) return 0;
-        p = e;
-    }
-}
-
-/* A PNG file that is whole: it ends with the IEND chunk. */
-static int png_whole(const char *path)
-{
-    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
-    unsigned char tail[12];
-    FILE *f = fopen(path, "rb");
-    if (!f) return 0;
-    int ok =
-        fseek(f, -12L, SEEK_END) == 0 && fread(tail, 1, 12, f) == 12 && !memcmp(tail, iend, 12);
-    fclose(f);
-    return ok;
-}
-
-/* Runs gnuplot (exe) in folder dir on the commands of script (no shell between), its output
- * discarded. 0 if it ended with exit status 0; else -1 and msg says how it ended, with gnuplot's
- * last message. */
+/* Runs gnuplot (exe) in folder dir on the commands of script (crane_gnuplot.h: no shell
+ * between, its output discarded). 0 if it ended with exit status 0; else -1 and msg says how it
+ * ended, with gnuplot's last message. */
 static int run_gnuplot(const char *exe, const char *dir, const char *script, char *msg, size_t msz)
 {
-    int fd[2];
-    if (pipe(fd) != 0) {
-        snprintf(msg, msz, "cannot start gnuplot: %s", strerror(errno));
+    char last[512];
+    crane_gnuplot_job job = {exe, dir, NULL, script, NULL, NULL};
+    int st = crane_gnuplot_run(&job, last, sizeof last);
+    if (st == -1) {
+        snprintf(msg, msz, "%s", last);
         return -1;
     }
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0) {
-        snprintf(msg, msz, "cannot start gnuplot: %s", strerror(errno));
-        close(fd[0]);
-        close(fd[1]);
-        return -1;
-    }
-    if (pid == 0) {
-        close(fd[0]);
-        int nul = open("/dev/null", O_RDWR);
-        if (chdir(dir) != 0 || nul < 0 || dup2(nul, STDIN_FILENO) < 0 ||
-            dup2(nul, STDOUT_FILENO) < 0 || dup2(fd[1], STDERR_FILENO) < 0)
-            _exit(126);
-        execl(exe, "gnuplot", "-e", script, (char *)NULL);
-        _exit(127);
-    }
-    close(fd[1]);
-    /* its messages: the first 2 kB kept, the rest read and dropped */
-    char buf[2048], drop[512];
-    size_t len = 0;
-    for (;;) {
-        ssize_t k = len + 1 < sizeof buf ? read(fd[0], buf + len, sizeof buf - 1 - len)
-                                         : read(fd[0], drop, sizeof drop);
-        if (k < 0 && errno == EINTR) continue;
-        if (k <= 0) break;
-        if (len + 1 < sizeof buf) len += (size_t)k;
-    }
-    buf[len] = '\0';
-    close(fd[0]);
-    int st = 0;
-    while (waitpid(pid, &st, 0) < 0)
-        if (errno != EINTR) {
-            snprintf(msg, msz, "gnuplot: %s", strerror(errno));
-            return -1;
-        }
     if (WIFEXITED(st) && WEXITSTATUS(st) == 0) return 0;
-    /* the last line with text */
-    while (len > 0 && (buf[len - 1] == '\n' || buf[len - 1] == ' '))
-        buf[--len] = '\0';
-    char *last = strrchr(buf, '\n');
-    last = last ? last + 1 : buf;
-    last += strspn(last, " ");
     snprintf(msg, msz, "gnuplot %s %d%s%.300s%s",
              WIFEXITED(st) ? "exited with status" : "ended by signal",
              WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st), *last ? " (" : "", last,
@@ -382,7 +315,7 @@ static void plot(const char *dir, const char *gnuplot, int ci, const char *name,
     int rc = run_gnuplot(gnuplot, dir, script, msg, sizeof msg);
     free(script);
     snprintf(path, sizeof path, "%s/%s", dir, png); /* main has checked that it fits */
-    if (rc == 0 && !png_whole(path)) {
+    if (rc == 0 && !crane_png_whole(path)) {
         snprintf(msg, sizeof msg, "gnuplot ended without writing it whole");
         rc = -1;
     }
@@ -814,7 +747,8 @@ static void usage_text(FILE *f)
                "             [--stability] [--quick] [--out DIR] [--crane-horizon T]\n"
                "             [--crane-realtime K] [--scaling LIST|none] [--crane-scene FILE]\n"
                "             [--stability-filter TEXT] [--strict] [--crane-full]\n"
-               "             [--crane-full-scene FILE] [--crane-full-rtols LIST] [--help]\n"
+               "             [--crane-full-scene FILE] [--crane-full-rtols LIST]\n"
+               "             [--error-estimate] [--help]\n"
                "  solvers:");
     for (int s = 0; s < bench_nsolvers; s++)
         fprintf(f, " %s", bench_solvers[s].name);
@@ -829,8 +763,9 @@ static void usage_text(FILE *f)
             " crane\n  --rtols: numbers in (0, 1); --repeat: 1..%d; --crane-horizon: seconds;\n"
             "  --crane-realtime: runs of the full paper scene (0..99); --scaling: boom element\n"
             "  counts 1..512; --crane-full: paper-undamped.ini over 20 s, ours and IDA at\n"
-            "  rtol 1e-4..1e-9 (--crane-full-rtols) against ours at 1e-10; see the header of\n"
-            "  bench/bench.c\n",
+            "  rtol 1e-4..1e-9 (--crane-full-rtols) against ours at 1e-10; --error-estimate:\n"
+            "  crane --error-estimate's estimate against the true error (--quick: always, on\n"
+            "  its tolerances); see the header of bench/bench.c\n",
             MAXREP);
 }
 
@@ -890,7 +825,7 @@ int main(int argc, char **argv)
     const char *out = "results/bench", *scene_file = NULL, *stab_filter = NULL;
     const char *full_scene = NULL;
     int K = 3, stab = 0, quick = 0, rt_K = -1, child = 0, have_K = 0, strict = 0;
-    int crane_full = 0;
+    int crane_full = 0, errest = 0;
     double horizon = 0;
     char m[512];
     for (int a = 1; a < argc; a++) {
@@ -911,6 +846,8 @@ int main(int argc, char **argv)
             strict = 1;
         } else if (!strcmp(arg, "--crane-full")) {
             crane_full = 1;
+        } else if (!strcmp(arg, "--error-estimate")) {
+            errest = 1;
         } else if (!strcmp(arg, "--realtime-child")) { /* internal: one real-time run */
             child = 1;
         } else if (!strcmp(arg, "--problems") || !strcmp(arg, "--solvers") ||
@@ -1276,12 +1213,17 @@ int main(int argc, char **argv)
         bench_file_close(&wp);
     }
     char gnuplot[BENCH_PATH_SIZE];
-    int have_gnuplot = nc > 0 && find_gnuplot(gnuplot, sizeof gnuplot);
+    int have_gnuplot = nc > 0 && crane_gnuplot_find(gnuplot, sizeof gnuplot);
     if (nc > 0 && !have_gnuplot)
         fprintf(stderr, "bench: gnuplot not found: no figures (the wp_*.dat files are written)\n");
     for (int c = 0; c < nc; c++)
         plot(out, have_gnuplot ? gnuplot : NULL, c, cases[c]->name, rows, n, solnames, ns);
 
+    /* the error estimate against the true error (bench_errest.h), into the report's tail */
+    if ((errest || quick) && nc > 0) {
+        bench_errest_config ec = {rtols, nr, 0, 0, 0};
+        failures += bench_errest(out, tail, cases, nc, &ec);
+    }
     /* the crane's scaling series, into the temporary text for the report */
     if ((want_crane || sclist) && nscale > 0) {
         failures += bench_crane_scaling(out, tail, scale, nscale, 10, quick ? 60 : 200, 1.0,

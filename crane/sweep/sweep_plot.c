@@ -2,50 +2,16 @@
 #include "sweep_plot.h"
 
 #include <errno.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "crane_gnuplot.h"
 #include "crane_scene.h"
 #include "sweep_engine.h"
-
-extern char **environ;
-
-/* gnuplot in PATH (as the shell would find it). */
-static int find_gnuplot(char *buf, size_t size)
-{
-    const char *path = getenv("PATH");
-    if (!path || !*path) path = "/usr/local/bin:/usr/bin:/bin";
-    for (const char *p = path;; p++) {
-        const char *e = strchr(p, ':');
-        size_t n = e ? (size_t)(e - p) : strlen(p);
-        int len = snprintf(buf, size, "%.*s%sgnuplot", (int)n, p, n ? "/" : "./");
-        struct stat st;
-        if (len > 0 && (size_t)len < size && stat(buf, &st) == 0 && S_ISREG(st.st_mode) &&
-            access(buf, X_OK) == 0)
-            return 1;
-        if (!e) return 0;
-        p = e;
-    }
-}
-
-static int png_whole(const char *path)
-{
-    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
-    unsigned char tail[12];
-    FILE *f = fopen(path, "rb");
-    if (!f) return 0;
-    int ok =
-        fseek(f, -12L, SEEK_END) == 0 && fread(tail, 1, 12, f) == 12 && !memcmp(tail, iend, 12);
-    fclose(f);
-    return ok;
-}
 
 static int numeric(const sweep_param *p)
 {
@@ -259,7 +225,7 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
         return -1;
     }
     char exe[SWEEP_PATH_SIZE];
-    if (!find_gnuplot(exe, sizeof exe)) {
+    if (!crane_gnuplot_find(exe, sizeof exe)) {
         snprintf(msg, size, "gnuplot not found: pictures skipped (plots.gp written)");
         return 0;
     }
@@ -267,50 +233,22 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
         snprintf(path, sizeof path, "%s/%s", outdir, names[i]);
         unlink(path);
     }
-    /* gnuplot -e "cd 'DIR'" plots.gp, started as the cases are (posix_spawn: an MPI rank does
-     * not fork), its messages into gnuplot.log */
-    char qdir[2 * SWEEP_PATH_SIZE + 16], cd[2 * SWEEP_PATH_SIZE + 32], logp[SWEEP_PATH_SIZE + 32];
-    gp_quote(outdir, qdir, sizeof qdir);
-    snprintf(cd, sizeof cd, "cd '%s'", qdir);
-    snprintf(logp, sizeof logp, "%s/gnuplot.log", outdir);
-    char *argv[] = {"gnuplot", "-e", cd, "plots.gp", NULL};
-    posix_spawn_file_actions_t fa;
-    pid_t pid = 0;
-    int e = posix_spawn_file_actions_init(&fa);
-    if (!e) {
-        e = posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-        if (!e) e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-        if (!e)
-            e = posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, logp,
-                                                 O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (!e) e = posix_spawn(&pid, exe, &fa, NULL, argv, environ);
-        posix_spawn_file_actions_destroy(&fa);
-    }
-    if (e) {
-        snprintf(msg, size, "cannot start gnuplot: %s", strerror(e));
-        return -1;
-    }
-    int st = 0;
-    while (waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-    }
+    /* gnuplot plots.gp in the output folder (crane_gnuplot.h: started as the cases are, by
+     * posix_spawn: an MPI rank does not fork), its messages into gnuplot.log */
+    crane_gnuplot_job job = {exe, outdir, "plots.gp", NULL, "gnuplot.log", NULL};
+    int st = crane_gnuplot_run(&job, msg, size);
+    if (st == -1) return -1;
     char missing[512] = "", first[256] = "";
     size_t ml = 0;
     for (int i = 0; i < nnames; i++) {
         snprintf(path, sizeof path, "%s/%s", outdir, names[i]);
-        if (png_whole(path))
+        if (crane_png_whole(path))
             (*nfig)++;
         else if (ml < sizeof missing)
             ml += (size_t)snprintf(missing + ml, sizeof missing - ml, "%s%s", ml ? ", " : "",
                                    names[i]);
     }
-    snprintf(path, sizeof path, "%s/gnuplot.log", outdir);
-    FILE *lf = fopen(path, "r");
-    if (lf) {
-        if (!fgets(first, sizeof first, lf)) first[0] = '\0';
-        first[strcspn(first, "\n")] = '\0';
-        fclose(lf);
-    }
-    if (!first[0]) unlink(path);
+    crane_gnuplot_log_first(outdir, "gnuplot.log", 1, first, sizeof first);
     if (!WIFEXITED(st) || WEXITSTATUS(st) != 0 || missing[0]) {
         snprintf(msg, size, "gnuplot %s %d%s%s%s%s%s",
                  WIFEXITED(st) ? "exited with" : "ended by signal",
