@@ -269,7 +269,8 @@ static double energy_mismatch(double tol, int undamped, double *diss)
         finish(&r);
         return NAN;
     }
-    double T0, V0, U0, T, V, U, t = 0, P = crane_drive_power(r.c, r.y), W = 0, Pmax = 0;
+    double T0 = NAN, V0 = NAN, U0 = NAN, T = NAN, V = NAN, U = NAN, t = 0, W = 0, Pmax = 0;
+    double P = crane_drive_power(r.c, r.y);
     double Pd = crane_dissipation(r.c, r.y), D = 0;
     double *ym = malloc(2 * (size_t)r.n * sizeof *ym);
     int ok = ym && crane_energy(r.c, r.y, &T0, &V0, &U0) == BG_OK;
