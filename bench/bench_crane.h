@@ -1,8 +1,7 @@
 /* The crane (crane/crane_model.h) in the benchmark harness: as a case of the work-precision runs
  * (the paper scene over a short horizon, reference from our own run at rtol 1e-11 checked against
- * IDA at the same tolerance), the scaling series over the number of boom elements, and the
- * real-time check of the paper scene over its full 20 s (each run in a fresh process, for its
- * peak memory). */
+ * IDA at the same tolerance), the scaling series over the number of boom elements, and the full
+ * horizon against IDA. The real-time check is bench_realtime.h. */
 #ifndef BG_BENCH_CRANE_H
 #define BG_BENCH_CRANE_H
 
@@ -45,27 +44,6 @@ int bench_crane_reference(bench_case *bc, double rtol_ref, int check_ida, char *
  * bench_util.h): a failure is said and counted there, the runs go on. */
 int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, int skip, int steps,
                         double t_max, double cpu_cap, double *slope_n, double *slope_el);
-
-/* The real-time check: K runs of scene s over its t_end (paper: 20 s) at its tolerances, each in
- * a fresh process (exe: this program) started with --realtime-child [--crane-scene scene_file]
- * (scene_file NULL: the default scene, which s must then be): set-up (build,
- * settle, consistent values) and integration timed apart, output at the scene's output step
- * (crane_outputs computed, nothing written), peak resident memory from the child's rusage.
- * Writes realtime.csv into dir and a report section into rep; medians into *rt_factor (simulated
- * time / wall time of the integration), *rt_factor_all (including the set-up), *peak_mb (the
- * largest peak RSS), *bookkeeping (fraction of the integration outside residual, Jacobian and
- * linear algebra). Returns the number of failed runs. */
-typedef struct bench_rt_result {
-    double rt_factor, rt_factor_all, peak_mb, bookkeeping, wall_int, cpu_int;
-    double res_s_med;   /* residual seconds of the run nearest to the median */
-    long steps, newton; /* of the last completed run (the same in every run) */
-    int runs;
-} bench_rt_result;
-int bench_crane_realtime(const char *exe, const char *scene_file, const crane_scene *s, int K,
-                         const char *dir, FILE *rep, bench_rt_result *res);
-/* The child's side: runs scene s once and prints one line of results on stdout. Exit status 0,
- * or 1 if the run failed. */
-int bench_crane_realtime_child(const crane_scene *s);
 
 /* The crane over its scene's full t_end (paper-undamped: 20 s) against IDA: the scene s (named
  * scene_name in the report) from its static equilibrium if it asks for it, consistent start at

@@ -16,6 +16,19 @@
  * Power: T w_p + p_a q_ain - p_b q_bout = Cl dp^2 >= 0 (the leakage loss); with Cl = 0 the pump
  * is a modulated transformer and conserves power exactly.
  *
+ * Displacement actuator (hyd_pump_servo with a bandwidth fc > 0): the swash plate does not
+ * follow the command at once. Its position s (a fraction of Dp, the element's state "swash",
+ * {BGR_STATE, id, 0}) follows the command x as a first-order lag of corner frequency fc (Hz):
+ *   s'     = 2 pi fc (x - s)                           actuator           ("servo")
+ * and s replaces x in the torque and flow equations above. A step of the command reaches
+ * 1 - exp(-2 pi fc t) of its size at time t (63 % after 1 / (2 pi fc)); a command within
+ * [-1, 1] keeps s within it. The swash plate is positioned by a servo piston fed through a
+ * control valve with feedback of the plate's angle; when the valve's dynamics and the servo
+ * piston's hydraulic resonance lie well above the loop gain K_v, that position loop answers as
+ * s / x = 1 / (1 + s_L / K_v), a first-order lag of bandwidth K_v / (2 pi) (Merritt, Hydraulic
+ * Control Systems, 1967, the valve-controlled piston in a position loop). fc = 0 is the pump
+ * above: s = x, no state.
+ *
  * Source: the ideal positive-displacement machine with laminar cross-port leakage, as in the
  * pump-controlled motor of H. E. Merritt, Hydraulic Control Systems (Wiley, 1967), with the
  * displacement per radian written Dp / (2 pi); the pump of the crane paper (docs/crane.md,
@@ -36,12 +49,18 @@ extern "C" {
  * command must name an unknown once the model is compiled (bgr_compile reports it). */
 BG_API int hyd_pump(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl,
                     bgr_ref command);
+/* The same pump with its displacement actuator of bandwidth fc (Hz): fc > 0 gives the state
+ * "swash" (start it at the command's initial value, or let a static or consistent start find
+ * it), fc = 0 is hyd_pump exactly. Accepted as hyd_pump, and fc finite and >= 0; otherwise
+ * BG_ERR_ARGUMENT naming the element's path and the parameter, nothing added. */
+BG_API int hyd_pump_servo(bgr_model *m, bgr_comp c, const char *name, double Dp, double Cl,
+                          bgr_ref command, double fc);
 
 /* Optional nominal scales (bgr_declare_nominal), stated before bgr_compile: pressure (Pa) for
  * p_a and p_b, Dp pressure / (2 pi) for the torque T; speed (rad/s, the drive speed) for w_p and
  * Dp speed / (2 pi) for the flows q_a, q_b (the displacement times the speed: the full flow).
- * The command x keeps 1 (a fraction of the full displacement). Not stated (0): the pressures,
- * torque, speed and flows keep 1 (SI units). BG_OK, BG_ERR_ARGUMENT (id not a pump, a scale < 0
+ * The command x and the swash plate's position keep 1 (fractions of the full displacement).
+ * Not stated (0): the pressures, torque, speed and flows keep 1 (SI units). BG_OK, BG_ERR_ARGUMENT (id not a pump, a scale < 0
  * or not finite), BG_ERR_STATE (model compiled). */
 BG_API int hyd_pump_set_nominal(bgr_model *m, int id, double pressure, double speed);
 

@@ -35,9 +35,10 @@ struct crane {
     int tie[2], nties, rope, load, cw;           /* nties: 0, 1 or 2 (a laterally spread pair) */
     int drive_bond;                              /* into the slewing joint's drive port */
     double tie_L0;                               /* unstretched tie length */
-    int ref_value, ref_rate, ref_int, pid, vol_h, vol_l, motor_acc;
+    int ref_value, ref_rate, ref_int, pid, pump, vol_h, vol_l, motor_acc;
     double tip0[3], e2[3], e3[3]; /* undeformed tip, boom's transverse directions (theta = 0) */
     double tip_r[3];              /* rigid boom: tip in its body frame */
+    double boom_cs[3];            /* rigid boom: its mass centre from the boom's middle */
     double foot_r[3];             /* rigid boom: foot in its body frame */
     /* variable ids of the outputs */
     int v_theta, v_omega, v_theta_ref, v_omega_ref, v_alpha_ref, v_alpha, v_x, v_ph, v_pl;
@@ -66,16 +67,20 @@ void crane_scene_default(crane_scene *s)
     s->boom_I_side = 0.0665;
     s->boom_J = 0.0836 + 0.0665; /* equivalent lattice boom: polar of the two */
     s->boom_rho = 7850;
+    s->boom_beta = 2.33e-3; /* s: 0.48 % of critical at the first bending mode (docs/crane.md) */
     s->ties = 1;
     s->gantry_top[0] = -10.0;
     s->gantry_top[2] = 20.0;
     s->tie_spread = 3.0;
     s->tie_E = 2.1e11;
     s->tie_A = 0.0084;
+    s->tie_rho = 7850;      /* steel: each tie's mass lumped half at its ends */
+    s->tie_beta = 2.33e-3;  /* s: the boom's, one structure */
     s->rope = 1;
     s->rope_length = 71.51;
     s->rope_E = 1.0e11;
     s->rope_A = 0.0004;
+    s->rope_damping = 1.19e3; /* N s/m: 0.32 % of critical at the load's bounce mode */
     s->load_mass = 60.526e3;
     s->counterweight = 1;
     s->cw_mass = 150e3;
@@ -93,10 +98,11 @@ void crane_scene_default(crane_scene *s)
     s->bulk_modulus = 1.4e9;
     s->charge_pressure = 2e6; /* Pa */
     s->relief_pressure = 3e7; /* Pa */
+    s->pump_servo_bw = 0.8;   /* Hz: the swash plate's first-order lag (docs/crane.md) */
     s->kp = 5;
     s->kd = 50;
     s->ki = 2;
-    s->kd_filter = 0.01;
+    s->kd_filter = 0; /* the paper's law: the measured acceleration (stable with the lag) */
     s->x_limit = 1; /* the pump's full displacement */
     s->ref_t1 = 2;
     s->ref_t2 = 10;
@@ -108,6 +114,9 @@ void crane_scene_default(crane_scene *s)
     s->atol = 1e-6;
     s->output_step = 1e-3;
     s->nominal_scales = 1;
+    s->nominal_length = 1;
+    s->nominal_velocity = 1;
+    s->nominal_angular_velocity = 1;
     s->stability_guard = 1;
 }
 
@@ -132,6 +141,7 @@ static void sub3(const double *a, const double *b, double *r)
 }
 
 static int set_initial(crane *c);
+static int state_scales(crane *c);
 
 /* A one-dimensional bond from port pa of element a to port pb of element b. */
 typedef struct bond1 {
@@ -262,6 +272,16 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
     bgr_port foot, tip_ports[3];
     int ntip = nties + s->rope;
     c->n = s->boom_elements;
+    /* The ties' mass, rho A L0 each, lumped half at each end (a truss's lumped mass matrix): the
+     * halves at the tip go into the boom's tip; those at the gantry top, a point of the rigid
+     * platform, count in the platform's mass. */
+    double tie_tip_mass = 0;
+    for (int k = 0; k < nties && s->tie_rho > 0; k++) {
+        double gt[3], dt[3];
+        gantry_point(s, k, nties, gt);
+        sub3(tip, gt, dt);
+        tie_tip_mass += 0.5 * s->tie_rho * s->tie_A * (tie_L0 > 0 ? tie_L0 : sqrt(mech_dot(dt, dt)));
+    }
     if (c->n > 0) {
         mech_section sec = {.E = s->boom_E,
                             .G = s->boom_G,
@@ -280,6 +300,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
             "boom");
         for (int k = 0; k < c->n; k++) /* moments: that force times the element length */
             TRY(mech_set_nominal(m, c->elems[k], W_boom, 0, 0), "boom scales");
+        if (tie_tip_mass > 0)
+            TRY(mech_body_add_mass(m, c->nodes[c->n], tie_tip_mass), "ties' mass at the tip");
         foot = mech_beam_chain_port(m, c->nodes, c->n, extra, 0, 0);
         for (int j = 0; j < ntip; j++)
             tip_ports[j] = mech_beam_chain_port(m, c->nodes, c->n, extra, c->n, j);
@@ -297,11 +319,24 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         for (int i = 0; i < 3; i++)
             for (int k = i + 1; k < 3; k++)
                 J[k + 3 * i] = J[i + 3 * k];
+        if (tie_tip_mass > 0) { /* the ties' share at the tip: the mass centre moves to it */
+            double mt = tie_tip_mass, rt[3];
+            for (int i = 0; i < 3; i++)
+                c->boom_cs[i] = mt * 0.5 * d[i] / (mass + mt);
+            for (int i = 0; i < 3; i++)
+                rt[i] = 0.5 * d[i] - c->boom_cs[i];
+            double cc = mech_dot(c->boom_cs, c->boom_cs), rr = mech_dot(rt, rt);
+            for (int i = 0; i < 3; i++) /* parallel axes: the rod's and the point's */
+                for (int k = 0; k < 3; k++)
+                    J[i + 3 * k] += mass * (cc * (i == k) - c->boom_cs[i] * c->boom_cs[k]) +
+                                    mt * (rr * (i == k) - rt[i] * rt[k]);
+            mass += mt;
+        }
         double r[4 * 3];
         int dims[4] = {6, 3, 3, 3}; /* hinge, then ntip <= 3 tip ports */
         for (int i = 0; i < 3; i++) {
-            c->foot_r[i] = r[i] = -0.5 * d[i];
-            c->tip_r[i] = r[3 + i] = r[6 + i] = r[9 + i] = 0.5 * d[i];
+            c->foot_r[i] = r[i] = -0.5 * d[i] - c->boom_cs[i];
+            c->tip_r[i] = r[3 + i] = r[6 + i] = r[9 + i] = 0.5 * d[i] - c->boom_cs[i];
         }
         TRY(c->boom = mech_body(m, 0, "boom", mass, J, g, 1 + ntip, r, dims), "rigid boom");
         TRY(mech_set_nominal(m, c->boom, W_boom, M_hinge, 0), "rigid boom scales");
@@ -323,7 +358,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         sub3(tip, gt, d);
         L0 = tie_L0 > 0 ? tie_L0 : sqrt(mech_dot(d, d));
         c->tie_L0 = L0;
-        TRY(c->tie[k] = mech_truss(m, 0, nm[0], s->tie_E, s->tie_A, L0, settle ? 1e6 : 0), "ties");
+        double c_tie = settle ? 1e6 : s->tie_beta * s->tie_E * s->tie_A / L0;
+        TRY(c->tie[k] = mech_truss(m, 0, nm[0], s->tie_E, s->tie_A, L0, c_tie), "ties");
         TRY(mech_set_nominal(m, c->tie[k], W_boom, 0, 0), "tie scales");
         TRY(bgr_bond(m, 0, nm[1], 3, bgr_port_of(m, c->platform, pport++),
                      bgr_port_of(m, c->tie[k], 0), NULL, NULL),
@@ -429,8 +465,8 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         }
         TRY(c->pid = ctl_pid(m, hy, "pid", &spec), "pid");
         TRY(prime = bgr_Sf(m, hy, "prime_mover", 1, &w), "prime mover");
-        TRY(pump =
-                hyd_pump(m, hy, "pump", s->pump_disp, s->pump_leak, (bgr_ref){BGR_OWN, c->pid, 0}),
+        TRY(pump = hyd_pump_servo(m, hy, "pump", s->pump_disp, s->pump_leak,
+                                  (bgr_ref){BGR_OWN, c->pid, 0}, s->pump_servo_bw),
             "pump");
         TRY(motor = hyd_motor(m, hy, "motor", s->motor_disp, s->motor_leak, 0), "motor");
         int valves = s->relief_pressure > 0; /* two reliefs and two check valves */
@@ -454,6 +490,7 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
         TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-9), "charge valve");
         c->vol_h = vh;
         c->vol_l = vl;
+        c->pump = pump;
         const bond1 hb[] = {{"b_prime", prime, 0, pump, 0},   {"b_pump_in", vl, 0, pump, 1},
                             {"b_pump_out", pump, 2, vh, 0},   {"b_motor_in", vh, 1, motor, 0},
                             {"b_motor_out", motor, 1, vl, 1}, {"b_tank", tank, 0, charge, 0},
@@ -490,6 +527,10 @@ static crane *build(const crane_scene *sc, int settle, double tie_L0, bg_error *
     }
     if (set_initial(c) != 0) {
         fail_here(err, "initial values", m);
+        goto fail;
+    }
+    if (state_scales(c) != BG_OK) {
+        fail_here(err, "nominal scales", m);
         goto fail;
     }
     return c;
@@ -535,7 +576,7 @@ static int set_initial(crane *c)
     } else {
         double mid[3];
         for (int i = 0; i < 3; i++)
-            mid[i] = 0.5 * (B[i] + tip[i]);
+            mid[i] = 0.5 * (B[i] + tip[i]) + c->boom_cs[i];
         if (mech_body_set(m, c->boom, mid, NULL, NULL, NULL) != BG_OK) return -1;
         c->v_tip = mech_body_var(m, c->boom, 'x');
         c->v_tipq = mech_body_var(m, c->boom, 'q');
@@ -565,7 +606,9 @@ static int set_initial(crane *c)
     }
     c->v_x = c->v_ph = c->v_pl = c->v_alpha = -1;
     if (s->hydraulics && !c->settle) {
-        c->v_x = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->pid, 0});
+        /* the pump's displacement: its swash plate with an actuator, else the PID's command */
+        c->v_x = s->pump_servo_bw > 0 ? bgr_ref_var(m, (bgr_ref){BGR_STATE, c->pump, 0})
+                                      : bgr_ref_var(m, (bgr_ref){BGR_OWN, c->pid, 0});
         c->v_ph = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->vol_h, 0});
         c->v_pl = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->vol_l, 0});
         if (c->motor_acc >= 0) c->v_alpha = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->motor_acc, 0});
@@ -633,6 +676,17 @@ int crane_energy(const crane *c, const double *y, double *kinetic, double *poten
     *potential = V;
     *elastic = U;
     return st;
+}
+
+double crane_dissipation(const crane *c, const double *y)
+{
+    double P = 0;
+    for (int k = 0; k < c->n; k++)
+        P += mech_beam_dissipation(c->m, c->elems[k], y);
+    for (int k = 0; k < c->nties; k++)
+        P += mech_axial_dissipation(c->m, c->tie[k], y);
+    if (c->s.rope) P += mech_axial_dissipation(c->m, c->rope, y);
+    return P;
 }
 
 double crane_drive_power(const crane *c, const double *y)
@@ -881,6 +935,31 @@ static const char *domain_of(const char *nm)
     if (digit && leaf[0] == 'w') return "angular velocity [rad/s]";
     if (digit && leaf[0] == 'q') return "orientation quaternion [-]";
     return "angles, controller, signals";
+}
+
+/* The scene's nominal magnitudes of positions, velocities and angular velocities (crane_scene:
+ * the quantities no parameter gives a size), by the quantity domain_of finds for each unknown
+ * (0: what the components declared, 1 in SI units); a member's stretch vector keeps its length
+ * if that is larger. */
+static int state_scales(crane *c)
+{
+    const crane_scene *s = &c->s;
+    const double *nom = bgr_nominals(c->m);
+    if (!nom) return BG_OK;
+    for (int i = 0; i < bgr_n(c->m); i++) {
+        const char *nm = bgr_var_name(c->m, i), *d = domain_of(nm), *leaf = strrchr(nm, '/');
+        int stretch = leaf && leaf[1] == 'd';
+        double v = !strcmp(d, "position [m]")               ? s->nominal_length
+                   : !strcmp(d, "velocity [m/s]")           ? s->nominal_velocity
+                   : !strcmp(d, "angular velocity [rad/s]") ? s->nominal_angular_velocity
+                                                            : 0.0;
+        if (stretch && v < nom[i]) v = 0.0;
+        if (v > 0 && v != nom[i]) {
+            int st = bgr_set_nominal(c->m, i, v);
+            if (st != BG_OK) return st;
+        }
+    }
+    return BG_OK;
 }
 
 int crane_stats_print(const crane *c, FILE *f)

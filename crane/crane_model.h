@@ -43,6 +43,10 @@ typedef struct crane_scene {
     double gantry_top[3]; /* in the platform frame */
     double tie_spread;    /* m; > 0: a pair of ties to gantry_top -/+ (0, spread, 0); 0: one */
     double tie_E, tie_A;  /* each tie */
+    double tie_rho;       /* kg/m^3; > 0: each tie's mass rho A L0 lumped half at its ends (the
+                           * tip half into the boom's tip, the gantry half counted in the
+                           * platform's mass); 0: massless */
+    double tie_beta;      /* s; stiffness-proportional damping of each tie, c = beta E A / L0 */
     /* rope and load */
     int rope;
     double rope_length, rope_E, rope_A, rope_damping;
@@ -58,6 +62,8 @@ typedef struct crane_scene {
     double relief_pressure; /* Pa, cross-port relief valves crack at this pressure
                              * difference (full flow 5 MPa above); with them, check valves
                              * from the charge pressure keep both lines above it. 0: none */
+    double pump_servo_bw;   /* Hz; > 0: the pump's swash plate follows the PID's command as a
+                             * first-order lag of this bandwidth (hyd_pump_servo); 0: at once */
     double kp, kd, ki;      /* the paper's PID (x = fraction of the pump's displacement) */
     double kd_filter;       /* s; > 0: the derivative term acts on a filtered rate
                              * (ctl_pid derivative_filter); 0: on the measured acceleration
@@ -73,6 +79,10 @@ typedef struct crane_scene {
                          * absolute tolerance of unknown i is atol * nominal_i: a millionth of a
                          * pressure's 35 MPa, of a beam force's 0.85 MN, ... with atol = 1e-6);
                          * 0: all 1, atol in SI units for every unknown (the old behaviour) */
+    /* nominal magnitudes of the unknowns that no parameter gives a size (with nominal_scales;
+     * 0: 1 in SI units): positions and the members' stretch vectors (m; a member keeps its
+     * length if that is larger), velocities (m/s), angular velocities (rad/s) */
+    double nominal_length, nominal_velocity, nominal_angular_velocity;
     int stability_guard; /* 1: dae_options.stability_guard, the order lowered to 2 where the
                           * boom's and the lines' undamped fast modes hold BDF orders 3..5 at
                           * their stability limit (numerical dissipation of those modes); 0: the
@@ -126,7 +136,9 @@ double crane_tie_length(const crane *c);
 /* t, theta, theta_ref, omega, omega_ref, omega_err = omega_ref - omega, alpha_err = alpha_ref -
  * alpha, tip_x/y/z, tip_defl_1/2 (tip displacement from the static tip carried round by theta,
  * along the boom's transverse directions in and out of the luffing plane), load_x/y/z,
- * rope_force, pump_x (PID output, fraction of the pump's displacement), p_high, p_low,
+ * rope_force, pump_x (the pump's displacement, a fraction of its full: the swash plate's
+ * position, which follows the PID's command through the actuator of [hydraulics]
+ * pump_servo_bandwidth, or the command itself without one), p_high, p_low,
  * constraint_drift (distance between the hinge point on the platform and the boom's foot: the
  * joints hold at velocity level). NaN for parts a scene lacks. */
 extern const char *const crane_output_names[CRANE_NOUT]; /* "t [s]", "theta [rad]", ... */
@@ -140,6 +152,9 @@ void crane_outputs(const crane *c, double t, const double *y, const double *yp, 
  * drive's energies (motor inertia, oil compression) are not included. BG_OK or a status. */
 int crane_energy(const crane *c, const double *y, double *kinetic, double *potential,
                  double *elastic);
+/* Power the structural damping dissipates at a state y (boom elements, ties, rope; >= 0): with
+ * crane_energy, the drive's work equals the change of energy plus the time integral of this. */
+double crane_dissipation(const crane *c, const double *y);
 /* Power delivered into the slewing joint's drive port (torque times relative rate). */
 double crane_drive_power(const crane *c, const double *y);
 

@@ -30,13 +30,20 @@
  *                                                    the luffing plane)
  *                    J                number > 0     m^4, torsion constant
  *                    rho              number > 0     kg/m^3, density
- *                    beta             number >= 0    s, stiffness-proportional damping
+ *                    beta             number >= 0    s, stiffness-proportional damping: mode i
+ *                                                    gets the damping ratio beta omega_i / 2
  *   [ties]           enabled          boolean        build the suspension ties
  *                    gantry_top       vector         m, upper end on the platform (platform frame)
  *                    spread           number >= 0    m; > 0: a pair of ties ending at gantry_top
  *                                                    -/+ (0, spread, 0); 0: one tie
  *                    E                number > 0     Pa
  *                    A                number > 0     m^2
+ *                    rho              number >= 0    kg/m^3; each tie's mass rho A L0 lumped half
+ *                                                    at each end (the tip's half into the boom's
+ *                                                    tip; the gantry's counts in the platform's
+ *                                                    mass); 0: massless
+ *                    beta             number >= 0    s, stiffness-proportional damping of each tie
+ *                                                    (damping coefficient beta E A / L0)
  *   [rope]           enabled          boolean        build the rope and the load
  *                    length           number > 0     m, unstretched
  *                    E                number > 0     Pa (stiffness E A / length)
@@ -59,6 +66,11 @@
  *                    charge_pressure  number >= 0    Pa
  *                    relief_pressure  number >= 0    Pa, cross-port relief cracking (0: none;
  *                                                    with it, anti-cavitation check valves)
+ *                    pump_servo_bandwidth number >= 0 Hz, the pump's displacement actuator: its
+ *                                                    swash plate follows the PID's command as a
+ *                                                    first-order lag (hyd_pump_servo); 0: at once.
+ *                                                    With kd_filter > 0 the drive's loop is
+ *                                                    unstable with any lag (docs/crane.md)
  *   [controller]     kp, kd, ki       number >= 0    PID gains (x = fraction of the pump's
  *                                                    displacement; kp 1/(rad/s), kd 1/(rad/s^2),
  *                                                    ki 1/rad)
@@ -75,6 +87,11 @@
  *                    output_step      number > 0     s, output interval (<= t_end)
  *                    nominal_scales   boolean        absolute tolerances scaled by the unknowns'
  *                                                    nominal magnitudes (default true; see below)
+ *                    nominal_length   number >= 0    m, the nominal magnitude of positions (a
+ *                                                    member's stretch vector keeps its length if
+ *                                                    larger); 0: 1 m (SI)
+ *                    nominal_velocity number >= 0    m/s, of velocities; 0: 1 m/s
+ *                    nominal_angular_velocity number >= 0  rad/s, of angular velocities; 0: 1
  *                    stability_guard  boolean        the solver's stability guard (default true;
  *                                                    see below)
  *
@@ -87,21 +104,23 @@
  * and hinge (that weight times the element length for the beam moments), the load's weight for
  * the rope, the total weight and the larger overturning moment for the slewing joint, the
  * members' lengths for their stretch vectors, the pump's full displacement (x_limit) for the
- * PID output; 1 (SI) for positions, velocities and angles. "rtol = atol = 1e-6" then asks every
+ * PID output; the scene's nominal_length, nominal_velocity and nominal_angular_velocity for
+ * positions, velocities and angular velocities (no parameter gives them a size: the paper
+ * scene states 1 m, 1 m/s, 1 rad/s); 1 (SI) for angles. "rtol = atol = 1e-6" then asks every
  * unknown for about a millionth of its own size, |y| or its nominal, whichever is larger: 35 Pa
  * on a line pressure, 0.85 N on a boom force, 1 um on a position. With nominal_scales = false
  * every unknown has the absolute tolerance atol in SI units (1e-6 Pa on a 2..28 MPa pressure,
  * 1e-6 N on a force of 1e5 N: far below what the rounding of the residual resolves), the
  * behaviour before the scales existed. model_stats.txt lists the scales used by domain.
  *
- * Stability guard. The boom's node rotations (250 to 450 Hz with 16 elements, higher with more)
- * and the loop of PID, pump and line compressibility (about 820 Hz) are undamped or about 1 %
- * damped, and stay excited: BDF of order 3 to 5 then holds the step at its stability limit on
- * them (0.72 / omega at order 5) whatever the tolerance (144 000 steps for the paper scene). With
- * stability_guard = true (the default) the solver lowers the order to 2 there (dae_stab.c), which
- * damps those modes: about 41 000 steps, theta(12 s) within 1.1e-5 rad and the peak tip
- * deflections within 2.2e-4 of a run at rtol 1e-9. The fast modes' own amplitudes are then not
- * resolved: false keeps them, at the old cost.
+ * Stability guard. Without structural damping (paper-undamped.ini) the boom's node rotations
+ * (250 to 450 Hz with 16 elements, higher with more) and the loop of PID, pump and line
+ * compressibility (about 820 Hz) are undamped or about 1 % damped, and stay excited: BDF of
+ * order 3 to 5 then holds the step at its stability limit on them (0.72 / omega at order 5)
+ * whatever the tolerance (144 000 steps). With stability_guard = true (the default) the solver
+ * lowers the order to 2 there (dae_stab.c), which damps those modes: about 46 000 steps. The
+ * paper scene's structural damping overdamps the node rotations itself (beta = 2.33e-3 s: above
+ * 170 Hz) and its loop mode (180 Hz) is 1.2 % damped; the guard acts there a few times.
  *
  * Besides the ranges above, a scene must be consistent: the boom must reach its tip radius
  * (|tip_radius - foot.x| < length), a flexible boom (elements > 0) must lean (tip_radius !=

@@ -83,6 +83,7 @@ static void checks(crane *c, crane_start_report *rep)
     crane_geom *g = malloc(sizeof *g);
     rep->straightness = NAN;
     rep->load_z = NAN;
+    rep->tie_tension_min = NAN;
     if (g && crane_geometry(c, 0.0, y, NULL, g) == BG_OK) {
         double d[3] = {tip[0] - foot[0], tip[1] - foot[1], tip[2] - foot[2]};
         double L2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], worst = 0;
@@ -95,6 +96,9 @@ static void checks(crane *c, crane_start_report *rep)
         }
         rep->straightness = worst;
         if (g->rope) rep->load_z = g->load[2];
+        for (int k = 0; k < g->nties; k++)
+            rep->tie_tension_min = k ? fmin(rep->tie_tension_min, g->tie_tension[k])
+                                     : g->tie_tension[k];
     }
     free(g);
     rep->straightness_tol = 0.05 * s->boom_length;
@@ -112,6 +116,7 @@ static void checks(crane *c, crane_start_report *rep)
     rep->ok_boom = rep->tip_z > rep->foot_z && rep->straightness <= rep->straightness_tol;
     rep->ok_load = !s->rope || rep->load_z > rep->ground_z;
     rep->ok_rest = rep->kinetic <= rep->kinetic_tol;
+    rep->ok_ties = !s->ties || rep->tie_tension_min > 0;
 }
 
 static void say(crane_start_report *rep, const char *fmt, double a, double b, double c2)
@@ -272,13 +277,21 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
                      "joint)",
                 rep->load_z, rep->ground_z, 0);
         }
+        if (!rep->ok_ties) {
+            add_key(rep, "[ties] gantry_top");
+            add_key(rep, "[boom] tip_radius");
+            say(rep, "the ties push instead of pulling (tension %.4g N): anchored there they are "
+                     "struts, not ties",
+                rep->tie_tension_min, 0, 0);
+        }
         if (!rep->ok_rest) {
             add_key(rep, "[environment] g");
             say(rep, "the bodies are not at rest (kinetic energy %.3g J, at most %.3g J)",
                 rep->kinetic, rep->kinetic_tol, 0);
         }
     }
-    rep->ok = rep->ok_solve && rep->ok_radius && rep->ok_boom && rep->ok_load && rep->ok_rest;
+    rep->ok = rep->ok_solve && rep->ok_radius && rep->ok_boom && rep->ok_load && rep->ok_rest &&
+              rep->ok_ties;
     if (!rep->ok)
         return bg_error_raise(err, CRANE_ERR_START, "crane_static_start",
                               "scene %s: the keys %s cannot be met together: %s", sc.name,
@@ -313,6 +326,9 @@ int crane_start_print(const crane_start_report *r, FILE *f)
             ok[r->ok_load], r->load_z, r->ground_z);
     fprintf(f, "  %-6s every body at rest: kinetic energy %.3g J (at most %.3g J)\n",
             ok[r->ok_rest], r->kinetic, r->kinetic_tol);
+    if (isfinite(r->tie_tension_min))
+        fprintf(f, "  %-6s ties in tension: %.6g N (the smaller)\n", ok[r->ok_ties],
+                r->tie_tension_min);
     fprintf(f, "  (the hinge's position mismatch: %.3g m)\n", r->hinge_gap);
     if (!r->ok) fprintf(f, "keys that cannot be met together: %s\nwhy: %s\n", r->keys, r->message);
     return ferror(f) ? BG_ERR_IO : BG_OK;

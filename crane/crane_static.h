@@ -21,6 +21,8 @@
  *   - the boom above its foot (tip higher than the foot) and straight: no node farther than
  *     5 % of the boom's length from the line foot - tip (a buckled boom fails);
  *   - the load above the ground: its height above the slewing joint A's (the crane's base) > 0;
+ *   - the ties in tension (a truss also carries compression: a tie anchored where it can only
+ *     push would be a strut, which a tie or pendant is not);
  *   - every body at rest: the kinetic energy of platform, boom, load and counterweight at most
  *     1e-6 J.
  * A check that fails gives CRANE_ERR_START with a message naming the scene keys that cannot be
@@ -54,7 +56,8 @@ typedef struct crane_start_report {
     double load_z, ground_z;                /* load's height, the base's (joint A) */
     double kinetic, kinetic_tol;            /* J */
     double hinge_gap;                       /* the hinge's position mismatch (m) */
-    int ok_solve, ok_radius, ok_boom, ok_load, ok_rest, ok;
+    double tie_tension_min;                 /* N, the smaller tie tension (NaN: no ties) */
+    int ok_solve, ok_radius, ok_boom, ok_load, ok_rest, ok_ties, ok;
     char keys[512];     /* the scene keys that cannot be met together, "" when the checks pass */
     char message[1024]; /* what failed, "" when the checks pass */
 } crane_start_report;

@@ -239,6 +239,18 @@ double mech_axial_tension(const bgr_model *m, int id, const double *y)
     return tension(a, L, mech_dot(d, dv) / L, &TL, &TLd);
 }
 
+double mech_axial_dissipation(const bgr_model *m, int id, const double *y)
+{
+    bgr_element *el = bgr_element_get((bgr_model *)m, id);
+    if (!el || el->cls != &axial_class || !bgr_n(m) || !y) return NAN;
+    const axial *a = el->params;
+    const double *d = y + a->d, *vA = y + a->f[0], *vB = y + a->f[1];
+    double L = sqrt(mech_dot(d, d)), dv[3] = {vB[0] - vA[0], vB[1] - vA[1], vB[2] - vA[2]};
+    double Ld = mech_dot(d, dv) / L, TL, TLd;
+    tension(a, L, Ld, &TL, &TLd); /* TLd: the damping coefficient c (rope: c h) */
+    return TLd * Ld * Ld;
+}
+
 /* -Li2(-u) for 0 <= u <= 1: the alternating series sum (-1)^(n+1) u^n / n^2. */
 static double neg_li2_neg(double u)
 {

@@ -49,6 +49,11 @@ BG_API int mech_axial_set(bgr_model *m, int id, const double *xa, const double *
 BG_API double mech_axial_energy(const bgr_model *m, int id, const double *y);
 /* Tension at a state vector y (after bgr_compile); NaN as for the energy. */
 BG_API double mech_axial_tension(const bgr_model *m, int id, const double *y);
+/* Power the damper dissipates at a state vector y (after bgr_compile): the damping force times
+ * the elongation rate, c L'^2 (rope: c h_eps(L - L0) L'^2), >= 0; NaN as for the energy. With
+ * the elastic energy: d/dt (energy) = T L' - dissipation, the power the member takes at its
+ * ends less what it turns into heat. */
+BG_API double mech_axial_dissipation(const bgr_model *m, int id, const double *y);
 
 #ifdef __cplusplus
 }

@@ -920,6 +920,26 @@ double mech_beam_energy(const bgr_model *m, int elem, const double *y)
     return b->work->W.v;
 }
 
+double mech_beam_dissipation(const bgr_model *m, int elem, const double *y)
+{
+    bgr_element *el = bgr_element_get((bgr_model *)m, elem);
+    if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
+    const beam *b = el->params;
+    if (!(b->sec.beta > 0)) return 0.0;
+    beam_fwd f;
+    beam_forward(b, y, &f);
+    double w[12], dd[7], P = 0;
+    for (int k = 0; k < 6; k++) {
+        w[k] = y[b->f[0] + k];
+        w[6 + k] = y[b->f[1] + k];
+    }
+    beam_tangent(b, y, &f, w, dd);
+    for (int r = 0; r < 7; r++)
+        for (int c = 0; c < 7; c++)
+            P += dd[r] * b->K[r][c] * dd[c];
+    return b->sec.beta * P;
+}
+
 int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, double g[12])
 {
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);

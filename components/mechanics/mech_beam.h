@@ -91,6 +91,10 @@ BG_API int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const doub
 /* The deformation energy W of an element at a state vector y (after bgr_compile); NaN if elem
  * is not a beam element of a compiled model, or y is NULL. */
 BG_API double mech_beam_energy(const bgr_model *m, int elem, const double *y);
+/* The power the element's damping dissipates at a state vector y (after bgr_compile): twice the
+ * dissipation function, beta d'^T K d' >= 0 (0 without damping), d' the rates of the local
+ * deformations from the node velocities in y; NaN as for the energy. */
+BG_API double mech_beam_dissipation(const bgr_model *m, int elem, const double *y);
 /* The 12 port loads (F_a, M_a, F_b, M_b) of a beam element at a state vector y, for tests:
  * path 0 as the residual computes them (plain arithmetic, one reverse pass), path 1 by the
  * automatic differentiation the Jacobian uses. BG_OK, or BG_ERR_ARGUMENT (not a beam element of

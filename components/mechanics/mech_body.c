@@ -339,6 +339,26 @@ int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const dou
     return bgr_element_add(m, c, name, &body_class, b, nports, b->dim, 13, sn, 0, NULL);
 }
 
+int mech_body_add_mass(bgr_model *m, int body_id, double dm)
+{
+    const char *w = "mech_body_add_mass";
+    if (!m) return BG_ERR_ARGUMENT;
+    bgr_element *el = bgr_element_get(m, body_id);
+    if (!el || el->cls != &body_class)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
+                              "element %d is not a body", body_id);
+    if (bgr_nvars(m) > 0)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_STATE, w,
+                              "body %s/%s: the model is compiled: add masses before bgr_compile",
+                              bgr_component_path(m, el->comp), el->name);
+    if (!(dm >= 0) || !isfinite(dm))
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
+                              "body %s/%s: dm = %g, expected a finite number >= 0",
+                              bgr_component_path(m, el->comp), el->name, dm);
+    ((body *)el->params)->m += dm;
+    return BG_OK;
+}
+
 int mech_body_var(const bgr_model *m, int body_id, char which)
 {
     const bgr_element *el = bgr_element_get((bgr_model *)m, body_id);

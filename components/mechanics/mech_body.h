@@ -40,6 +40,13 @@ extern "C" {
 BG_API int mech_body(bgr_model *m, bgr_comp c, const char *name, double mass, const double *inertia,
                      const double *gravity, int nports, const double *r, const int *dims);
 
+/* A point mass dm (kg) at the body's mass centre, added before bgr_compile: the body's mass
+ * becomes mass + dm (its weight with it), the inertia tensor about the mass centre stays (a point
+ * at the reference point adds none). For masses lumped into a node: a member's share at its end
+ * (a truss's lumped mass matrix puts half of rho A L at each end). BG_OK, BG_ERR_ARGUMENT (body
+ * is not a body, dm not finite and >= 0), BG_ERR_STATE (model compiled). */
+BG_API int mech_body_add_mass(bgr_model *m, int body, double dm);
+
 /* Initial state (after bgr_compile): position x and velocity v of the mass centre, body
  * angular velocity w (x, v, w NULL: zero), orientation q (NULL: identity); written into bgr_y0.
  * BG_OK, or BG_ERR_ARGUMENT if body is not a body of a compiled model. */

@@ -63,7 +63,8 @@ static void paper_start(crane_geom *g)
     tap_ok(xmin < sc.gantry_top[0] && xmin < sc.cw_pos[0] && xmax > sc.boom_foot[0],
            "deck from %g to %g m spans gantry, counterweight and hinge", xmin, xmax);
     /* the tip node at rest: the last element's section force (what the tip side exerts on it)
-     * balances the ties, the rope and the node's weight: F = sum T u + m g */
+     * balances the ties, the rope and the node's weight: F = sum T u + m g, m the half element
+     * and the halves of the ties' mass lumped there ([ties] rho) */
     double F[3] = {0, 0, 0}, u[3];
     for (int k = 0; k < 2; k++) {
         double L = dist(g->gantry[k], tip);
@@ -74,6 +75,7 @@ static void paper_start(crane_geom *g)
     for (int i = 0; i < 3; i++)
         F[i] += g->rope_tension * (g->load[i] - tip[i]) / L;
     F[2] -= sc.g * sc.boom_rho * sc.boom_A * sc.boom_length / (2 * sc.boom_elements);
+    F[2] -= sc.g * 0.5 * sc.tie_rho * sc.tie_A * crane_tie_length(r.c) * g->nties; /* ties' halves */
     tap_close(dist(g->force[g->nodes - 1], F), 0, 0, 1e-4 * norm(F),
               "start: tip node in equilibrium (section force %.6g N, ties + rope + weight %.6g "
               "N)",
