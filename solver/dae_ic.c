@@ -428,7 +428,10 @@ static int stage_a(dae_solver *s, double te, double *y, const double *yp, double
                 gmax = fabs(s->res[i]) / den[i];
                 imax = i;
             }
-        if (gmax <= 10 * DBL_EPSILON) return BG_OK;
+        if (gmax <= 10 * DBL_EPSILON) {
+            *wmove = 0; /* measured here: round-off */
+            return BG_OK;
+        }
         if (it == IC_MAX_ITER) {
             char eb[192];
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
