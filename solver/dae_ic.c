@@ -333,7 +333,8 @@ int daei_ic_res(dae_solver *s, double t, const double *y, const double *yp, doub
     if (r != BG_RECOVERABLE || bad < 0)
         daei_note(s, "the residual function returned the %s status %d at %s%s%.160s%s",
                   r < 0 ? "fatal" : "recoverable", r, tb, bad >= 0 ? " (" : "",
-                  bad >= 0 ? daei_ename(s, bad, eb, sizeof eb) : "", bad >= 0 ? " not finite)" : "");
+                  bad >= 0 ? daei_ename(s, bad, eb, sizeof eb) : "",
+                  bad >= 0 ? " not finite)" : "");
     else
         daei_note(s, "the residual of %.160s is %g at %s", daei_ename(s, bad, eb, sizeof eb),
                   F[bad], tb);

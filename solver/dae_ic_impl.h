@@ -19,28 +19,28 @@
 
 /* Scratch vectors of s->ic_w, n values each. */
 enum {
-    IC_GUESS, /* the values given (dae_consistent_init) */
-    IC_GUESSP,
-    IC_DA1,   /* the first correction of the algebraic constraints (the warning) */
-    IC_F1,    /* residuals at the points of the differences */
+    IC_GUESS,  /* the values given (dae_consistent_init), y */
+    IC_GUESSP, /* and y' */
+    IC_DA1,    /* the first correction of the algebraic constraints (the warning) */
+    IC_F1,     /* residuals at the points of the differences */
     IC_F2,
     IC_F3,
-    IC_YK,    /* a point of the differences */
-    IC_H,     /* the hidden constraints (rows ROW_ALG1) */
-    IC_HT,    /* their part in t */
-    IC_HTE,   /* the error estimates of their part in t */
-    IC_HE,    /* the error estimates of their part along y' */
-    IC_HA,    /* an earlier estimate (stage C) */
-    IC_SC,    /* the scales of the hidden constraints */
-    IC_TY,    /* per constraint row, the time scale along y' */
-    IC_YC,    /* the central difference along y' of the constraint rows */
-    IC_EC,    /* and its error estimates */
-    IC_SY,    /* y and y' where stage B started */
+    IC_YK,  /* a point of the differences */
+    IC_H,   /* the hidden constraints (rows ROW_ALG1) */
+    IC_HT,  /* their part in t */
+    IC_HTE, /* the error estimates of their part in t */
+    IC_HE,  /* the error estimates of their part along y' */
+    IC_HA,  /* the earlier estimate in t; the one-sided difference along y' */
+    IC_SC,  /* the scales of the hidden constraints */
+    IC_TY,  /* per constraint row, the time scale along y' */
+    IC_YC,  /* the central difference along y' of the constraint rows */
+    IC_EC,  /* and its error estimates */
+    IC_SY,  /* y and y' where stage B started */
     IC_SYP,
-    IC_R,     /* the residual of the Newton iteration for y' and the index-2 unknowns */
-    IC_U,     /* its correction */
-    IC_UD,    /* the correction without the residuals within their noise */
-    IC_DEN,   /* row scales */
+    IC_R,   /* the residual of the Newton iteration for y' and the index-2 unknowns */
+    IC_U,   /* its correction */
+    IC_UD,  /* the correction without the residuals within their noise */
+    IC_DEN, /* row scales */
     IC_NWORK
 };
 
@@ -69,12 +69,12 @@ int daei_ic_factor_solve(dae_solver *s, ls_solver *ls, const sp_csc *M, double *
 /* What the iteration for y' and the index-2 unknowns reached, measured at the values it
  * returns. */
 typedef struct ic_outcome {
-    int converged;  /* the last correction was negligible, or stalled below the tolerance */
-    double rnorm;   /* largest scaled residual: rows of F, and the hidden constraints */
-    int rworst;     /* its row */
-    int rhidden;    /* that row is a hidden constraint */
-    double unorm;   /* largest weighted component of the correction the residual calls for */
-    double tstep;   /* a step in t (signed) over which the residual was found smooth */
+    int converged; /* the last correction was negligible, or stalled below the tolerance */
+    double rnorm;  /* largest scaled residual: rows of F, and the hidden constraints */
+    int rworst;    /* its row */
+    int rhidden;   /* that row is a hidden constraint */
+    double unorm;  /* largest weighted component of the correction the residual calls for */
+    double tstep;  /* a step in t (signed) over which the residual was found smooth */
 } ic_outcome;
 
 /* Stage B (dae_ic.c has the method): y' of the differential and index-1 unknowns and y of the
@@ -82,8 +82,8 @@ typedef struct ic_outcome {
  * fixed. side: the direction of the differences in t (+1, or -1 for left-hand values), tscale
  * their time scale. BG_OK with *out filled (a failure to converge is the caller's to judge),
  * or a failure with its message. */
-int daei_ic_stage_b(dae_solver *s, double te, double side, double tscale, double *y,
-                    double *yp, ic_outcome *out);
+int daei_ic_stage_b(dae_solver *s, double te, double side, double tscale, double *y, double *yp,
+                    ic_outcome *out);
 /* Whether stage B's outcome is a failure: not converged with a scaled residual above 1e-6, or
  * above 1e-8 at all (the derivatives may stay inconsistent at the level the linear algebra
  * reaches on an ill-conditioned system, stiff bars next to tiny rotary inertias: 1e-7 of the

@@ -31,17 +31,18 @@
 
 #include "dae_ic_impl.h"
 
-#define SAFE 2.0     /* a row stops where its best entry moves by more than SAFE estimates */
+#define SAFE 2.0        /* a row stops where its best entry moves by more than SAFE estimates */
 #define MEANINGFUL 1e-2 /* once its error estimate is below this part of the row's size */
-#define T_FIRST 1e-2 /* the first step in t, relative to the time scale */
+#define T_FIRST 1e-2    /* the first step in t, relative to the time scale */
 #define T_LEVELS 16
 #define Y_FIRST 0.1 /* the first step along y', relative to the row's time scale */
 #define Y_LEVELS 10 /* steps below the slowest row's scale to the fastest's */
 #define C_LEVELS IC_NLEV_C
 #define C_MAX_LEVELS 40
 #define C_RELIABLE 0.1 /* stage C: y'_A2 kept where its error estimate is below this part */
-#define KINK 4.0 /* central and one-sided differences that differ by more than KINK times
-                    their error estimates: a kink of the residual at the state */
+/* central and one-sided differences that differ by more than KINK times their error
+ * estimates: a kink of the residual at the state */
+#define KINK 4.0
 
 /* The typical size of unknown j (that of the finite-difference Jacobians). */
 static double typ_size(const dae_solver *s, const double *y, int j)
@@ -407,7 +408,7 @@ static int stage_b(dae_solver *s, double te, double side, double tscale, int by_
                 out->rhidden = hid;
             }
             double noise = 4 * DBL_EPSILON * (hid ? hs[i] : den[i]);
-            if (hid) noise += (isfinite(Et[i]) ? Et[i] : 0) + Ey[i];
+            if (hid) noise += (isfinite(Et[i]) ? Et[i] : 0) + (isfinite(Ey[i]) ? Ey[i] : 0);
             ud[i] = fabs(R[i]) <= noise ? 0.0 : R[i];
         }
         memcpy(u, R, (size_t)n * sizeof *u);
@@ -474,8 +475,8 @@ int daei_ic_failed(const ic_outcome *o)
     return (!o->converged && o->rnorm > 1e-6) || o->rnorm > 1e-8;
 }
 
-int daei_ic_stage_b(dae_solver *s, double te, double side, double tscale, double *y,
-                    double *yp, ic_outcome *out)
+int daei_ic_stage_b(dae_solver *s, double te, double side, double tscale, double *y, double *yp,
+                    ic_outcome *out)
 {
     int n = s->n, by_jac = s->p.jac != NULL;
     double *sy = daei_icw(s, IC_SY), *syp = daei_icw(s, IC_SYP);
@@ -512,8 +513,8 @@ int daei_ic_alg2_rates(dae_solver *s, double te, double tstep, const double *y, 
         hmin = fmin(hmin, hst[i]);
     }
     int nlev = C_LEVELS + (int)ceil(log2(hmax / hmin));
-    ic_diff dd = {DIFF_TY, 1, C_LEVELS, side * hmax, nlev < C_MAX_LEVELS ? nlev : C_MAX_LEVELS,
-                  hst, NULL};
+    if (nlev > C_MAX_LEVELS) nlev = C_MAX_LEVELS;
+    ic_diff dd = {DIFF_TY, 1, C_LEVELS, side * hmax, nlev, hst, NULL};
     /* s->res holds F at (te, y, yp): stage B's last evaluation */
     if ((r = extrapolate(s, &dd, te, y, yp, s->res, D, E)) != BG_OK) return r;
     for (int i = 0; i < n; i++) {

@@ -83,9 +83,9 @@ static const char *const pend_names[PN] = {"x", "y", "u", "v", "lam", "mu"};
 
 static void pend_patterns(sp_csc **jy, sp_csc **jyp)
 {
-    static const int ij[][2] = {{0, PU}, {0, PMU}, {0, PX}, {1, PV}, {1, PMU}, {1, PY},
-                                {2, PLAM}, {2, PX}, {3, PLAM}, {3, PY}, {4, PX}, {4, PY},
-                                {5, PX}, {5, PY}, {5, PU}, {5, PV}};
+    static const int ij[][2] = {{0, PU},   {0, PMU}, {0, PX},   {1, PV}, {1, PMU}, {1, PY},
+                                {2, PLAM}, {2, PX},  {3, PLAM}, {3, PY}, {4, PX},  {4, PY},
+                                {5, PX},   {5, PY},  {5, PU},   {5, PV}};
     sp_builder *by = sp_builder_create(PN, PN, 16), *byp = sp_builder_create(PN, PN, 4);
     for (size_t k = 0; k < sizeof ij / sizeof *ij; k++)
         sp_builder_add(by, ij[k][0], ij[k][1], 0.0);
@@ -202,8 +202,9 @@ static void test_pendulum_fd(void)
            "closed form",
            ua, up);
     double hid = pend_hidden(o.y, o.yp);
-    tap_ok(hid <= 1e-12, "pendulum, FD: the hidden constraint x'u + xu' + y'v + yv' holds to "
-                         "%.3g of its terms",
+    tap_ok(hid <= 1e-12,
+           "pendulum, FD: the hidden constraint x'u + xu' + y'v + yv' holds to "
+           "%.3g of its terms",
            hid);
     tap_ok(hid <= 10 * o.init_residual + 1e-14,
            "pendulum, FD: the residual reported (%.3g) is no less than a tenth of the hidden "
@@ -220,7 +221,8 @@ static void test_pendulum_exact_start(void)
     pend_exact(th, om, ye, ype);
     for (int analytic = 1; analytic >= 0; analytic--) {
         init_out o = pend_init(analytic, tol, ye, ype);
-        int same_y = memcmp(o.y, ye, sizeof ye) == 0, same_yp = memcmp(o.yp, ype, 4 * sizeof *ype) == 0;
+        int same_y = memcmp(o.y, ye, sizeof ye) == 0,
+            same_yp = memcmp(o.yp, ype, 4 * sizeof *ype) == 0;
         double d = 0;
         for (int i = 0; i < PN; i++)
             d = fmax(d, fabs(o.y[i] - ye[i]));
@@ -240,8 +242,8 @@ static void test_pendulum_rates(void)
     pend_exact(th, om, ye, ype);
     for (int analytic = 1; analytic >= 0; analytic--) {
         init_out o = pend_init(analytic, 1e-8, ye, NULL);
-        tap_diag("pendulum, %s: lam' %.17g (exact %.17g), mu' %.3g",
-                 analytic ? "analytic" : "FD", o.yp[PLAM], ype[PLAM], o.yp[PMU]);
+        tap_diag("pendulum, %s: lam' %.17g (exact %.17g), mu' %.3g", analytic ? "analytic" : "FD",
+                 o.yp[PLAM], ype[PLAM], o.yp[PMU]);
         tap_ok(o.rc == BG_OK && fabs(o.yp[PLAM] - ype[PLAM]) <= 1e-6 * fabs(ype[PLAM]) &&
                    fabs(o.yp[PMU]) <= 1e-6 * fabs(ype[PLAM]),
                "pendulum, %s Jacobian: the index-2 rates lam' = -3 (g/L) omega sin(theta) = "
