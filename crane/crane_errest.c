@@ -84,6 +84,7 @@ crane_errest *crane_errest_create(const crane_errest_spec *sp, bg_error *err)
     }
     int rc = dae_init(e->s, sp->t0, sp->y0, sp->yp0);
     if (rc == BG_OK && sp->consistent) rc = dae_consistent_init(e->s);
+    if (rc == DAE_WARNING) rc = BG_OK; /* found; the warning stays in dae_get_warning */
     if (rc != BG_OK)
         fail(e, rc, sp->consistent ? "consistent initial values" : "the start",
              dae_get_error(e->s)->message);

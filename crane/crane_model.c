@@ -728,7 +728,7 @@ static int settle_run(crane *sc, double *y, bg_error *err)
         return err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
     }
     if ((status = dae_init(sol, 0.0, bgr_y0(sc->m), bgr_yp0(sc->m))) != BG_OK ||
-        (status = dae_consistent_init(sol)) != BG_OK ||
+        (status = dae_consistent_init(sol)) < 0 ||
         (status = dae_solve_to(sol, SETTLE_TIME, &tret, y, yp)) < 0) {
         status = status < 0 ? status : BG_ERR_ARGUMENT;
         bg_error_raise(err, status, "crane_settle", "static equilibrium: %s",

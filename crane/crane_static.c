@@ -467,7 +467,7 @@ int crane_modes(crane *c, double T, dae_modes **out, double *yout, bg_error *err
         if (!sol) {
             st = err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
         } else if ((st = dae_init(sol, 0.0, bgr_y0(m), bgr_yp0(m))) != BG_OK ||
-                   (st = dae_consistent_init(sol)) != BG_OK ||
+                   (st = dae_consistent_init(sol)) < 0 ||
                    (st = dae_solve_to(sol, T, &tr, y, yp)) < 0) {
             bg_error_raise(err, st < 0 ? st : BG_ERR_ARGUMENT, "crane_modes",
                            "the run to t = %g: %s", T, dae_get_error(sol)->message);

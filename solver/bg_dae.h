@@ -181,7 +181,9 @@ typedef struct dae_stats {
     double h_min_used, h_max_used, h_last;
     int order_last;
     double max_drift;              /* max |g| before projection over the run (needs cons) */
-    double init_residual;          /* scaled residual norm after consistent initialisation */
+    double init_residual;          /* largest residual of a row or of a hidden constraint, scaled
+                                      by the size of its terms, at the values of
+                                      dae_consistent_init (see there) */
     double rcond_min;              /* smallest reciprocal condition estimate of the (scaled) Newton
                                       matrix (KLU: min|Ukk|/max|Ukk|; dense: LAPACK dgecon) */
     double t_res, t_jac, t_linalg; /* seconds in residual, Jacobian, linear algebra */
@@ -201,6 +203,11 @@ typedef struct dae_stats {
                                       answered by a fresh Jacobian at the same step (not counted
                                       in newton_fails) */
     double t_last_restart;         /* time of the last of them (NAN: none) */
+    double init_error;             /* the Newton correction that the residuals and the hidden
+                                      constraints at the values of dae_consistent_init call for,
+                                      largest component in the error weights of y (index-2
+                                      unknowns, and y moved by the constraints) and of y' (the
+                                      others): <= 1 means consistent to the tolerance */
 } dae_stats;
 
 /* Return codes of dae_solve_to / dae_step besides the bg_status codes: DAE_SUCCESS (0),
@@ -236,21 +243,28 @@ BG_API bg_error *dae_get_error(dae_solver *s);
 BG_API int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0);
 /* Consistent initial values at the current time, for semi-explicit systems (y' appears only for
  * differential variables; algebraic variables are fixed by the rows without y', or, index-2
- * ones, through the derivatives of the constraints). First the algebraic rows are satisfied
- * with the smallest change of the differential variables; then y' of the differential and
- * index-1 variables and the values of the index-2 ones follow from the differential rows and
- * the derivatives of the constraint rows (dae_ic.c has the details). The equations are
- * evaluated one rounding unit after t, so that inputs with a jump at t (a step at t0, a corner of
- * a reference) take their values after it; the solver does the same when it restarts at a
- * breakpoint. The constraint rows are differentiated in t by one-sided differences whose step
- * shrinks (from cbrt(eps) times |t|, or at t = 0 times the span to t_stop or the first
- * breakpoint, else 1) until two estimates agree to 1e-3, so that an input that changes course
- * soon after t is not differenced across its corner. The scaled residual norm reached goes to
- * stats.init_residual.
+ * ones, through the derivatives of the constraints). First the constraint rows (algebraic rows
+ * without index-2 unknowns) are satisfied with the smallest change of the differential
+ * variables; then y' of the differential and index-1 variables and the values of the index-2
+ * ones follow from the differential rows, the rows with index-2 unknowns and the time
+ * derivatives of the constraint rows (the hidden constraints); then y' of the index-2 ones from
+ * the same equations differentiated once more (dae_ic.c has the details). The hidden
+ * constraints are evaluated from the residual (extrapolated differences in t, and along y' when
+ * the Jacobian is by finite differences), so that the values are consistent to the tolerance
+ * with finite-difference Jacobians too; values given consistent are returned unchanged (y' of
+ * the index-2 unknowns aside, which no equation holds and which are computed). The equations
+ * are evaluated one rounding unit after t, so that inputs with a jump at t (a step at t0, a
+ * corner of a reference) take their values after it; the solver does the same when it restarts
+ * at a breakpoint. Measured at the values returned: stats.init_residual, the largest residual
+ * of a row or a hidden constraint scaled by the size of its terms, and stats.init_error, the
+ * correction those residuals call for in the error weights (<= 1: consistent to the tolerance).
  * Only between dae_init (or dae_reinit) and the first step: BG_ERR_STATE before dae_init, after
- * dae_set_history or once the integration has stepped. Failures: DAE_INIT_FAIL (the message
- * names the equation that cannot be satisfied or the unknown that nothing determines, and the
- * time), DAE_CALLBACK_FAIL. The state set by dae_init is kept on failure. */
+ * dae_set_history or once the integration has stepped. Returns BG_OK, or DAE_WARNING (> 0) when
+ * the values were found but unknowns ended far from the values given (dae_get_warning names
+ * them: a possible other solution of the algebraic equations or constraints), or a failure:
+ * DAE_INIT_FAIL (the message names the equation that cannot be satisfied or the unknown that
+ * nothing determines, and the time), DAE_CALLBACK_FAIL. Times in messages are given as t0, "t0
+ * (just after)" or t0 + dt. The state set by dae_init is kept on failure. */
 BG_API int dae_consistent_init(dae_solver *s);
 /* After a discontinuity: new state at time t; order 1, new first step. The statuses of dae_init;
  * clears a failure, keeps the statistics. */
@@ -282,10 +296,14 @@ BG_API int dae_dense(const dae_solver *s, double t, double *y, double *yp);
 BG_API int dae_roots_found(const dae_solver *s, int *found);
 
 /* The last warning, "" if none; NULL if s is NULL: the Jacobian check of
- * options.check_jacobian, or dae_consistent_init's algebraic unknowns that ended far from the
- * values given (by more than half their size and 100 tolerances, from a value other than 0: a
- * possible other solution of the algebraic equations). Warnings never stop the integration and
- * go to the error handler with DAE_WARNING; stats.warnings counts them. */
+ * options.check_jacobian, or dae_consistent_init's unknowns that ended far from the values
+ * given (by more than half their size and 100 tolerances: algebraic unknowns given a value
+ * other than 0, which stands for "not known", and differential ones that the constraints moved
+ * along a path that was not straight; a possible other solution of the algebraic equations or
+ * of the constraints, such as a mechanism's other assembly), with the values given and found.
+ * No such warning where an equation jumps at t0 (the values given are then left-hand values).
+ * Warnings never stop the integration and go to the error handler with DAE_WARNING;
+ * stats.warnings counts them. */
 BG_API const char *dae_get_warning(const dae_solver *s);
 
 /* The kinds of the unknowns the solver works with (dae_var_kind: as given, or classified from

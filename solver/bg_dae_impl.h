@@ -12,7 +12,8 @@
  *   dae_out.c     output: dense output, roots of event functions, drift and projection
  *   dae_eval.c    callbacks (residual, Jacobian), names and notes for messages, statistics
  *   dae_struct.c  structure: classification of the unknowns, maximum matching
- *   dae_ic.c      row classes and consistent initial values */
+ *   dae_ic.c      row classes and consistent initial values (the Newton iteration for y' and
+ *                 the index-2 unknowns: dae_ic_newton.c; their interface: dae_ic_impl.h) */
 #ifndef BG_DAE_IMPL_H
 #define BG_DAE_IMPL_H
 
@@ -140,6 +141,15 @@ struct dae_solver {
     const double *fd_y, *fd_yp;
     dae_stats st;
     bg_error err;
+    /* consistent initialisation, continued (dae_ic.c, dae_ic_newton.c, dae_ic_impl.h) */
+    int ic_a_alg2;  /* stage A takes the ROW_ALG2 rows too: declared kinds leave an index-1
+                       unknown that the constraint rows (ROW_ALG1) do not determine */
+    double *ic_w;   /* scratch, IC_NWORK vectors of n */
+    double *ic_tab; /* the extrapolation tables of the hidden constraints, per ROW_ALG1 row */
+    int *ic_rows;   /* the ROW_ALG1 rows, listed (nalg1_rows) */
+    int *ic_run;    /* scratch of the extrapolation tables, n */
+    double ic_res;  /* the last daei_consistent_init: scaled residual at the values returned */
+    double ic_err;  /* and the weighted correction it calls for (1 = the tolerance) */
 };
 
 enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };

@@ -1,48 +1,94 @@
 /* Row classes and consistent initial values for semi-explicit DAEs of index up to 2 (the
- * classification of the unknowns: dae_struct.c).
+ * classification of the unknowns: dae_struct.c; the Newton iteration for y' and the index-2
+ * unknowns, the hidden constraints and the derivatives of the index-2 unknowns:
+ * dae_ic_newton.c; their interface: dae_ic_impl.h).
  *
  * Row classes. ROW_DIFF rows contain y'. An algebraic row is ROW_ALG2 if it contains an index-2
  * unknown, ROW_ALG1 otherwise. ROW_ALG1 rows involve differential and index-1 variables only;
  * they are the constraints (explicit ones, or hidden behind index-1 variables as in bond graphs:
- * f1 - f2 = 0 with f = p/m) whose derivative fixes the index-2 unknowns.
+ * f1 - f2 = 0 with f = p/m) whose derivative fixes the index-2 unknowns. With the kinds found by
+ * dae_classify every index-1 unknown is matched to a ROW_ALG1 row (a row that holds an index-2
+ * unknown makes the unknown matched to it index 2).
  *
- * Consistent initial values (dae_consistent_init), in two stages.
- *  A. The algebraic rows G(y) = 0 (both classes) are solved for y with the smallest change
+ * Consistent initial values (dae_consistent_init), in three stages. The equations are evaluated
+ * one rounding unit past t (the right-hand limits of inputs that jump at t0 or at a breakpoint;
+ * the left-hand ones where a restart says so), and every difference in t is one-sided.
+ *  A. The constraint rows G(y) = 0 (ROW_ALG1) are solved for y with the smallest change
  *     (Euclidean norm) of the differential variables: Gauss-Newton steps from the KKT system
  *         [ D   B^T ] [ dy ]   [  0 ]
- *         [ B   0   ] [ mu ] = [ -G ],   B = dG/dy,
- *     D = 1 on differential variables, 0 on index-1 ones (free: the algebraic rows determine
- *     them) and 1e-10 on index-2 ones (free as well, but not determined by these rows: the small
- *     weight keeps the system regular; their values are recomputed in stage B). With no
- *     constraint on the differential variables they do not move, whatever the coefficients.
- *     (A small weight on the index-1 variables instead would move the differential ones by
- *     about weight * coefficient^2: a spring k q - e = 0 with k = 1e4 shifted q by 2 %.)
- *     (The error weights would be the obvious scaling, but they make large components cheap to
- *     move: a pendulum started slightly off its velocity constraint was moved by 0.38 in x.)
+ *         [ B   0   ] [ mu ] = [ -r ],   B = dG/dy,
+ *     D = 1 on differential variables and 0 on index-1 ones (free: the constraint rows
+ *     determine them). With no constraint on the differential variables they do not move,
+ *     whatever the coefficients. (A small weight on the index-1 variables instead would move
+ *     the differential ones by about weight * coefficient^2: a spring k q - e = 0 with k = 1e4
+ *     shifted q by 2 %. The error weights would be the obvious scaling, but they make large
+ *     components cheap to move: a pendulum started slightly off its velocity constraint was
+ *     moved by 0.38 in x.) The rows that hold index-2 unknowns (ROW_ALG2) are solved in stage
+ *     B, where those are the unknowns; here they take part with r = 0 and the weight 1e-10 on
+ *     the index-2 unknowns: a change of the differential variables that would change the
+ *     forces (the index-2 unknowns) much costs more than one that does not, so that a velocity
+ *     constraint is met by the velocities rather than by stiff positions. Solving them here
+ *     (r = their residual) would let them be met by moving differential variables wherever
+ *     their coefficients (stiffnesses) are larger than the index-2 unknowns' (masses): from
+ *     multipliers guessed 0, a consistent state, but not the one given. Only where declared
+ *     kinds leave an index-1 unknown that no maximum matching of the constraint rows covers
+ *     are the ROW_ALG2 rows solved here as well (ic_a_alg2). The iteration ends when the
+ *     constraint rows hold to round-off or the correction is negligible (IC_NEGLIGIBLE of the
+ *     tolerance in the error weights; it is then not applied, so that values given consistent
+ *     are returned unchanged).
  *  B. With y_D and the index-1 variables fixed, Newton on the square system
  *         ROW_DIFF and ROW_ALG2 rows:  F_i(t, y, y') = 0,
  *         ROW_ALG1 rows:               dF_i/dt + sum_j dF_i/dy_j y'_j = 0   (j not index 2),
  *     for the unknowns y' of the differential and index-1 variables and y of the index-2 ones.
- *     dF_i/dt is a one-sided difference in t (forward, or backward where a restart at a
- *     breakpoint takes the left-hand values), second order, with a step that starts at
- *     cbrt(eps) times the time scale (|t|, or at t = 0 the span to the stop time or the first
- *     breakpoint) and is divided by 8 until two successive estimates agree to 1e-3: an input
- *     that is constant for 5 ns and then ramps (the IVP Test Set's pump) must not be
- *     differenced across the ramp. The second derivatives of F are left out of the
- *     Jacobian of the differentiated rows (exact for constraints linear in the algebraic
- *     variables, as junction and velocity constraints are); the Jacobian is evaluated afresh in
- *     each iteration. The index-1 variables get their y' as a by-product, which starts the BDF
- *     predictor well.
- * A model of index higher than 2 leaves stage B singular; the message names the variable. */
+ *     The differentiated rows (the hidden constraints) are evaluated from the residual by
+ *     extrapolated differences (dae_ic_newton.c: dF_i/dt one-sided in t; the sum over y' with
+ *     the entries of an analytic Jacobian, or by differences of F along y' when the Jacobian is
+ *     by finite differences, whose entries reach only about sqrt(eps) of a row's terms). The
+ *     Jacobian (evaluated afresh in each iteration; the second derivatives of F left out,
+ *     exact for constraints linear in the algebraic variables) only steers the iteration: where
+ *     it ends is decided by the residual, so that finite-difference Jacobians give consistent
+ *     values to the tolerance as well. The iteration stops when the correction is negligible,
+ *     when only residuals within their evaluation's noise call for it, or when it stalls below
+ *     the tolerance (none of them applied), or when the scaled residual is at round-off; every
+ *     stop follows an evaluation at the values returned, so that what is reported is measured
+ *     there: stats.init_residual, the largest residual of a row or a hidden constraint scaled
+ *     by the size of its terms, and stats.init_error, the correction those residuals call for
+ *     (the matrix of the last iteration) in the error weights of y and y' (<= 1: consistent to
+ *     the tolerance).
+ *  C. The derivatives of the index-2 unknowns. Differentiating stage B's equations along the
+ *     solution gives a linear system with the same matrix K (dF/dy' in the differential
+ *     columns, dF/dy in the others):
+ *         K [y''_D, y''_A1, y'_A2] = -[ d/ds F_i(t + s, y + s v, y')      (ROW_DIFF, ROW_ALG2)
+ *                                       d2/ds2 F_i(t + s, y + s v) ]      (ROW_ALG1),
+ *     v = y' with 0 for the index-2 unknowns, at s = 0. The right-hand side is taken by
+ *     extrapolated one-sided differences along (1, v), each row from its own time scale (the
+ *     time in which v moves an unknown of the row by its size) and within the step over which
+ *     stage B found the residual smooth in t. y'_A2 is kept where the error estimates, through
+ *     the same matrix, are below a tenth of it, else left 0. The y' given for the index-2
+ *     unknowns enter no equation and are not used. The index-1 unknowns get their y' from
+ *     stage B.
+ * A model of index higher than 2 leaves stage B singular; the message names the variable.
+ *
+ * Another solution. The algebraic equations and the constraints may have several solutions (a
+ * mechanism's other assembly, a constraint force of the other sign). dae_consistent_init warns
+ * (and returns DAE_WARNING) when unknowns ended far from the values given, by more than half
+ * their size and 100 tolerances: algebraic unknowns given a value other than 0 (0 is taken as
+ * "not known": an index-2 multiplier guessed 0 has no "far"), and differential unknowns that
+ * stage A moved along a path that was not straight (the first Gauss-Newton step and the final
+ * change differ by more than a tenth of the change: a linear constraint has one nearest
+ * solution, a nonlinear one may have been left for another). Not where an equation jumps at t
+ * (its value at t and one rounding unit past t differ at the values given): the values given
+ * are then taken as left-hand values, and the right-hand ones may lie far from them. The
+ * message names the unknowns that moved most, with the values given and found. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "bg_dae_impl.h"
+#include "dae_ic_impl.h"
 
-#define KKT_ALG_WEIGHT 1e-10 /* D on algebraic variables in stage A */
-#define INIT_MAX_ITER 25
+#define KKT_ALG_WEIGHT 1e-10 /* D on the index-2 variables in stage A */
 
 /* ------------------------------------------------------------------- set-up ---- */
 
@@ -61,6 +107,14 @@ void daei_init_free(dae_solver *s)
     ls_free(&s->kktls);
     free(s->kkt_rhs);
     s->kkt_rhs = NULL;
+    free(s->ic_w);
+    s->ic_w = NULL;
+    free(s->ic_tab);
+    s->ic_tab = NULL;
+    free(s->ic_rows);
+    s->ic_rows = NULL;
+    free(s->ic_run);
+    s->ic_run = NULL;
 }
 
 /* K: column j is y'_j (differential, index 1) or y_j (index 2). */
@@ -127,6 +181,27 @@ done:
     return ok;
 }
 
+/* Whether every index-1 unknown is matched to a constraint row (ROW_ALG1) in a maximum matching
+ * of those rows and columns: 1 yes, 0 no, or BG_ERR_MEMORY. */
+static int alg1_covered(dae_solver *s)
+{
+    int n = s->n, ok = BG_ERR_MEMORY;
+    int *rm = malloc(((size_t)n + 1) * sizeof *rm), *cm = malloc(((size_t)n + 1) * sizeof *cm);
+    int *rv = malloc(((size_t)n + 1) * sizeof *rv);
+    if (rm && cm && rv) {
+        for (int i = 0; i < n; i++) {
+            rm[i] = s->rowkind[i] == ROW_ALG1;
+            cm[i] = s->kind[i] == DAE_ALG;
+        }
+        int m = daei_match(s->Jy, rm, cm, rv);
+        ok = m < 0 ? m : m == s->na1;
+    }
+    free(rm);
+    free(cm);
+    free(rv);
+    return ok;
+}
+
 int daei_init_setup(dae_solver *s, bg_error *err)
 {
     const char *w = "dae_create";
@@ -137,7 +212,9 @@ int daei_init_setup(dae_solver *s, bg_error *err)
     s->arow = malloc((size_t)n * sizeof *s->arow);
     s->kslot_y = malloc(((size_t)s->Jy->nnz + 1) * sizeof *s->kslot_y);
     s->kslot_yp = malloc(((size_t)s->Jyp->nnz + 1) * sizeof *s->kslot_yp);
-    if (!s->rowkind || !s->rowscaled || !s->arow || !s->kslot_y || !s->kslot_yp) goto nomem;
+    s->ic_w = malloc((size_t)IC_NWORK * (size_t)n * sizeof *s->ic_w);
+    if (!s->rowkind || !s->rowscaled || !s->arow || !s->kslot_y || !s->kslot_yp || !s->ic_w)
+        goto nomem;
     /* the kinds must fit the patterns */
     for (int j = 0; j < n; j++) {
         int has_yp = s->Jyp->colptr[j + 1] > s->Jyp->colptr[j];
@@ -186,12 +263,23 @@ int daei_init_setup(dae_solver *s, bg_error *err)
         if (s->kind[j] == DAE_ALG2) s->a2cols[s->na2++] = j;
         if (s->kind[j] == DAE_ALG) s->a1cols[s->na1++] = j;
     }
+    int cov = s->na1 > 0 ? alg1_covered(s) : 1;
+    if (cov < 0) goto nomem;
+    s->ic_a_alg2 = !cov;
     for (int i = 0; i < n; i++) {
         s->rowscaled[i] = s->rowkind[i] != ROW_ALG1;
         if (s->rowscaled[i]) s->srows[s->nsrows++] = i;
         s->arow[i] = s->rowkind[i] == ROW_DIFF ? -1 : s->nalg_rows++;
         s->nalg1_rows += s->rowkind[i] == ROW_ALG1;
     }
+    size_t ntab = (size_t)IC_NLEV * (size_t)s->nalg1_rows;
+    if (ntab < (size_t)IC_NLEV_C * (size_t)n) ntab = (size_t)IC_NLEV_C * (size_t)n;
+    s->ic_rows = malloc(((size_t)s->nalg1_rows + 1) * sizeof *s->ic_rows);
+    s->ic_run = malloc(((size_t)n + 1) * sizeof *s->ic_run);
+    s->ic_tab = malloc((2 * ntab + 1) * sizeof *s->ic_tab);
+    if (!s->ic_rows || !s->ic_run || !s->ic_tab) goto nomem;
+    for (int i = 0, k = 0; i < n; i++)
+        if (s->rowkind[i] == ROW_ALG1) s->ic_rows[k++] = i;
     if (!build_k(s)) goto nomem;
     if (!(s->kls = ls_create(s->o.linsol, s->K, err))) return BG_ERR_LIBRARY;
     if (s->nalg_rows > 0) {
@@ -207,10 +295,101 @@ nomem:
     return bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory (n = %d)", n);
 }
 
-/* ------------------------------------------------------ consistent values ---- */
+/* ------------------------------------------------------------------ helpers ---- */
 
-/* Scaled residual of row i: |F_i| / (1 + sum_j |Jy_ij y_j| + |Jyp_ij yp_j|), into den. */
-static void row_scales(dae_solver *s, const double *y, const double *yp, double *den)
+/* The shortest of %.15g .. %.17g that reads back as t. */
+static void fmt_time(double t, char *buf, size_t sz)
+{
+    for (int prec = 15; prec <= 17; prec++) {
+        snprintf(buf, sz, "%.*g", prec, t);
+        if (strtod(buf, NULL) == t) return;
+    }
+}
+
+const char *daei_ic_when(const dae_solver *s, double t, char *buf, size_t sz)
+{
+    char a[32];
+    double t0 = s->tn;
+    fmt_time(t0, a, sizeof a);
+    if (t == t0)
+        snprintf(buf, sz, "t = %s", a);
+    else if (t == nextafter(t0, INFINITY))
+        snprintf(buf, sz, "t = %s (just after)", a);
+    else if (t == nextafter(t0, -INFINITY))
+        snprintf(buf, sz, "t = %s (just before)", a);
+    else
+        snprintf(buf, sz, "t = %s %c %.3g", a, t > t0 ? '+' : '-', fabs(t - t0));
+    return buf;
+}
+
+int daei_ic_res(dae_solver *s, double t, const double *y, const double *yp, double *F)
+{
+    int r = daei_call_res(s, t, y, yp, F, 0);
+    if (r == 0) return 0;
+    /* daei_call_res's note gives the time as evaluated (4.94e-324 for just after 0) */
+    char eb[192], tb[96];
+    int bad = daei_first_nonfinite(F, s->n);
+    daei_ic_when(s, t, tb, sizeof tb);
+    if (r != BG_RECOVERABLE || bad < 0)
+        daei_note(s, "the residual function returned the %s status %d at %s%s%.160s%s",
+                  r < 0 ? "fatal" : "recoverable", r, tb, bad >= 0 ? " (" : "",
+                  bad >= 0 ? daei_ename(s, bad, eb, sizeof eb) : "",
+                  bad >= 0 ? " not finite)" : "");
+    else
+        daei_note(s, "the residual of %.160s is %g at %s", daei_ename(s, bad, eb, sizeof eb),
+                  F[bad], tb);
+    return r;
+}
+
+int daei_ic_eval_all(dae_solver *s, double t, const double *y, const double *yp)
+{
+    int r = daei_ic_res(s, t, y, yp, s->res);
+    if (r != 0) return daei_ic_cb_fail(s, r, "residual");
+    r = daei_eval_jac(s, t, y, yp, s->res);
+    if (r != 0) {
+        char tb[96], eb[192], nb[32];
+        daei_ic_when(s, t, tb, sizeof tb);
+        int bad = -1, m = 0;
+        for (m = 0; m < 2 && bad < 0; m++)
+            bad = daei_first_nonfinite(m ? s->Jyp->val : s->Jy->val,
+                                       m ? s->Jyp->nnz : s->Jy->nnz);
+        m--;
+        if (s->p.jac && r != BG_RECOVERABLE)
+            daei_note(s, "the Jacobian function returned the %s status %d at %s",
+                      r < 0 ? "fatal" : "recoverable", r, tb);
+        else if (s->p.jac && bad >= 0) {
+            const sp_csc *J = m ? s->Jyp : s->Jy;
+            int col = 0;
+            while (J->colptr[col + 1] <= bad)
+                col++;
+            daei_note(s, "the Jacobian entry d(%.160s)/d(%s%s) is %g at %s",
+                      daei_ename(s, J->rowind[bad], eb, sizeof eb),
+                      daei_vname(s, col, nb, sizeof nb), m ? "'" : "", J->val[bad], tb);
+        } else if (!s->p.jac)
+            daei_note(s, "the residual function failed (status %d) in the finite differences "
+                      "of the Jacobian at %s", r, tb);
+        return daei_ic_cb_fail(s, r, "Jacobian");
+    }
+    return BG_OK;
+}
+
+int daei_ic_cb_fail(dae_solver *s, int r, const char *what)
+{
+    return bg_error_raise(&s->err, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL,
+                          "dae_consistent_init", "the %s failed (status %d): %s", what, r,
+                          s->note);
+}
+
+int daei_ic_factor_solve(dae_solver *s, ls_solver *ls, const sp_csc *M, double *rhs)
+{
+    double t0 = daei_clock(s);
+    int r = ls_factor(ls, M);
+    if (r == BG_OK) r = ls_solve(ls, rhs, 1);
+    s->st.t_linalg += daei_clock(s) - t0;
+    return r;
+}
+
+void daei_ic_row_scales(dae_solver *s, const double *y, const double *yp, double *den)
 {
     for (int i = 0; i < s->n; i++)
         den[i] = 1.0;
@@ -222,110 +401,45 @@ static void row_scales(dae_solver *s, const double *y, const double *yp, double 
     }
 }
 
-static int cb_fail(dae_solver *s, int r, const char *what, double t)
+/* ------------------------------------------------------------------ stage A ---- */
+
+/* Whether stage A solves row i (else a ROW_ALG2 row is kept as it is). */
+static int solved_in_a(const dae_solver *s, int i)
 {
-    return bg_error_raise(&s->err, r < 0 ? DAE_CALLBACK_FAIL : DAE_INIT_FAIL, "dae_consistent_init",
-                          "the %s failed (status %d) at t = %.17g: %s", what, r, t, s->note);
+    return s->rowkind[i] == ROW_ALG1 || (s->ic_a_alg2 && s->rowkind[i] == ROW_ALG2);
 }
 
-/* dF_i/dt of the differentiated rows (ROW_ALG1) at (t, y, yp) into D, by the one-sided second-
- * order difference (-3 F(t) + 4 F(t + d) - F(t + 2d)) / (2d); F holds F(t). Scratch: tmp, delta
- * (D must be neither). */
-static int rows_dt(dae_solver *s, double t, double d, const double *y, const double *yp,
-                   const double *F, double *D)
-{
-    double *fp = s->tmp, *fm = s->delta;
-    int r;
-    if ((r = daei_call_res(s, t + d, y, yp, fp, 0)) != 0 ||
-        (r = daei_call_res(s, t + 2 * d, y, yp, fm, 0)) != 0)
-        return cb_fail(s, r, "residual", t + d);
-    for (int i = 0; i < s->n; i++)
-        D[i] = s->rowkind[i] == ROW_ALG1 ? (-3 * F[i] + 4 * fp[i] - fm[i]) / (2 * d) : 0.0;
-    return BG_OK;
-}
-
-#define DT_SHRINK 8.0
-#define DT_MAX_SHRINKS 10
-#define DT_AGREE 1e-3
-
-/* The step of rows_dt: from d0 (signed), divided by DT_SHRINK until two successive estimates
- * agree to DT_AGREE in every differentiated row, relative to the estimate plus the row's other
- * terms (sum_j |dF_i/dy_j y'_j|, the size that dF_i/dt balances) and the round-off of the
- * difference; at most DT_MAX_SHRINKS times (8^10 = 1e9). The step is returned in *d, the
- * estimate at it in D. Scratch: ypred (D: not tmp, delta or ypred). */
-static int choose_dt(dae_solver *s, double t, double d0, const double *y, const double *yp,
-                     const double *F, double *D, double *d)
-{
-    double *Da = s->ypred, *sc = s->yppred;
-    int r = rows_dt(s, t, d0, y, yp, F, Da);
-    if (r != BG_OK) return r;
-    /* the row's other terms, and the size of its residual terms for the round-off */
-    for (int i = 0; i < s->n; i++)
-        sc[i] = 0.0;
-    for (int j = 0; j < s->n; j++)
-        if (s->kind[j] != DAE_ALG2)
-            for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
-                sc[s->Jy->rowind[p]] += fabs(s->Jy->val[p] * yp[j]);
-    row_scales(s, y, yp, s->tmp2);
-    *d = d0;
-    for (int k = 0; k < DT_MAX_SHRINKS; k++) {
-        double dn = *d / DT_SHRINK;
-        if ((r = rows_dt(s, t, dn, y, yp, F, D)) != BG_OK) return r;
-        *d = dn;
-        int agree = 1;
-        for (int i = 0; i < s->n && agree; i++) {
-            if (s->rowkind[i] != ROW_ALG1) continue;
-            double noise = 10 * DBL_EPSILON * s->tmp2[i] / fabs(dn);
-            if (!(fabs(D[i] - Da[i]) <= DT_AGREE * (fabs(D[i]) + sc[i]) + noise)) agree = 0;
-        }
-        if (agree) return BG_OK;
-        memcpy(Da, D, (size_t)s->n * sizeof *D);
-    }
-    return BG_OK; /* no agreement: the smallest step's estimate */
-}
-
-/* F and the Jacobians at (t, y, yp). */
-static int eval_all(dae_solver *s, double t, const double *y, const double *yp)
-{
-    int r = daei_call_res(s, t, y, yp, s->res, 0);
-    if (r != 0) return cb_fail(s, r, "residual", t);
-    r = daei_eval_jac(s, t, y, yp, s->res);
-    if (r != 0) return cb_fail(s, r, "Jacobian", t);
-    return BG_OK;
-}
-
-static int factor_solve(dae_solver *s, ls_solver *ls, const sp_csc *M, double *rhs)
-{
-    double t0 = daei_clock(s);
-    int r = ls_factor(ls, M);
-    if (r == BG_OK) r = ls_solve(ls, rhs, 1);
-    s->st.t_linalg += daei_clock(s) - t0;
-    return r;
-}
-
-/* Stage A: the algebraic rows, moving the differential variables as little as possible. */
-static int stage_a(dae_solver *s, double t, double *y, const double *yp)
+/* The constraint rows, moving the differential variables as little as possible. *wmove: the
+ * weighted size of the correction the last evaluation called for (0 when the rows hold to
+ * round-off), measured at the values returned. The first correction goes to IC_DA1. */
+static int stage_a(dae_solver *s, double te, double *y, const double *yp, double *wmove)
 {
     const char *w = "dae_consistent_init";
     int n = s->n, r;
-    double *den = s->tmp2, *z = s->kkt_rhs;
+    double *den = daei_icw(s, IC_DEN), *z = s->kkt_rhs, *da1 = daei_icw(s, IC_DA1);
+    char tb[96];
+    *wmove = 0;
     for (int it = 0;; it++) {
-        if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
-        row_scales(s, y, yp, den);
+        if ((r = daei_ic_eval_all(s, te, y, yp)) != BG_OK) return r;
+        daei_ic_row_scales(s, y, yp, den);
         double gmax = 0;
         int imax = -1;
         for (int i = 0; i < n; i++)
-            if (s->arow[i] >= 0 && fabs(s->res[i]) / den[i] > gmax) {
+            if (solved_in_a(s, i) && fabs(s->res[i]) / den[i] > gmax) {
                 gmax = fabs(s->res[i]) / den[i];
                 imax = i;
             }
-        if (gmax <= 10 * DBL_EPSILON) return BG_OK;
-        if (it == INIT_MAX_ITER) {
+        if (gmax <= 10 * DBL_EPSILON) {
+            *wmove = 0; /* measured here: round-off */
+            return BG_OK;
+        }
+        if (it == IC_MAX_ITER) {
             char eb[192];
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
-                                  "the algebraic equations could not be satisfied at t = %.17g: "
-                                  "%s keeps a scaled residual of %.3g",
-                                  s->tn, daei_ename(s, imax, eb, sizeof eb), gmax);
+                                  "the algebraic equations could not be satisfied at %s: %.200s "
+                                  "keeps a scaled residual of %.3g",
+                                  daei_ic_when(s, s->tn, tb, sizeof tb),
+                                  daei_ename(s, imax, eb, sizeof eb), gmax);
         }
         sp_csc_zero(s->kkt);
         for (int j = 0; j < n; j++)
@@ -341,45 +455,98 @@ static int stage_a(dae_solver *s, double t, double *y, const double *yp)
         for (int j = 0; j < n; j++)
             z[j] = 0.0;
         for (int i = 0; i < n; i++)
-            if (s->arow[i] >= 0) z[n + s->arow[i]] = -s->res[i];
-        if ((r = factor_solve(s, s->kktls, s->kkt, z)) != BG_OK)
+            if (s->arow[i] >= 0) z[n + s->arow[i]] = solved_in_a(s, i) ? -s->res[i] : 0.0;
+        if ((r = daei_ic_factor_solve(s, s->kktls, s->kkt, z)) != BG_OK)
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the algebraic equations are dependent or contradict each other "
-                                  "at t = %.17g (%s)",
-                                  s->tn, ls_get_error(s->kktls)->message);
+                                  "at %s (%s)",
+                                  daei_ic_when(s, s->tn, tb, sizeof tb),
+                                  ls_get_error(s->kktls)->message);
+        double wn = 0;
+        for (int j = 0; j < n; j++)
+            wn = fmax(wn, fabs(z[j]) * s->ewt[j]);
+        *wmove = wn;
+        if (wn <= IC_NEGLIGIBLE) return BG_OK; /* consistent already: not applied */
+        if (it == 0) memcpy(da1, z, (size_t)n * sizeof *da1);
         for (int j = 0; j < n; j++)
             y[j] += z[j];
     }
 }
 
-/* A warning when algebraic unknowns given a value (not 0) ended far from it: by more than half
- * their size and 100 tolerances. The algebraic equations may have several solutions (a
- * mechanism's other assembly, a constraint force of the other sign), and the one found may not
- * be the one meant; the message names the unknown that moved most and says how many did. */
-static void warn_moved(dae_solver *s, const double *guess, const double *y)
+/* ----------------------------------------------------------- another solution ---- */
+
+#define WARN_LIST 4 /* unknowns named in the warning */
+
+/* Whether an equation jumps at t: F at (t, guess, guessp) and one rounding unit past t (on the
+ * side the equations were evaluated) differ by more than round-off in some row. Then the
+ * values given are left-hand values, and the consistent right-hand ones may lie far from them
+ * (a reference whose rate jumps at t0 moves a controller's output). */
+static int jumps_at_t(dae_solver *s, const double *guess, const double *guessp)
 {
-    int count = 0, worst = -1;
-    double wrel = 0;
+    double *a = daei_icw(s, IC_F1), *b = daei_icw(s, IC_F2), *den = daei_icw(s, IC_DEN);
+    int side = s->init_side ? s->init_side : 1;
+    if (daei_call_res(s, s->tn, guess, guessp, a, 0) != 0 ||
+        daei_call_res(s, nextafter(s->tn, side > 0 ? INFINITY : -INFINITY), guess, guessp, b, 0) !=
+            0)
+        return 0;
+    daei_ic_row_scales(s, guess, guessp, den);
+    for (int i = 0; i < s->n; i++)
+        if (fabs(a[i] - b[i]) > 1e3 * DBL_EPSILON * (den[i] + fabs(a[i]) + fabs(b[i]))) return 1;
+    return 0;
+}
+
+/* The warning of the header comment; 1 if it was given. */
+static int warn_moved(dae_solver *s, const double *guess, const double *guessp, const double *y,
+                      const double *da1)
+{
+    int count = 0, top[WARN_LIST];
+    double score[WARN_LIST];
     for (int i = 0; i < s->n; i++) {
-        if (s->kind[i] == DAE_DIFF || guess[i] == 0) continue;
         double d = fabs(y[i] - guess[i]), size = fmax(fabs(guess[i]), fabs(y[i]));
-        if (d > 0.5 * size && d > 100 * (s->o.rtol * fabs(guess[i]) + s->atol[i])) {
-            count++;
-            if (d / fabs(guess[i]) > wrel) {
-                wrel = d / fabs(guess[i]);
-                worst = i;
+        double tol = s->o.rtol * fabs(guess[i]) + s->atol[i];
+        if (!(d > 0.5 * size && d > 100 * tol)) continue;
+        if (s->kind[i] == DAE_DIFF) {
+            if (!(fabs(y[i] - guess[i] - da1[i]) > 0.1 * d)) continue; /* a straight path */
+        } else if (guess[i] == 0) {
+            continue; /* not known */
+        }
+        double sc = d / fmax(fabs(guess[i]), tol);
+        int k = count < WARN_LIST ? count : WARN_LIST;
+        count++;
+        while (k > 0 && score[k - 1] < sc) { /* insertion into the list, largest first */
+            if (k < WARN_LIST) {
+                score[k] = score[k - 1];
+                top[k] = top[k - 1];
             }
+            k--;
+        }
+        if (k < WARN_LIST) {
+            score[k] = sc;
+            top[k] = i;
         }
     }
-    if (count > 0) {
-        char nb[32];
-        daei_warn(s, "dae_consistent_init",
-                  "%d algebraic unknown%s ended far from the values given (another solution of "
-                  "the algebraic equations?): %s went from %.6g to %.6g",
-                  count, count > 1 ? "s" : "", daei_vname(s, worst, nb, sizeof nb), guess[worst],
-                  y[worst]);
+    if (count == 0 || jumps_at_t(s, guess, guessp)) return 0;
+    char list[BG_MESSAGE_SIZE], nb[32];
+    size_t len = 0;
+    int shown = count < WARN_LIST ? count : WARN_LIST;
+    for (int k = 0; k < shown && len < sizeof list; k++) {
+        int i = top[k];
+        int m = snprintf(list + len, sizeof list - len, "%s%.40s %s %.6g to %.6g", k ? ", " : "",
+                         daei_vname(s, i, nb, sizeof nb), k ? "from" : "went from", guess[i],
+                         y[i]);
+        if (m < 0) break;
+        len += (size_t)m;
     }
+    char tb[96];
+    daei_warn(s, "dae_consistent_init",
+              "%d unknown%s ended far from the values given at %s (another solution of the "
+              "algebraic equations or constraints?): %.300s%s",
+              count, count > 1 ? "s" : "", daei_ic_when(s, s->tn, tb, sizeof tb), list,
+              count > shown ? ", ..." : "");
+    return 1;
 }
+
+/* --------------------------------------------------------------- entry points ---- */
 
 int dae_consistent_init(dae_solver *s)
 {
@@ -397,28 +564,32 @@ int dae_consistent_init(dae_solver *s)
                               "called from within a callback of the same solver");
     if (!s->yc && !(s->yc = malloc(2 * (size_t)s->n * sizeof *s->yc)))
         return bg_error_raise(&s->err, BG_ERR_MEMORY, w, "out of memory (n = %d)", s->n);
-    memcpy(s->yc, s->phi[0], (size_t)s->n * sizeof *s->yc); /* the guess, compared below */
+    double *guess = daei_icw(s, IC_GUESS), *guessp = daei_icw(s, IC_GUESSP);
+    memcpy(guess, s->phi[0], (size_t)s->n * sizeof *guess); /* compared below */
+    memcpy(guessp, s->phi[1], (size_t)s->n * sizeof *guessp);
     s->busy = 1;
     int r = daei_consistent_init(s);
     s->busy = 0;
+    s->st.init_residual = s->ic_res;
+    s->st.init_error = s->ic_err;
     if (r != BG_OK) {
         free(s->yc); /* dae_get_consistent: none */
         s->yc = NULL;
         return r;
     }
-    warn_moved(s, s->yc, s->phi[0]);
+    int warned = warn_moved(s, guess, guessp, s->phi[0], daei_icw(s, IC_DA1));
     memcpy(s->yc, s->phi[0], (size_t)s->n * sizeof *s->yc); /* kept for dae_get_consistent */
     memcpy(s->yc + s->n, s->phi[1], (size_t)s->n * sizeof *s->yc);
-    return r;
+    return warned ? DAE_WARNING : BG_OK;
 }
 
 int daei_consistent_init(dae_solver *s)
 {
     const char *w = "dae_consistent_init";
     int n = s->n, r;
-    double t = s->tn;
-    double *y = s->y, *yp = s->yp, *F = s->res, *u = s->ee;
-    char nb[32];
+    double *y = s->y, *yp = s->yp;
+    char tb[96];
+    s->ic_res = s->ic_err = NAN;
     if (s->not_semi_explicit)
         return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                               "the system is not semi-explicit (an index-2 unknown appears "
@@ -427,124 +598,47 @@ int daei_consistent_init(dae_solver *s)
     memcpy(yp, s->phi[1], (size_t)n * sizeof *yp);
     for (int j = 0; j < n; j++)
         if (s->kind[j] == DAE_ALG2) yp[j] = 0.0;
+    memset(daei_icw(s, IC_DA1), 0, (size_t)n * sizeof(double));
     s->hh = 0;
     daei_set_weights(s, y);
     /* the equations are evaluated just past t (right-hand limits of inputs that jump there:
      * at t0 and at breakpoints), with one-sided differences in t; forward unless the restart
      * at a breakpoint says otherwise */
     int side = s->init_side ? s->init_side : 1;
-    if (side) t = nextafter(t, side > 0 ? INFINITY : -INFINITY);
-    if (s->nalg_rows > 0 && (r = stage_a(s, t, y, yp)) != BG_OK) return r;
+    double te = nextafter(s->tn, side > 0 ? INFINITY : -INFINITY);
+    double ea = 0;
+    if (s->nalg_rows > 0 && (r = stage_a(s, te, y, yp, &ea)) != BG_OK) return r;
 
-    /* stage B */
-    /* time step of the differences in t: relative to |t|, or at t = 0 to the span of the run
-     * (stop time or first breakpoint) when known, so that short time scales (a 1e-7 s circuit)
-     * are not differenced across a whole period */
+    /* time scale of the differences in t: |t|, or at t = 0 the span of the run (stop time or
+     * first breakpoint) when known, so that short time scales (a 1e-7 s circuit) are not
+     * differenced across a whole period */
     double tscale = fabs(s->tn);
     if (tscale == 0) {
         tscale = 1.0;
         if (s->o.has_t_stop && s->o.t_stop != s->tn) tscale = fabs(s->o.t_stop - s->tn);
         if (s->nbkpt > 0 && s->bkpt[0] > s->tn) tscale = fmin(tscale, s->bkpt[0] - s->tn);
     }
-    double dt = side * cbrt(DBL_EPSILON) * tscale;
-    double unorm = INFINITY, uprev = INFINITY, rnorm = INFINITY;
-    for (int it = 0; it < INIT_MAX_ITER; it++) {
-        if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
-        if (s->nalg1_rows > 0) { /* differentiated rows: dF_i/dt + sum_j dF_i/dy_j y'_j */
-            double *D = s->typ;
-            r = it == 0 ? choose_dt(s, t, dt, y, yp, F, D, &dt) : rows_dt(s, t, dt, y, yp, F, D);
-            if (r != BG_OK) return r;
-            for (int i = 0; i < n; i++)
-                if (s->rowkind[i] == ROW_ALG1) F[i] = D[i];
-            for (int j = 0; j < n; j++)
-                if (s->kind[j] != DAE_ALG2)
-                    for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++)
-                        if (s->rowkind[s->Jy->rowind[p]] == ROW_ALG1)
-                            F[s->Jy->rowind[p]] += s->Jy->val[p] * yp[j];
-        }
-        sp_csc_zero(s->K);
-        for (int p = 0; p < s->Jy->nnz; p++)
-            if (s->kslot_y[p] >= 0) s->K->val[s->kslot_y[p]] = s->Jy->val[p];
-        for (int p = 0; p < s->Jyp->nnz; p++)
-            if (s->kslot_yp[p] >= 0) s->K->val[s->kslot_yp[p]] = s->Jyp->val[p];
-        /* the stage-B residual, scaled by the size of its terms: at round-off level the
-         * values are consistent whatever the last correction looked like */
-        row_scales(s, y, yp, s->tmp2);
-        rnorm = 0;
-        for (int i = 0; i < n; i++)
-            rnorm = fmax(rnorm, fabs(F[i]) / s->tmp2[i]);
-        if (it > 0 && rnorm <= 1e-13) break;
-        memcpy(u, F, (size_t)n * sizeof *u);
-        if ((r = factor_solve(s, s->kls, s->K, u)) != BG_OK) {
-            int c = ls_singular_col(s->kls);
-            return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
-                                  "the equations for the derivatives and the index-2 unknowns are "
-                                  "singular at t = %.17g: nothing determines %s%s%s (%s)",
-                                  s->tn, c >= 0 && s->kind[c] != DAE_ALG2 ? "the derivative of " : "",
-                                  daei_vname(s, c, nb, sizeof nb),
-                                  c >= 0 && s->kind[c] == DAE_ALG2
-                                      ? "; is it really index 2, and is the index at most 2?"
-                                      : "",
-                                  ls_get_error(s->kls)->message);
-        }
-        uprev = unorm;
-        unorm = 0;
-        for (int j = 0; j < n; j++) {
-            double *v = s->kind[j] == DAE_ALG2 ? &y[j] : &yp[j];
-            *v -= u[j];
-            unorm = fmax(unorm, fabs(u[j]) / (s->o.rtol * fabs(*v) + s->atol[j]));
-        }
-        /* converged: corrections far below the tolerances, or no longer decreasing at the
-         * level of round-off */
-        if (unorm <= 1e-3 || (unorm < 1 && unorm > 0.5 * uprev)) break;
-    }
-    if ((r = eval_all(s, t, y, yp)) != BG_OK) return r;
-    row_scales(s, y, yp, s->tmp2);
-    double m = 0;
-    int im = -1, hidden = 0;
-    for (int i = 0; i < n; i++)
-        if (fabs(F[i]) / s->tmp2[i] > m || im < 0) {
-            m = fmax(m, fabs(F[i]) / s->tmp2[i]);
-            im = i;
-        }
-    /* the hidden constraints too, measured at the values returned: the time derivative of each
-     * constraint row, dF_i/dt + sum_j dF_i/dy_j y'_j, against the size of its terms */
-    if (s->nalg1_rows > 0) {
-        double *D = s->typ, *den = s->tmp2;
-        if ((r = rows_dt(s, t, dt, y, yp, F, D)) != BG_OK) return r;
-        for (int i = 0; i < n; i++)
-            den[i] = 1.0 + fabs(D[i]);
-        for (int j = 0; j < n; j++)
-            if (s->kind[j] != DAE_ALG2)
-                for (int p = s->Jy->colptr[j]; p < s->Jy->colptr[j + 1]; p++) {
-                    int i = s->Jy->rowind[p];
-                    if (s->rowkind[i] != ROW_ALG1) continue;
-                    D[i] += s->Jy->val[p] * yp[j];
-                    den[i] += fabs(s->Jy->val[p] * yp[j]);
-                }
-        for (int i = 0; i < n; i++)
-            if (s->rowkind[i] == ROW_ALG1 && fabs(D[i]) / den[i] > m) {
-                m = fabs(D[i]) / den[i];
-                im = i;
-                hidden = 1;
-            }
-        if ((r = eval_all(s, t, y, yp)) != BG_OK) return r; /* F back at the values */
-    }
-    s->st.init_residual = m;
+    ic_outcome o;
+    r = daei_ic_stage_b(s, te, side, tscale, y, yp, &o);
     daei_sync_stats(s);
+    if (r != BG_OK) return r;
+    s->ic_res = o.rnorm;
+    s->ic_err = fmax(ea, o.unorm);
+    if (daei_ic_failed(&o)) {
+        char eb[192];
+        return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
+                              "Newton iteration for consistent values did not converge at %s: "
+                              "%.160s keeps a scaled residual of %.3g%s%s",
+                              daei_ic_when(s, s->tn, tb, sizeof tb),
+                              daei_ename(s, o.rworst, eb, sizeof eb), o.rnorm,
+                              o.rhidden ? " in its time derivative (a hidden constraint)" : "",
+                              s->p.jac ? ""
+                                       : "; the Jacobian is by finite differences: an analytic "
+                                         "one (dae_problem.jac) may let the iteration converge");
+    }
+    if (s->na2 > 0 && (r = daei_ic_alg2_rates(s, te, o.tstep, y, yp)) != BG_OK) return r;
     memcpy(s->phi[0], y, (size_t)n * sizeof *y);
     memcpy(s->phi[1], yp, (size_t)n * sizeof *yp);
     s->need_setup = 1;
-    /* the derivatives may stay inconsistent at the level the linear algebra reaches on an
-     * ill-conditioned system (stiff bars next to tiny rotary inertias: 1e-7 of the terms); the
-     * first steps correct that, so only a gross failure is reported */
-    if ((unorm >= 1 && rnorm > 1e-6) || m > 1e-8) {
-        char eb[192];
-        return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
-                              "Newton iteration for consistent values did not converge at t = "
-                              "%.17g: %s keeps a scaled residual of %.3g%s",
-                              s->tn, daei_ename(s, im, eb, sizeof eb), m,
-                              hidden ? " in its time derivative (a hidden constraint)" : "");
-    }
     return BG_OK;
 }

@@ -246,6 +246,10 @@ int cp_simulate(cp_run *r)
     cp_set_phase(r, CP_PHASE_SETUP, "computing consistent initial values");
     int rc = dae_init(r->s, 0.0, bgr_y0(m), bgr_yp0(m));
     if (rc == BG_OK) rc = dae_consistent_init(r->s);
+    if (rc == DAE_WARNING) { /* found, with unknowns far from the values given: said, not fatal */
+        fprintf(stderr, "crane: warning: %s\n", dae_get_warning(r->s));
+        rc = BG_OK;
+    }
     if (rc != BG_OK) {
         code = cp_fail_run(r, "consistent initial values", dae_get_error(r->s)->message);
         goto done;

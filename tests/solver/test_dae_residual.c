@@ -152,7 +152,7 @@ static void test_moved_warning(void)
         if (r == 0) r = dae_consistent_init(s);
         const char *wmsg = dae_get_warning(s);
         if (wrong)
-            tap_ok(r == 0 && lam >= 0 && strstr(wmsg, "ended far from the values given") &&
+            tap_ok(r == DAE_WARNING && lam >= 0 && strstr(wmsg, "ended far from the values given") &&
                        strstr(wmsg, bp->names[lam]),
                    "pendulum with its rod force given as -50: a warning naming it: %s", wmsg);
         else
