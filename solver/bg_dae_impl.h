@@ -178,6 +178,10 @@ int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, do
 /* Jy, Jyp at (t, y, yp); F = F(t, y, yp) is needed by the finite-difference path. */
 int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F);
 void daei_sync_stats(dae_solver *s);
+/* The time t as messages give it, relative to s->tn: "t = 0", "t = 0 (just after)" (one
+ * rounding unit), "t = 0 + 1.2e-06"; s->tn in the shortest of %.15g .. %.17g that reads back as
+ * it (dae_eval.c). */
+const char *daei_when(const dae_solver *s, double t, char *buf, size_t sz);
 /* Records a warning (printf format) in s->warn, counts it and passes it to the error handler
  * with DAE_WARNING. */
 #if defined(__GNUC__)

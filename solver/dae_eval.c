@@ -162,13 +162,12 @@ static void check_jacobian(dae_solver *s, double t, const double *y, const doubl
         }
     }
     if (wm >= 0) {
-        char eb[192], nb[32];
+        char eb[192], nb[32], tb[96];
         daei_warn(s, "dae_solve_to",
-                  "the analytic Jacobian disagrees with central differences of the residual at t "
-                  "= %.17g: d(%s)/d(%s%s) is %.6g, the differences give %.6g (relative error "
-                  "%.2g)",
-                  t, daei_ename(s, we.row, eb, sizeof eb), daei_vname(s, we.col, nb, sizeof nb),
-                  wm ? "'" : "", we.analytic, we.fd, worst);
+                  "the analytic Jacobian disagrees with central differences of the residual at %s: "
+                  "d(%s)/d(%s%s) is %.6g, the differences give %.6g (relative error %.2g)",
+                  daei_when(s, t, tb, sizeof tb), daei_ename(s, we.row, eb, sizeof eb),
+                  daei_vname(s, we.col, nb, sizeof nb), wm ? "'" : "", we.analytic, we.fd, worst);
     }
 }
 
@@ -293,4 +292,29 @@ int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
 const char *dae_return_name(int code)
 {
     return bg_status_name(code);
+}
+
+/* The shortest of %.15g .. %.17g that reads back as t. */
+static void fmt_time(double t, char *buf, size_t sz)
+{
+    for (int prec = 15; prec <= 17; prec++) {
+        snprintf(buf, sz, "%.*g", prec, t);
+        if (strtod(buf, NULL) == t) return;
+    }
+}
+
+const char *daei_when(const dae_solver *s, double t, char *buf, size_t sz)
+{
+    char a[32];
+    double t0 = s->tn;
+    fmt_time(t0, a, sizeof a);
+    if (t == t0)
+        snprintf(buf, sz, "t = %s", a);
+    else if (t == nextafter(t0, INFINITY))
+        snprintf(buf, sz, "t = %s (just after)", a);
+    else if (t == nextafter(t0, -INFINITY))
+        snprintf(buf, sz, "t = %s (just before)", a);
+    else
+        snprintf(buf, sz, "t = %s %c %.3g", a, t > t0 ? '+' : '-', fabs(t - t0));
+    return buf;
 }

@@ -297,31 +297,6 @@ nomem:
 
 /* ------------------------------------------------------------------ helpers ---- */
 
-/* The shortest of %.15g .. %.17g that reads back as t. */
-static void fmt_time(double t, char *buf, size_t sz)
-{
-    for (int prec = 15; prec <= 17; prec++) {
-        snprintf(buf, sz, "%.*g", prec, t);
-        if (strtod(buf, NULL) == t) return;
-    }
-}
-
-const char *daei_ic_when(const dae_solver *s, double t, char *buf, size_t sz)
-{
-    char a[32];
-    double t0 = s->tn;
-    fmt_time(t0, a, sizeof a);
-    if (t == t0)
-        snprintf(buf, sz, "t = %s", a);
-    else if (t == nextafter(t0, INFINITY))
-        snprintf(buf, sz, "t = %s (just after)", a);
-    else if (t == nextafter(t0, -INFINITY))
-        snprintf(buf, sz, "t = %s (just before)", a);
-    else
-        snprintf(buf, sz, "t = %s %c %.3g", a, t > t0 ? '+' : '-', fabs(t - t0));
-    return buf;
-}
-
 int daei_ic_res(dae_solver *s, double t, const double *y, const double *yp, double *F)
 {
     int r = daei_call_res(s, t, y, yp, F, 0);
@@ -329,7 +304,7 @@ int daei_ic_res(dae_solver *s, double t, const double *y, const double *yp, doub
     /* daei_call_res's note gives the time as evaluated (4.94e-324 for just after 0) */
     char eb[192], tb[96];
     int bad = daei_first_nonfinite(F, s->n);
-    daei_ic_when(s, t, tb, sizeof tb);
+    daei_when(s, t, tb, sizeof tb);
     if (r != BG_RECOVERABLE || bad < 0)
         daei_note(s, "the residual function returned the %s status %d at %s%s%.160s%s",
                   r < 0 ? "fatal" : "recoverable", r, tb, bad >= 0 ? " (" : "",
@@ -348,7 +323,7 @@ int daei_ic_eval_all(dae_solver *s, double t, const double *y, const double *yp)
     r = daei_eval_jac(s, t, y, yp, s->res);
     if (r != 0) {
         char tb[96], eb[192], nb[32];
-        daei_ic_when(s, t, tb, sizeof tb);
+        daei_when(s, t, tb, sizeof tb);
         int bad = -1, m = 0;
         for (m = 0; m < 2 && bad < 0; m++)
             bad = daei_first_nonfinite(m ? s->Jyp->val : s->Jy->val,
@@ -438,7 +413,7 @@ static int stage_a(dae_solver *s, double te, double *y, const double *yp, double
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the algebraic equations could not be satisfied at %s: %.200s "
                                   "keeps a scaled residual of %.3g",
-                                  daei_ic_when(s, s->tn, tb, sizeof tb),
+                                  daei_when(s, s->tn, tb, sizeof tb),
                                   daei_ename(s, imax, eb, sizeof eb), gmax);
         }
         sp_csc_zero(s->kkt);
@@ -460,7 +435,7 @@ static int stage_a(dae_solver *s, double te, double *y, const double *yp, double
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the algebraic equations are dependent or contradict each other "
                                   "at %s (%s)",
-                                  daei_ic_when(s, s->tn, tb, sizeof tb),
+                                  daei_when(s, s->tn, tb, sizeof tb),
                                   ls_get_error(s->kktls)->message);
         double wn = 0;
         for (int j = 0; j < n; j++)
@@ -541,7 +516,7 @@ static int warn_moved(dae_solver *s, const double *guess, const double *guessp, 
     daei_warn(s, "dae_consistent_init",
               "%d unknown%s ended far from the values given at %s (another solution of the "
               "algebraic equations or constraints?): %.300s%s",
-              count, count > 1 ? "s" : "", daei_ic_when(s, s->tn, tb, sizeof tb), list,
+              count, count > 1 ? "s" : "", daei_when(s, s->tn, tb, sizeof tb), list,
               count > shown ? ", ..." : "");
     return 1;
 }
@@ -629,7 +604,7 @@ int daei_consistent_init(dae_solver *s)
         return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                               "Newton iteration for consistent values did not converge at %s: "
                               "%.160s keeps a scaled residual of %.3g%s%s",
-                              daei_ic_when(s, s->tn, tb, sizeof tb),
+                              daei_when(s, s->tn, tb, sizeof tb),
                               daei_ename(s, o.rworst, eb, sizeof eb), o.rnorm,
                               o.rhidden ? " in its time derivative (a hidden constraint)" : "",
                               s->p.jac ? ""

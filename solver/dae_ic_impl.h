@@ -56,10 +56,6 @@ int daei_ic_res(dae_solver *s, double t, const double *y, const double *yp, doub
 int daei_ic_eval_all(dae_solver *s, double t, const double *y, const double *yp);
 /* DAE_INIT_FAIL or DAE_CALLBACK_FAIL (status r < 0) naming what failed and s->note. */
 int daei_ic_cb_fail(dae_solver *s, int r, const char *what);
-/* The time t as the messages of consistent initialisation give it, relative to s->tn: "t = 0",
- * "t = 0 (just after)" (one rounding unit), "t = 0 + 1.2e-06"; s->tn in the shortest of
- * %.15g .. %.17g that reads back as it. */
-const char *daei_ic_when(const dae_solver *s, double t, char *buf, size_t sz);
 /* den_i = 1 + sum_j |dF_i/dy_j y_j| + |dF_i/dy'_j y'_j| (the Jacobians' current values): the
  * size of row i's terms, against which its residual is scaled. */
 void daei_ic_row_scales(dae_solver *s, const double *y, const double *yp, double *den);

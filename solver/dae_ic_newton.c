@@ -224,7 +224,7 @@ static int extrapolate(dae_solver *s, const ic_diff *dd, double te, const double
                           dd->mode == DIFF_T   ? "of the constraints in t"
                           : dd->mode == DIFF_Y ? "of the constraints along y'"
                                                : "for the derivatives of the index-2 unknowns",
-                          daei_ic_when(s, s->tn, tb, sizeof tb), s->note);
+                          daei_when(s, s->tn, tb, sizeof tb), s->note);
 }
 
 /* ------------------------------------------------------- hidden constraints ---- */
@@ -429,7 +429,7 @@ static int stage_b(dae_solver *s, double te, double side, double tscale, int by_
             return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                                   "the equations for the derivatives and the index-2 unknowns are "
                                   "singular at %s: nothing determines %s%s%s (%s)",
-                                  daei_ic_when(s, s->tn, tb, sizeof tb),
+                                  daei_when(s, s->tn, tb, sizeof tb),
                                   c >= 0 && s->kind[c] != DAE_ALG2 ? "the derivative of " : "",
                                   daei_vname(s, c, nb, sizeof nb),
                                   c >= 0 && s->kind[c] == DAE_ALG2
