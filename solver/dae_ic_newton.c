@@ -309,7 +309,7 @@ static int hidden_along(dae_solver *s, double te, double side, int by_jac, const
     if (by_jac) return BG_OK;
     double *hst = daei_icw(s, IC_TY), *Hy = daei_icw(s, IC_HA), tmin, tmax;
     row_times(s, y, yp, ALG1_ONLY, Y_FIRST, hst, &tmin, &tmax);
-    if (!isfinite(tmin)) return BG_OK; /* yp moves no unknown of a constraint row */
+    if (!isfinite(tmin) || !(tmin > 0)) return BG_OK; /* yp moves no unknown of a constraint row */
     /* from the slowest row's first step down to 2^-Y_LEVELS of the fastest's */
     tmax = fmin(tmax, ldexp(tmin, IC_NLEV - Y_LEVELS));
     /* central, and one-sided in the direction the solution takes: they agree within their
@@ -512,7 +512,12 @@ int daei_ic_alg2_rates(dae_solver *s, double te, double tstep, const double *y, 
         hmax = fmax(hmax, hst[i]);
         hmin = fmin(hmin, hst[i]);
     }
-    int nlev = C_LEVELS + (int)ceil(log2(hmax / hmin));
+    if (!(hmax > 0) || !(hmin > 0) || !isfinite(hmax)) return BG_OK; /* y'_A2 stays 0 */
+    /* the ratio may be NaN or infinite (time scales 0 or not finite from a residual that is
+     * not finite near the point): clamp before converting */
+    double extra = ceil(log2(hmax / hmin));
+    int nlev = isfinite(extra) && extra < C_MAX_LEVELS ? C_LEVELS + (extra > 0 ? (int)extra : 0)
+                                                       : C_MAX_LEVELS;
     if (nlev > C_MAX_LEVELS) nlev = C_MAX_LEVELS;
     ic_diff dd = {DIFF_TY, 1, C_LEVELS, side * hmax, nlev, hst, NULL};
     /* s->res holds F at (te, y, yp): stage B's last evaluation */
