@@ -207,21 +207,6 @@ done:
 
 /* ------------------------------------------------------------------- scaling ---- */
 
-static double slope(const double *x, const double *y, int n)
-{
-    if (n < 2) return NAN;
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int i = 0; i < n; i++) {
-        double lx = log(x[i]), ly = log(y[i]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-    }
-    double d = n * sxx - sx * sx;
-    return d != 0 ? (n * sxy - sx * sy) / d : NAN;
-}
-
 int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, int skip, int steps,
                         double t_max, double cpu_cap, double *slope_n, double *slope_el)
 {
@@ -379,8 +364,8 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
         free(yp);
         bench_case_free(&bc);
     }
-    *slope_n = np >= 2 ? slope(xn, yt, np) : NAN;
-    *slope_el = np >= 2 ? slope(xe, yt, np) : NAN;
+    *slope_n = np >= 2 ? bench_loglog_slope(xn, yt, np) : NAN;
+    *slope_el = np >= 2 ? bench_loglog_slope(xe, yt, np) : NAN;
     fprintf(rep,
             "\nLog-log least-squares slope of the CPU time per step: %.3f against the unknowns, "
             "%.3f against the elements (target: <= 1.1, at most linear growth).\n\n",
@@ -390,8 +375,8 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
                 "Slopes of the parts against the unknowns (each part's CPU per step estimated as "
                 "its share of the wall time times the CPU per step): residual %.2f, Jacobian "
                 "%.2f, linear algebra %.2f, the integrator's own work %.2f.\n\n",
-                slope(xn, part[0], np), slope(xn, part[1], np), slope(xn, part[2], np),
-                slope(xn, part[3], np));
+                bench_loglog_slope(xn, part[0], np), bench_loglog_slope(xn, part[1], np),
+                bench_loglog_slope(xn, part[2], np), bench_loglog_slope(xn, part[3], np));
     if (np >= 2)
         fprintf(rep,
                 "Against the elements, the slope of the time per step is that of the CPU time per "
@@ -400,7 +385,8 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
                 "predictor misses the joint reactions by more, and each step takes more "
                 "iterations, while one iteration (residual, solve and the integrator's vector "
                 "work) grows linearly.\n\n",
-                slope(xe, part[4], np), slope(xe, part[5], np), slope(xe, part[6], np));
+                bench_loglog_slope(xe, part[4], np), bench_loglog_slope(xe, part[5], np),
+                bench_loglog_slope(xe, part[6], np));
     if (f) bench_file_close(&bf);
     for (int k = 0; k < NPART; k++)
         free(part[k]);

@@ -211,21 +211,6 @@ static int rt_child(const char *exe, const char *scene_file, rt_run *o)
     return 0;
 }
 
-static double slope(const double *x, const double *y, int n)
-{
-    if (n < 2) return NAN;
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int i = 0; i < n; i++) {
-        double lx = log(x[i]), ly = log(y[i]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-    }
-    double d = n * sxx - sx * sx;
-    return d != 0 ? (n * sxy - sx * sy) / d : NAN;
-}
-
 static void csv_row(FILE *f, const char *cas, const char *scene, int elements, double t_end,
                     const char *run, const rt_run *o)
 {
@@ -424,8 +409,8 @@ int bench_crane_realtime(const char *exe, const bench_rt_scene *sc, int nsc, int
         smax = k == 0 ? o.steps : (o.steps > smax ? o.steps : smax);
     }
     if (mesh->n > 0) {
-        mesh->slope_el = slope(xe, yt, mesh->n);
-        mesh->slope_n = slope(xn, yt, mesh->n);
+        mesh->slope_el = bench_loglog_slope(xe, yt, mesh->n);
+        mesh->slope_n = bench_loglog_slope(xn, yt, mesh->n);
         mesh->steps_spread = (double)smax / (double)smin;
         fprintf(rep,
                 "### Mesh series\n\nScene %s over [0, %g] s with the boom in 8 .. 512 elements, "

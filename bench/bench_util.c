@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -265,3 +266,18 @@ void bench_ida_profile_ls(SUNLinearSolver LS, bench_ida_ctx *c)
     LS->ops->solve = ls_solve_timed;
 }
 #endif
+
+double bench_loglog_slope(const double *x, const double *y, int n)
+{
+    if (n < 2) return NAN;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int i = 0; i < n; i++) {
+        double lx = log(x[i]), ly = log(y[i]);
+        sx += lx;
+        sy += ly;
+        sxx += lx * lx;
+        sxy += lx * ly;
+    }
+    double d = n * sxx - sx * sx;
+    return d != 0 ? (n * sxy - sx * sy) / d : NAN;
+}

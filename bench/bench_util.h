@@ -96,4 +96,7 @@ int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr
 void bench_ida_profile_ls(SUNLinearSolver LS, bench_ida_ctx *c);
 #endif
 
+/* Least-squares slope of log y against log x over n points (NAN for fewer than 2). */
+double bench_loglog_slope(const double *x, const double *y, int n);
+
 #endif
