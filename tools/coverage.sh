@@ -27,7 +27,12 @@ if [ "$mrc" -ne 0 ]; then
   grep -E 'FAIL|TIMEOUT|ERROR' "$B/test.log" | head -n 20 | sed 's/^/# /'
 fi
 
-if ! gcovr -r . --object-directory "$B" -j 2 \
+# --gcov-ignore-parse-errors: gcov may print a branch count as negative ("branch 8 taken -2")
+# where the counters of a program that test processes run at once or interrupt (the crane
+# program under SIGINT) disagree; gcovr 5.2 stops on such a line (and its worker pool then
+# hangs). The line counts, which this report uses, are not affected; the skipped lines are
+# listed in $B/gcovr.log.
+if ! gcovr -r . --object-directory "$B" -j 2 --gcov-ignore-parse-errors \
      -f 'solver/' -f 'bondgraph/' -f 'components/' -f 'crane/' \
      --txt "$B/coverage-files.txt" --json-summary "$B/coverage.json" >"$B/gcovr.log" 2>&1; then
   sed 's/^/# /' "$B/gcovr.log" | tail -n 20
