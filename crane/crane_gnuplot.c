@@ -88,7 +88,6 @@ static int spawn(const crane_gnuplot_job *job, char *const *argv, int err_fd, in
     if (!e) e = posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
     if (!e) e = posix_spawnattr_setsigmask(&at, &none);
     if (!e) e = posix_spawnattr_setsigdefault(&at, &dfl);
-    if (!e) e = posix_spawn_file_actions_addchdir_np(&fa, job->dir);
     if (!e) e = posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     if (!e) e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
     if (!e && err_fd >= 0) e = posix_spawn_file_actions_adddup2(&fa, err_fd, STDERR_FILENO);
@@ -97,6 +96,9 @@ static int spawn(const crane_gnuplot_job *job, char *const *argv, int err_fd, in
     if (!e && err_fd < 0)
         e = posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, logp, O_WRONLY | O_CREAT | O_TRUNC,
                                              0644);
+    /* the actions run in order: the log (dir/log, relative to the caller's directory when dir
+     * is) is opened before the change of directory, as the fork path below does */
+    if (!e) e = posix_spawn_file_actions_addchdir_np(&fa, job->dir);
     if (!e) e = posix_spawn(pid, job->exe, &fa, &at, argv, environ);
     posix_spawnattr_destroy(&at);
     posix_spawn_file_actions_destroy(&fa);

@@ -135,6 +135,12 @@ static void test_scene_runs(int gnuplot)
            "a bare scene name is found and the results go to results/<scene>/ (%s)", why);
     tap_ok(strstr(r.out, "final angle") && strstr(r.out, "wall time"),
            "the summary names the final angle and the wall time");
+    if (gnuplot) { /* the figures into that relative folder: gnuplot's log opened there */
+        run(cwd, (const char *[]){"rigid-boom", "--t-end", "0.05", NULL}, "bare-plots", 100, &r);
+        tap_ok(r.exited && r.code == 0 && file_nonempty(out, "fig5a.png"),
+               "figures into the relative default folder results/<scene>/ (exit %d): %.200s",
+               r.code, r.err);
+    }
 }
 
 static void test_malformed_files(void)
