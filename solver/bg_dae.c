@@ -95,10 +95,13 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->st.h_min_used = INFINITY;
     s->st.rcond_min = INFINITY;
     s->st.t_last_restart = NAN;
+    s->st.reduced_rows = s->red ? s->p.ncons : 0;
+    if (s->red) daei_red_reset(s);
     if (s->detect && !s->structured) { /* no patterns given: found from the residual here */
         long added;
-        int r = daei_probe_patterns(s, t0, y0, yp0, DETECT_POINTS, &added);
-        if (r == BG_OK) r = daei_setup_structure(s, &s->err);
+        int r = s->red ? daei_red_detect(s, t0, y0, yp0)
+                       : daei_probe_patterns(s, t0, y0, yp0, DETECT_POINTS, &added);
+        if (r == BG_OK && !s->red) r = daei_setup_structure(s, &s->err);
         if (r != BG_OK) return r;
     }
     memcpy(s->phi[0], y0, (size_t)s->n * sizeof *y0);
@@ -257,9 +260,10 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
             nsteps--;
             continue;
         }
-        if (s->p.cons && s->p.ncons > 0 && (r = daei_project_step(s)) < 0) {
+        int rp; /* r says whether the step landed on a breakpoint: kept */
+        if (s->p.cons && s->p.ncons > 0 && (rp = daei_project_step(s)) < 0) {
             daei_output_state(s, s->tn, tret, y, yp);
-            return r;
+            return rp;
         }
         if (r == STEP_ON_BREAKPOINT) { /* landed on a breakpoint: restart before the next step
                          (which may be in the next call, when tout is the breakpoint itself) */

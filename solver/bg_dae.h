@@ -116,9 +116,29 @@ typedef struct dae_problem {
                                     1 rad. options.atol_vec, when given, is taken as it is */
 } dae_problem;
 
+/* How the index-2 part is integrated. BDF applied to an index-2 system directly is convergent
+ * for systems of Hessenberg form (the index-2 unknowns appear only in the differential
+ * equations, the constraints contain differential unknowns only; Brenan, Campbell and Petzold,
+ * Numerical Solution of Initial-Value Problems in DAEs, SIAM 1996, Theorem 3.2.1): velocity-level
+ * multibody models and bond graphs are. It is not in general: on their example
+ * y1 + eta t y2 = g(t), y1' + eta t y2' + (1 + eta) y2 = 0 (Section 3.2), where the index-2
+ * unknown y2 enters the constraint, BDF1 is unstable for eta < -1/2 and BDF2 for eta < -1/4
+ * whatever the step (the recursion (1 + eta) y2_n + eta sum_j j alpha_j y2_{n-j} = ... has a root
+ * outside the unit circle), and the run fails with Newton or error-test failures at ever smaller
+ * steps. DAE_I2_REDUCE integrates the time derivative of the constraints instead (index 1: BDF of
+ * every order converges, Theorem 3.1.1 there) and projects each step back onto them (dae_reduce.c
+ * has the method); it costs four more residual evaluations per evaluation and a projection per
+ * step, and the derivative of the constraint rows' dF/dy is left out of the Newton matrix. */
 typedef enum dae_index2_policy {
     DAE_I2_EXCLUDE = 0, /* index-2 variables take no part in the local error test */
-    DAE_I2_SCALE_H = 1  /* their local error estimate is multiplied by h */
+    DAE_I2_SCALE_H = 1, /* their local error estimate is multiplied by h */
+    DAE_I2_REDUCE = 2   /* the constraints differentiated once: index 1, projected back onto
+                           them after each step (no position constraints of the problem's own:
+                           ncons = 0). The kinds, patterns and statistics are then those of the
+                           reduced system (the index-2 unknowns become index 1, or differential
+                           where the differentiated constraints contain their derivative);
+                           stats.reduced_rows counts the constraints, stats.max_drift their
+                           largest value before projection */
 } dae_index2_policy;
 
 typedef struct dae_options {
@@ -203,6 +223,7 @@ typedef struct dae_stats {
                                       answered by a fresh Jacobian at the same step (not counted
                                       in newton_fails) */
     double t_last_restart;         /* time of the last of them (NAN: none) */
+    long reduced_rows;             /* constraint rows differentiated (DAE_I2_REDUCE), else 0 */
     double init_error;             /* the Newton correction that the residuals and the hidden
                                       constraints at the values of dae_consistent_init call for,
                                       largest component in the error weights of y (index-2

@@ -13,7 +13,8 @@
  *   dae_eval.c    callbacks (residual, Jacobian), names and notes for messages, statistics
  *   dae_struct.c  structure: classification of the unknowns, maximum matching
  *   dae_ic.c      row classes and consistent initial values (the Newton iteration for y' and
- *                 the index-2 unknowns: dae_ic_newton.c; their interface: dae_ic_impl.h) */
+ *                 the index-2 unknowns: dae_ic_newton.c; their interface: dae_ic_impl.h)
+ *   dae_reduce.c  index reduction of the constraints (DAE_I2_REDUCE) */
 #ifndef BG_DAE_IMPL_H
 #define BG_DAE_IMPL_H
 
@@ -33,6 +34,8 @@
 #define EPS_NEWT 0.33
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
+
+typedef struct dae_reduce dae_reduce;
 
 struct dae_solver {
     int n;
@@ -150,6 +153,7 @@ struct dae_solver {
     int *ic_run;    /* scratch of the extrapolation tables, n */
     double ic_res;  /* the last daei_consistent_init: scaled residual at the values returned */
     double ic_err;  /* and the weighted correction it calls for (1 = the tolerance) */
+    dae_reduce *red; /* DAE_I2_REDUCE: the problem as given and the reduction (dae_reduce.c) */
 };
 
 enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };
@@ -299,5 +303,22 @@ int daei_init_setup(dae_solver *s, bg_error *err);
 void daei_init_free(dae_solver *s);
 /* dae_consistent_init without the check of the call order (restarts at breakpoints). */
 int daei_consistent_init(dae_solver *s);
+
+/* ---- dae_reduce.c: index reduction (DAE_I2_REDUCE) ---- */
+/* At dae_create: the inner solver on the problem p as given; when its patterns are known, the
+ * reduced problem replaces s->p and the structure is built; else s->detect is set. */
+int daei_red_create(dae_solver *s, const dae_problem *p, const dae_options *o, bg_error *err);
+/* At dae_init without patterns: the inner solver finds them, then the reduced structure. */
+int daei_red_detect(dae_solver *s, double t0, const double *y0, const double *yp0);
+/* Consistent values by the inner solver (the system as given, its hidden constraints). */
+int daei_red_consistent_init(dae_solver *s);
+void daei_red_free(dae_solver *s);
+/* Whether the Jacobian as given is by finite differences (patterns may be probed again). */
+int daei_red_by_fd(const dae_solver *s);
+/* The problem as given probed for pattern entries at (t, y, yp) (daei_probe_patterns); when
+ * it finds some (*added > 0), the inner and the reduced structures are built again. */
+int daei_red_probe(dae_solver *s, double t, const double *y, const double *yp, long *added);
+/* A new run (dae_init): the scales of the time differences start again. */
+void daei_red_reset(dae_solver *s);
 
 #endif

@@ -115,6 +115,7 @@ void dae_free(dae_solver **sp)
     free(s->ghi);
     free(s->gmid);
     free(s->rfound);
+    daei_red_free(s);
     free(s);
     *sp = NULL;
 }
@@ -137,7 +138,7 @@ static int check_problem(const dae_problem *p, const dae_options *o, bg_error *e
         if (!(hval[k] >= 0) || !isfinite(hval[k]))
             return bg_error_raise(err, BG_ERR_ARGUMENT, w, "%s = %g: must be finite and >= 0",
                                   hname[k], hval[k]);
-    if (o->index2 != DAE_I2_EXCLUDE && o->index2 != DAE_I2_SCALE_H)
+    if (o->index2 != DAE_I2_EXCLUDE && o->index2 != DAE_I2_SCALE_H && o->index2 != DAE_I2_REDUCE)
         return bg_error_raise(err, BG_ERR_ARGUMENT, w, "index2 = %d is not a dae_index2_policy",
                               (int)o->index2);
     if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
@@ -162,6 +163,12 @@ static int check_problem(const dae_problem *p, const dae_options *o, bg_error *e
                               "cons_pattern %s)",
                               p->ncons, p->cons ? "given" : "NULL",
                               p->cons_pattern ? "given" : "NULL");
+    if (o->index2 == DAE_I2_REDUCE && p->ncons > 0)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "index2 = DAE_I2_REDUCE projects onto the constraints it "
+                              "differentiates and takes no position constraints of its own "
+                              "(ncons = %d)",
+                              p->ncons);
     if (p->nroots > 0 && !p->roots)
         return bg_error_raise(err, BG_ERR_ARGUMENT, w, "nroots = %d but no root function",
                               p->nroots);
@@ -297,7 +304,12 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         s->nbkpt = o->nbreakpoints;
     }
     /* Jacobian patterns: as given, or found from the residual at dae_init (dae_struct.c) */
-    if (p->jac_y_pattern && p->jac_yp_pattern) {
+    if (o->index2 == DAE_I2_REDUCE) {
+        if (daei_red_create(s, p, o, err) != BG_OK) {
+            dae_free(&s);
+            return NULL;
+        }
+    } else if (p->jac_y_pattern && p->jac_yp_pattern) {
         s->Jy = sp_csc_copy(p->jac_y_pattern);
         s->Jyp = sp_csc_copy(p->jac_yp_pattern);
         if (!s->Jy || !s->Jyp) goto nomem;

@@ -565,6 +565,7 @@ int daei_consistent_init(dae_solver *s)
     double *y = s->y, *yp = s->yp;
     char tb[96];
     s->ic_res = s->ic_err = NAN;
+    if (s->red) return daei_red_consistent_init(s);
     if (s->not_semi_explicit)
         return bg_error_raise(&s->err, DAE_INIT_FAIL, w,
                               "the system is not semi-explicit (an index-2 unknown appears "

@@ -242,6 +242,17 @@ static const char *fd_hint(const dae_solver *s)
                        "may let the iteration converge";
 }
 
+/* What a user can try when the steps collapse on a system with constraints that are not
+ * all matched to index-1 algebraic unknowns (index 2): where the index-2 part is not of
+ * Hessenberg form, BDF can be unstable on it at every step (bg_dae.h, dae_index2_policy). */
+static const char *i2_hint(const dae_solver *s)
+{
+    if (s->red || s->nalg_rows <= s->na1) return "";
+    return "; if an index-2 unknown enters a constraint or appears differentiated (a system not "
+           "of Hessenberg form), BDF can be unstable on the index-2 part at every step size: "
+           "options.index2 = DAE_I2_REDUCE integrates the differentiated constraints instead";
+}
+
 /* The checks before a step: h clipped to the next stop, tolerances above round-off, no crawl. */
 static int check_before(dae_solver *s)
 {
@@ -278,9 +289,9 @@ static int check_floor(dae_solver *s, const step_attempt *a, int landing)
     if (a->nef + a->ncf == 0) note_step_limit(s);
     return bg_error_raise(&s->err, DAE_STEP_TOO_SMALL, w,
                           "step size %.3g at t = %.17g is below the minimum %.3g (%d error-test "
-                          "and %d Newton failures in this step)%s%s%s",
+                          "and %d Newton failures in this step)%s%s%s%s",
                           s->hh, s->tn, hmin, a->nef, a->ncf, s->note[0] ? ": " : "", s->note,
-                          a->ncf > 0 ? fd_hint(s) : "");
+                          a->ncf > 0 ? fd_hint(s) : "", i2_hint(s));
 }
 
 /* The failure policy of a step: after the attempt to tnew ended with nl (NL_OK: the error test
@@ -312,8 +323,8 @@ static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
         a->last_res_fail = 0;
         if (a->nef >= MAX_NEF)
             return bg_error_raise(&s->err, DAE_ERR_FAIL, w,
-                                  "error test failed %d times at t = %.17g, h = %.3g: %s", a->nef,
-                                  s->tn, s->hh, s->note);
+                                  "error test failed %d times at t = %.17g, h = %.3g: %s%s",
+                                  a->nef, s->tn, s->hh, s->note, i2_hint(s));
         daei_after_error_fail(s, a->nef);
         return RETRY;
     }
@@ -324,14 +335,21 @@ static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
     }
     /* a Newton matrix evaluated at this step that does not contract: with finite differences,
      * an entry the pattern lacks would explain it; probe the residual here and rebuild */
-    if (!s->p.jac && nl == NL_RECOVER && s->nreprobe < MAX_REPROBE) {
+    int by_fd = s->red ? daei_red_by_fd(s) : !s->p.jac;
+    if (by_fd && nl == NL_RECOVER && s->nreprobe < MAX_REPROBE) {
         s->nreprobe++;
         long added = 0;
         char keep[sizeof s->note];
         snprintf(keep, sizeof keep, "%s", s->note);
-        if (daei_probe_patterns(s, tnew, s->y, s->yp, 1, &added) == BG_OK && added > 0) {
-            daei_free_structure(s);
-            if (daei_setup_structure(s, &s->err) != BG_OK)
+        int pr = s->red ? daei_red_probe(s, tnew, s->y, s->yp, &added)
+                        : daei_probe_patterns(s, tnew, s->y, s->yp, 1, &added);
+        if (pr == BG_OK && added > 0) {
+            int rs = BG_OK;
+            if (!s->red) { /* daei_red_probe rebuilt its structures itself */
+                daei_free_structure(s);
+                rs = daei_setup_structure(s, &s->err);
+            }
+            if (rs != BG_OK)
                 return bg_error_raise(&s->err, DAE_LSETUP_FAIL, w,
                                       "at t = %.17g the Jacobian patterns were missing %ld "
                                       "entries (found by probing the residual where the Newton "
@@ -360,8 +378,8 @@ static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
                                   "%.3g: %s",
                                   a->ncf, s->tn, s->hh, s->note);
         return bg_error_raise(&s->err, DAE_CONV_FAIL, w,
-                              "Newton iteration failed %d times at t = %.17g, h = %.3g: %s%s", a->ncf,
-                              s->tn, s->hh, s->note, fd_hint(s));
+                              "Newton iteration failed %d times at t = %.17g, h = %.3g: %s%s%s",
+                              a->ncf, s->tn, s->hh, s->note, fd_hint(s), i2_hint(s));
     }
     s->hh *= 0.25;
     s->need_setup = 1;
