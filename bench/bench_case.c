@@ -138,7 +138,7 @@ static void our_options(const bench_case *bc, const solver_def *sd, const run_op
     o->rtol = ro->rtol;
     if (bench_case_atol(bc, ro->rtol, &o->atol, atolv)) o->atol_vec = atolv;
     o->linsol = sd ? sd->ls : LS_KLU;
-    o->index2 = sd ? sd->pol : DAE_I2_EXCLUDE;
+    o->index2 = ro->reduce ? DAE_I2_REDUCE : sd ? sd->pol : DAE_I2_EXCLUDE;
     o->exclude_alg = bc->exclude_alg;
     o->stability_guard = ro->guard ? ro->guard > 0 : bc->stability_guard;
     if (ro->max_order > 0) o->max_order = ro->max_order;
@@ -259,6 +259,12 @@ static void run_ours(const bench_case *bc, const solver_def *sd, const run_opts 
     if (ro->profile) bench_prof_wrap(&pw, &bc->dp, &dp);
     double c0 = bench_cpu_now(), w0 = bench_wall_now();
     bg_error err = {0};
+    if (ro->reduce) {
+        dp.ncons = 0;
+        dp.cons = NULL;
+        dp.cons_pattern = NULL;
+        o.projection = 0;
+    }
     dae_solver *s = dae_create(&dp, &o, &err);
     if (!s) {
         snprintf(out->msg, sizeof out->msg, "%s", err.message);

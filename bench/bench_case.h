@@ -96,6 +96,8 @@ typedef struct run_opts {
     int ida_consistent_restart;
     int max_order; /* ours: options.max_order (0: the default) */
     int guard;     /* ours: 0 the case's stability guard setting, 1 on, -1 off */
+    int reduce;    /* ours: options.index2 = DAE_I2_REDUCE (the case's position constraints
+                      are then left out: the reduction projects onto its own) */
 } run_opts;
 
 typedef struct run_out {

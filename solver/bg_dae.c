@@ -95,7 +95,6 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     s->st.h_min_used = INFINITY;
     s->st.rcond_min = INFINITY;
     s->st.t_last_restart = NAN;
-    s->st.reduced_rows = s->red ? s->p.ncons : 0;
     if (s->red) daei_red_reset(s);
     if (s->detect && !s->structured) { /* no patterns given: found from the residual here */
         long added;
@@ -104,6 +103,7 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
         if (r == BG_OK && !s->red) r = daei_setup_structure(s, &s->err);
         if (r != BG_OK) return r;
     }
+    s->st.reduced_rows = s->red ? s->p.ncons : 0;
     memcpy(s->phi[0], y0, (size_t)s->n * sizeof *y0);
     if (yp0)
         memcpy(s->phi[1], yp0, (size_t)s->n * sizeof *yp0);
@@ -260,7 +260,7 @@ static int advance_run(dae_solver *s, double tout, double *tret, double *y, doub
             nsteps--;
             continue;
         }
-        int rp; /* r says whether the step landed on a breakpoint: kept */
+        int rp = 0; /* r says whether the step landed on a breakpoint: kept */
         if (s->p.cons && s->p.ncons > 0 && (rp = daei_project_step(s)) < 0) {
             daei_output_state(s, s->tn, tret, y, yp);
             return rp;

@@ -248,9 +248,9 @@ static const char *fd_hint(const dae_solver *s)
 static const char *i2_hint(const dae_solver *s)
 {
     if (s->red || s->nalg_rows <= s->na1) return "";
-    return "; if an index-2 unknown enters a constraint or appears differentiated (a system not "
-           "of Hessenberg form), BDF can be unstable on the index-2 part at every step size: "
-           "options.index2 = DAE_I2_REDUCE integrates the differentiated constraints instead";
+    return "; index 2 not of Hessenberg form (an index-2 unknown in a constraint or "
+           "differentiated) can make BDF unstable at every step: try options.index2 = "
+           "DAE_I2_REDUCE";
 }
 
 /* The checks before a step: h clipped to the next stop, tolerances above round-off, no crawl. */
@@ -291,7 +291,7 @@ static int check_floor(dae_solver *s, const step_attempt *a, int landing)
                           "step size %.3g at t = %.17g is below the minimum %.3g (%d error-test "
                           "and %d Newton failures in this step)%s%s%s%s",
                           s->hh, s->tn, hmin, a->nef, a->ncf, s->note[0] ? ": " : "", s->note,
-                          a->ncf > 0 ? fd_hint(s) : "", i2_hint(s));
+                          i2_hint(s), a->ncf > 0 ? fd_hint(s) : "");
 }
 
 /* The failure policy of a step: after the attempt to tnew ended with nl (NL_OK: the error test
@@ -379,7 +379,7 @@ static int handle_failure(dae_solver *s, step_attempt *a, int nl, double tnew)
                                   a->ncf, s->tn, s->hh, s->note);
         return bg_error_raise(&s->err, DAE_CONV_FAIL, w,
                               "Newton iteration failed %d times at t = %.17g, h = %.3g: %s%s%s",
-                              a->ncf, s->tn, s->hh, s->note, fd_hint(s), i2_hint(s));
+                              a->ncf, s->tn, s->hh, s->note, i2_hint(s), fd_hint(s));
     }
     s->hh *= 0.25;
     s->need_setup = 1;
