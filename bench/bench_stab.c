@@ -200,7 +200,7 @@ typedef struct stab_result {
     int hi;
     double err, err_tight, drift, t, cpu;
     int tight_div; /* err_tight is the error of the run at rtol / tight_div */
-    char msg[600];
+    char msg[BG_MESSAGE_SIZE];
     char ref[200];
 } stab_result;
 

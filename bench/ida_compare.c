@@ -236,7 +236,7 @@ int main(int argc, char **argv)
         for (int k = 0; k < nr; k++) {
             double rtol = rtols[k], atol = afac * rtol;
             run_result a = {0}, b = {0};
-            char ma[512] = "", mb[512] = "";
+            char ma[BG_MESSAGE_SIZE] = "", mb[BG_MESSAGE_SIZE] = "";
             timed(0, p, rtol, atol, ls, suppress, reps, &a, ma, sizeof ma);
             timed(1, p, rtol, atol, ls, suppress, reps, &b, mb, sizeof mb);
             bp_score sa, sb;

@@ -77,7 +77,7 @@ BG_API const char *bg_status_message(int status);
 /* Called with the status, the function that failed and the message. */
 typedef void (*bg_error_handler)(void *user, int status, const char *where, const char *message);
 
-#define BG_MESSAGE_SIZE 512
+#define BG_MESSAGE_SIZE 1024 /* a failure message with its note and hints fits */
 
 typedef struct bg_error {
     bg_error_handler handler; /* NULL: keep the message only */

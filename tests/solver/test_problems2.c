@@ -282,7 +282,7 @@ typedef struct run_out {
     double t;
     double y[MAXN];
     dae_stats st;
-    char msg[600];
+    char msg[BG_MESSAGE_SIZE + 16];
 } run_out;
 
 static void run(const bp_problem *p, const dae_options *o, run_out *out)
