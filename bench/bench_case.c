@@ -141,6 +141,7 @@ static void our_options(const bench_case *bc, const solver_def *sd, const run_op
     o->index2 = ro->reduce ? DAE_I2_REDUCE : sd ? sd->pol : DAE_I2_EXCLUDE;
     o->exclude_alg = bc->exclude_alg;
     o->stability_guard = ro->guard ? ro->guard > 0 : bc->stability_guard;
+    o->newton_dgmax = bc->newton_dgmax;
     if (ro->max_order > 0) o->max_order = ro->max_order;
     o->has_t_stop = 1;
     o->t_stop = tend;

@@ -93,6 +93,7 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
     }
     bc->ext = c;
     bc->ext_free = free_crane;
+    bc->newton_dgmax = s.newton_dgmax; /* as the crane program runs the scene */
     if (settle) {
         bg_error_clear(&err);
         int r = settle == BENCH_SETTLE_DAMPED ? crane_settle_damped(c, &err) : crane_settle(c, &err);
@@ -272,6 +273,7 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
             o.rtol = o.atol = 1e-6;
             o.exclude_alg = 1;
             o.stability_guard = s.stability_guard; /* as crane/crane.c */
+            o.newton_dgmax = s.newton_dgmax;
             o.has_t_stop = 1;
             o.t_stop = t_max;
             o.max_steps = 10000000;

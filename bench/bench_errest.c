@@ -33,6 +33,7 @@ static void options_for(const bench_case *bc, double rtol, double *atolv, dae_op
     if (bench_case_atol(bc, rtol, &o->atol, atolv)) o->atol_vec = atolv;
     o->exclude_alg = bc->exclude_alg;
     o->stability_guard = bc->stability_guard;
+    o->newton_dgmax = bc->newton_dgmax;
     o->has_t_stop = 1;
     o->t_stop = bc->tend;
     o->max_steps = 1000000;

@@ -118,6 +118,7 @@ void crane_scene_default(crane_scene *s)
     s->nominal_velocity = 1;
     s->nominal_angular_velocity = 1;
     s->stability_guard = 1;
+    s->newton_dgmax = 0.3;
 }
 
 static int fail_here(bg_error *err, const char *what, bgr_model *m)

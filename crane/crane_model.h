@@ -87,6 +87,8 @@ typedef struct crane_scene {
                           * boom's and the lines' undamped fast modes hold BDF orders 3..5 at
                           * their stability limit (numerical dissipation of those modes); 0: the
                           * order follows the error estimates alone */
+    double newton_dgmax; /* dae_options.newton_dgmax: the Newton matrix refactored from the
+                          * saved Jacobian when 1/cj moved by more than this (0: off) */
 } crane_scene;
 
 /* The paper scene's defaults (docs/crane.md, with the choices stated there and in

@@ -28,6 +28,7 @@ typedef enum range_kind {
     R_POS,    /* > 0 */
     R_NONNEG, /* >= 0 */
     R_OPEN01, /* in (0, 1) */
+    R_UNIT0,  /* in [0, 1) */
     R_INT     /* integer in lo..hi */
 } range_kind;
 
@@ -165,6 +166,9 @@ static const key_def KEYS[] = {
     KBOOL("solver", "stability_guard", stability_guard,
           "order lowered to 2 where undamped fast modes hold BDF orders 3..5 at their stability "
           "limit, which damps them (false: the order follows the error estimates alone)"),
+    KNUM("solver", "newton_dgmax", newton_dgmax, R_UNIT0, "a number in [0, 1)", "",
+         "the Newton matrix refactored from the saved Jacobian when 1/cj moved by more than "
+         "this (0: only with a new Jacobian)"),
 };
 #define NKEYS ((int)(sizeof KEYS / sizeof *KEYS))
 
@@ -345,6 +349,8 @@ static int in_range(range_kind r, double x)
         return x >= 0;
     case R_OPEN01:
         return x > 0 && x < 1;
+    case R_UNIT0:
+        return x >= 0 && x < 1;
     default:
         return isfinite(x);
     }

@@ -94,6 +94,11 @@
  *                    nominal_angular_velocity number >= 0  rad/s, of angular velocities; 0: 1
  *                    stability_guard  boolean        the solver's stability guard (default true;
  *                                                    see below)
+ *                    newton_dgmax     number in [0, 1)  the Newton matrix is formed again from
+ *                                                    the saved Jacobian and refactored when
+ *                                                    1/cj moved by more than this since it was
+ *                                                    factored (default 0.3, CVODE's value;
+ *                                                    0: only with a new Jacobian; bg_dae.h)
  *
  * Tolerances. The solver weighs the error of unknown i with rtol |y_i| + atol nominal_i. With
  * nominal_scales = true (the default) nominal_i is the magnitude the components give that

@@ -178,6 +178,13 @@ typedef struct dae_options {
                                   evaluations); a disagreement of more than 1e-3 relative is a
                                   warning (DAE_WARNING to the error handler, dae_get_warning)
                                   that names the equation and the unknown; the run goes on */
+    double newton_dgmax;       /* > 0: between Jacobian evaluations the Newton matrix is formed
+                                  again from the saved Jacobian and refactored when gamma = 1/cj
+                                  has moved by more than this from the gamma it was factored with
+                                  (CVODE's rule, 0.3 there; dae_nls.c); fewer Newton failures
+                                  on a stale matrix and fewer iterations for one refactorization
+                                  more. Default 0: the matrix follows the Jacobian (evaluated
+                                  when cj leaves [0.6, 1.67] of its value then, IDA's rule) */
     int stability_guard;       /* 1: where a lightly damped oscillation holds BDF orders 3..5
                                   at their stability limit, the order is lowered to 2, which
                                   damps it (numerical dissipation of the unresolved high

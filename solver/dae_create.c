@@ -225,6 +225,11 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "max_order must be 1..5 (got %d)", o->max_order);
         return NULL;
     }
+    if (!(o->newton_dgmax >= 0 && o->newton_dgmax < 1)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "newton_dgmax = %g: must be in [0, 1)",
+                       o->newton_dgmax);
+        return NULL;
+    }
     if (o->projection && (!p->cons || p->ncons < 1 || !p->cons_pattern)) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w,
                        "projection needs position constraints (cons, ncons, cons_pattern)");

@@ -3,6 +3,12 @@
  * with the iteration matrix M = dF/dy + cj dF/dy' kept across steps while cj stays within
  * [0.6, 1.67] of the value it was factored with (corrections rescaled by 2/(1 + cj/cj_f)),
  * refreshed after a convergence failure, and refactored by KLU with the symbolic analysis reused.
+ * With options.newton_dgmax > 0, the matrix between Jacobians follows cj: when gamma = 1/cj has
+ * moved by more than newton_dgmax from the gamma it was factored with, M is formed again from
+ * the saved Jacobian at the new cj and refactored, without evaluating the Jacobian (CVODE's rule,
+ * dgmax 0.3 there: A. C. Hindmarsh et al., ACM TOMS 31 (2005) 363-396, and CVODE's
+ * CVodeSetDeltaGammaMaxLSetup); the Jacobian itself is still evaluated when cj leaves
+ * [0.6, 1.67] of the cj it was evaluated at, or after a convergence failure.
  * At most max_newton iterations per attempt, or up to twice that on a matrix evaluated at the
  * step itself while the rate (0.5 or better) says it will converge within them
  * (newton_extends).
@@ -36,9 +42,9 @@ enum { SU_OK = 0, SU_RECOVER = 1, SU_SINGULAR = 2, SU_LSFAIL = 3 };
 
 /* Jacobian, scaled Newton matrix, factorization: SU_*, or the fatal (< 0) status of a callback.
  * A failure is described in s->note. */
-static int setup(dae_solver *s, double t, const double *F)
+static int setup(dae_solver *s, double t, const double *F, int saved_jac)
 {
-    int r = daei_eval_jac(s, t, s->y, s->yp, F);
+    int r = saved_jac ? 0 : daei_eval_jac(s, t, s->y, s->yp, F);
     if (r < 0) return r;
     if (r > 0) return SU_RECOVER;
     double t0 = daei_clock(s);
@@ -54,8 +60,10 @@ static int setup(dae_solver *s, double t, const double *F)
     s->st.t_linalg += daei_clock(s) - t0;
     if (r == BG_OK) s->st.rcond_min = fmin(s->st.rcond_min, ls_get_stats(s->ls)->rcond);
     s->cjf = cj;
-    s->jac_current = 1;
+    if (!saved_jac) s->cjj = cj;
+    s->jac_current = !saved_jac;
     s->need_setup = 0;
+    s->need_refactor = 0;
     s->ss = 20.0;
     if (r == BG_OK) return SU_OK;
     if (r == BG_ERR_SINGULAR) {
@@ -131,8 +139,11 @@ int daei_newton(dae_solver *s, double t)
      * stiffer boom then started with steps of 1e-11 at order 1, its Newton iteration stalling
      * at rate 1 on a beam effort, and took over 60 s instead of 0.5 s */
     memset(s->ee, 0, (size_t)n * sizeof(double));
-    double ratio = s->cj / (s->cjf != 0 ? s->cjf : s->cj);
-    if (s->first || ratio < CJ_LOW || ratio > CJ_HIGH) s->need_setup = 1;
+    double ratio = s->cj / (s->cjj != 0 ? s->cjj : s->cj);
+    if (s->first || ratio < CJ_LOW || ratio > CJ_HIGH)
+        s->need_setup = 1;
+    else if (s->o.newton_dgmax > 0 && fabs(s->cjf / s->cj - 1) > s->o.newton_dgmax)
+        s->need_refactor = 1;
     /* a rate measured at another cj says little about this one: start cautious */
     if (s->cj != s->cjold) s->ss = 100.0;
     s->jac_current = 0;
@@ -141,8 +152,8 @@ int daei_newton(dae_solver *s, double t)
         int r = daei_call_res(s, t, s->y, s->yp, s->res, 0);
         if (r < 0) return r;
         if (r > 0) return NL_RES_RECOVER;
-        if (s->need_setup) {
-            r = setup(s, t, s->res);
+        if (s->need_setup || s->need_refactor) {
+            r = setup(s, t, s->res, !s->need_setup);
             if (r < 0) return r;
             if (r == SU_SINGULAR) return NL_SINGULAR;
             if (r == SU_LSFAIL) return NL_LSFAIL;

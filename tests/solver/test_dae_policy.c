@@ -18,11 +18,22 @@
  * before no longer contracts there. y(t) = exp(-Lambda(t)), Lambda the integral of lambda:
  * Lambda(t) = t + 4999 * 0.01 * log((1 + exp((t - 1) / 0.01)) / (1 + exp(-100))).
  *
+ * Newton matrix refresh. On y' = -y + sin(5 t), y(0) = 0, over [0, 10] at rtol 1e-4 and order
+ * 1 (a constant Jacobian; the steps double and are cut by error-test failures), the counts of
+ * Jacobian evaluations and of factorizations are predicted exactly from the step attempts
+ * (cj = 1/h at order 1; an attempt is a run of residual evaluations at one t, rejected attempts
+ * included): a Jacobian at the first attempt and whenever cj leaves [0.6, 1/0.6] of the cj it
+ * was evaluated at; between, with options.newton_dgmax = 0.3, a refactorization of the saved
+ * Jacobian whenever gamma = 1/cj moves more than 30 % from the one the matrix was factored
+ * with, and none with newton_dgmax = 0. Both runs have the same largest error (within a factor
+ * 1.5) against the closed form y = (sin 5t - 5 cos 5t + 5 exp(-t)) / 26.
+ *
  * Landing on a stop. A step that would leave less than a quarter of itself to t_stop is replaced
  * by two equal steps, so the last step is at least a quarter of the one before (with a sliver,
  * a ratio of a few percent or less, alpha/h changes as much). Checked over 40 stop times on
  * y' = cos(t) - y. */
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -136,6 +147,116 @@ static int res_stiffen(void *user, double t, const double *y, const double *yp, 
     return 0;
 }
 
+static long n_jac;
+static double *res_t; /* the times of the residual evaluations */
+static long n_res, cap_res;
+
+#define W_FORCE 5.0
+
+static int res_forced(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user;
+    if (n_res < cap_res) res_t[n_res] = t;
+    n_res++;
+    F[0] = yp[0] + y[0] - sin(W_FORCE * t);
+    return 0;
+}
+
+static int jac_forced(void *user, double t, const double *y, const double *yp, sp_csc *Jy,
+                      sp_csc *Jyp)
+{
+    (void)user, (void)t, (void)y, (void)yp;
+    n_jac++;
+    Jy->val[0] = 1;
+    Jyp->val[0] = 1;
+    return 0;
+}
+
+/* At order 1, cj = 1/h for every attempt, rejected ones included: each attempt is a run of
+ * residual evaluations at one time t (its Newton iterations), its h is t less the last accepted
+ * time before it. */
+static double test_refresh(double dgmax)
+{
+    enum { MAXSTEP = 20000 };
+    const double one = 1;
+    sp_csc *jy = sp_csc_from_dense(1, 1, &one, 0.0), *jyp = sp_csc_from_dense(1, 1, &one, 0.0);
+    dae_problem p = {0};
+    p.n = 1;
+    p.res = res_forced;
+    p.jac = jac_forced;
+    p.jac_y_pattern = jy;
+    p.jac_yp_pattern = jyp;
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = 1e-4;
+    o.atol = 1e-6;
+    o.max_order = 1;
+    o.newton_dgmax = dgmax;
+    bg_error e = {0};
+    dae_solver *s = dae_create(&p, &o, &e);
+    const double y0 = 0, yp0 = 0, tend = 10, w = W_FORCE;
+    double t = 0, y = 0, maxerr = 0;
+    double *acc = malloc(MAXSTEP * sizeof *acc);
+    long *acc_res = malloc(MAXSTEP * sizeof *acc_res); /* residual evaluations before step i */
+    cap_res = 8 * MAXSTEP;
+    res_t = malloc((size_t)cap_res * sizeof *res_t);
+    n_jac = n_res = 0;
+    long nacc = 0;
+    int r = dae_init(s, 0, &y0, &yp0);
+    while (r >= 0 && t < tend && nacc < MAXSTEP) {
+        acc_res[nacc] = n_res;
+        double t0 = t;
+        r = dae_step(s, tend, &t, &y, NULL);
+        acc[nacc++] = t0; /* the step's start */
+        double ye = (sin(w * t) - w * cos(w * t) + w * exp(-t)) / (1 + w * w);
+        maxerr = fmax(maxerr, fabs(y - ye) / (1e-4 * fabs(ye) + 1e-6));
+    }
+    /* the prediction over the attempts */
+    long jac_pred = 0, fact_pred = 0, attempts = 0, ia = 0;
+    double cjj = 0, cjf = 0, tprev = 0;
+    for (long q = 0; q < n_res && q < cap_res; q++) {
+        while (ia < nacc && acc_res[ia] <= q) /* the step this evaluation belongs to */
+            tprev = acc[ia++];
+        if (q > 0 && res_t[q] == res_t[q - 1]) continue; /* the same attempt */
+        if (res_t[q] == tprev) continue; /* at the step's start: no attempt */
+        double cj = 1.0 / (res_t[q] - tprev);
+        attempts++;
+        if (cjj == 0 || cj / cjj < 0.6 || cj / cjj > 1 / 0.6) {
+            jac_pred++;
+            fact_pred++;
+            cjj = cjf = cj;
+        } else if (dgmax > 0 && fabs(cjf / cj - 1) > dgmax) {
+            fact_pred++;
+            cjf = cj;
+        }
+    }
+    const dae_stats *st = dae_get_stats(s);
+    long fact = st->factor_full + st->factor_refactor;
+    tap_ok(r >= 0 && t >= tend && st->newton_fails == 0 && st->newton_fails_stale == 0 &&
+               n_res <= cap_res && st->rejected_error > 0,
+           "refresh, newton_dgmax %g: t = %g reached without Newton failures (%ld steps, %ld "
+           "rejected, %ld attempts, %ld and %ld Newton failures)",
+           dgmax, tend, st->steps, st->rejected_error, attempts, st->newton_fails,
+           st->newton_fails_stale);
+    tap_ok(n_jac == jac_pred && st->jac_evals == jac_pred,
+           "refresh, newton_dgmax %g: %ld Jacobians (%ld counted), as predicted from the "
+           "attempts' cj: %ld",
+           dgmax, n_jac, st->jac_evals, jac_pred);
+    tap_ok(fact == fact_pred && (dgmax == 0 ? fact == jac_pred : fact > jac_pred + 5),
+           "refresh, newton_dgmax %g: %ld factorizations, as predicted: %ld (%ld of them of the "
+           "saved Jacobian, where gamma moved by more than newton_dgmax)",
+           dgmax, fact, fact_pred, fact - jac_pred);
+    tap_diag("refresh, newton_dgmax %g: y within %.3g tolerances of the closed form", dgmax,
+             maxerr);
+    dae_free(&s);
+    free(acc);
+    free(acc_res);
+    free(res_t);
+    sp_csc_free(&jy);
+    sp_csc_free(&jyp);
+    return maxerr;
+}
+
 int main(void)
 {
     /* nominal magnitudes = the matching atol vector, to the bit */
@@ -200,5 +321,10 @@ int main(void)
            "%ld such failures, %ld failures on a current matrix, %ld Jacobians, %ld steps",
            st->newton_fails_stale, st->newton_fails, st->jac_evals, st->steps);
     dae_free(&s);
+    double e0 = test_refresh(0), e3 = test_refresh(0.3);
+    tap_ok(e3 <= 1.5 * e0 && e0 <= 1.5 * e3,
+           "refresh: the same accuracy with and without the refactorizations (largest errors "
+           "%.3g and %.3g tolerances; BDF1's global error at rtol 1e-4)",
+           e3, e0);
     return tap_done();
 }
