@@ -6,6 +6,7 @@
  *         [--quick] [--out DIR] [--crane-horizon T] [--crane-realtime K] [--scaling LIST|none]
  *         [--crane-scene FILE] [--stability-filter TEXT] [--strict] [--crane-full]
  *         [--crane-full-scene FILE] [--crane-full-rtols LIST] [--error-estimate] [--help]
+ *         [--newton-dgmax G]
  *
  * Problems (default: all): ap102, pendulum2, robertson, vdp_scaled, hires, lin2, smooth_ode,
  * kinks, the IVP Test Set's crank, pump, transamp, chemakzo, nand, the undamped oscillatory
@@ -45,7 +46,8 @@
  * restarted at each breakpoint from consistent values; bench_crane.h; tools/run.sh asks for
  * it, minutes per run) and, with --error-estimate (and --quick), error_estimate.csv (the estimate
  * of crane --error-estimate against the true error on the problems and tolerances of the run,
- * bench_errest.h).
+ * bench_errest.h). --newton-dgmax G runs ours on the collection with options.newton_dgmax = G
+ * (the crane keeps its scene's setting), for comparing the Newton matrix refresh.
  * --problems none skips the work-precision runs (and, unless asked for, the crane's scaling and
  * real-time runs).
  *
@@ -772,6 +774,7 @@ static void usage_text(FILE *f)
                "             [--crane-realtime K] [--scaling LIST|none] [--crane-scene FILE]\n"
                "             [--stability-filter TEXT] [--strict] [--crane-full]\n"
                "             [--crane-full-scene FILE] [--crane-full-rtols LIST]\n"
+               "             [--newton-dgmax G]\n"
                "             [--error-estimate] [--help]\n"
                "  solvers:");
     for (int s = 0; s < bench_nsolvers; s++)
@@ -791,7 +794,8 @@ static void usage_text(FILE *f)
             "  series); --crane-full: paper-undamped.ini over 20 s, ours and IDA at\n"
             "  rtol 1e-4..1e-9 (--crane-full-rtols) against ours at 1e-10; --error-estimate:\n"
             "  crane --error-estimate's estimate against the true error (--quick: always, on\n"
-            "  its tolerances); see the header of bench/bench.c\n",
+            "  its tolerances); --newton-dgmax: options.newton_dgmax of ours on the collection\n"
+            "  (default 0; the crane runs as its scene says); see the header of bench/bench.c\n",
             MAXREP);
 }
 
@@ -849,6 +853,7 @@ int main(int argc, char **argv)
 {
     char *plist = NULL, *slist = NULL, *rlist = NULL, *sclist = NULL, *cflist = NULL;
     const char *out = "results/bench", *scene_file = NULL, *stab_filter = NULL;
+    double newton_dgmax = 0; /* --newton-dgmax: the collection's problems (the crane: its scene) */
     const char *full_scene = NULL;
     int K = 3, stab = 0, quick = 0, rt_K = -1, child = 0, have_K = 0, strict = 0;
     int crane_full = 0, errest = 0;
@@ -881,7 +886,7 @@ int main(int argc, char **argv)
                    !strcmp(arg, "--crane-horizon") || !strcmp(arg, "--crane-realtime") ||
                    !strcmp(arg, "--scaling") || !strcmp(arg, "--crane-scene") ||
                    !strcmp(arg, "--stability-filter") || !strcmp(arg, "--crane-full-scene") ||
-                   !strcmp(arg, "--crane-full-rtols")) {
+                   !strcmp(arg, "--crane-full-rtols") || !strcmp(arg, "--newton-dgmax")) {
             if (!has_val || !argv[a + 1][0] || !strncmp(argv[a + 1], "--", 2)) {
                 snprintf(m, sizeof m, "option %s needs a value", arg);
                 return usage(m);
@@ -927,6 +932,13 @@ int main(int argc, char **argv)
                              v);
                     return usage(m);
                 }
+            } else if (!strcmp(arg, "--newton-dgmax")) {
+                if (parse_num(v, 0, 0.999, &d) != 0) {
+                    snprintf(m, sizeof m, "--newton-dgmax takes a number in [0, 1), not '%s'",
+                             v);
+                    return usage(m);
+                }
+                newton_dgmax = d;
             } else if (parse_num(v, 1e-6, 1e4, &d) != 0) {
                 snprintf(m, sizeof m, "--crane-horizon takes a time in s in [1e-6, 1e4], not '%s'",
                          v);
@@ -1188,6 +1200,7 @@ int main(int argc, char **argv)
             }
         } else {
             r = bench_case_from_problem(bc, bp_find(pnames[q]));
+            if (r == 0) bc->newton_dgmax = newton_dgmax;
             if (r) snprintf(msg, sizeof msg, "out of memory");
         }
         if (r != 0) {

@@ -80,6 +80,7 @@ int main(int argc, char **argv)
         {"--solvers", "bgdae-klu,bgdae-klu", NULL},
         {"--crane-full-rtols", "0", NULL},
         {"--crane-full-scene", "/no/such/scene.ini", NULL},
+        {"--newton-dgmax", "1", NULL},
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         int r = run(bad[i]);
