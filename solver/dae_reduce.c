@@ -48,6 +48,7 @@ enum { W_YQ, W_FQ /* four */, W_F = W_FQ + 4, W_FD, W_D0, W_ZERO, W_Y, W_N };
 struct dae_reduce {
     dae_solver *in;  /* the problem as given */
     dae_res_fn ures; /* its residual */
+    dae_root_fn uroots; /* its event functions */
     void *uuser;
     int nc, *crow; /* the constraint rows, listed */
     int *isc;      /* row i is a constraint row */
@@ -270,6 +271,13 @@ static int red_cons(void *u, double t, const double *y, double *g, sp_csc *G)
     return 0;
 }
 
+/* The problem's event functions with its own user pointer (s->p.user is the solver). */
+static int red_roots(void *u, double t, const double *y, const double *yp, double *g)
+{
+    const dae_reduce *R = ((dae_solver *)u)->red;
+    return R->uroots(R->uuser, t, y, yp, g);
+}
+
 /* ---------------------------------------------------------------- structure ---- */
 
 /* The reduced problem from the inner solver's patterns and kinds, then the structure. */
@@ -361,7 +369,8 @@ static int red_build(dae_solver *s, bg_error *err)
     /* the solver takes the reduced problem */
     s->p.res = red_res;
     s->p.jac = red_jac;
-    s->p.user = s;
+    s->p.user = s; /* every callback of s->p takes the solver: */
+    if (R->uroots) s->p.roots = red_roots;
     s->p.kind = R->kind;
     s->p.jac_y_pattern = R->Jy;
     s->p.jac_yp_pattern = R->Jyp;
@@ -418,6 +427,7 @@ int daei_red_create(dae_solver *s, const dae_problem *p, const dae_options *o, b
     oi.projection = 0;
     if (!(R->in = dae_create(p, &oi, err))) return err ? err->status : BG_ERR_ARGUMENT;
     R->ures = p->res;
+    R->uroots = p->roots;
     R->uuser = p->user;
     if (!R->in->structured) {
         s->detect = 1; /* patterns found from the residual by the inner solver at dae_init */

@@ -14,6 +14,8 @@
  *     the drift before projection below the tolerance scale;
  *   - a step that lands on a breakpoint of a problem with position constraints restarts there
  *     (the projection's status once replaced the landing's, and the next step had h = 0);
+ *   - an event function of the problem gets the problem's user pointer and its root (y2 = 0
+ *     at pi/2) is found;
  *   - the policy's argument checks: no position constraints of the problem's own, and a
  *     problem without index-2 constraints is refused with a message. */
 #include <math.h>
@@ -195,6 +197,49 @@ static void test_pendulum(void)
            sc, rc);
 }
 
+/* y2 = -cos t changes sign at pi/2; the user pointer must be the problem's (eta). */
+static int bcp_root(void *u, double t, const double *y, const double *yp, double *g)
+{
+    (void)t, (void)yp;
+    if (*(const double *)u != -0.3) return -1;
+    g[0] = y[1];
+    return 0;
+}
+
+static void test_events(void)
+{
+    double eta = -0.3;
+    static const int kind[2] = {DAE_DIFF, DAE_ALG2};
+    const double full[4] = {1, 1, 1, 1}, rowtwo[4] = {0, 1, 0, 1};
+    sp_csc *jy = sp_csc_from_dense(2, 2, full, 0.0), *jyp = sp_csc_from_dense(2, 2, rowtwo, 0.0);
+    dae_problem p = {0};
+    p.n = 2;
+    p.res = bcp_res;
+    p.user = &eta;
+    p.kind = kind;
+    p.jac_y_pattern = jy;
+    p.jac_yp_pattern = jyp;
+    p.nroots = 1;
+    p.roots = bcp_root;
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = 1e-8;
+    o.atol = 1e-10;
+    o.index2 = DAE_I2_REDUCE;
+    bg_error err = {0};
+    dae_solver *s = dae_create(&p, &o, &err);
+    double y[2] = {0, -1}, yp[2] = {1 + eta, 0}, t = 0;
+    int r = s ? dae_init(s, 0, y, yp) : err.status;
+    if (r == 0) r = dae_solve_to(s, 3.0, &t, y, yp);
+    tap_ok(r == DAE_ROOT_RETURN && fabs(t - (2 * atan(1.0))) < 1e-6,
+           "BCP reduced with an event function (its own user pointer): y2 = 0 found at t = %.10g "
+           "(pi/2 = %.10g; status %d%s%s)",
+           t, (2 * atan(1.0)), r, r < 0 ? ": " : "", r < 0 && s ? dae_get_error(s)->message : "");
+    dae_free(&s);
+    sp_csc_free(&jy);
+    sp_csc_free(&jyp);
+}
+
 static int lin_res(void *u, double t, const double *y, const double *yp, double *F)
 {
     (void)u, (void)t;
@@ -238,6 +283,7 @@ int main(void)
 {
     test_bcp();
     test_pendulum();
+    test_events();
     test_arguments();
     return tap_done();
 }
