@@ -39,7 +39,16 @@
  *    tolerance and twice the step would fall in the band.
  * BDF2 then damps the mode (by e^-1 in 15 steps at h omega = 1, in 4 at 2), the mode leaves the
  * error estimate, and the step grows to what the remaining components need; the order rises
- * again, by the usual selection, where h omega allows it. This is numerical dissipation of the
+ * again, by the usual selection, where h omega allows it.
+ *   Order 2 is also the floor while lowering holds a known oscillation: after a step at order 2
+ * or more the next one is not taken at order 1. The usual selection drops to order 1 there
+ * because BDF1's heavier damping makes the oscillation smaller in its error estimate, not
+ * because order 1 is more accurate; it is first-order accurate, its steps must then be far
+ * smaller, and its error accumulates in the slow motion. Dissipating the unresolved modes is
+ * BDF2's task, and a dissipative method is to keep second-order accuracy (the design rule of
+ * the dissipative schemes of structural dynamics: Hilber, Hughes and Taylor, Earthquake Eng.
+ * Struct. Dyn. 5 (1977) 283-292; Chung and Hulbert, J. Appl. Mech. 60 (1993) 371-375). Order 1
+ * stays available after error-test failures and at restarts. This is numerical dissipation of the
  * unresolved high frequencies, as structural dynamics practises it on purpose (HHT-alpha,
  * generalized-alpha): the fast mode's amplitude is not resolved beyond that point.
  *
@@ -216,6 +225,10 @@ void daei_stab_decide(dae_solver *s)
         return;
     double hw = fabs(s->hh) * s->stab_w;
     int k = s->kk;
+    if (k < 2 && s->kused >= 2) { /* order 2 is the floor (see the header) */
+        s->kk = 2;
+        return;
+    }
     if ((unstable(k, hw) && s->err_next < STAB_ERR_HELD) ||
         (k > 2 && s->err_next < STAB_ERR_FREE && unstable(k, 2 * hw))) {
         s->kk = 2;

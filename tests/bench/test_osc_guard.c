@@ -4,8 +4,9 @@
  * path), so each figure is the median over rtol x {1, 1.01, 1.02, 1.03, 1.05}:
  *   - rotating_beam (free axial modes, excited by the spin-up, that hold BDF orders 3..5 at their
  *     stability limit): with the guard, steps within a factor 2 of what max order 2 takes (BDF2
- *     damps every fast mode: the yardstick of what dissipation can gain) at rtol 1e-6 .. 1e-8
- *     (at 1e-5 the guard takes about 3 times order 2's steps: printed, not asserted);
+ *     damps every fast mode: the yardstick of what dissipation can gain) at rtol 1e-4 .. 1e-8
+ *     (before order 2 was the guard's floor, it took 3 times order 2's steps at 1e-5, half of
+ *     them at order 1);
  *   - osc_chain (fast modes that carry 1 to 2 % of the answer and must be resolved: lowering does
  *     not pay): with the guard, steps within a factor 2 of the usual order selection, where max
  *     order 2 takes 5 to 25 times as many (the guard measures which policy covers time faster
@@ -66,12 +67,6 @@ int main(void)
     for (int i = 0; i < 5; i++) {
         long g = median_steps(beam, rt[i], 1, 0), o2 = median_steps(beam, rt[i], -1, 2),
              usual = median_steps(beam, rt[i], -1, 0);
-        if (rt[i] > 2e-6) {
-            tap_diag("rotating_beam, rtol %g: median steps with the guard %ld, max order 2 %ld, "
-                     "usual orders %ld (not asserted)",
-                     rt[i], g, o2, usual);
-            continue;
-        }
         tap_ok(g > 0 && o2 > 0 && g <= 2 * o2,
                "rotating_beam, rtol %g: median steps with the guard %ld, max order 2 %ld (usual "
                "orders %ld)",
