@@ -7,7 +7,7 @@
  * BDF of every order is convergent (Brenan, Campbell and Petzold, Numerical Solution of
  * Initial-Value Problems in DAEs, SIAM 1996, Theorem 3.1.1), whatever the structure of the
  * original index-2 system: BDF applied to the index-2 form is convergent for Hessenberg systems
- * (Theorem 3.2.1 there) but not in general (their example 3.2.2, y1 + eta t y2 = g,
+ * (Theorem 3.2.1 there) but not in general (their example in Section 3.2, y1 + eta t y2 = g,
  * y1' + eta t y2' + (1 + eta) y2 = 0, is unstable for every step at eta < -1/2 with BDF1 and at
  * eta < -1/4 with BDF2). The drift of g away from zero that the reduction allows is removed by a
  * projection of each accepted step (and of interpolated output) onto g = 0, the minimum-norm
@@ -19,10 +19,11 @@
  *   D_i = (8 (F_i(+d) - F_i(-d)) - (F_i(+2d) - F_i(-2d))) / (12 d),
  * or the one-sided formula of the same order, (25 F_i(0) - 48 F_i(-d) + 36 F_i(-2d)
  * - 16 F_i(-3d) + 3 F_i(-4d)) / (12 d) and its mirror image, where the central one would reach
- * across a breakpoint (the inputs jump there); four extra residual evaluations per call, with d = 1e-3 tau and tau the shortest time scale
- * m_j / |y'_j| of the unknowns the constraint rows contain, m_j the largest |y_j| of the
- * accepted steps so far (a component passing through zero keeps its scale): truncation
- * (d / tau)^4 / 30 ~ 3e-14 and round-off ~ 1e3 eps relative, independent of the step.
+ * across a breakpoint (the inputs jump there); four extra residual evaluations per call. d is
+ * 1e-3 tau, tau the shortest time scale m_j / |y'_j| of the unknowns the constraint rows
+ * contain, m_j the largest |y_j| of the accepted steps so far (a component passing through zero
+ * keeps its scale): truncation (d / tau)^4 / 30 ~ 3e-14 and round-off ~ 1e3 eps relative,
+ * independent of the step.
  *
  * The problem as given stays with an inner solver (the same problem and options, index-2 policy
  * DAE_I2_EXCLUDE, never stepped): its patterns (given or found from the residual), kinds, the
@@ -46,12 +47,12 @@
 enum { W_YQ, W_FQ /* four */, W_F = W_FQ + 4, W_FD, W_D0, W_ZERO, W_Y, W_N };
 
 struct dae_reduce {
-    dae_solver *in;  /* the problem as given */
-    dae_res_fn ures; /* its residual */
+    dae_solver *in;     /* the problem as given */
+    dae_res_fn ures;    /* its residual */
     dae_root_fn uroots; /* its event functions */
     void *uuser;
-    int nc, *crow; /* the constraint rows, listed */
-    int *isc;      /* row i is a constraint row */
+    int nc, *crow;         /* the constraint rows, listed */
+    int *isc;              /* row i is a constraint row */
     sp_csc *Jy, *Jyp, *Gp; /* reduced patterns; nc x n pattern of dg/dy */
     int *kind;             /* kinds of the reduced system */
     int *jyp_slot;         /* entry p of in->Jyp -> its entry in the reduced Jyp */
@@ -61,10 +62,10 @@ struct dae_reduce {
     sp_csc *DG;            /* and their values */
     double ft;             /* the point of those differences */
     const double *fyp;
-    double *w;             /* W_N vectors of n (W_*) */
-    double *ymax;          /* largest |y_j| of the accepted steps (and the start) */
+    double *w;    /* W_N vectors of n (W_*) */
+    double *ymax; /* largest |y_j| of the accepted steps (and the start) */
     int ymax_set;
-    int jac_done;          /* in->Jy holds values */
+    int jac_done; /* in->Jy holds values */
 };
 
 static void free_build(dae_reduce *R)
@@ -290,7 +291,8 @@ static int red_build(dae_solver *s, bg_error *err)
     const sp_csc *A = in->Jy, *B = in->Jyp;
     free_build(R);
     sp_builder *bp = NULL, *bg = NULL;
-    int *rowmask = calloc((size_t)n, sizeof *rowmask), *colmask = calloc((size_t)n, sizeof *colmask);
+    int *rowmask = calloc((size_t)n, sizeof *rowmask),
+        *colmask = calloc((size_t)n, sizeof *colmask);
     int *rv = malloc((size_t)n * sizeof *rv);
     R->isc = calloc((size_t)n, sizeof *R->isc);
     R->crow = malloc((size_t)n * sizeof *R->crow);

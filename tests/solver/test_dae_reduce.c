@@ -182,8 +182,7 @@ static void test_pendulum(void)
         int rc, rc0;
         double sr = pendulum(DAE_I2_REDUCE, rtols[k], 0, &red, &drift, &rc);
         double s0 = pendulum(DAE_I2_EXCLUDE, rtols[k], 0, &red0, &drift0, &rc0);
-        tap_ok(rc == 0 && rc0 == 0 && sr >= s0 - 1 && red == 1 &&
-                   drift < 100 * rtols[k],
+        tap_ok(rc == 0 && rc0 == 0 && sr >= s0 - 1 && red == 1 && drift < 100 * rtols[k],
                "pendulum rtol %g reduced: scd %.2f (direct index 2: %.2f), %ld row reduced, drift "
                "before projection %.2g",
                rtols[k], sr, s0, red, drift);
@@ -192,8 +191,9 @@ static void test_pendulum(void)
     double drift;
     int rc;
     double sc = pendulum(DAE_I2_EXCLUDE, 1e-6, 0.5 * bp_find("pendulum2")->tend, &red, &drift, &rc);
-    tap_ok(rc == 0 && sc > 3, "pendulum with its constraint projected and a breakpoint halfway: "
-                              "reaches tend (scd %.2f, status %d)",
+    tap_ok(rc == 0 && sc > 3,
+           "pendulum with its constraint projected and a breakpoint halfway: "
+           "reaches tend (scd %.2f, status %d)",
            sc, rc);
 }
 
@@ -271,8 +271,7 @@ static void test_arguments(void)
     bg_error e2 = {0};
     s = dae_create(&in.dp, &o, &e2);
     tap_ok(!s && e2.status == BG_ERR_ARGUMENT && strstr(e2.message, "ncons"),
-           "the reduction with the problem's own position constraints is refused: %s",
-           e2.message);
+           "the reduction with the problem's own position constraints is refused: %s", e2.message);
     dae_free(&s);
     bp_instance_free(&in);
     sp_csc_free(&jy);
