@@ -272,8 +272,7 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
             dae_options_default(&o);
             o.rtol = o.atol = 1e-6;
             o.exclude_alg = 1;
-            o.stability_guard = s.stability_guard; /* as crane/crane.c */
-            o.newton_dgmax = s.newton_dgmax;
+            crane_scene_solver_options(&s, &o);
             o.has_t_stop = 1;
             o.t_stop = t_max;
             o.max_steps = 10000000;

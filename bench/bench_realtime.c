@@ -74,8 +74,7 @@ static int rt_measure(const crane_scene *s0, rt_run *o)
     opt.rtol = s.rtol;
     opt.atol = s.atol;
     opt.exclude_alg = 1;
-    opt.stability_guard = s.stability_guard; /* as crane/crane.c */
-    opt.newton_dgmax = s.newton_dgmax;
+    crane_scene_solver_options(&s, &opt);
     opt.has_t_stop = 1;
     opt.t_stop = s.t_end;
     opt.breakpoints = bc.breakpoints;

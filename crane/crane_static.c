@@ -460,8 +460,7 @@ int crane_modes(crane *c, double T, dae_modes **out, double *yout, bg_error *err
         if (o.nbreakpoints > 64) o.nbreakpoints = 64;
         o.breakpoints = bk;
         o.exclude_alg = 1;
-        o.stability_guard = s->stability_guard;
-        o.newton_dgmax = s->newton_dgmax;
+        crane_scene_solver_options(s, &o);
         o.max_steps = 100000000;
         dae_solver *sol = dae_create(&p, &o, err);
         double tr;

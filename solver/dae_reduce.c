@@ -52,7 +52,7 @@ struct dae_reduce {
     dae_root_fn uroots; /* its event functions */
     void *uuser;
     int nc, *crow;         /* the constraint rows, listed */
-    int *isc;              /* row i is a constraint row */
+    int *crow_of;          /* row i -> its number among the constraint rows, -1 */
     sp_csc *Jy, *Jyp, *Gp; /* reduced patterns; nc x n pattern of dg/dy */
     int *kind;             /* kinds of the reduced system */
     int *jyp_slot;         /* entry p of in->Jyp -> its entry in the reduced Jyp */
@@ -71,7 +71,7 @@ struct dae_reduce {
 static void free_build(dae_reduce *R)
 {
     free(R->crow);
-    free(R->isc);
+    free(R->crow_of);
     sp_csc_free(&R->Jy);
     sp_csc_free(&R->Jyp);
     sp_csc_free(&R->Gp);
@@ -81,7 +81,7 @@ static void free_build(dae_reduce *R)
     free(R->g_slot);
     sp_fdjac_free(&R->fdg);
     sp_csc_free(&R->DG);
-    R->crow = R->isc = R->kind = R->jyp_slot = R->jy_slot = R->g_slot = NULL;
+    R->crow = R->crow_of = R->kind = R->jyp_slot = R->jy_slot = R->g_slot = NULL;
     R->nc = 0;
 }
 
@@ -244,7 +244,7 @@ static int red_cons(void *u, double t, const double *y, double *g, sp_csc *G)
     if (r != 0) return r;
     for (int k = 0; k < R->nc; k++)
         g[k] = F[R->crow[k]];
-    if (!G && isfinite(t) && t == s->tn && y == s->phi[0]) /* an accepted step (drift) */
+    if (!G) /* the drift of an accepted step (daei_project_step): its scales */
         for (int j = 0; j < n; j++)
             R->ymax[j] = fmax(R->ymax[j], fabs(y[j]));
     if (G) {
@@ -281,77 +281,85 @@ static int red_roots(void *u, double t, const double *y, const double *yp, doubl
 
 /* ---------------------------------------------------------------- structure ---- */
 
-/* The reduced problem from the inner solver's patterns and kinds, then the structure. */
-static int red_build(dae_solver *s, bg_error *err)
+static int nomem(bg_error *err, int n)
 {
-    const char *w = "dae_create";
-    dae_reduce *R = s->red;
-    dae_solver *in = R->in;
-    int n = s->n, r;
-    const sp_csc *A = in->Jy, *B = in->Jyp;
-    free_build(R);
-    sp_builder *bp = NULL, *bg = NULL;
-    int *rowmask = calloc((size_t)n, sizeof *rowmask),
-        *colmask = calloc((size_t)n, sizeof *colmask);
-    int *rv = malloc((size_t)n * sizeof *rv);
-    R->isc = calloc((size_t)n, sizeof *R->isc);
+    return bg_error_raise(err, BG_ERR_MEMORY, "dae_create", "out of memory (n = %d)", n);
+}
+
+/* The constraint rows: the algebraic rows (no y') that a maximum matching to the index-1
+ * algebraic unknowns leaves unmatched. */
+static int find_constraints(dae_reduce *R, int n, bg_error *err)
+{
+    const dae_solver *in = R->in;
+    int *rowmask = malloc((size_t)n * sizeof *rowmask),
+        *colmask = malloc((size_t)n * sizeof *colmask), *rv = malloc((size_t)n * sizeof *rv);
+    R->crow_of = malloc((size_t)n * sizeof *R->crow_of);
     R->crow = malloc((size_t)n * sizeof *R->crow);
+    int r = BG_OK;
+    if (!rowmask || !colmask || !rv || !R->crow_of || !R->crow) {
+        r = nomem(err, n);
+        goto done;
+    }
+    for (int i = 0; i < n; i++)
+        rowmask[i] = 1;
+    for (int p = 0; p < in->Jyp->nnz; p++)
+        rowmask[in->Jyp->rowind[p]] = 0;
+    for (int j = 0; j < n; j++)
+        colmask[j] = in->kind[j] == DAE_ALG;
+    if (daei_match(in->Jy, rowmask, colmask, rv) < 0) {
+        r = nomem(err, n);
+        goto done;
+    }
+    for (int i = 0; i < n; i++) {
+        R->crow_of[i] = rowmask[i] && rv[i] < 0 ? R->nc : -1;
+        if (R->crow_of[i] >= 0) R->crow[R->nc++] = i;
+    }
+    if (R->nc == 0)
+        r = bg_error_raise(err, BG_ERR_ARGUMENT, "dae_create",
+                           "index2 = DAE_I2_REDUCE: no constraint to differentiate (every "
+                           "algebraic equation determines an index-1 algebraic unknown: the "
+                           "system is of index 1 or less)");
+done:
+    free(rowmask);
+    free(colmask);
+    free(rv);
+    return r;
+}
+
+/* The reduced patterns (dF/dy' with the constraint rows of dF/dy added; dF/dy as it is), the
+ * pattern of dg/dy, the maps of the inner solver's entries into them, the reduced kinds. */
+static int build_patterns(dae_reduce *R, int n, bg_error *err)
+{
+    const sp_csc *A = R->in->Jy, *B = R->in->Jyp;
+    sp_builder *bp = sp_builder_create(n, n, B->nnz + A->nnz),
+               *bg = sp_builder_create(R->nc, n, A->nnz);
+    int *sb = malloc(((size_t)B->nnz + A->nnz + 1) * sizeof *sb),
+        *sg = malloc(((size_t)A->nnz + 1) * sizeof *sg);
     R->kind = malloc((size_t)n * sizeof *R->kind);
     R->jyp_slot = malloc(((size_t)B->nnz + 1) * sizeof *R->jyp_slot);
     R->jy_slot = malloc(((size_t)A->nnz + 1) * sizeof *R->jy_slot);
     R->g_slot = malloc(((size_t)A->nnz + 1) * sizeof *R->g_slot);
-    if (!rowmask || !colmask || !rv || !R->isc || !R->crow || !R->kind || !R->jyp_slot ||
-        !R->jy_slot || !R->g_slot)
-        goto nomem;
-    /* algebraic rows (no y') against the index-1 algebraic unknowns */
-    for (int i = 0; i < n; i++)
-        rowmask[i] = 1;
-    for (int p = 0; p < B->nnz; p++)
-        rowmask[B->rowind[p]] = 0;
-    for (int j = 0; j < n; j++)
-        colmask[j] = in->kind[j] == DAE_ALG;
-    if ((r = daei_match(A, rowmask, colmask, rv)) < 0) goto nomem;
-    for (int i = 0; i < n; i++)
-        if (rowmask[i] && rv[i] < 0) {
-            R->isc[i] = 1;
-            R->crow[R->nc++] = i;
-        }
-    if (R->nc == 0) {
-        free(rowmask);
-        free(colmask);
-        free(rv);
-        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                              "index2 = DAE_I2_REDUCE: no constraint to differentiate (every "
-                              "algebraic equation determines an index-1 algebraic unknown: the "
-                              "system is of index 1 or less)");
-    }
-    /* reduced dF/dy': dF/dy' and the constraint rows of dF/dy; G: the constraint rows */
-    bp = sp_builder_create(n, n, B->nnz + A->nnz);
-    bg = sp_builder_create(R->nc, n, A->nnz);
-    int *krow = rv; /* row i -> its number among the constraint rows */
-    for (int i = 0, k = 0; i < n; i++)
-        krow[i] = R->isc[i] ? k++ : -1;
-    if (!bp || !bg) goto nomem;
-    int *sb = malloc(((size_t)B->nnz + A->nnz + 1) * sizeof *sb);
-    int *sg = malloc(((size_t)A->nnz + 1) * sizeof *sg);
-    if (!sb || !sg) goto nomem_sb;
+    int r = BG_ERR_MEMORY;
+    if (!bp || !bg || !sb || !sg || !R->kind || !R->jyp_slot || !R->jy_slot || !R->g_slot)
+        goto done;
     /* entry numbers of the builders first, their slots after finishing */
     for (int j = 0; j < n; j++) {
         for (int p = B->colptr[j]; p < B->colptr[j + 1]; p++)
-            if ((R->jyp_slot[p] = sp_builder_add(bp, B->rowind[p], j, 0.0)) < 0) goto nomem_sb;
+            if ((R->jyp_slot[p] = sp_builder_add(bp, B->rowind[p], j, 0.0)) < 0) goto done;
         for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
-            int i = A->rowind[p];
+            int k = R->crow_of[A->rowind[p]];
             R->jy_slot[p] = R->g_slot[p] = -1;
-            if (!R->isc[i]) continue;
-            if ((R->jy_slot[p] = sp_builder_add(bp, i, j, 0.0)) < 0) goto nomem_sb;
-            if ((R->g_slot[p] = sp_builder_add(bg, krow[i], j, 0.0)) < 0) goto nomem_sb;
+            if (k < 0) continue;
+            if ((R->jy_slot[p] = sp_builder_add(bp, A->rowind[p], j, 0.0)) < 0 ||
+                (R->g_slot[p] = sp_builder_add(bg, k, j, 0.0)) < 0)
+                goto done;
         }
     }
     R->Jyp = sp_builder_finish(bp, sb);
     R->Gp = sp_builder_finish(bg, sg);
     if (!R->Jyp || !R->Gp || !(R->Jy = sp_csc_copy(A)) || !(R->DG = sp_csc_copy(R->Gp)) ||
         !(R->fdg = sp_fdjac_create(R->Gp)))
-        goto nomem_sb;
+        goto done;
     for (int p = 0; p < B->nnz; p++)
         R->jyp_slot[p] = sb[R->jyp_slot[p]];
     for (int p = 0; p < A->nnz; p++)
@@ -359,16 +367,23 @@ static int red_build(dae_solver *s, bg_error *err)
             R->jy_slot[p] = sb[R->jy_slot[p]];
             R->g_slot[p] = sg[R->g_slot[p]];
         }
-    free(sb);
-    free(sg);
-    sp_builder_free(&bp);
-    sp_builder_free(&bg);
     for (int j = 0; j < n; j++)
         R->kind[j] = R->Jyp->colptr[j + 1] > R->Jyp->colptr[j] ? DAE_DIFF : DAE_ALG;
-    free(rowmask);
-    free(colmask);
-    free(rv);
-    /* the solver takes the reduced problem */
+    r = BG_OK;
+done:
+    sp_builder_free(&bp);
+    sp_builder_free(&bg);
+    free(sb);
+    free(sg);
+    return r == BG_OK ? r : nomem(err, n);
+}
+
+/* The solver takes the reduced problem: callbacks, patterns, kinds, the constraints to project
+ * onto, then the structure. */
+static int take_reduced(dae_solver *s, bg_error *err)
+{
+    dae_reduce *R = s->red;
+    int n = s->n, r;
     s->p.res = red_res;
     s->p.jac = red_jac;
     s->p.user = s; /* every callback of s->p takes the solver: */
@@ -392,7 +407,7 @@ static int red_build(dae_solver *s, bg_error *err)
     s->gw = malloc((size_t)R->nc * sizeof *s->gw);
     if (!s->gv || !s->gw || !(s->Jy = sp_csc_copy(R->Jy)) || !(s->Jyp = sp_csc_copy(R->Jyp)) ||
         !(s->G = sp_csc_copy(R->Gp)))
-        return bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory (n = %d)", n);
+        return nomem(err, n);
     if (!(s->aat_proj = aat_create(s->G, err))) return err ? err->status : BG_ERR_LIBRARY;
     if ((r = daei_setup_structure(s, err)) != BG_OK) return r;
     /* index 1 or less: the reduced Newton matrix is structurally nonsingular */
@@ -400,22 +415,22 @@ static int red_build(dae_solver *s, bg_error *err)
     for (int i = 0; i < n; i++)
         matched += s->rowvar[i] >= 0;
     if (matched < n)
-        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "dae_create",
                               "index2 = DAE_I2_REDUCE: after differentiating the %d constraint "
                               "row(s), %d equation(s) still match no unknown: the system is not "
                               "of index 2 in the form the reduction handles",
                               R->nc, n - matched);
     return BG_OK;
-nomem_sb:
-    free(sb);
-    free(sg);
-nomem:
-    sp_builder_free(&bp);
-    sp_builder_free(&bg);
-    free(rowmask);
-    free(colmask);
-    free(rv);
-    return bg_error_raise(err, BG_ERR_MEMORY, w, "out of memory (n = %d)", n);
+}
+
+/* The reduced problem from the inner solver's patterns and kinds, then the structure. */
+static int red_build(dae_solver *s, bg_error *err)
+{
+    int r;
+    free_build(s->red);
+    if ((r = find_constraints(s->red, s->n, err)) != BG_OK) return r;
+    if ((r = build_patterns(s->red, s->n, err)) != BG_OK) return r;
+    return take_reduced(s, err);
 }
 
 int daei_red_create(dae_solver *s, const dae_problem *p, const dae_options *o, bg_error *err)

@@ -236,8 +236,7 @@ int cp_simulate(cp_run *r)
     dopt.breakpoints = bk;
     dopt.nbreakpoints = nbk;
     dopt.exclude_alg = 1;
-    dopt.stability_guard = r->scene.stability_guard;
-    dopt.newton_dgmax = r->scene.newton_dgmax;
+    crane_scene_solver_options(&r->scene, &dopt);
     bg_error_clear(&err);
     r->s = dae_create(&p, &dopt, &err);
     if (!r->s) {

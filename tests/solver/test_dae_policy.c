@@ -147,17 +147,20 @@ static int res_stiffen(void *user, double t, const double *y, const double *yp, 
     return 0;
 }
 
-static long n_jac;
-static double *res_t; /* the times of the residual evaluations */
-static long n_res, cap_res;
+/* What the callbacks of test_refresh record (their user data). */
+typedef struct calls {
+    long n_jac;
+    double *res_t; /* the times of the residual evaluations */
+    long n_res, cap_res;
+} calls;
 
 #define W_FORCE 5.0
 
 static int res_forced(void *user, double t, const double *y, const double *yp, double *F)
 {
-    (void)user;
-    if (n_res < cap_res) res_t[n_res] = t;
-    n_res++;
+    calls *c = user;
+    if (c->n_res < c->cap_res) c->res_t[c->n_res] = t;
+    c->n_res++;
     F[0] = yp[0] + y[0] - sin(W_FORCE * t);
     return 0;
 }
@@ -165,8 +168,8 @@ static int res_forced(void *user, double t, const double *y, const double *yp, d
 static int jac_forced(void *user, double t, const double *y, const double *yp, sp_csc *Jy,
                       sp_csc *Jyp)
 {
-    (void)user, (void)t, (void)y, (void)yp;
-    n_jac++;
+    (void)t, (void)y, (void)yp;
+    ((calls *)user)->n_jac++;
     Jy->val[0] = 1;
     Jyp->val[0] = 1;
     return 0;
@@ -186,6 +189,9 @@ static double test_refresh(double dgmax)
     p.jac = jac_forced;
     p.jac_y_pattern = jy;
     p.jac_yp_pattern = jyp;
+    calls c = {0, NULL, 0, 8 * MAXSTEP};
+    c.res_t = malloc((size_t)c.cap_res * sizeof *c.res_t);
+    p.user = &c;
     dae_options o;
     dae_options_default(&o);
     o.rtol = 1e-4;
@@ -198,13 +204,10 @@ static double test_refresh(double dgmax)
     double t = 0, y = 0, maxerr = 0;
     double *acc = malloc(MAXSTEP * sizeof *acc);
     long *acc_res = malloc(MAXSTEP * sizeof *acc_res); /* residual evaluations before step i */
-    cap_res = 8 * MAXSTEP;
-    res_t = malloc((size_t)cap_res * sizeof *res_t);
-    n_jac = n_res = 0;
     long nacc = 0;
     int r = dae_init(s, 0, &y0, &yp0);
     while (r >= 0 && t < tend && nacc < MAXSTEP) {
-        acc_res[nacc] = n_res;
+        acc_res[nacc] = c.n_res;
         double t0 = t;
         r = dae_step(s, tend, &t, &y, NULL);
         acc[nacc++] = t0; /* the step's start */
@@ -214,12 +217,12 @@ static double test_refresh(double dgmax)
     /* the prediction over the attempts */
     long jac_pred = 0, fact_pred = 0, attempts = 0, ia = 0;
     double cjj = 0, cjf = 0, tprev = 0;
-    for (long q = 0; q < n_res && q < cap_res; q++) {
+    for (long q = 0; q < c.n_res && q < c.cap_res; q++) {
         while (ia < nacc && acc_res[ia] <= q) /* the step this evaluation belongs to */
             tprev = acc[ia++];
-        if (q > 0 && res_t[q] == res_t[q - 1]) continue; /* the same attempt */
-        if (res_t[q] == tprev) continue; /* at the step's start: no attempt */
-        double cj = 1.0 / (res_t[q] - tprev);
+        if (q > 0 && c.res_t[q] == c.res_t[q - 1]) continue; /* the same attempt */
+        if (c.res_t[q] == tprev) continue; /* at the step's start: no attempt */
+        double cj = 1.0 / (c.res_t[q] - tprev);
         attempts++;
         if (cjj == 0 || cj / cjj < 0.6 || cj / cjj > 1 / 0.6) {
             jac_pred++;
@@ -233,15 +236,15 @@ static double test_refresh(double dgmax)
     const dae_stats *st = dae_get_stats(s);
     long fact = st->factor_full + st->factor_refactor;
     tap_ok(r >= 0 && t >= tend && st->newton_fails == 0 && st->newton_fails_stale == 0 &&
-               n_res <= cap_res && st->rejected_error > 0,
+               c.n_res <= c.cap_res && st->rejected_error > 0,
            "refresh, newton_dgmax %g: t = %g reached without Newton failures (%ld steps, %ld "
            "rejected, %ld attempts, %ld and %ld Newton failures)",
            dgmax, tend, st->steps, st->rejected_error, attempts, st->newton_fails,
            st->newton_fails_stale);
-    tap_ok(n_jac == jac_pred && st->jac_evals == jac_pred,
+    tap_ok(c.n_jac == jac_pred && st->jac_evals == jac_pred,
            "refresh, newton_dgmax %g: %ld Jacobians (%ld counted), as predicted from the "
            "attempts' cj: %ld",
-           dgmax, n_jac, st->jac_evals, jac_pred);
+           dgmax, c.n_jac, st->jac_evals, jac_pred);
     tap_ok(fact == fact_pred && (dgmax == 0 ? fact == jac_pred : fact > jac_pred + 5),
            "refresh, newton_dgmax %g: %ld factorizations, as predicted: %ld (%ld of them of the "
            "saved Jacobian, where gamma moved by more than newton_dgmax)",
@@ -251,7 +254,7 @@ static double test_refresh(double dgmax)
     dae_free(&s);
     free(acc);
     free(acc_res);
-    free(res_t);
+    free(c.res_t);
     sp_csc_free(&jy);
     sp_csc_free(&jyp);
     return maxerr;

@@ -53,6 +53,24 @@ static int bcp_jac(void *u, double t, const double *y, const double *yp, sp_csc 
 
 enum { GIVEN, ANALYTIC, RESIDUAL_ONLY };
 
+/* The problem with its kinds and patterns (dF/dy full, dF/dy' the second row), *eta its user
+ * data; the patterns are the caller's to free. */
+static dae_problem bcp_problem(double *eta, sp_csc **jy, sp_csc **jyp)
+{
+    static const int kind[2] = {DAE_DIFF, DAE_ALG2};
+    const double full[4] = {1, 1, 1, 1}, rowtwo[4] = {0, 1, 0, 1};
+    *jy = sp_csc_from_dense(2, 2, full, 0.0);
+    *jyp = sp_csc_from_dense(2, 2, rowtwo, 0.0);
+    dae_problem p = {0};
+    p.n = 2;
+    p.res = bcp_res;
+    p.user = eta;
+    p.kind = kind;
+    p.jac_y_pattern = *jy;
+    p.jac_yp_pattern = *jyp;
+    return p;
+}
+
 typedef struct outcome {
     int rc;
     double e1, e2, tol1, tol2; /* errors at t = 3 and the tolerances there */
@@ -63,17 +81,11 @@ typedef struct outcome {
 static outcome bcp_run(double eta, double rtol, int info, int policy)
 {
     outcome out = {0};
-    static const int kind[2] = {DAE_DIFF, DAE_ALG2};
-    const double full[4] = {1, 1, 1, 1}, rowtwo[4] = {0, 1, 0, 1};
-    sp_csc *jy = sp_csc_from_dense(2, 2, full, 0.0), *jyp = sp_csc_from_dense(2, 2, rowtwo, 0.0);
-    dae_problem p = {0};
-    p.n = 2;
-    p.res = bcp_res;
-    p.user = &eta;
-    if (info != RESIDUAL_ONLY) {
-        p.kind = kind;
-        p.jac_y_pattern = jy;
-        p.jac_yp_pattern = jyp;
+    sp_csc *jy, *jyp;
+    dae_problem p = bcp_problem(&eta, &jy, &jyp);
+    if (info == RESIDUAL_ONLY) {
+        p.kind = NULL;
+        p.jac_y_pattern = p.jac_yp_pattern = NULL;
     }
     if (info == ANALYTIC) p.jac = bcp_jac;
     dae_options o;
@@ -209,16 +221,8 @@ static int bcp_root(void *u, double t, const double *y, const double *yp, double
 static void test_events(void)
 {
     double eta = -0.3;
-    static const int kind[2] = {DAE_DIFF, DAE_ALG2};
-    const double full[4] = {1, 1, 1, 1}, rowtwo[4] = {0, 1, 0, 1};
-    sp_csc *jy = sp_csc_from_dense(2, 2, full, 0.0), *jyp = sp_csc_from_dense(2, 2, rowtwo, 0.0);
-    dae_problem p = {0};
-    p.n = 2;
-    p.res = bcp_res;
-    p.user = &eta;
-    p.kind = kind;
-    p.jac_y_pattern = jy;
-    p.jac_yp_pattern = jyp;
+    sp_csc *jy, *jyp;
+    dae_problem p = bcp_problem(&eta, &jy, &jyp);
     p.nroots = 1;
     p.roots = bcp_root;
     dae_options o;
