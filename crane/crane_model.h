@@ -89,6 +89,11 @@ typedef struct crane_scene {
                           * order follows the error estimates alone */
     double newton_dgmax; /* dae_options.newton_dgmax: the Newton matrix refactored from the
                           * saved Jacobian when 1/cj moved by more than this (0: off) */
+    int newton_jac_age;  /* dae_options.newton_jac_age: the Jacobian evaluated again after this
+                          * many steps or a Newton failure (0, or newton_dgmax = 0: IDA's
+                          * rule on cj) */
+    int newton_index2_scale_h; /* dae_options.newton_index2_scale_h: index-2 unknowns weigh h
+                                * times less in the Newton convergence test */
 } crane_scene;
 
 /* The paper scene's defaults (docs/crane.md, with the choices stated there and in
@@ -101,6 +106,8 @@ static inline void crane_scene_solver_options(const crane_scene *s, dae_options 
 {
     o->stability_guard = s->stability_guard;
     o->newton_dgmax = s->newton_dgmax;
+    o->newton_jac_age = s->newton_dgmax > 0 ? s->newton_jac_age : 0; /* needs newton_dgmax */
+    o->newton_index2_scale_h = s->newton_index2_scale_h;
 }
 
 typedef struct crane crane;

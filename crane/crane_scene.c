@@ -169,6 +169,11 @@ static const key_def KEYS[] = {
     KNUM("solver", "newton_dgmax", newton_dgmax, R_UNIT0, "a number in [0, 1)", "",
          "the Newton matrix refactored from the saved Jacobian when 1/cj moved by more than "
          "this (0: only with a new Jacobian)"),
+    KINT("solver", "newton_jac_age", newton_jac_age, 0, 1000000, "an integer in 0..1000000", "",
+         "Jacobian evaluated again after this many steps or a Newton failure (with "
+         "newton_dgmax > 0; 0: IDA's rule on 1/cj)"),
+    KBOOL("solver", "newton_index2_scale_h", newton_index2_scale_h,
+          "index-2 unknowns weigh h times less in the Newton convergence test"),
 };
 #define NKEYS ((int)(sizeof KEYS / sizeof *KEYS))
 

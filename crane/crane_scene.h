@@ -99,6 +99,17 @@
  *                                                    1/cj moved by more than this since it was
  *                                                    factored (default 0.3, CVODE's value;
  *                                                    0: only with a new Jacobian; bg_dae.h)
+ *                    newton_jac_age   integer 0..1000000  the Jacobian is evaluated again once
+ *                                                    this many steps old or after a Newton
+ *                                                    failure (default 51, CVODE's value; with
+ *                                                    newton_dgmax > 0: 0, or newton_dgmax = 0,
+ *                                                    when 1/cj leaves [0.6, 1.67] of its value
+ *                                                    then, IDA's rule)
+ *                    newton_index2_scale_h boolean   index-2 unknowns (the hinge and joint
+ *                                                    reactions, the PID's output on the
+ *                                                    measured acceleration, the motor's torque)
+ *                                                    weigh h times less in the Newton
+ *                                                    convergence test (default true; bg_dae.h)
  *
  * Tolerances. The solver weighs the error of unknown i with rtol |y_i| + atol nominal_i. With
  * nominal_scales = true (the default) nominal_i is the magnitude the components give that

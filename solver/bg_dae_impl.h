@@ -61,6 +61,7 @@ struct dae_solver {
     int *a2cols, na2;   /* the index-2 columns (scaled by alpha/h), listed */
     int *a1cols, na1;   /* the index-1 algebraic unknowns, listed */
     double cjf;         /* cj the factored matrix was built with */
+    long jac_nst;       /* steps taken when the Jacobian was evaluated */
     double cjj;         /* cj at the last Jacobian evaluation (cjf without newton_dgmax) */
     int need_refactor;  /* the matrix again from the saved Jacobian at this cj (newton_dgmax) */
     int jac_current;    /* Jacobian evaluated at this step's predictor */

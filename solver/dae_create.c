@@ -225,6 +225,14 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "max_order must be 1..5 (got %d)", o->max_order);
         return NULL;
     }
+    if (o->newton_jac_age < 0 || (o->newton_jac_age > 0 && !(o->newton_dgmax > 0))) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "newton_jac_age = %d: must be >= 0, and > 0 only with newton_dgmax > 0 "
+                       "(newton_dgmax = %g: the Newton matrix would not follow cj between "
+                       "Jacobians)",
+                       o->newton_jac_age, o->newton_dgmax);
+        return NULL;
+    }
     if (!(o->newton_dgmax >= 0 && o->newton_dgmax < 1)) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "newton_dgmax = %g: must be in [0, 1)",
                        o->newton_dgmax);

@@ -8,7 +8,13 @@
  * the saved Jacobian at the new cj and refactored, without evaluating the Jacobian (CVODE's rule,
  * dgmax 0.3 there: A. C. Hindmarsh et al., ACM TOMS 31 (2005) 363-396, and CVODE's
  * CVodeSetDeltaGammaMaxLSetup); the Jacobian itself is still evaluated when cj leaves
- * [0.6, 1.67] of the cj it was evaluated at, or after a convergence failure.
+ * [0.6, 1.67] of the cj it was evaluated at, or after a convergence failure. With
+ * options.newton_jac_age = K > 0 as well, the Jacobian is evaluated only after a convergence
+ * failure or once K steps were taken since the last evaluation: CVODE's Jacobian-age rule (its
+ * msbj, CVodeSetJacEvalFrequency, 51 by default), sound here because the refactorizations keep
+ * the matrix within newton_dgmax of the current cj; the Jacobian then follows the state, not
+ * the step size. And the rate is not reset when cj changes (below): CVODE keeps its crate from
+ * step to step and resets it only when the matrix is formed again (cvNlsLSetup).
  * At most max_newton iterations per attempt, or up to twice that on a matrix evaluated at the
  * step itself while the rate (0.5 or better) says it will converge within them
  * (newton_extends).
@@ -21,7 +27,9 @@
  * Rate. The convergence-rate estimate is reset (to IDA's cautious 100) whenever cj changes,
  * since a rate measured with one iteration matrix says little about the next; without this the
  * solver accepted one-iteration corrections on a stale rate and the pendulum needed 161 steps
- * instead of 67 at rtol 1e-6. A first correction larger than the last accepted step's has the
+ * instead of 67 at rtol 1e-6. With newton_dgmax > 0 the matrix stays within newton_dgmax of
+ * the current cj, the rate it was measured with holds, and it is reset (to 20) only when the
+ * matrix is formed again. A first correction larger than the last accepted step's has the
  * rate scaled up by the ratio, and one that shows a jump the predictor missed is never accepted
  * on an earlier rate (daei_first_correction_jumps, dae_disc.c).
  * Conditioning. The unscaled M has rows of size cj ~ 1/h (rows containing y') and rows of size 1
@@ -60,7 +68,10 @@ static int setup(dae_solver *s, double t, const double *F, int saved_jac)
     s->st.t_linalg += daei_clock(s) - t0;
     if (r == BG_OK) s->st.rcond_min = fmin(s->st.rcond_min, ls_get_stats(s->ls)->rcond);
     s->cjf = cj;
-    if (!saved_jac) s->cjj = cj;
+    if (!saved_jac) {
+        s->cjj = cj;
+        s->jac_nst = s->st.steps;
+    }
     s->jac_current = !saved_jac;
     s->need_setup = 0;
     s->need_refactor = 0;
@@ -140,12 +151,15 @@ int daei_newton(dae_solver *s, double t)
      * at rate 1 on a beam effort, and took over 60 s instead of 0.5 s */
     memset(s->ee, 0, (size_t)n * sizeof(double));
     double ratio = s->cj / (s->cjj != 0 ? s->cjj : s->cj);
-    if (s->first || ratio < CJ_LOW || ratio > CJ_HIGH)
+    int old_jac = s->o.newton_jac_age > 0 ? s->st.steps - s->jac_nst >= s->o.newton_jac_age
+                                           : ratio < CJ_LOW || ratio > CJ_HIGH;
+    if (s->first || old_jac)
         s->need_setup = 1;
     else if (s->o.newton_dgmax > 0 && fabs(s->cjf / s->cj - 1) > s->o.newton_dgmax)
         s->need_refactor = 1;
-    /* a rate measured at another cj says little about this one: start cautious */
-    if (s->cj != s->cjold) s->ss = 100.0;
+    /* a rate measured at another cj says little about this one: start cautious, unless the
+     * matrix follows cj (newton_dgmax), where the rate holds until the next setup (CVODE) */
+    if (s->cj != s->cjold && !(s->o.newton_dgmax > 0)) s->ss = 100.0;
     s->jac_current = 0;
     double oldnrm = 0, rate = 0;
     for (int m = 0;; m++) {
