@@ -181,21 +181,31 @@ static int jac_forced(void *user, double t, const double *y, const double *yp, s
     return 0;
 }
 
+/* y' = -y + sin(5 t) with its constant Jacobian, recording into c; the patterns go to *jy, *jyp
+ * (the caller frees them). */
+static dae_problem forced_problem(calls *c, sp_csc **jy, sp_csc **jyp)
+{
+    const double one = 1;
+    *jy = sp_csc_from_dense(1, 1, &one, 0.0);
+    *jyp = sp_csc_from_dense(1, 1, &one, 0.0);
+    dae_problem p = {0};
+    p.n = 1;
+    p.res = res_forced;
+    p.jac = jac_forced;
+    p.jac_y_pattern = *jy;
+    p.jac_yp_pattern = *jyp;
+    p.user = c;
+    return p;
+}
+
 /* Newton iterations per attempt on y' = -y + sin(5 t) over [0, 10] at rtol 1e-8, atol 1e-10,
  * orders 1..5 (cj changes at most steps), with newton_dgmax = dgmax; *err: the error of y(10) in
  * tolerances. */
 static double iterations_per_step(double dgmax, double *err)
 {
-    const double one = 1;
-    sp_csc *jy = sp_csc_from_dense(1, 1, &one, 0.0), *jyp = sp_csc_from_dense(1, 1, &one, 0.0);
-    dae_problem p = {0};
-    p.n = 1;
-    p.res = res_forced;
-    p.jac = jac_forced;
-    p.jac_y_pattern = jy;
-    p.jac_yp_pattern = jyp;
     calls c = {0, NULL, 0, 0};
-    p.user = &c;
+    sp_csc *jy, *jyp;
+    dae_problem p = forced_problem(&c, &jy, &jyp);
     dae_options o;
     dae_options_default(&o);
     o.rtol = 1e-8;
@@ -225,17 +235,10 @@ static double iterations_per_step(double dgmax, double *err)
 static double test_refresh(double dgmax, int age)
 {
     enum { MAXSTEP = 20000 };
-    const double one = 1;
-    sp_csc *jy = sp_csc_from_dense(1, 1, &one, 0.0), *jyp = sp_csc_from_dense(1, 1, &one, 0.0);
-    dae_problem p = {0};
-    p.n = 1;
-    p.res = res_forced;
-    p.jac = jac_forced;
-    p.jac_y_pattern = jy;
-    p.jac_yp_pattern = jyp;
     calls c = {0, NULL, 0, 8 * MAXSTEP};
     c.res_t = malloc((size_t)c.cap_res * sizeof *c.res_t);
-    p.user = &c;
+    sp_csc *jy, *jyp;
+    dae_problem p = forced_problem(&c, &jy, &jyp);
     dae_options o;
     dae_options_default(&o);
     o.rtol = 1e-4;
