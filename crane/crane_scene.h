@@ -101,10 +101,10 @@
  *                                                    0: only with a new Jacobian; bg_dae.h)
  *                    newton_jac_age   integer 0..1000000  the Jacobian is evaluated again once
  *                                                    this many steps old or after a Newton
- *                                                    failure (default 51, CVODE's value; with
- *                                                    newton_dgmax > 0: 0, or newton_dgmax = 0,
- *                                                    when 1/cj leaves [0.6, 1.67] of its value
- *                                                    then, IDA's rule)
+ *                                                    failure (default 51, CVODE's value;
+ *                                                    applies with newton_dgmax > 0; 0, or
+ *                                                    newton_dgmax = 0: when 1/cj leaves
+ *                                                    [0.6, 1.67] of its value then, IDA's rule)
  *                    newton_index2_scale_h boolean   index-2 unknowns (the hinge and joint
  *                                                    reactions, the PID's output on the
  *                                                    measured acceleration, the motor's torque)
