@@ -3,7 +3,7 @@
  * end values from the published test sets, and the accuracy measures of the IVP Test Set.
  *
  * Every problem is written as a residual F(t, y, y') = 0 from the published equations (the
- * sources are named at each problem in problems.c and in docs/testset.md; the published Fortran
+ * sources are named at each problem in problems*.c and in docs/testset.md; the published Fortran
  * and R definitions are the specification, no code is taken from them):
  *   ap102       Ascher and Petzold, Computer Methods for ODEs and DAEs (SIAM 1998), Ex. 10.2:
  *               linear index 2, exact solution x1 = e^t, x2 = e^t/(t-2).

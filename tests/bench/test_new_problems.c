@@ -1,8 +1,8 @@
-/* The undamped oscillatory problems of the benchmark collection (bench/problems.c, table
+/* The undamped oscillatory problems of the benchmark collection (bench/problems_osc.c, table
  * bp_osc_get): osc_chain and rotating_beam. Their references are checked against an independent
  * truth computed here: the models' equations written anew as first-order ODEs (the prescribed
  * motions substituted), their matrices from Gauss-Legendre quadrature of the shape functions
- * rather than the closed forms of problems.c, integrated in long double by Gragg-Bulirsch-Stoer
+ * rather than the closed forms of problems_osc.c, integrated in long double by Gragg-Bulirsch-Stoer
  * extrapolation (modified midpoint rule, step numbers 2, 4, ..., 16, polynomial extrapolation in
  * h^2) with macro steps far below the fastest period. A wrong closed form, a wrong stored
  * reference or a residual that is not the model fails here:

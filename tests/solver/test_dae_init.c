@@ -12,7 +12,7 @@
  *   - a manufactured problem with an index-1 unknown z and an index-2 unknown lam whose
  *     solution is known (x1 = sin t, x2 = cos 2t, z = sin^2 t + cos 3t, lam = e^t): z' and lam'
  *     at t0 = 0.3;
- *   - the IVP Test Set's slider crank (bench/problems.c) started from its consistent values
+ *   - the IVP Test Set's slider crank (bench/problems_testset.c) started from its consistent values
  *     with its accelerations and multipliers set to 0: the consistent state found again, with
  *     no warning (0 stands for "not known");
  *   - an input that jumps at t0: the unknown it moves is not warned about;

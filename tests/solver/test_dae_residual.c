@@ -1,6 +1,6 @@
 /* A residual alone is enough: the solver given only F(t, y, y') (no Jacobian, no patterns, no
  * kinds, no constraints) against the same problem given in full, on the index-2 problems of the
- * collection (bench/problems.c: pendulum2, crank, pump, ap102, lin2) at rtol = atol = 1e-4,
+ * collection (bench/problems*.c: pendulum2, crank, pump, ap102, lin2) at rtol = atol = 1e-4,
  * 1e-6, 1e-8, 1e-10, from the published consistent values, with the problems' breakpoints (the
  * forcing's timing, not Jacobian information). Asserted:
  *   - each run reaches tend with scd within 0.5 of the full run's (the published references),
