@@ -142,6 +142,8 @@ static void our_options(const bench_case *bc, const solver_def *sd, const run_op
     o->exclude_alg = bc->exclude_alg;
     o->stability_guard = ro->guard ? ro->guard > 0 : bc->stability_guard;
     o->newton_dgmax = bc->newton_dgmax;
+    o->newton_jac_age = bc->newton_jac_age;
+    o->newton_index2_scale_h = bc->newton_index2_scale_h;
     if (ro->max_order > 0) o->max_order = ro->max_order;
     o->has_t_stop = 1;
     o->t_stop = tend;

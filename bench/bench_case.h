@@ -38,6 +38,8 @@ struct bench_case {
     int exclude_alg; /* ours: index-1 algebraic unknowns out of the error test too */
     int stability_guard; /* ours: options.stability_guard (the crane: as its scene says) */
     double newton_dgmax; /* ours: options.newton_dgmax (the crane: as its scene says) */
+    int newton_jac_age;  /* ours: options.newton_jac_age (the crane: as its scene says) */
+    int newton_index2_scale_h; /* ours: options.newton_index2_scale_h (likewise) */
     /* tolerances: atol = atol_factor * rtol, or (atol_fn) a scalar and a vector */
     double atol_factor;
     void (*atol_fn)(const bench_case *bc, double rtol, double *atol, double *atolv);

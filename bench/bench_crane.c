@@ -93,7 +93,13 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
     }
     bc->ext = c;
     bc->ext_free = free_crane;
-    bc->newton_dgmax = s.newton_dgmax; /* as the crane program runs the scene */
+    /* the Newton settings as the crane program runs the scene */
+    dae_options so;
+    dae_options_default(&so);
+    crane_scene_solver_options(&s, &so);
+    bc->newton_dgmax = so.newton_dgmax;
+    bc->newton_jac_age = so.newton_jac_age;
+    bc->newton_index2_scale_h = so.newton_index2_scale_h;
     if (settle) {
         bg_error_clear(&err);
         int r = settle == BENCH_SETTLE_DAMPED ? crane_settle_damped(c, &err) : crane_settle(c, &err);

@@ -34,6 +34,8 @@ static void options_for(const bench_case *bc, double rtol, double *atolv, dae_op
     o->exclude_alg = bc->exclude_alg;
     o->stability_guard = bc->stability_guard;
     o->newton_dgmax = bc->newton_dgmax;
+    o->newton_jac_age = bc->newton_jac_age;
+    o->newton_index2_scale_h = bc->newton_index2_scale_h;
     o->has_t_stop = 1;
     o->t_stop = bc->tend;
     o->max_steps = 1000000;
