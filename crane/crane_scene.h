@@ -101,15 +101,19 @@
  *                                                    0: only with a new Jacobian; bg_dae.h)
  *                    newton_jac_age   integer 0..1000000  the Jacobian is evaluated again once
  *                                                    this many steps old or after a Newton
- *                                                    failure (default 51, CVODE's value;
- *                                                    applies with newton_dgmax > 0; 0, or
- *                                                    newton_dgmax = 0: when 1/cj leaves
- *                                                    [0.6, 1.67] of its value then, IDA's rule)
+ *                                                    failure, and the Newton rate carries from
+ *                                                    step to step (applies with newton_dgmax >
+ *                                                    0; default 0: when 1/cj leaves [0.6, 1.67]
+ *                                                    of its value then, IDA's rule; bg_dae.h)
  *                    newton_index2_scale_h boolean   index-2 unknowns (the hinge and joint
  *                                                    reactions, the PID's output on the
  *                                                    measured acceleration, the motor's torque)
  *                                                    weigh h times less in the Newton
- *                                                    convergence test (default true; bg_dae.h)
+ *                                                    convergence test (default false; bg_dae.h)
+ * Both off in the shipped scenes: with newton_jac_age = 51 and newton_index2_scale_h = true the
+ * paper scene runs 19.4 times faster than real time instead of 12.6 at rtol 1e-6, but at rtol
+ * 1e-4 the Newton errors they leave in the line flows (out of the error test) drift the line
+ * pressures by 10 to 135 MPa over the 20 s (docs/crane.md, "Solver settings").
  *
  * Tolerances. The solver weighs the error of unknown i with rtol |y_i| + atol nominal_i. With
  * nominal_scales = true (the default) nominal_i is the magnitude the components give that
