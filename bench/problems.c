@@ -71,6 +71,13 @@ void bpi_set(sp_csc *J, int i, int j, double v)
     if (p >= 0) J->val[p] = v;
 }
 
+/* Dense row-major n x n values D copied onto J's pattern. */
+void bpi_fill_from_dense(sp_csc *J, const double *D, int n)
+{
+    for (int j = 0; j < J->ncol; j++)
+        for (int p = J->colptr[j]; p < J->colptr[j + 1]; p++)
+            J->val[p] = D[(size_t)J->rowind[p] * (size_t)n + (size_t)j];
+}
 /* ==== ap102: Ascher and Petzold, Computer Methods for Ordinary Differential Equations and
  * Differential-Algebraic Equations (SIAM 1998), Example 10.2; the same system as SUNDIALS'
  * idaAnalytic_mels example (LLNL/sundials, examples/ida/serial; docs/testset.md):
