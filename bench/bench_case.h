@@ -35,10 +35,10 @@ struct bench_case {
     double *ys, *yps;    /* the consistent start shared by every solver (bench_case_start) */
     double *breakpoints; /* inside (t0, tend), ascending (owned), nbreakpoints of them */
     int nbreakpoints;
-    int exclude_alg; /* ours: index-1 algebraic unknowns out of the error test too */
-    int stability_guard; /* ours: options.stability_guard (the crane: as its scene says) */
-    double newton_dgmax; /* ours: options.newton_dgmax (the crane: as its scene says) */
-    int newton_jac_age;  /* ours: options.newton_jac_age (the crane: as its scene says) */
+    int exclude_alg;           /* ours: index-1 algebraic unknowns out of the error test too */
+    int stability_guard;       /* ours: options.stability_guard (the crane: as its scene says) */
+    double newton_dgmax;       /* ours: options.newton_dgmax (the crane: as its scene says) */
+    int newton_jac_age;        /* ours: options.newton_jac_age (the crane: as its scene says) */
     int newton_index2_scale_h; /* ours: options.newton_index2_scale_h (likewise) */
     /* tolerances: atol = atol_factor * rtol, or (atol_fn) a scalar and a vector */
     double atol_factor;

@@ -32,9 +32,9 @@
  * solver accepted one-iteration corrections on a stale rate and the pendulum needed 161 steps
  * instead of 67 at rtol 1e-6. With newton_jac_age > 0 (and so newton_dgmax > 0) the matrix
  * stays within newton_dgmax of the current cj, the rate it was measured with holds, and it is
- * reset (to 20) only when the matrix is formed again. A first correction larger than the last accepted step's has the
- * rate scaled up by the ratio, and one that shows a jump the predictor missed is never accepted
- * on an earlier rate (daei_first_correction_jumps, dae_disc.c).
+ * reset (to 20) only when the matrix is formed again. A first correction larger than the last
+ * accepted step's has the rate scaled up by the ratio, and one that shows a jump the predictor
+ * missed is never accepted on an earlier rate (daei_first_correction_jumps, dae_disc.c).
  * Conditioning. The unscaled M has rows of size cj ~ 1/h (rows containing y') and rows of size 1
  * (constraints), and its condition grows like h^-2. We factor R M C instead, with R = h/alpha on
  * rows that contain y' and 1 elsewhere, C = cj on index-2 columns and 1 elsewhere; every block is
@@ -155,7 +155,7 @@ int daei_newton(dae_solver *s, double t)
     memset(s->ee, 0, (size_t)n * sizeof(double));
     double ratio = s->cj / (s->cjj != 0 ? s->cjj : s->cj);
     int old_jac = s->o.newton_jac_age > 0 ? s->st.steps - s->jac_nst >= s->o.newton_jac_age
-                                           : ratio < CJ_LOW || ratio > CJ_HIGH;
+                                          : ratio < CJ_LOW || ratio > CJ_HIGH;
     if (s->first || old_jac)
         s->need_setup = 1;
     else if (s->o.newton_dgmax > 0 && fabs(s->cjf / s->cj - 1) > s->o.newton_dgmax)
