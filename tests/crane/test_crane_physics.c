@@ -9,6 +9,8 @@
  *     3 %: the modes are not those of the isolated parts), and no mode is unstable; the same
  *     scene with the derivative term on a rate filtered over 0.01 s has an unstable mode (the
  *     reason the scene acts on the measured acceleration), without the pump's lag it has none;
+ *   - the drive's volumetric efficiency (97 % at 30 MPa) and the damping its cross-port leakage
+ *     gives the loop mode of pressures and swash plate, (B / V) Cl / omega (within 5 %);
  *   - the pump's swash plate is a state of the paper model and the output pump_x follows it;
  *   - paper-undamped converges as the paper scene does in test_crane_model: rtol 1e-6 against
  *     1e-9 over 0..3 s within 1e-5 rad and 1 % of the peak tip deflections, 16 against 32
@@ -93,6 +95,46 @@ static void test_damping_modes(void)
            "derivative on a 0.01 s filtered rate: a mode of damping ratio %.3f with the pump's "
            "lag, %.2g without",
            zf, z0);
+}
+
+/* The drive's volumetric efficiency and what its leakage does to the loop mode. The paper scene
+ * states 97 % for pump and motor at the relief valves' cracking pressure (the pump at full
+ * displacement, the motor at the plateau's speed): eta = 1 - Cl p / (D w / 2 pi). The
+ * cross-port leakage Cl = Cl_pump + Cl_motor between the two lines (each of compliance V / B)
+ * damps their pressure difference at the rate 2 (B / V) Cl; in the loop mode, an oscillation of
+ * that difference against the swash plate, it moves the eigenvalues' real part by half of it,
+ * -(B / V) Cl, so the mode's damping ratio grows by (B / V) Cl / omega (first order in Cl). */
+static void test_leakage_mode(void)
+{
+    crane_scene s;
+    crane_scene_default(&s);
+    double qp = s.pump_disp * s.pump_speed / (2 * PI);
+    double qm = s.motor_disp * s.ref_rate * s.gear_ratio / (2 * PI);
+    double ep = 1 - s.pump_leak * s.relief_pressure / qp, em = 1 - s.motor_leak * s.relief_pressure / qm;
+    tap_ok(fabs(ep - 0.97) < 0.002 && fabs(em - 0.97) < 0.002,
+           "paper: volumetric efficiency at %.0f MPa %.4f (pump, full displacement), %.4f (motor, "
+           "plateau speed)",
+           1e-6 * s.relief_pressure, ep, em);
+    dae_modes *M = NULL;
+    crane *c = NULL;
+    double z[2] = {NAN, NAN}, f[2] = {NAN, NAN};
+    for (int pass = 0; pass < 2; pass++) {
+        crane_scene t = s;
+        if (pass == 1) t.pump_leak = t.motor_leak = 0;
+        modes_of(&t, &M, &c);
+        int k = M ? find_mode(M, "hydraulics", 50, 1000) : -1;
+        if (k >= 0) {
+            z[pass] = dae_modes_get(M, k)->damping;
+            f[pass] = dae_modes_get(M, k)->freq_hz;
+        }
+        dae_modes_free(&M);
+        crane_free(&c);
+    }
+    double dz = s.bulk_modulus / s.line_volume * (s.pump_leak + s.motor_leak) / (2 * PI * f[0]);
+    tap_ok(fabs(z[0] - z[1] - dz) <= 0.05 * dz,
+           "loop mode %.1f Hz: damping ratio %.4f with the leakage, %.4f without; the difference "
+           "%.4f against (B / V) Cl / omega = %.4f",
+           f[0], z[0], z[1], z[0] - z[1], dz);
 }
 
 static void test_swash(void)
@@ -191,6 +233,7 @@ static void test_undamped_convergence(const crane_scene *u)
 int main(void)
 {
     test_damping_modes();
+    test_leakage_mode();
     test_swash();
 #ifdef CRANE_SCENES_DIR
     crane_scene u;

@@ -15,7 +15,7 @@
  *     kept), status.txt "running" with the pid, scene, command line and start time from the start,
  *     a folder in use by a running crane refused, a stale "running" of a dead process taken over,
  *     an old file that cannot be removed refused;
- *   - signals: SIGHUP during set-up (512 elements), SIGTERM in the middle of a 10 s output step,
+ *   - signals: SIGHUP during set-up (512 elements), SIGTERM in the middle of a 1000 s output step,
  *     two SIGINTs in a row while integrating, SIGTERM after t_end while the figures are drawn:
  *     the program ends within the bound (1 s, 5 s under sanitizers), with 128 + N (0 after t_end:
  *     completed) and a status.txt that says what happened.
@@ -370,12 +370,13 @@ static void test_signals_and_folders(void)
 
     /* an old folder: the earlier run's status, results and figures go at the start; the run
      * says "running" from the start; a second crane is refused the folder; SIGTERM in the middle
-     * of a 10 s output step ends the run at once */
+     * of a 1000 s output step (a long one: the paper scene runs some 30 times faster than real
+     * time) ends the run at once */
     path2(out, sizeof out, tmp, "sig-step");
     fill_old_folder(out);
     pid = start(NULL,
-                (const char *[]){"paper", "--output-step", "10", "--out", out, "--quiet",
-                                 "--no-plots", NULL},
+                (const char *[]){"paper", "--output-step", "1000", "--t-end", "2000", "--out",
+                                 out, "--quiet", "--no-plots", NULL},
                 "sigstep");
     int looping = wait_file(pid, out, "results.csv", 400, 120); /* the row at t = 0 */
     char p[8192];
@@ -385,7 +386,7 @@ static void test_signals_and_folders(void)
     snprintf(pid_line, sizeof pid_line, "\npid: %ld\n", (long)pid);
     tap_ok(looping && !strncmp(text, "status: running\n", 16) && strstr(text, pid_line) &&
                strstr(text, "\nscene: paper (") && strstr(text, "\ncommand: ") &&
-               strstr(text, "--output-step 10") && strstr(text, "\nstarted: "),
+               strstr(text, "--output-step 1000") && strstr(text, "\nstarted: "),
            "status.txt from the start: running, with the pid, the scene, the command line and "
            "the start time");
     int gone = !file_exists(out, "fig5a.png") && !file_exists(out, "fig5f.png") &&
@@ -407,13 +408,13 @@ static void test_signals_and_folders(void)
     finish_from(pid, 60, "sigstep", t0, &r);
     long rows = check_csv(out, 0, &tl, why, sizeof why);
     tap_ok(r.exited && r.code == 128 + SIGTERM && r.seconds < g_bound,
-           "SIGTERM in the middle of a 10 s output step: exit %d within %.1f s (%.2f s)",
+           "SIGTERM in the middle of a 1000 s output step: exit %d within %.1f s (%.2f s)",
            128 + SIGTERM, g_bound, r.seconds);
     tap_ok(first_line_is(out, "status.txt", "status: interrupted") &&
                file_contains(out, "status.txt", "reason: SIGTERM received at t = ") &&
                file_contains(out, "status.txt", "rows: 1\n") && rows == 1 && tl == 0 &&
                first_line_is(out, "solver_stats.txt", "# crane solver statistics"),
-           "status.txt: interrupted by SIGTERM before the row at 10 s; results.csv has the row at "
+           "status.txt: interrupted by SIGTERM before the row at 1000 s; results.csv has the row at "
            "0 (%ld rows, %s)",
            rows, why);
 
