@@ -227,8 +227,8 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
     fprintf(rep, "## Crane scaling series\n\n");
     fprintf(
         rep,
-        "Paper scene (stability guard as its default, as the crane program runs it) from its "
-        "static start (settled under gravity, as the paper scene runs; "
+        "Paper scene (stability guard as the scene sets it, as the crane program runs it) from "
+        "its static start (settled under gravity, as the paper scene runs; "
         "the settling is not timed: from the boom's geometric shape the start is violent, and "
         "from 256 elements on its Newton iterations failed on every third step, which measured "
         "the start rather than the mesh), bgdae-klu at rtol = atol = 1e-6: %d warm-up steps, "

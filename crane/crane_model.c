@@ -117,7 +117,7 @@ void crane_scene_default(crane_scene *s)
     s->nominal_length = 1;
     s->nominal_velocity = 1;
     s->nominal_angular_velocity = 1;
-    s->stability_guard = 1;
+    s->stability_guard = 0; /* its fast modes are damped (crane_scene.h) */
     s->newton_dgmax = 0.3;
     s->newton_jac_age = 0;
     s->newton_index2_scale_h = 0;
