@@ -236,6 +236,12 @@ static int prof_jac(void *u, double t, const double *y, const double *yp, sp_csc
     return r;
 }
 
+static int prof_regimes(void *u, double t, const double *y, int *r)
+{
+    bench_prof *p = u;
+    return p->in->regimes(p->in->user, t, y, r);
+}
+
 void bench_prof_wrap(bench_prof *p, const dae_problem *in, dae_problem *out)
 {
     p->in = in;
@@ -244,6 +250,7 @@ void bench_prof_wrap(bench_prof *p, const dae_problem *in, dae_problem *out)
     out->user = p;
     out->res = prof_res;
     out->jac = in->jac ? prof_jac : NULL;
+    out->regimes = in->regimes ? prof_regimes : NULL;
 }
 
 static void run_ours(const bench_case *bc, const solver_def *sd, const run_opts *ro, run_out *out)

@@ -888,6 +888,26 @@ int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_cs
     return 0;
 }
 
+int bgr_regimes(const bgr_model *m, const double *y, int *r)
+{
+    if (!m || (r && !y)) return BG_ERR_ARGUMENT;
+    if (m->compiled <= 0) return BG_ERR_STATE;
+    int k = 0;
+    for (int e = 0; e < m->nel; e++)
+        if (m->el[e]->cls->regime) {
+            if (r) r[k] = m->el[e]->cls->regime(m->el[e], y);
+            k++;
+        }
+    return k;
+}
+
+static int model_regimes(void *user, double t, const double *y, int *r)
+{
+    (void)t;
+    int k = bgr_regimes(user, y, r);
+    return k < 0 ? k : 0;
+}
+
 int bgr_dae_problem(bgr_model *m, dae_problem *p)
 {
     if (!m) return BG_ERR_ARGUMENT;
@@ -905,6 +925,8 @@ int bgr_dae_problem(bgr_model *m, dae_problem *p)
     p->eq_names = (const char *const *)m->ename;
     p->nominal = m->nominal;
     p->user = m;
+    p->nregimes = bgr_regimes(m, NULL, NULL);
+    if (p->nregimes > 0) p->regimes = model_regimes;
     return BG_OK;
 }
 

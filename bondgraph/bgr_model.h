@@ -74,6 +74,11 @@ typedef struct bgr_element_class {
      * a reference profile, steps); writes at most max of them into t, returns how many there are
      * (may exceed max). bgr_breakpoints collects them for the solver. */
     int (*breakpoints)(const bgr_element *el, double t0, double t1, double *t, int max);
+    /* Optional: the branch of a sharp but smooth characteristic the element is on at y, a small
+     * integer (cmp_regime in components/cmp_internal.h: 0 off, 1 between, 2 on, from the slope
+     * of its smooth switch). bgr_regimes collects them; the solver evaluates a fresh Jacobian
+     * when one changes (bg_dae.h, dae_problem.regimes). */
+    int (*regime)(const bgr_element *el, const double *y);
 } bgr_element_class;
 
 /* Orientation of a bond at a port, as the element sees it. */
@@ -230,6 +235,11 @@ BG_API int bgr_stats_print(const bgr_model *m, FILE *f);
  * (p->nominal = bgr_nominals(m); set it to NULL for the absolute tolerance in SI units). BG_OK,
  * BG_ERR_ARGUMENT (p NULL) or BG_ERR_STATE (not compiled). */
 BG_API int bgr_dae_problem(bgr_model *m, dae_problem *p);
+/* The regimes of the elements that have one (bgr_element_class.regime), in element order, into
+ * r (room for the count; r NULL: the count only). Returns how many, or < 0: BG_ERR_ARGUMENT (m
+ * NULL, y NULL with r given), BG_ERR_STATE (not compiled). bgr_dae_problem passes them on as
+ * dae_problem.regimes when there are any. */
+BG_API int bgr_regimes(const bgr_model *m, const double *y, int *r);
 /* Number of unknowns (= equations) of the compiled model; 0 before compilation or for NULL. */
 BG_API int bgr_n(const bgr_model *m);
 /* Name of an unknown / equation; NULL for an id out of range or a model not compiled. */

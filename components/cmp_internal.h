@@ -81,6 +81,16 @@ static inline double cmp_softplus(double z, double eps, double *dz)
     return (z > 0 ? z : 0.0) + eps * log1p(e);
 }
 
+/* The regime of a smooth switch from its slope d in [0, 1] (the softplus's logistic, a
+ * clamp's slope, a rope's tautness): 0 off (d < 0.02), 2 on (d > 0.98), 1 between; the bands
+ * of bgr_element_class.regime. A Jacobian from one of them used in another is wrong by up to
+ * the switch's whole gain (bg_dae.h, dae_problem.regimes); within one, by at most 2 % of it at
+ * the ends. */
+static inline int cmp_regime(double d)
+{
+    return d < 0.02 ? 0 : d > 0.98 ? 2 : 1;
+}
+
 /* Smooth clamp of v to [lo, hi] (lo < hi) with width eps > 0; derivative into *dv. */
 static inline double cmp_clamp(double v, double lo, double hi, double eps, double *dv)
 {

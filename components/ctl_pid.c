@@ -148,12 +148,23 @@ static void pid_describe(const bgr_element *el, const bgr_model *m, int k, char 
                  vname(m, q->yd, "0"), s->ki, I);
 }
 
+/* The limiter's regime: saturated low or high (slope near 0), in between, in range (slope 1);
+ * without a limit always in range. */
+static int pid_regime(const bgr_element *el, const double *y)
+{
+    const pid *q = el->params;
+    double g;
+    pid_law(q, y, &g);
+    return cmp_regime(g);
+}
+
 const bgr_element_class ctl_class_pid = {.type = "PID",
                                          .declare = pid_declare,
                                          .residual = pid_residual,
                                          .jacobian = pid_jacobian,
                                          .describe = pid_describe,
-                                         .destroy = free};
+                                         .destroy = free,
+                                         .regime = pid_regime};
 
 int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec)
 {

@@ -82,6 +82,15 @@ static int valve_jacobian(const bgr_element *el, double t, const double *y, cons
     return 0;
 }
 
+/* The relief valve's regime: closed, opening (the smooth band around cracking), open. */
+static int relief_regime(const bgr_element *el, const double *y)
+{
+    const valve *q = el->params;
+    double d;
+    cmp_softplus(y[q->pa] - y[q->pb] - q->pc, q->eps, &d);
+    return cmp_regime(d);
+}
+
 static const char *vn(const bgr_model *m, int v)
 {
     const char *s = bgr_var_name(m, v);
@@ -113,7 +122,8 @@ const bgr_element_class hyd_class_relief = {.type = "relief",
                                             .residual = valve_residual,
                                             .jacobian = valve_jacobian,
                                             .describe = valve_describe,
-                                            .destroy = free};
+                                            .destroy = free,
+                                            .regime = relief_regime};
 
 static int add_valve(bgr_model *m, bgr_comp c, const char *name, const bgr_element_class *cls,
                      int relief, double G, double pc, double eps, const char *where)

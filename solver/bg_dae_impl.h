@@ -62,6 +62,9 @@ struct dae_solver {
     int *a1cols, na1;   /* the index-1 algebraic unknowns, listed */
     double cjf;         /* cj the factored matrix was built with */
     long jac_nst;       /* steps taken when the Jacobian was evaluated */
+    int *reg_jac;       /* regimes at the last Jacobian evaluation (p.nregimes) */
+    int *reg_now;       /* and at the point being checked */
+    int reg_valid;      /* reg_jac holds them */
     double cjj;         /* cj at the last Jacobian evaluation (cjf without newton_dgmax) */
     int need_refactor;  /* the matrix again from the saved Jacobian at this cj (newton_dgmax) */
     int jac_current;    /* Jacobian evaluated at this step's predictor */

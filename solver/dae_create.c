@@ -111,6 +111,8 @@ void dae_free(dae_solver **sp)
     free(s->yc);
     for (int j = 0; j < STAB_WIN; j++)
         free(s->stab_e[j]);
+    free(s->reg_jac);
+    free(s->reg_now);
     free(s->glo);
     free(s->ghi);
     free(s->gmid);
@@ -154,9 +156,14 @@ static int check_problem(const dae_problem *p, const dae_options *o, bg_error *e
         if (!isfinite(o->breakpoints[k]))
             return bg_error_raise(err, BG_ERR_ARGUMENT, w, "breakpoint %d is %g", k,
                                   o->breakpoints[k]);
-    if (p->ncons < 0 || p->nroots < 0)
-        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "ncons = %d and nroots = %d must be >= 0",
-                              p->ncons, p->nroots);
+    if (p->ncons < 0 || p->nroots < 0 || p->nregimes < 0)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "ncons = %d, nroots = %d and nregimes = %d must be >= 0", p->ncons,
+                              p->nroots, p->nregimes);
+    if (p->nregimes > 0 && !p->regimes)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "nregimes = %d needs a regime function (regimes NULL)",
+                              p->nregimes);
     if (p->ncons > 0 && (!p->cons || !p->cons_pattern))
         return bg_error_raise(err, BG_ERR_ARGUMENT, w,
                               "ncons = %d needs a constraint function and its pattern (cons %s, "
@@ -352,6 +359,11 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
                        &s->stab_e[0], &s->stab_e[1], &s->stab_e[2], &s->stab_e[3], &s->stab_e[4]};
     for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
         if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
+    if (p->nregimes > 0) {
+        s->reg_jac = calloc((size_t)p->nregimes, sizeof(int));
+        s->reg_now = calloc((size_t)p->nregimes, sizeof(int));
+        if (!s->reg_jac || !s->reg_now) goto nomem;
+    }
     if (p->nroots > 0) {
         s->glo = calloc((size_t)p->nroots, sizeof(double));
         s->ghi = calloc((size_t)p->nroots, sizeof(double));

@@ -212,6 +212,13 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
             }
         }
     }
+    if (r == 0 && s->p.nregimes > 0) { /* the regimes this Jacobian belongs to (dae_nls.c) */
+        s->reg_valid = 0;
+        r = s->p.regimes(s->p.user, t, y, s->reg_jac);
+        if (r < 0)
+            daei_note(s, "the regime function returned the fatal status %d at t = %.17g", r, t);
+        s->reg_valid = r == 0;
+    }
     return r;
 }
 

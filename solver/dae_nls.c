@@ -35,6 +35,9 @@
  * reset (to 20) only when the matrix is formed again. A first correction larger than the last
  * accepted step's has the rate scaled up by the ratio, and one that shows a jump the predictor
  * missed is never accepted on an earlier rate (daei_first_correction_jumps, dae_disc.c).
+ * Regimes. With dae_problem.regimes, a Jacobian from another regime of a switching element is
+ * not used: the predictor's regimes are compared with the Jacobian's at the start of a step, a
+ * converged iterate's at the end of an iteration on an older matrix (bg_dae.h says why).
  * Conditioning. The unscaled M has rows of size cj ~ 1/h (rows containing y') and rows of size 1
  * (constraints), and its condition grows like h^-2. We factor R M C instead, with R = h/alpha on
  * rows that contain y' and 1 elsewhere, C = cj on index-2 columns and 1 elsewhere; every block is
@@ -50,6 +53,19 @@
 #define NEWTON_EXTEND 2 /* ... up to this many times max_newton iterations */
 
 enum { SU_OK = 0, SU_RECOVER = 1, SU_SINGULAR = 2, SU_LSFAIL = 3 };
+
+/* The problem's regimes at (t, y) into s->reg_now: 0 as they were at the last Jacobian, 1
+ * changed (or no Jacobian yet), < 0 the callback's fatal status. */
+static int regimes_changed(dae_solver *s, double t, const double *y)
+{
+    int r = s->p.regimes(s->p.user, t, y, s->reg_now);
+    if (r < 0) {
+        daei_note(s, "the regime function returned the fatal status %d at t = %.17g", r, t);
+        return r;
+    }
+    return !s->reg_valid ||
+           memcmp(s->reg_now, s->reg_jac, (size_t)s->p.nregimes * sizeof *s->reg_now) != 0;
+}
 
 /* Jacobian, scaled Newton matrix, factorization: SU_*, or the fatal (< 0) status of a callback.
  * A failure is described in s->note. */
@@ -144,6 +160,22 @@ static int newton_extends(const dae_solver *s, int m, double dn, double rate)
     return m + 1 + need <= NEWTON_EXTEND * s->o.max_newton;
 }
 
+/* The end of a converged iteration: NL_OK, or NL_RECOVER when it ran on a matrix from an earlier
+ * step whose Jacobian belongs to other regimes than the iterate (the caller then evaluates a
+ * fresh Jacobian and redoes the step), or a fatal status. */
+static int converged(dae_solver *s, double t)
+{
+    if (s->p.nregimes == 0 || s->jac_current) return NL_OK;
+    int rc = regimes_changed(s, t, s->y);
+    if (rc <= 0) return rc < 0 ? rc : NL_OK;
+    s->st.jac_regime++;
+    daei_note(s,
+              "the Newton iteration at t = %.17g converged on a matrix from an earlier step "
+              "whose Jacobian was evaluated in another regime of a switching element",
+              t);
+    return NL_RECOVER;
+}
+
 int daei_newton(dae_solver *s, double t)
 {
     int n = s->n;
@@ -156,6 +188,14 @@ int daei_newton(dae_solver *s, double t)
     double ratio = s->cj / (s->cjj != 0 ? s->cjj : s->cj);
     int old_jac = s->o.newton_jac_age > 0 ? s->st.steps - s->jac_nst >= s->o.newton_jac_age
                                           : ratio < CJ_LOW || ratio > CJ_HIGH;
+    if (s->reg_valid && !s->first && !old_jac) { /* a switch since the Jacobian */
+        int rc = regimes_changed(s, t, s->y);
+        if (rc < 0) return rc;
+        if (rc) {
+            old_jac = 1;
+            s->st.jac_regime++;
+        }
+    }
     if (s->first || old_jac)
         s->need_setup = 1;
     else if (s->o.newton_dgmax > 0 && fabs(s->cjf / s->cj - 1) > s->o.newton_dgmax)
@@ -230,7 +270,7 @@ int daei_newton(dae_solver *s, double t)
         }
         if (m == 0) {
             oldnrm = dn;
-            if (dn <= 1e-4 * EPS_NEWT) return NL_OK;
+            if (dn <= 1e-4 * EPS_NEWT) return converged(s, t);
         } else {
             /* Round-off floor of index-2 unknowns: their corrections carry the rounding errors
              * of the other unknowns amplified by about 1/h^2, so at very small steps they stop
@@ -247,7 +287,7 @@ int daei_newton(dae_solver *s, double t)
              * the rounding has no bound relative to the tolerance: 1e-6; and at most 1e-2. */
             double floor_diff =
                 s->o.rtol > 0 ? fmin(1e-2, fmax(1e-6, 10 * DBL_EPSILON / s->o.rtol)) : 1e-6;
-            if (s->has_alg2 && dn_diff <= floor_diff) return NL_OK;
+            if (s->has_alg2 && dn_diff <= floor_diff) return converged(s, t);
             rate = pow(dn / oldnrm, 1.0 / m);
             if (rate > RATE_MAX) {
                 note_newton(s, t, rate);
@@ -264,7 +304,8 @@ int daei_newton(dae_solver *s, double t)
          * predictor, out of the error test (exclude_alg), and the run went on silently wrong. */
         if (m == 0) s->dn0 = dn;
         double ssm = m == 0 ? s->ss * fmax(1.0, dn / s->dn0_last) : s->ss;
-        if (ssm * dn <= EPS_NEWT && (m > 0 || !daei_first_correction_jumps(s))) return NL_OK;
+        if (ssm * dn <= EPS_NEWT && (m > 0 || !daei_first_correction_jumps(s)))
+            return converged(s, t);
         if (m + 1 >= s->o.max_newton && !newton_extends(s, m, dn, rate)) break;
     }
     note_newton(s, t, rate);

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cmp_internal.h"
 #include "mech_util.h"
 
 typedef struct axial {
@@ -140,11 +141,23 @@ static int axial_jacobian(const bgr_element *el, double t, const double *y, cons
     return 0;
 }
 
+/* A rope's regime: slack, in the smooth band around its unstretched length, taut (the slope h of
+ * its softplus, as in tension); a bar has one. */
+static int axial_regime(const bgr_element *el, const double *y)
+{
+    const axial *a = el->params;
+    if (!a->rope) return 2;
+    const double *d = y + a->d;
+    double z = (sqrt(mech_dot(d, d)) - a->L0) / a->eps, ez = exp(-fabs(z));
+    return cmp_regime(z > 0 ? 1.0 / (1.0 + ez) : ez / (1.0 + ez));
+}
+
 static const bgr_element_class axial_class = {.type = "axial",
                                               .declare = axial_declare,
                                               .residual = axial_residual,
                                               .jacobian = axial_jacobian,
-                                              .destroy = axial_free};
+                                              .destroy = axial_free,
+                                              .regime = axial_regime};
 
 mech_scales *mech_axial_scales_(bgr_element *el)
 {

@@ -11,6 +11,8 @@
  *     reason the scene acts on the measured acceleration), without the pump's lag it has none;
  *   - the drive's volumetric efficiency (97 % at 30 MPa) and the damping its cross-port leakage
  *     gives the loop mode of pressures and swash plate, (B / V) Cl / omega (within 5 %);
+ *   - the paper scene at rtol 1e-4, 3e-4, 1e-3 against itself at 1e-8: theta within 100 rtol
+ *     rad, line pressures within 10 % of 35 MPa (the Jacobian follows the check valves' regimes);
  *   - the pump's swash plate is a state of the paper model and the output pump_x follows it;
  *   - paper-undamped converges as the paper scene does in test_crane_model: rtol 1e-6 against
  *     1e-9 over 0..3 s within 1e-5 rad and 1 % of the peak tip deflections, 16 against 32
@@ -137,6 +139,53 @@ static void test_leakage_mode(void)
            f[0], z[0], z[1], z[0] - z[1], dz);
 }
 
+/* The paper scene at loose tolerances against itself at 1e-8, 0 .. 12.5 s sampled every 0.1 s:
+ * theta within 100 rtol rad, the line pressures within 10 % of their scale (the relief valves'
+ * full-flow pressure, 35 MPa). The closed circuit's check valves switch as the low line passes
+ * the charge pressure; on a Jacobian from the other side of the switch the Newton iteration used
+ * to stop with the valve's flow equation unsatisfied, and that phantom flow pumped both lines up
+ * (40 MPa at rtol 3e-4, theta(12 s) 0.19 rad short) until the Jacobian followed the valves'
+ * regimes (bg_dae.h, dae_problem.regimes). The pressures' bound is loose in rtol terms (1.2, 2.9,
+ * 2.6 MPa measured): a Newton error of the tolerance in the valves' flows (rtol times their
+ * 4.77 m^3/s rating) goes into the lines at B / V = 2.8e10 Pa/m^3, 1.3 MPa per 0.1 s at rtol
+ * 1e-4, and the flows are algebraic, out of the error test. */
+#define NLOOSE 126
+static int loose_samples(const crane_scene *s, double tol, double out[NLOOSE][3])
+{
+    run r;
+    int k = 0;
+    if (start_tol(&r, s, 1, tol) == 0)
+        for (; k < NLOOSE; k++) {
+            if (k > 0 && advance(&r, 0.1 * k) != 0) break;
+            out[k][0] = r.out[O_TH];
+            out[k][1] = r.out[O_PH];
+            out[k][2] = r.out[O_PL];
+        }
+    finish(&r);
+    return k;
+}
+
+static void test_loose_tolerances(void)
+{
+    crane_scene s;
+    crane_scene_default(&s);
+    static double ref[NLOOSE][3], v[NLOOSE][3];
+    if (!tap_ok(loose_samples(&s, 1e-8, ref) == NLOOSE, "paper at rtol 1e-8: 12.5 s")) return;
+    const double scale = s.relief_pressure + 5e6, tols[3] = {1e-4, 3e-4, 1e-3};
+    for (int j = 0; j < 3; j++) {
+        int n = loose_samples(&s, tols[j], v);
+        double dth = 0, dp = 0;
+        for (int k = 0; k < n; k++) {
+            dth = fmax(dth, fabs(v[k][0] - ref[k][0]));
+            dp = fmax(dp, fmax(fabs(v[k][1] - ref[k][1]), fabs(v[k][2] - ref[k][2])));
+        }
+        tap_ok(n == NLOOSE && dp <= 0.1 * scale && dth <= 100 * tols[j],
+               "paper at rtol %g against 1e-8 over 12.5 s: line pressures within %.3g MPa "
+               "(%.1f %% of 35 MPa), theta within %.2e rad (%.1f rtol)",
+               tols[j], 1e-6 * dp, 100 * dp / scale, dth, dth / tols[j]);
+    }
+}
+
 static void test_swash(void)
 {
     crane_scene s;
@@ -234,6 +283,7 @@ int main(void)
 {
     test_damping_modes();
     test_leakage_mode();
+    test_loose_tolerances();
     test_swash();
 #ifdef CRANE_SCENES_DIR
     crane_scene u;

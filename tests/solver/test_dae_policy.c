@@ -314,6 +314,47 @@ static double test_refresh(double dgmax, int age)
     return maxerr;
 }
 
+/* y' = 1 with the regime floor(y) (-1 from the callback past y = 4.5 when fail is set). */
+static int res_ramp(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user, (void)t, (void)y;
+    F[0] = yp[0] - 1;
+    return 0;
+}
+
+static int regime_floor(void *user, double t, const double *y, int *r)
+{
+    (void)t;
+    if (user && y[0] > 4.5) return -1;
+    r[0] = (int)floor(y[0]);
+    return 0;
+}
+
+/* Runs y' = 1 from 0 to 5.5 with steps of at most 0.25 (regimes: floor(y) or none): the status
+ * and the statistics into *st. */
+static int run_ramp(int regimes, int fail, dae_stats *st)
+{
+    dae_problem p = {0};
+    p.n = 1;
+    p.res = res_ramp;
+    p.user = fail ? (void *)st : NULL;
+    if (regimes) {
+        p.nregimes = 1;
+        p.regimes = regime_floor;
+    }
+    dae_options o;
+    dae_options_default(&o);
+    o.h_max = 0.25;
+    bg_error e = {0};
+    dae_solver *s = dae_create(&p, &o, &e);
+    double y0 = 0, yp0 = 1, t, y;
+    int r = s ? dae_init(s, 0, &y0, &yp0) : -100;
+    if (r == 0) r = dae_solve_to(s, 5.5, &t, &y, NULL);
+    if (s) *st = *dae_get_stats(s);
+    dae_free(&s);
+    return r;
+}
+
 int main(void)
 {
     /* nominal magnitudes = the matching atol vector, to the bit */
@@ -404,6 +445,28 @@ int main(void)
         tap_ok(!sq && eq.status == BG_ERR_ARGUMENT && strstr(eq.message, "newton_jac_age") &&
                    strstr(eq.message, "newton_dgmax"),
                "newton_jac_age without newton_dgmax refused: %s", eq.message);
+        dae_free(&sq);
+    }
+    /* regimes: a fresh Jacobian at each change, once; none without them; a failing callback
+     * stops the run; nregimes without a function refused */
+    {
+        dae_stats sa, sb, sc;
+        int ra = run_ramp(1, 0, &sa), rb = run_ramp(0, 0, &sb), rc = run_ramp(1, 1, &sc);
+        tap_ok(ra == 0 && rb == 0 && sa.jac_regime == 5 && sb.jac_regime == 0 &&
+                   sa.jac_evals >= sb.jac_evals + 5,
+               "y' = 1 to 5.5 with the regime floor(y): %ld Jacobians for a change of regime (the "
+               "5 integers crossed), %ld Jacobians in all against %ld without regimes",
+               sa.jac_regime, sa.jac_evals, sb.jac_evals);
+        tap_ok(rc == DAE_CALLBACK_FAIL, "a regime callback that fails stops the run (status %d)",
+               rc);
+        dae_problem q = {0};
+        q.n = 1;
+        q.res = res_ramp;
+        q.nregimes = 2;
+        bg_error eq = {0};
+        dae_solver *sq = dae_create(&q, NULL, &eq);
+        tap_ok(!sq && eq.status == BG_ERR_ARGUMENT && strstr(eq.message, "nregimes"),
+               "nregimes without a regime function refused: %s", eq.message);
         dae_free(&sq);
     }
     return tap_done();
