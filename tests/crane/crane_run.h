@@ -64,7 +64,7 @@ static inline int start_tol(run *r, const crane_scene *sc, int settle, double to
     o.rtol = tol;
     o.atol = tol;
     o.exclude_alg = 1; /* as the crane program: forces follow the states they are functions of */
-    o.stability_guard = sc->stability_guard; /* as the crane program */
+    crane_scene_solver_options(sc, &o); /* the guard and the Newton settings, as the program */
     o.max_steps = 1000000;
     o.nbreakpoints = crane_breakpoints(r->c, bp, 32);
     o.breakpoints = bp;

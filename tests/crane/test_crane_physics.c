@@ -144,9 +144,9 @@ static void test_leakage_mode(void)
  * full-flow pressure, 35 MPa). The closed circuit's check valves switch as the low line passes
  * the charge pressure; on a Jacobian from the other side of the switch the Newton iteration used
  * to stop with the valve's flow equation unsatisfied, and that phantom flow pumped both lines up
- * (40 MPa at rtol 3e-4, theta(12 s) 0.19 rad short) until the Jacobian followed the valves'
- * regimes (bg_dae.h, dae_problem.regimes). The pressures' bound is loose in rtol terms (1.2, 2.9,
- * 2.6 MPa measured): a Newton error of the tolerance in the valves' flows (rtol times their
+ * (281 MPa at rtol 3e-4, theta 0.09 rad off) until the Jacobian followed the valves'
+ * regimes (bg_dae.h, dae_problem.regimes). The pressures' bound is loose in rtol terms (0.22,
+ * 0.86, 1.9 MPa measured; 70, 281, 5 210 MPa before): a Newton error of the tolerance in the valves' flows (rtol times their
  * 4.77 m^3/s rating) goes into the lines at B / V = 2.8e10 Pa/m^3, 1.3 MPa per 0.1 s at rtol
  * 1e-4, and the flows are algebraic, out of the error test. */
 #define NLOOSE 126
