@@ -43,9 +43,21 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
         d = d * gam + c / s->psi[j - 1];
         c = c * gam;
         gam = (delt + s->psi[j - 1]) / s->psi[j];
-        for (int i = 0; i < n; i++) {
-            if (y) y[i] += c * s->phi[j][i];
-            if (yp) yp[i] += d * s->phi[j][i];
+        /* branch-free loops that vectorise: the crane writes an output every 1 ms, five per
+         * step, and this was 7 % of its run with the tests inside the loop */
+        const double *restrict pj = s->phi[j];
+        if (y && yp) {
+            double *restrict a = y, *restrict b = yp;
+            for (int i = 0; i < n; i++) {
+                a[i] += c * pj[i];
+                b[i] += d * pj[i];
+            }
+        } else if (y) {
+            for (int i = 0; i < n; i++)
+                y[i] += c * pj[i];
+        } else if (yp) {
+            for (int i = 0; i < n; i++)
+                yp[i] += d * pj[i];
         }
     }
 }
