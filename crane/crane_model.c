@@ -119,8 +119,8 @@ void crane_scene_default(crane_scene *s)
     s->nominal_angular_velocity = 1;
     s->stability_guard = 0; /* its fast modes are damped (crane_scene.h) */
     s->newton_dgmax = 0.3;
-    s->newton_jac_age = 0;
-    s->newton_index2_scale_h = 0;
+    s->newton_jac_age = 51;
+    s->newton_index2_scale_h = 1;
 }
 
 static int fail_here(bg_error *err, const char *what, bgr_model *m)

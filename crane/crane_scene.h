@@ -103,17 +103,21 @@
  *                                                    this many steps old or after a Newton
  *                                                    failure, and the Newton rate carries from
  *                                                    step to step (applies with newton_dgmax >
- *                                                    0; default 0: when 1/cj leaves [0.6, 1.67]
- *                                                    of its value then, IDA's rule; bg_dae.h)
+ *                                                    0; default 51, CVODE's value; 0: when 1/cj
+ *                                                    leaves [0.6, 1.67] of its value then, IDA's
+ *                                                    rule; bg_dae.h)
  *                    newton_index2_scale_h boolean   index-2 unknowns (the hinge and joint
  *                                                    reactions, the PID's output on the
  *                                                    measured acceleration, the motor's torque)
  *                                                    weigh h times less in the Newton
- *                                                    convergence test (default false; bg_dae.h)
- * Both off in the shipped scenes: with newton_jac_age = 51 and newton_index2_scale_h = true the
- * paper scene runs 19.4 times faster than real time instead of 12.6 at rtol 1e-6, but at rtol
- * 1e-4 the Newton errors they leave in the line flows (out of the error test) drift the line
- * pressures by 10 to 135 MPa over the 20 s (docs/crane.md, "Solver settings").
+ *                                                    convergence test (default true; bg_dae.h)
+ * Both on in the shipped scenes since the Jacobian follows the switching elements' regimes
+ * (bg_dae.h, dae_problem.regimes): before, at rtol 1e-4, a Jacobian from an open check valve
+ * used after it closed left phantom flows in the lines, and these settings, which keep a
+ * Jacobian longer, made it worse (the line pressures off by 10 to 135 MPa over the 20 s). With
+ * the regimes the paper scene at rtol 1e-4 .. 1e-3 stays within 2 MPa of its run at 1e-8
+ * (tests/crane/test_crane_physics.c), and the settings save a fifth of its time at 1e-6
+ * (docs/crane.md, "Solver settings").
  *
  * Tolerances. The solver weighs the error of unknown i with rtol |y_i| + atol nominal_i. With
  * nominal_scales = true (the default) nominal_i is the magnitude the components give that

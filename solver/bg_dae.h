@@ -117,8 +117,8 @@ typedef struct dae_problem {
                                     in the error test and in the Newton test alike, so that one
                                     atol means the same for a pressure of 1e7 Pa and an angle of
                                     1 rad. options.atol_vec, when given, is taken as it is */
-    /* Optional regimes of sharp but smooth characteristics (a relief valve closed, opening or
-       open; a limiter in range or saturated; a rope taut or slack): nregimes integers that
+    /* Optional regimes of sharp but smooth characteristics (a relief valve closed, nearly
+       closed, opening or open; a limiter in range or saturated; a rope taut or slack): nregimes integers that
        name the branch each switching element is on at y. The Jacobian is evaluated again
        when they differ from those at its last evaluation: at the predictor of a step, and at
        a converged Newton iterate on a matrix from an earlier step (which then counts as a
@@ -217,9 +217,10 @@ typedef struct dae_options {
                                   carries to the next ones until the matrix is formed again
                                   (CVODE's crate) instead of being reset when cj changes.
                                   Default 0: IDA's rule. Fewer Jacobians and Newton iterations,
-                                  but the Newton errors left in algebraic unknowns are larger
-                                  and the error test does not see them (dae_nls.c: a drift of
-                                  the crane's line pressures at rtol 1e-4) */
+                                  but a Jacobian kept longer meets more switches of sharp
+                                  characteristics: give dae_problem.regimes where there are any
+                                  (dae_nls.c: the crane's line pressures drifted at rtol 1e-4
+                                  without them) */
     int stability_guard;       /* 1: where a lightly damped oscillation holds BDF orders 3..5
                                   at their stability limit, the order is lowered to 2, which
                                   damps it (numerical dissipation of the unresolved high

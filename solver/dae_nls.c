@@ -15,9 +15,10 @@
  * the matrix within newton_dgmax of the current cj; the Jacobian then follows the state, not
  * the step size. And the rate is not reset when cj changes (below): CVODE keeps its crate from
  * step to step and resets it only when the matrix is formed again (cvNlsLSetup). Caution,
- * measured: on the crane (crane/crane_scene.h) this leaves Newton errors in algebraic unknowns
- * (the line flows) that the error test does not see and the line pressures integrate: at rtol
- * 1e-4 the pressures of paper-undamped ended 135 MPa too high. Hence off by default.
+ * measured: a Jacobian kept longer meets more switches of sharp characteristics, and without
+ * dae_problem.regimes the crane's check valves then left phantom flows in its lines (at rtol
+ * 1e-4 the pressures of paper-undamped ended 135 MPa too high). With the regimes the crane
+ * scenes use it (crane/crane_scene.h); off by default.
  * At most max_newton iterations per attempt, or up to twice that on a matrix evaluated at the
  * step itself while the rate (0.5 or better) says it will converge within them
  * (newton_extends).
