@@ -1,7 +1,9 @@
 /* Forward-mode automatic differentiation to second order in a fixed number of variables
  * (internal, header-only). A value carries its gradient and, when asked (order 2), its Hessian,
  * so that an element that writes its energy once gets exact first and second derivatives:
- * forces and their Jacobian without finite differences. Used by the co-rotational beam. */
+ * forces and their Jacobian without finite differences. Used by the co-rotational beam.
+ * The operations fill the Hessian's upper triangle only (h[i][j], j >= i; every Hessian is
+ * symmetric): ad_mirror copies it to the lower one for a value whose Hessian is read whole. */
 #ifndef MECH_AD_H
 #define MECH_AD_H
 
@@ -40,8 +42,9 @@ static inline void ad_axpy(const ad_ctx *c, const ad *a, double s, const ad *b, 
     for (int i = 0; i < AD_N; i++)
         r->g[i] = a->g[i] + s * b->g[i];
     if (c->order > 1)
-        for (int i = 0; i < AD_N * AD_N; i++)
-            r->h[i] = a->h[i] + s * b->h[i];
+        for (int i = 0; i < AD_N; i++)
+            for (int j = i; j < AD_N; j++)
+                r->h[i * AD_N + j] = a->h[i * AD_N + j] + s * b->h[i * AD_N + j];
 }
 
 static inline void ad_scale(const ad_ctx *c, double s, const ad *a, ad *r)
@@ -50,8 +53,9 @@ static inline void ad_scale(const ad_ctx *c, double s, const ad *a, ad *r)
     for (int i = 0; i < AD_N; i++)
         r->g[i] = s * a->g[i];
     if (c->order > 1)
-        for (int i = 0; i < AD_N * AD_N; i++)
-            r->h[i] = s * a->h[i];
+        for (int i = 0; i < AD_N; i++)
+            for (int j = i; j < AD_N; j++)
+                r->h[i * AD_N + j] = s * a->h[i * AD_N + j];
 }
 
 /* r = a b (r may alias neither) */
@@ -62,7 +66,7 @@ static inline void ad_mul(const ad_ctx *c, const ad *a, const ad *b, ad *r)
         r->g[i] = a->g[i] * b->v + a->v * b->g[i];
     if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
-            for (int j = 0; j < AD_N; j++)
+            for (int j = i; j < AD_N; j++)
                 r->h[i * AD_N + j] = a->h[i * AD_N + j] * b->v + a->v * b->h[i * AD_N + j] +
                                      a->g[i] * b->g[j] + a->g[j] * b->g[i];
 }
@@ -72,7 +76,7 @@ static inline void ad_apply(const ad_ctx *c, const ad *a, double f, double fp, d
 {
     if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
-            for (int j = 0; j < AD_N; j++)
+            for (int j = i; j < AD_N; j++)
                 r->h[i * AD_N + j] = fp * a->h[i * AD_N + j] + fpp * a->g[i] * a->g[j];
     for (int i = 0; i < AD_N; i++)
         r->g[i] = fp * a->g[i];
@@ -105,13 +109,22 @@ static inline void ad_dot3s(const ad_ctx *c, double s, const ad *a, const ad *b,
     }
     if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
-            for (int j = 0; j < AD_N; j++) {
+            for (int j = i; j < AD_N; j++) {
                 double h = 0;
                 for (int m = 0; m < 3; m++)
                     h += a[m].h[i * AD_N + j] * b[m].v + a[m].v * b[m].h[i * AD_N + j] +
                          a[m].g[i] * b[m].g[j] + a[m].g[j] * b[m].g[i];
                 r->h[i * AD_N + j] = acc ? r->h[i * AD_N + j] + s * h : s * h;
             }
+}
+
+/* The Hessian's lower triangle from its upper one (order 2), for a value read whole. */
+static inline void ad_mirror(const ad_ctx *c, ad *a)
+{
+    if (c->order > 1)
+        for (int i = 0; i < AD_N; i++)
+            for (int j = 0; j < i; j++)
+                a->h[i * AD_N + j] = a->h[j * AD_N + i];
 }
 
 /* r = a . b for 3-vectors */

@@ -176,6 +176,10 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
             ad_mul(c, dl[r], dl[q], &k->t2);
             ad_axpy(c, &k->W, (q == r ? 0.5 : 1.0) * b->K[r][q], &k->t2, &k->W);
         }
+    /* the Hessians read whole (velocity_gradient): W's, and the deformations' for the damping */
+    ad_mirror(c, &k->W);
+    for (int r = 0; r < 7; r++)
+        ad_mirror(c, (ad *)dl[r]);
 }
 
 /* J(q): dq = J(q) dphi for a global rotation dphi, dq = (0, dphi) (x) q / 2; rows j, cols k. */
