@@ -189,7 +189,7 @@ int daei_newton(dae_solver *s, double t)
     double ratio = s->cj / (s->cjj != 0 ? s->cjj : s->cj);
     int old_jac = s->o.newton_jac_age > 0 ? s->st.steps - s->jac_nst >= s->o.newton_jac_age
                                           : ratio < CJ_LOW || ratio > CJ_HIGH;
-    if (s->reg_valid && !s->first && !old_jac) { /* a switch since the Jacobian */
+    if (s->reg_valid && !s->first && !old_jac && !s->need_setup) { /* a switch since it */
         int rc = regimes_changed(s, t, s->y);
         if (rc < 0) return rc;
         if (rc) {

@@ -50,6 +50,7 @@ struct dae_reduce {
     dae_solver *in;     /* the problem as given */
     dae_res_fn ures;    /* its residual */
     dae_root_fn uroots; /* its event functions */
+    dae_regime_fn uregimes; /* and regimes */
     void *uuser;
     int nc, *crow;         /* the constraint rows, listed */
     int *crow_of;          /* row i -> its number among the constraint rows, -1 */
@@ -272,11 +273,18 @@ static int red_cons(void *u, double t, const double *y, double *g, sp_csc *G)
     return 0;
 }
 
-/* The problem's event functions with its own user pointer (s->p.user is the solver). */
+/* The problem's event functions and regimes with its own user pointer (s->p.user is the
+ * solver). */
 static int red_roots(void *u, double t, const double *y, const double *yp, double *g)
 {
     const dae_reduce *R = ((dae_solver *)u)->red;
     return R->uroots(R->uuser, t, y, yp, g);
+}
+
+static int red_regimes(void *u, double t, const double *y, int *r)
+{
+    const dae_reduce *R = ((dae_solver *)u)->red;
+    return R->uregimes(R->uuser, t, y, r);
 }
 
 /* ---------------------------------------------------------------- structure ---- */
@@ -388,6 +396,7 @@ static int take_reduced(dae_solver *s, bg_error *err)
     s->p.jac = red_jac;
     s->p.user = s; /* every callback of s->p takes the solver: */
     if (R->uroots) s->p.roots = red_roots;
+    if (R->uregimes) s->p.regimes = red_regimes;
     s->p.kind = R->kind;
     s->p.jac_y_pattern = R->Jy;
     s->p.jac_yp_pattern = R->Jyp;
@@ -445,6 +454,7 @@ int daei_red_create(dae_solver *s, const dae_problem *p, const dae_options *o, b
     if (!(R->in = dae_create(p, &oi, err))) return err ? err->status : BG_ERR_ARGUMENT;
     R->ures = p->res;
     R->uroots = p->roots;
+    R->uregimes = p->regimes;
     R->uuser = p->user;
     if (!R->in->structured) {
         s->detect = 1; /* patterns found from the residual by the inner solver at dae_init */

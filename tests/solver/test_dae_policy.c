@@ -330,14 +330,31 @@ static int regime_floor(void *user, double t, const double *y, int *r)
     return 0;
 }
 
-/* Runs y' = 1 from 0 to 5.5 with steps of at most 0.25 (regimes: floor(y) or none): the status
- * and the statistics into *st. */
-static int run_ramp(int regimes, int fail, dae_stats *st)
+/* The same ramp held by a constraint at index 2: x' = 1 + lambda, 0 = x - t (lambda = 0). */
+static int res_ramp2(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user;
+    F[0] = yp[0] - 1 - y[1];
+    F[1] = y[0] - t;
+    return 0;
+}
+
+/* Runs y' = 1 from 0 to 5.5 with steps of at most 0.25 (regimes: floor(y) or none; reduce: the
+ * constrained ramp with index2 = DAE_I2_REDUCE): the status and the statistics into *st. */
+static int run_ramp(int regimes, int fail, int reduce, dae_stats *st)
 {
     dae_problem p = {0};
     p.n = 1;
     p.res = res_ramp;
     p.user = fail ? (void *)st : NULL;
+    const double dy[4] = {0, 1, -1, 0}, dyp[4] = {1, 0, 0, 0}; /* column-major */
+    sp_csc *jy = NULL, *jyp = NULL;
+    if (reduce) {
+        p.n = 2;
+        p.res = res_ramp2;
+        p.jac_y_pattern = jy = sp_csc_from_dense(2, 2, dy, 0.0);
+        p.jac_yp_pattern = jyp = sp_csc_from_dense(2, 2, dyp, 0.0);
+    }
     if (regimes) {
         p.nregimes = 1;
         p.regimes = regime_floor;
@@ -345,13 +362,16 @@ static int run_ramp(int regimes, int fail, dae_stats *st)
     dae_options o;
     dae_options_default(&o);
     o.h_max = 0.25;
+    if (reduce) o.index2 = DAE_I2_REDUCE;
     bg_error e = {0};
     dae_solver *s = dae_create(&p, &o, &e);
-    double y0 = 0, yp0 = 1, t, y;
-    int r = s ? dae_init(s, 0, &y0, &yp0) : -100;
-    if (r == 0) r = dae_solve_to(s, 5.5, &t, &y, NULL);
+    double y0[2] = {0, 0}, yp0[2] = {1, 0}, t, y[2];
+    int r = s ? dae_init(s, 0, y0, yp0) : -100;
+    if (r == 0) r = dae_solve_to(s, 5.5, &t, y, NULL);
     if (s) *st = *dae_get_stats(s);
     dae_free(&s);
+    sp_csc_free(&jy);
+    sp_csc_free(&jyp);
     return r;
 }
 
@@ -450,8 +470,9 @@ int main(void)
     /* regimes: a fresh Jacobian at each change, once; none without them; a failing callback
      * stops the run; nregimes without a function refused */
     {
-        dae_stats sa, sb, sc;
-        int ra = run_ramp(1, 0, &sa), rb = run_ramp(0, 0, &sb), rc = run_ramp(1, 1, &sc);
+        dae_stats sa, sb, sc, sd;
+        int ra = run_ramp(1, 0, 0, &sa), rb = run_ramp(0, 0, 0, &sb), rc = run_ramp(1, 1, 0, &sc);
+        int rd = run_ramp(1, 0, 1, &sd);
         tap_ok(ra == 0 && rb == 0 && sa.jac_regime == 5 && sb.jac_regime == 0 &&
                    sa.jac_evals >= sb.jac_evals + 5,
                "y' = 1 to 5.5 with the regime floor(y): %ld Jacobians for a change of regime (the "
@@ -459,6 +480,10 @@ int main(void)
                sa.jac_regime, sa.jac_evals, sb.jac_evals);
         tap_ok(rc == DAE_CALLBACK_FAIL, "a regime callback that fails stops the run (status %d)",
                rc);
+        tap_ok(rd == 0 && sd.jac_regime == 5,
+               "with index2 = DAE_I2_REDUCE the callback gets the problem's own user pointer: "
+               "status %d, %ld Jacobians for a change of regime",
+               rd, sd.jac_regime);
         dae_problem q = {0};
         q.n = 1;
         q.res = res_ramp;
