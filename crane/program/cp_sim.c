@@ -72,8 +72,14 @@ void cp_summary(cp_run *r)
 {
     const dae_stats *st = r->s ? dae_get_stats(r->s) : NULL;
     int th = crane_output_index("theta"), thr = crane_output_index("theta_ref");
-    printf("crane: scene %s, %s at t = %g s (of %g s)\n", r->scene.name, r->status, r->t,
-           r->scene.t_end);
+    if (r->o->modes) /* an analysis, not a run over [0, t_end] */
+        printf("crane: scene %s, the modes at t = %g s: %s\n", r->scene.name, r->o->modes_t,
+               r->status);
+    else if (r->o->static_only)
+        printf("crane: scene %s, the static equilibrium: %s\n", r->scene.name, r->status);
+    else
+        printf("crane: scene %s, %s at t = %g s (of %g s)\n", r->scene.name, r->status, r->t,
+               r->scene.t_end);
     if (r->have_final && th >= 0)
         printf("  final angle     theta = %.6f rad%s", r->final_out[th], thr >= 0 ? "" : "\n");
     if (r->have_final && th >= 0 && thr >= 0) printf(" (reference %.6f rad)\n", r->final_out[thr]);

@@ -228,12 +228,16 @@ static void test_program(void)
     tap_ok(file_nonempty(out, gp), "crane --modes: %s written", gp);
     snprintf(out, sizeof out, "%s/modes2", tmp);
     run(NULL,
-        (const char *[]){"paper", "--modes", "0.5", "--elements", "4", "--out", out, "--quiet",
+        (const char *[]){"paper", "--modes", "0.5", "--elements", "4", "--out", out,
                          "--no-plots", NULL},
         "modes2", 120, &r);
     tap_ok(r.exited && r.code == 0 && file_contains(out, "modes.csv", ",elastic,"),
            "crane --modes 0.5 (4 elements): exit %d, the modes after half a second of the run",
            r.code);
+    /* an analysis says what it did, not a run stopped at t = 0.5 of 20 s */
+    tap_ok(strstr(r.out, "crane: scene paper, the modes at t = 0.5 s: completed") &&
+               !strstr(r.out, "(of 20 s)"),
+           "crane --modes: the summary names the analysis, no run's end time (%.300s)", r.out);
     run(NULL, (const char *[]){"paper", "--modes=-1", NULL}, "modesbad", 30, &r);
     tap_ok(r.exited && r.code == 2 && strstr(r.err, "--modes"),
            "crane --modes=-1: exit 2 (%.100s)", r.err);
