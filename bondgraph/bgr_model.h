@@ -76,8 +76,8 @@ typedef struct bgr_element_class {
     int (*breakpoints)(const bgr_element *el, double t0, double t1, double *t, int max);
     /* Optional: the branch of a sharp but smooth characteristic the element is on at y, a small
      * integer (cmp_regime in components/cmp_internal.h: 0 off, 1 nearly off, 2 between, 3 on,
-     * from the slope of its smooth switch). bgr_regimes collects them; the solver evaluates a fresh Jacobian
-     * when one changes (bg_dae.h, dae_problem.regimes). */
+     * from the slope of its smooth switch). bgr_regimes collects them; the solver evaluates a
+     * fresh Jacobian when one changes (bg_dae.h, dae_problem.regimes). */
     int (*regime)(const bgr_element *el, const double *y);
 } bgr_element_class;
 

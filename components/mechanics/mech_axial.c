@@ -148,8 +148,9 @@ static int axial_regime(const bgr_element *el, const double *y)
     const axial *a = el->params;
     if (!a->rope) return cmp_regime(1.0);
     const double *d = y + a->d;
-    double z = (sqrt(mech_dot(d, d)) - a->L0) / a->eps, ez = exp(-fabs(z));
-    return cmp_regime(z > 0 ? 1.0 / (1.0 + ez) : ez / (1.0 + ez));
+    double h;
+    cmp_softplus(sqrt(mech_dot(d, d)) - a->L0, a->eps, &h);
+    return cmp_regime(h);
 }
 
 static const bgr_element_class axial_class = {.type = "axial",

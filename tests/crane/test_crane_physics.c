@@ -150,16 +150,19 @@ static void test_leakage_mode(void)
  * 4.77 m^3/s rating) goes into the lines at B / V = 2.8e10 Pa/m^3, 1.3 MPa per 0.1 s at rtol
  * 1e-4, and the flows are algebraic, out of the error test. */
 #define NLOOSE 126
-static int loose_samples(const crane_scene *s, double tol, double out[NLOOSE][3])
+
+/* Outputs cols[0..2] of scene s at rtol = atol = tol, from its static start, every dt for n rows
+ * into out: the rows reached. */
+static int sample_run(const crane_scene *s, double tol, int n, double dt, const int cols[3],
+                      double (*out)[3])
 {
     run r;
     int k = 0;
     if (start_tol(&r, s, 1, tol) == 0)
-        for (; k < NLOOSE; k++) {
-            if (k > 0 && advance(&r, 0.1 * k) != 0) break;
-            out[k][0] = r.out[O_TH];
-            out[k][1] = r.out[O_PH];
-            out[k][2] = r.out[O_PL];
+        for (; k < n; k++) {
+            if (k > 0 && advance(&r, dt * k) != 0) break;
+            for (int j = 0; j < 3; j++)
+                out[k][j] = r.out[cols[j]];
         }
     finish(&r);
     return k;
@@ -170,10 +173,13 @@ static void test_loose_tolerances(void)
     crane_scene s;
     crane_scene_default(&s);
     static double ref[NLOOSE][3], v[NLOOSE][3];
-    if (!tap_ok(loose_samples(&s, 1e-8, ref) == NLOOSE, "paper at rtol 1e-8: 12.5 s")) return;
+    const int cols[3] = {O_TH, O_PH, O_PL};
+    if (!tap_ok(sample_run(&s, 1e-8, NLOOSE, 0.1, cols, ref) == NLOOSE,
+                "paper at rtol 1e-8: 12.5 s"))
+        return;
     const double scale = s.relief_pressure + 5e6, tols[3] = {1e-4, 3e-4, 1e-3};
     for (int j = 0; j < 3; j++) {
-        int n = loose_samples(&s, tols[j], v);
+        int n = sample_run(&s, tols[j], NLOOSE, 0.1, cols, v);
         double dth = 0, dp = 0;
         for (int k = 0; k < n; k++) {
             dth = fmax(dth, fabs(v[k][0] - ref[k][0]));
@@ -231,18 +237,8 @@ static void test_undamped_is_old(const crane_scene *u)
 static int samples(const crane_scene *sc, int elements, double tol, double out[NSAMP][3])
 {
     crane_scene s = *sc;
-    run r;
     s.boom_elements = elements;
-    int k = -1;
-    if (start_tol(&r, &s, 1, tol) == 0)
-        for (k = 0; k < NSAMP; k++) {
-            if (k > 0 && advance(&r, 0.05 * k) != 0) break;
-            out[k][0] = r.out[O_TH];
-            out[k][1] = r.out[O_DL];
-            out[k][2] = r.out[O_DS];
-        }
-    finish(&r);
-    return k;
+    return sample_run(&s, tol, NSAMP, 0.05, (const int[]){O_TH, O_DL, O_DS}, out);
 }
 
 static double peak(double v[NSAMP][3], int j)
