@@ -1,6 +1,6 @@
 /* The bond-graph model: components, elements, ports and bonds; compilation into numbered,
- * named unknowns and equations with Jacobian patterns and slots; the residual and Jacobian
- * callbacks; statistics, listings and the Jacobian check (see bgr_model.h). */
+ * named unknowns and equations with Jacobian patterns and slots (see bgr_model.h). The residual
+ * and Jacobian callbacks, statistics, listings and the Jacobian check are in bgr_eval.c. */
 #include "bgr_model.h"
 
 #include <math.h>
@@ -8,62 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bg_fdjac.h"
+#include "bgr_model_impl.h"
 
-typedef struct comp_rec {
-    char *name, *path;
-    int parent;
-} comp_rec;
-
-typedef struct export_rec {
-    int comp;
-    char *name;
-    bgr_port port;
-} export_rec;
-
-typedef struct bond_rec {
-    char *name;
-    int comp, d, var0;
-    bgr_port a, b;
-    char **elab, **flab;
-} bond_rec;
-
-typedef struct dep_rec {
-    int eq, var, wrt_yp;
-} dep_rec;
-
-struct bgr_model {
-    bg_error err;
-    comp_rec *comp;
-    int ncomp, capcomp;
-    export_rec *exp;
-    int nexp, capexp;
-    bgr_element **el;
-    int nel, capel;
-    bond_rec *bond;
-    int nbond, capbond;
-    char **state_names, **alg_names; /* per element, flattened later */
-    /* compiled */
-    int compiled, n, neq_declared;
-    int compiling; /* inside the declare() hooks of bgr_compile */
-    char **vname, **ename;
-    int *eq_owner;
-    int *kind, *declared_i2;
-    double *y0, *yp0;
-    double *nominal; /* nominal magnitudes: 0 while undeclared during compilation, then 1 */
-    dep_rec *dep;
-    int ndep, capdep;
-    sp_csc *Jy, *Jyp;
-    int *slot;
-    double *vals;
-    /* per element own unknown names (kept until compile) */
-    char ***el_state_names, ***el_alg_names;
-    /* for the Jacobian check */
-    double ck_t;
-    const double *ck_y, *ck_yp;
-};
-
-static int fail(bgr_model *m, int status, const char *where, const char *fmt, ...)
+/* The helpers of bgr_model_impl.h. */
+int bgri_fail(bgr_model *m, int status, const char *where, const char *fmt, ...)
 {
     if (!m) return status;
     va_list ap;
@@ -73,9 +21,7 @@ static int fail(bgr_model *m, int status, const char *where, const char *fmt, ..
     return status;
 }
 
-/* The same for queries that take the model const: the error record is the only thing they
- * write (the model is always allocated by bgr_model_create, never a const object). */
-static int fail_c(const bgr_model *m, int status, const char *where, const char *fmt, ...)
+int bgri_fail_c(const bgr_model *m, int status, const char *where, const char *fmt, ...)
 {
     if (!m) return status;
     va_list ap;
@@ -85,14 +31,13 @@ static int fail_c(const bgr_model *m, int status, const char *where, const char 
     return status;
 }
 
-/* BG_OK if the model is compiled, else BG_ERR_STATE with a message. */
-static int need_compiled(const bgr_model *m, const char *where)
+int bgri_need_compiled(const bgr_model *m, const char *where)
 {
     if (m->compiled > 0) return BG_OK;
-    return fail_c(m, BG_ERR_STATE, where,
-                  m->compiled < 0 ? "the compilation of model %s failed: build it again"
-                                  : "model %s is not compiled: call bgr_compile first",
-                  m->comp[0].path);
+    return bgri_fail_c(m, BG_ERR_STATE, where,
+                       m->compiled < 0 ? "the compilation of model %s failed: build it again"
+                                       : "model %s is not compiled: call bgr_compile first",
+                       m->comp[0].path);
 }
 
 static char *dupstr(const char *s)
@@ -218,10 +163,10 @@ static int check_building(bgr_model *m, const char *where)
 {
     if (!m) return BG_ERR_ARGUMENT;
     if (m->compiled > 0)
-        return fail(m, BG_ERR_STATE, where, "the model is compiled: no more changes");
+        return bgri_fail(m, BG_ERR_STATE, where, "the model is compiled: no more changes");
     if (m->compiled < 0)
-        return fail(m, BG_ERR_STATE, where,
-                    "an earlier compilation failed: no more changes (build the model again)");
+        return bgri_fail(m, BG_ERR_STATE, where,
+                         "an earlier compilation failed: no more changes (build the model again)");
     return BG_OK;
 }
 
@@ -231,16 +176,17 @@ bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name)
     int st = check_building(m, w);
     if (st) return st;
     if (parent < 0 || parent >= m->ncomp)
-        return fail(m, BG_ERR_ARGUMENT, w, "parent component %d does not exist", parent);
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "parent component %d does not exist", parent);
     if (!valid_name(name))
-        return fail(m, BG_ERR_ARGUMENT, w, "component name '%s' in %s must be non-empty, no '/'",
-                    name ? name : "(null)", m->comp[parent].path);
+        return bgri_fail(m, BG_ERR_ARGUMENT, w,
+                         "component name '%s' in %s must be non-empty, no '/'",
+                         name ? name : "(null)", m->comp[parent].path);
     for (int c = 1; c < m->ncomp; c++)
         if (m->comp[c].parent == parent && !strcmp(m->comp[c].name, name))
-            return fail(m, BG_ERR_ARGUMENT, w, "component %s/%s exists already",
-                        m->comp[parent].path, name);
+            return bgri_fail(m, BG_ERR_ARGUMENT, w, "component %s/%s exists already",
+                             m->comp[parent].path, name);
     if (!reserve((void **)&m->comp, &m->capcomp, m->ncomp, sizeof *m->comp))
-        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     comp_rec *r = &m->comp[m->ncomp];
     r->name = dupstr(name);
     r->path = join(m->comp[parent].path, name);
@@ -248,7 +194,7 @@ bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name)
     if (!r->name || !r->path) {
         free(r->name);
         free(r->path);
-        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     }
     return m->ncomp++;
 }
@@ -281,39 +227,41 @@ int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_elemen
     const char *w = "bgr_element_add";
     int st = check_building(m, w);
     if (!st && (c < 0 || c >= m->ncomp))
-        st = fail(m, BG_ERR_ARGUMENT, w, "component %d does not exist", c);
+        st = bgri_fail(m, BG_ERR_ARGUMENT, w, "component %d does not exist", c);
     if (!st && !valid_name(name))
-        st = fail(m, BG_ERR_ARGUMENT, w, "element name '%s' in %s must be non-empty, no '/'",
-                  name ? name : "(null)", m->comp[c].path);
+        st = bgri_fail(m, BG_ERR_ARGUMENT, w, "element name '%s' in %s must be non-empty, no '/'",
+                       name ? name : "(null)", m->comp[c].path);
     if (!st && (!cls || !cls->declare || !cls->residual || !cls->jacobian))
-        st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: incomplete element class", m->comp[c].path,
-                  name);
+        st = bgri_fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: incomplete element class",
+                       m->comp[c].path, name);
     if (!st && (nports < 0 || nstates < 0 || nalg < 0))
-        st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: negative count", m->comp[c].path, name);
+        st = bgri_fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: negative count", m->comp[c].path,
+                       name);
     for (int k = 0; !st && dims && k < nports; k++)
         if (dims[k] < 0)
-            st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: port %d has dimension %d",
-                      m->comp[c].path, name, k, dims[k]);
+            st = bgri_fail(m, BG_ERR_ARGUMENT, w, "element %s/%s: port %d has dimension %d",
+                           m->comp[c].path, name, k, dims[k]);
     for (int i = 0; !st && i < m->nel; i++)
         if (m->el[i]->comp == c && !strcmp(m->el[i]->name, name))
-            st = fail(m, BG_ERR_ARGUMENT, w, "element %s/%s exists already", m->comp[c].path, name);
+            st = bgri_fail(m, BG_ERR_ARGUMENT, w, "element %s/%s exists already", m->comp[c].path,
+                           name);
     if (!st) { /* three arrays grown together; a failed realloc keeps the old block */
         int cap = m->capel;
         if (!reserve((void **)&m->el, &cap, m->nel, sizeof *m->el)) {
-            st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+            st = bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
         } else if (cap != m->capel || !m->el_state_names) {
             char ***sn = realloc(m->el_state_names, (size_t)cap * sizeof *sn);
             if (sn) m->el_state_names = sn;
             char ***an = sn ? realloc(m->el_alg_names, (size_t)cap * sizeof *an) : NULL;
             if (an) m->el_alg_names = an;
             if (!sn || !an)
-                st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+                st = bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
             else
                 m->capel = cap;
         }
     }
     bgr_element *el = st ? NULL : calloc(1, sizeof *el);
-    if (!st && !el) st = fail(m, BG_ERR_MEMORY, w, "out of memory");
+    if (!st && !el) st = bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     if (st) {
         if (cls && cls->destroy) cls->destroy(params);
         return st;
@@ -340,7 +288,7 @@ int bgr_element_add(bgr_model *m, bgr_comp c, const char *name, const bgr_elemen
         free_strs(sn, nstates);
         free_strs(an, nalg);
         free(el);
-        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     }
     for (int k = 0; k < nports; k++) {
         el->bond[k] = -1;
@@ -378,20 +326,22 @@ int bgr_export(bgr_model *m, bgr_comp c, const char *name, bgr_port inner)
     int st = check_building(m, w);
     if (st) return st;
     if (c < 0 || c >= m->ncomp || !valid_name(name))
-        return fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or port name '%s'", c,
-                    name ? name : "(null)");
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or port name '%s'", c,
+                         name ? name : "(null)");
     if (inner.elem < 0 || inner.elem >= m->nel || inner.port < 0 ||
         inner.port >= m->el[inner.elem]->nports)
-        return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s: the inner port is invalid", m->comp[c].path,
-                    name);
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "port %s/%s: the inner port is invalid",
+                         m->comp[c].path, name);
     for (int e = 0; e < m->nexp; e++)
         if (m->exp[e].comp == c && !strcmp(m->exp[e].name, name))
-            return fail(m, BG_ERR_ARGUMENT, w, "port %s/%s exists already", m->comp[c].path, name);
+            return bgri_fail(m, BG_ERR_ARGUMENT, w, "port %s/%s exists already", m->comp[c].path,
+                             name);
     if (!reserve((void **)&m->exp, &m->capexp, m->nexp, sizeof *m->exp))
-        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     m->exp[m->nexp].comp = c;
     m->exp[m->nexp].port = inner;
-    if (!(m->exp[m->nexp].name = dupstr(name))) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    if (!(m->exp[m->nexp].name = dupstr(name)))
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     m->nexp++;
     return BG_OK;
 }
@@ -423,37 +373,37 @@ int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_
     int st = check_building(m, w);
     if (st) return st;
     if (c < 0 || c >= m->ncomp || !valid_name(name))
-        return fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or bond name '%s'", c,
-                    name ? name : "(null)");
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "invalid component %d or bond name '%s'", c,
+                         name ? name : "(null)");
     if (d < 1)
-        return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: dimension %d, expected >= 1",
-                    m->comp[c].path, name, d);
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: dimension %d, expected >= 1",
+                         m->comp[c].path, name, d);
     bgr_port ends[2] = {a, b};
     for (int k = 0; k < 2; k++) {
         bgr_port p = ends[k];
         if (p.elem < 0 || p.elem >= m->nel || p.port < 0 || p.port >= m->el[p.elem]->nports)
-            return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: its %s port is invalid",
-                        m->comp[c].path, name, k ? "end" : "start");
+            return bgri_fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: its %s port is invalid",
+                             m->comp[c].path, name, k ? "end" : "start");
         bgr_element *el = m->el[p.elem];
         if (el->bond[p.port] >= 0)
-            return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: %s is already joined by bond %s",
-                        m->comp[c].path, name, port_desc(m, p, ba, sizeof ba),
-                        m->bond[el->bond[p.port]].name);
+            return bgri_fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s: %s is already joined by bond %s",
+                             m->comp[c].path, name, port_desc(m, p, ba, sizeof ba),
+                             m->bond[el->bond[p.port]].name);
         if (el->dim[p.port] && el->dim[p.port] != d)
-            return fail(m, BG_ERR_ARGUMENT, w,
-                        "bond %s/%s has dimension %d, but %s needs dimension %d", m->comp[c].path,
-                        name, d, port_desc(m, p, ba, sizeof ba), el->dim[p.port]);
+            return bgri_fail(
+                m, BG_ERR_ARGUMENT, w, "bond %s/%s has dimension %d, but %s needs dimension %d",
+                m->comp[c].path, name, d, port_desc(m, p, ba, sizeof ba), el->dim[p.port]);
     }
     if (a.elem == b.elem && a.port == b.port)
-        return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s joins %s to itself", m->comp[c].path, name,
-                    port_desc(m, a, ba, sizeof ba));
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s joins %s to itself", m->comp[c].path,
+                         name, port_desc(m, a, ba, sizeof ba));
     for (int i = 0; i < m->nbond; i++)
         if (m->bond[i].comp == c && !strcmp(m->bond[i].name, name))
-            return fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s exists already (%s -> %s)",
-                        m->comp[c].path, name, port_desc(m, a, ba, sizeof ba),
-                        port_desc(m, b, bb, sizeof bb));
+            return bgri_fail(m, BG_ERR_ARGUMENT, w, "bond %s/%s exists already (%s -> %s)",
+                             m->comp[c].path, name, port_desc(m, a, ba, sizeof ba),
+                             port_desc(m, b, bb, sizeof bb));
     if (!reserve((void **)&m->bond, &m->capbond, m->nbond, sizeof *m->bond))
-        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     bond_rec *r = &m->bond[m->nbond];
     memset(r, 0, sizeof *r);
     r->comp = c;
@@ -467,7 +417,7 @@ int bgr_bond(bgr_model *m, bgr_comp c, const char *name, int d, bgr_port a, bgr_
         free(r->name);
         free_strs(r->elab, d);
         free_strs(r->flab, d);
-        return fail(m, BG_ERR_MEMORY, w, "out of memory");
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     }
     if (d == 1) { /* plain "e" and "f" when not labelled */
         if (!effort_labels) r->elab[0][1] = '\0';
@@ -533,13 +483,13 @@ static int check_declare(const bgr_element *el, bgr_model *m, const char *what)
 {
     if (!m) return BG_ERR_ARGUMENT;
     if (!el || el->id < 0 || el->id >= m->nel || m->el[el->id] != el)
-        return fail(m, BG_ERR_ARGUMENT, what, "the element is not one of model %s",
-                    m->comp[0].path);
+        return bgri_fail(m, BG_ERR_ARGUMENT, what, "the element is not one of model %s",
+                         m->comp[0].path);
     if (!m->compiling)
-        return fail(m, BG_ERR_STATE, what,
-                    "element %s/%s: %s is called only from the element's declare() during "
-                    "bgr_compile",
-                    m->comp[el->comp].path, el->name, what);
+        return bgri_fail(m, BG_ERR_STATE, what,
+                         "element %s/%s: %s is called only from the element's declare() during "
+                         "bgr_compile",
+                         m->comp[el->comp].path, el->name, what);
     return BG_OK;
 }
 
@@ -548,17 +498,17 @@ int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *co
     int st = check_declare(el, m, "bgr_declare_equations");
     if (st) return st;
     if (neq < 0)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_compile", "element %s/%s declares %d equations",
-                    m->comp[el->comp].path, el->name, neq);
+        return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile", "element %s/%s declares %d equations",
+                         m->comp[el->comp].path, el->name, neq);
     char *path = elem_path(m, el);
-    if (!path) return fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
+    if (!path) return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
     el->neq = neq;
     el->eq0 = m->neq_declared;
     for (int k = 0; k < neq; k++) {
         int row = m->neq_declared + k;
         if (row >= m->n) {
-            fail(m, BG_ERR_PATTERN, "bgr_compile",
-                 "element %s declares more equations than there are unknowns", path);
+            bgri_fail(m, BG_ERR_PATTERN, "bgr_compile",
+                      "element %s declares more equations than there are unknowns", path);
             free(path);
             return BG_ERR_PATTERN;
         }
@@ -568,7 +518,7 @@ int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *co
         m->eq_owner[row] = el->id;
         if (!m->ename[row]) {
             free(path);
-            return fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
+            return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
         }
     }
     m->neq_declared += neq;
@@ -581,12 +531,13 @@ int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp)
     int st = check_declare(el, m, "bgr_declare_dep");
     if (st) return st;
     if (k < 0 || k >= el->neq || var < 0 || var >= m->n)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
-                    "element %s/%s declares a dependency of equation %d on variable %d: out of "
-                    "range",
-                    m->comp[el->comp].path, el->name, k, var);
+        return bgri_fail(
+            m, BG_ERR_ARGUMENT, "bgr_compile",
+            "element %s/%s declares a dependency of equation %d on variable %d: out of "
+            "range",
+            m->comp[el->comp].path, el->name, k, var);
     if (!reserve((void **)&m->dep, &m->capdep, m->ndep, sizeof *m->dep))
-        return fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
+        return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
     m->dep[m->ndep].eq = el->eq0 + k;
     m->dep[m->ndep].var = var;
     m->dep[m->ndep].wrt_yp = wrt_yp != 0;
@@ -600,9 +551,9 @@ int bgr_declare_index2(bgr_element *el, bgr_model *m, int var)
     int st = check_declare(el, m, "bgr_declare_index2");
     if (st) return st;
     if (var < el->alg0 || var >= el->alg0 + el->nalg)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
-                    "element %s/%s: only its own algebraic unknowns can be declared index 2",
-                    m->comp[el->comp].path, el->name);
+        return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                         "element %s/%s: only its own algebraic unknowns can be declared index 2",
+                         m->comp[el->comp].path, el->name);
     m->declared_i2[var] = 1;
     return BG_OK;
 }
@@ -612,15 +563,16 @@ int bgr_declare_nominal(bgr_element *el, bgr_model *m, int var, double nominal)
     int st = check_declare(el, m, "bgr_declare_nominal");
     if (st) return st;
     if (var < 0 || var >= m->n)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
-                    "element %s/%s (%s) declares the nominal magnitude of variable %d: out of "
-                    "range (0 .. %d)",
-                    m->comp[el->comp].path, el->name, el->cls->type, var, m->n - 1);
+        return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                         "element %s/%s (%s) declares the nominal magnitude of variable %d: out of "
+                         "range (0 .. %d)",
+                         m->comp[el->comp].path, el->name, el->cls->type, var, m->n - 1);
     if (!(nominal > 0) || !isfinite(nominal))
-        return fail(m, BG_ERR_ARGUMENT, "bgr_compile",
-                    "element %s/%s (%s) declares the nominal magnitude of %s as %g: it must be "
-                    "finite and > 0",
-                    m->comp[el->comp].path, el->name, el->cls->type, m->vname[var], nominal);
+        return bgri_fail(
+            m, BG_ERR_ARGUMENT, "bgr_compile",
+            "element %s/%s (%s) declares the nominal magnitude of %s as %g: it must be "
+            "finite and > 0",
+            m->comp[el->comp].path, el->name, el->cls->type, m->vname[var], nominal);
     /* several declarations of one unknown (a bond's effort seen from both ends): the largest */
     if (nominal > m->nominal[var]) m->nominal[var] = nominal;
     return BG_OK;
@@ -684,10 +636,10 @@ int bgr_compile(bgr_model *m)
 {
     if (!m) return BG_ERR_ARGUMENT;
     if (m->compiled > 0)
-        return fail(m, BG_ERR_STATE, "bgr_compile", "the model is compiled already");
+        return bgri_fail(m, BG_ERR_STATE, "bgr_compile", "the model is compiled already");
     if (m->compiled < 0)
-        return fail(m, BG_ERR_STATE, "bgr_compile",
-                    "an earlier compilation failed; build the model again");
+        return bgri_fail(m, BG_ERR_STATE, "bgr_compile",
+                         "an earlier compilation failed; build the model again");
     int st = compile(m);
     m->compiling = 0;
     m->compiled = st == BG_OK ? 1 : -1;
@@ -702,8 +654,8 @@ static int compile(bgr_model *m)
     for (int e = 0; e < m->nel; e++)
         for (int k = 0; k < m->el[e]->nports; k++)
             if (m->el[e]->bond[k] < 0)
-                return fail(m, BG_ERR_PATTERN, w, "%s is not joined by any bond",
-                            port_desc(m, bgr_port_of(m, e, k), buf, sizeof buf));
+                return bgri_fail(m, BG_ERR_PATTERN, w, "%s is not joined by any bond",
+                                 port_desc(m, bgr_port_of(m, e, k), buf, sizeof buf));
     /* number the unknowns: bonds (e then f), then states, then own algebraic unknowns */
     int n = 0;
     for (int b = 0; b < m->nbond; b++) {
@@ -718,9 +670,11 @@ static int compile(bgr_model *m)
         m->el[e]->alg0 = n;
         n += m->el[e]->nalg;
     }
-    if (n == 0) return fail(m, BG_ERR_ARGUMENT, w, "model %s has no unknowns", m->comp[0].path);
+    if (n == 0)
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "model %s has no unknowns", m->comp[0].path);
     m->n = n;
-    if (!alloc_compiled(m) || !name_variables(m)) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    if (!alloc_compiled(m) || !name_variables(m))
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     /* equations and dependencies */
     for (int e = 0; e < m->nel; e++) {
         bgr_element *el = m->el[e];
@@ -734,13 +688,13 @@ static int compile(bgr_model *m)
         m->compiling = 0;
         if (st != BG_OK) return st;
         if (el->neq != expect)
-            return fail(m, BG_ERR_PATTERN, w,
-                        "element %s/%s (%s) declares %d equations; it needs one per port "
-                        "component and one per own unknown: %d",
-                        m->comp[el->comp].path, el->name, el->cls->type, el->neq, expect);
+            return bgri_fail(m, BG_ERR_PATTERN, w,
+                             "element %s/%s (%s) declares %d equations; it needs one per port "
+                             "component and one per own unknown: %d",
+                             m->comp[el->comp].path, el->name, el->cls->type, el->neq, expect);
     }
     if (m->neq_declared != n)
-        return fail(m, BG_ERR_PATTERN, w, "%d equations for %d unknowns", m->neq_declared, n);
+        return bgri_fail(m, BG_ERR_PATTERN, w, "%d equations for %d unknowns", m->neq_declared, n);
     for (int v = 0; v < n; v++) /* undeclared nominal magnitudes: 1 (SI units) */
         if (m->nominal[v] == 0) m->nominal[v] = 1.0;
     /* patterns and slots */
@@ -765,21 +719,23 @@ static int compile(bgr_model *m)
     free(ky);
     free(sy);
     free(syp);
-    if (!ok) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    if (!ok) return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     /* kinds: from the structure, with the declarations on top */
-    if (dae_classify(m->Jy, m->Jyp, m->kind) < 0) return fail(m, BG_ERR_MEMORY, w, "out of memory");
+    if (dae_classify(m->Jy, m->Jyp, m->kind) < 0)
+        return bgri_fail(m, BG_ERR_MEMORY, w, "out of memory");
     for (int v = 0; v < n; v++)
         if (m->declared_i2[v]) {
             if (m->kind[v] == DAE_DIFF)
-                return fail(m, BG_ERR_PATTERN, w,
-                            "%s is declared index 2, but its derivative appears in an equation",
-                            m->vname[v]);
+                return bgri_fail(
+                    m, BG_ERR_PATTERN, w,
+                    "%s is declared index 2, but its derivative appears in an equation",
+                    m->vname[v]);
             m->kind[v] = DAE_ALG2;
         }
     /* a variable no equation depends on */
     for (int v = 0; v < n; v++)
         if (m->Jy->colptr[v + 1] == m->Jy->colptr[v] && m->Jyp->colptr[v + 1] == m->Jyp->colptr[v])
-            return fail(m, BG_ERR_PATTERN, w, "no equation depends on %s", m->vname[v]);
+            return bgri_fail(m, BG_ERR_PATTERN, w, "no equation depends on %s", m->vname[v]);
     return BG_OK;
 }
 
@@ -820,13 +776,14 @@ int bgr_set_nominal(bgr_model *m, int var, double nominal)
 {
     const char *w = "bgr_set_nominal";
     if (!m) return BG_ERR_ARGUMENT;
-    if (m->compiled <= 0) return need_compiled(m, w);
+    if (m->compiled <= 0) return bgri_need_compiled(m, w);
     if (var < 0 || var >= m->n)
-        return fail(m, BG_ERR_ARGUMENT, w, "variable %d out of range (0 .. %d)", var, m->n - 1);
+        return bgri_fail(m, BG_ERR_ARGUMENT, w, "variable %d out of range (0 .. %d)", var,
+                         m->n - 1);
     if (!(nominal > 0) || !isfinite(nominal))
-        return fail(m, BG_ERR_ARGUMENT, w,
-                    "the nominal magnitude of %s is %g: it must be finite and > 0", m->vname[var],
-                    nominal);
+        return bgri_fail(m, BG_ERR_ARGUMENT, w,
+                         "the nominal magnitude of %s is %g: it must be finite and > 0",
+                         m->vname[var], nominal);
     m->nominal[var] = nominal;
     return BG_OK;
 }
@@ -845,257 +802,4 @@ int bgr_find_eq(const bgr_model *m, const char *path)
     for (int e = 0; e < m->n; e++)
         if (!strcmp(m->ename[e], path)) return e;
     return -1;
-}
-
-/* ---- evaluation ---- */
-
-int bgr_residual(void *model, double t, const double *y, const double *yp, double *F)
-{
-    bgr_model *m = model;
-    if (!m) return BG_ERR_ARGUMENT;
-    if (m->compiled <= 0) return need_compiled(m, "bgr_residual");
-    if (!y || !yp || !F)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_residual", "y, yp and F must be given");
-    for (int e = 0; e < m->nel; e++) {
-        const bgr_element *el = m->el[e];
-        int r = el->cls->residual(el, t, y, yp, F + el->eq0);
-        if (r != 0) return r;
-    }
-    return 0;
-}
-
-int bgr_jacobian(void *model, double t, const double *y, const double *yp, sp_csc *Jy, sp_csc *Jyp)
-{
-    bgr_model *m = model;
-    if (!m) return BG_ERR_ARGUMENT;
-    if (m->compiled <= 0) return need_compiled(m, "bgr_jacobian");
-    if (!y || !yp || !Jy || !Jyp)
-        return fail(m, BG_ERR_ARGUMENT, "bgr_jacobian", "y, yp, Jy and Jyp must be given");
-    if (Jy->nrow != m->n || Jy->ncol != m->n || Jy->nnz != m->Jy->nnz || Jyp->nrow != m->n ||
-        Jyp->ncol != m->n || Jyp->nnz != m->Jyp->nnz)
-        return fail(m, BG_ERR_PATTERN, "bgr_jacobian",
-                    "Jy and Jyp must have the model's patterns (%d x %d with %d and %d entries)",
-                    m->n, m->n, m->Jy->nnz, m->Jyp->nnz);
-    for (int e = 0; e < m->nel; e++) {
-        const bgr_element *el = m->el[e];
-        int r = el->cls->jacobian(el, t, y, yp, m->vals + el->dep0);
-        if (r != 0) return r;
-    }
-    sp_csc_zero(Jy);
-    sp_csc_zero(Jyp);
-    for (int k = 0; k < m->ndep; k++)
-        (m->dep[k].wrt_yp ? Jyp : Jy)->val[m->slot[k]] += m->vals[k];
-    return 0;
-}
-
-int bgr_regimes(const bgr_model *m, const double *y, int *r)
-{
-    if (!m || (r && !y)) return BG_ERR_ARGUMENT;
-    if (m->compiled <= 0) return BG_ERR_STATE;
-    int k = 0;
-    for (int e = 0; e < m->nel; e++)
-        if (m->el[e]->cls->regime) {
-            if (r) r[k] = m->el[e]->cls->regime(m->el[e], y);
-            k++;
-        }
-    return k;
-}
-
-static int model_regimes(void *user, double t, const double *y, int *r)
-{
-    (void)t;
-    int k = bgr_regimes(user, y, r);
-    return k < 0 ? k : 0;
-}
-
-int bgr_dae_problem(bgr_model *m, dae_problem *p)
-{
-    if (!m) return BG_ERR_ARGUMENT;
-    if (!p) return fail(m, BG_ERR_ARGUMENT, "bgr_dae_problem", "the problem pointer is NULL");
-    if (m->compiled <= 0)
-        return fail(m, BG_ERR_STATE, "bgr_dae_problem", "compile the model first");
-    memset(p, 0, sizeof *p);
-    p->n = m->n;
-    p->res = bgr_residual;
-    p->jac = bgr_jacobian;
-    p->jac_y_pattern = m->Jy;
-    p->jac_yp_pattern = m->Jyp;
-    p->kind = m->kind;
-    p->names = (const char *const *)m->vname;
-    p->eq_names = (const char *const *)m->ename;
-    p->nominal = m->nominal;
-    p->user = m;
-    p->nregimes = bgr_regimes(m, NULL, NULL);
-    if (p->nregimes > 0) p->regimes = model_regimes;
-    return BG_OK;
-}
-
-static int cmp_dbl(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max)
-{
-    if (!m) return BG_ERR_ARGUMENT;
-    if (max < 0 || (max > 0 && !t) || isnan(t0) || isnan(t1))
-        return fail_c(m, BG_ERR_ARGUMENT, "bgr_breakpoints",
-                      "needs max >= 0, room for max times and t0, t1 not NaN (max %d, t %s)", max,
-                      t ? "given" : "NULL");
-    int total = 0;
-    for (int e = 0; e < m->nel; e++)
-        if (m->el[e]->cls->breakpoints)
-            total += m->el[e]->cls->breakpoints(m->el[e], t0, t1, NULL, 0);
-    double *all = malloc(((size_t)total + 1) * sizeof *all);
-    if (!all) return BG_ERR_MEMORY;
-    int k = 0;
-    for (int e = 0; e < m->nel; e++)
-        if (m->el[e]->cls->breakpoints) {
-            int c = m->el[e]->cls->breakpoints(m->el[e], t0, t1, all + k, total - k);
-            k += c < total - k ? c : total - k;
-        }
-    qsort(all, (size_t)k, sizeof *all, cmp_dbl);
-    int u = 0;
-    for (int i = 0; i < k; i++)
-        if (all[i] > t0 && all[i] <= t1 && (u == 0 || all[i] != all[u - 1])) all[u++] = all[i];
-    for (int i = 0; i < u && i < max; i++)
-        t[i] = all[i];
-    free(all);
-    return u;
-}
-
-/* ---- statistics, listing, check ---- */
-
-int bgr_get_stats(const bgr_model *m, bgr_stats *st)
-{
-    if (!m || !st) return fail_c(m, BG_ERR_ARGUMENT, "bgr_get_stats", "the stats pointer is NULL");
-    memset(st, 0, sizeof *st);
-    st->elements = m->nel;
-    st->bonds = m->nbond;
-    st->components = m->ncomp;
-    if (m->compiled <= 0) return need_compiled(m, "bgr_get_stats");
-    st->equations = m->n;
-    st->nnz_dy = m->Jy->nnz;
-    st->nnz_dyp = m->Jyp->nnz;
-    for (int v = 0; v < m->n; v++) {
-        st->differential += m->kind[v] == DAE_DIFF;
-        st->algebraic += m->kind[v] == DAE_ALG;
-        st->index2 += m->kind[v] == DAE_ALG2;
-    }
-    return BG_OK;
-}
-
-int bgr_stats_print(const bgr_model *m, FILE *f)
-{
-    bgr_stats st;
-    if (!m || !f) return fail_c(m, BG_ERR_ARGUMENT, "bgr_stats_print", "the file is NULL");
-    int r = bgr_get_stats(m, &st);
-    if (r != BG_OK) return r;
-    fprintf(f,
-            "model %s: %d components, %d elements, %d bonds\n"
-            "  equations (= unknowns)                    %d\n"
-            "  entries of the partial derivative matrix  %d   (dF/dy)\n"
-            "  entries of the time-rate matrix           %d   (dF/dy')\n"
-            "  unknowns: %d differential, %d algebraic (index 1), %d index 2\n",
-            m->comp[0].path, st.components, st.elements, st.bonds, st.equations, st.nnz_dy,
-            st.nnz_dyp, st.differential, st.algebraic, st.index2);
-    return ferror(f) ? BG_ERR_IO : BG_OK;
-}
-
-int bgr_list_equations(const bgr_model *m, FILE *f)
-{
-    if (!m || !f) return fail_c(m, BG_ERR_ARGUMENT, "bgr_list_equations", "the file is NULL");
-    if (m->compiled <= 0) return need_compiled(m, "bgr_list_equations");
-    static const char *kname[3] = {"differential", "algebraic", "index 2"};
-    fprintf(f, "# unknowns\n");
-    for (int v = 0; v < m->n; v++)
-        fprintf(f, "%5d  %-40s %s\n", v, m->vname[v], kname[m->kind[v]]);
-    fprintf(f, "# equations\n");
-    for (int e = 0; e < m->nel; e++) {
-        const bgr_element *el = m->el[e];
-        for (int k = 0; k < el->neq; k++) {
-            int row = el->eq0 + k;
-            char text[512] = "";
-            if (el->cls->describe) el->cls->describe(el, m, k, text, sizeof text);
-            fprintf(f, "%5d  %s  [%s]%s%s\n       depends on:", row, m->ename[row], el->cls->type,
-                    text[0] ? "  " : "", text);
-            for (int d = el->dep0; d < el->dep0 + el->ndep; d++)
-                if (m->dep[d].eq == row)
-                    fprintf(f, " %s%s", m->vname[m->dep[d].var], m->dep[d].wrt_yp ? "'" : "");
-            fprintf(f, "\n");
-        }
-    }
-    return ferror(f) ? BG_ERR_IO : BG_OK;
-}
-
-static int ck_res_y(void *u, const double *y, double *F)
-{
-    bgr_model *m = u;
-    return bgr_residual(m, m->ck_t, y, m->ck_yp, F);
-}
-
-static int ck_res_yp(void *u, const double *yp, double *F)
-{
-    bgr_model *m = u;
-    return bgr_residual(m, m->ck_t, m->ck_y, yp, F);
-}
-
-int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp, double tol,
-                       char *report, size_t size)
-{
-    const char *w = "bgr_check_jacobian";
-    if (!m) return BG_ERR_ARGUMENT;
-    if (m->compiled <= 0) return need_compiled(m, w);
-    if (!y || !yp || !(tol > 0) || (!report && size > 0))
-        return fail(m, BG_ERR_ARGUMENT, w,
-                    "needs y, yp, tol > 0 and room for the report (y %s, yp %s, tol %g)",
-                    y ? "given" : "NULL", yp ? "given" : "NULL", tol);
-    sp_csc *Jy = sp_csc_copy(m->Jy), *Jyp = sp_csc_copy(m->Jyp);
-    if (!Jy || !Jyp) {
-        sp_csc_free(&Jy);
-        sp_csc_free(&Jyp);
-        return BG_ERR_MEMORY;
-    }
-    int r = bgr_jacobian(m, t, y, yp, Jy, Jyp);
-    m->ck_t = t;
-    m->ck_y = y;
-    m->ck_yp = yp;
-    sp_jac_entry wy = {-1, -1, 0, 0, 0}, wyp = {-1, -1, 0, 0, 0};
-    double ey = 0, eyp = 0;
-    if (r != 0) {
-        sp_csc_free(&Jy);
-        sp_csc_free(&Jyp);
-        return r < 0 ? r : BG_ERR_CALLBACK;
-    }
-    /* floor of the relative error: 1e-6, or 1e-9 of the largest entry for stiff models (finite
-     * differences of residuals with 1e9-sized terms cannot resolve smaller entries) */
-    double jmax = 0;
-    for (int p = 0; p < Jy->nnz; p++)
-        jmax = fmax(jmax, fabs(Jy->val[p]));
-    for (int p = 0; p < Jyp->nnz; p++)
-        jmax = fmax(jmax, fabs(Jyp->val[p]));
-    double floor_ = fmax(1e-6, 1e-9 * jmax);
-    int ny = sp_jac_check(Jy, ck_res_y, m, m->n, y, floor_, tol, &wy, 1, &ey);
-    int nyp = ny < 0 ? 0 : sp_jac_check(Jyp, ck_res_yp, m, m->n, yp, floor_, tol, &wyp, 1, &eyp);
-    sp_csc_free(&Jy);
-    sp_csc_free(&Jyp);
-    if (ny < 0) return ny;
-    if (nyp < 0) return nyp;
-    const sp_jac_entry *wst = ey >= eyp ? &wy : &wyp;
-    if (report && size) {
-        if (wst->row < 0)
-            snprintf(report, size, "all partial derivatives match");
-        else {
-            const bgr_element *el = m->el[m->eq_owner[wst->row]];
-            snprintf(report, size,
-                     "%s: element %s/%s (%s), equation %s, d/d%s%s: analytic %.6g, finite "
-                     "difference %.6g (relative error %.3g)%s",
-                     ny + nyp ? "mismatch" : "all within tolerance; largest difference",
-                     m->comp[el->comp].path, el->name, el->cls->type, m->ename[wst->row],
-                     m->vname[wst->col], wst == &wyp ? "'" : "", wst->analytic, wst->fd, wst->err,
-                     wst->analytic == 0 ? " - not declared?" : "");
-        }
-    }
-    return ny + nyp;
 }
