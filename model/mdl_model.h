@@ -1,0 +1,91 @@
+/* Model files: a bond-graph model described as a YAML document (docs/model-format.md), read,
+ * checked and built into a compiled bgr_model with its start configuration, its declared outputs
+ * and its solver settings.
+ *
+ * Reading happens in stages, each of which reports the first error with the file, line and
+ * column, the component path and the key ("m.yaml:14:12: components.pump.leakage: -1 is out of
+ * range (expected >= 0, in m^3/(s Pa))"):
+ *   1. the document and its includes (mdl_yaml.h; a file included twice is read once, a loop is
+ *      an error),
+ *   2. the instance tree: subsystems expanded, repetitions unrolled, every parameter checked
+ *      against its type (mdl_types.h) and evaluated (mdl_expr.h; names looked up from the
+ *      instance outward; a cycle among parameters is named),
+ *   3. the bond graph: elements built in the order their references need (a joint after the
+ *      body that carries its axis, a controller after the sensor it reads), bonds joined by path
+ *      with their dimension and domain checked, every port bonded exactly once, then compiled
+ *      (bgr_compile; a structurally singular model is reported with the unmatched equations
+ *      and unknowns),
+ *   4. the start: the types' place() in rounds (mdl_types.h), then the `initial` values.
+ * Nothing per step depends on the model having come from a file: the compiled bgr_model's
+ * residual and Jacobian are the same code that a model built in C runs. */
+#ifndef MDL_MODEL_H
+#define MDL_MODEL_H
+
+#include "bg_api.h"
+#include "bg_dae.h"
+#include "bgr_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mdl_model mdl_model;
+
+/* A replacement of a parameter before evaluation: a model parameter ("L1") or a component's
+ * ("rod1.m", "boom.seg[3].L"), the value an expression as the file would write it. */
+typedef struct mdl_set {
+    const char *path;
+    const char *value;
+} mdl_set;
+
+/* The solver settings of the file (`solver:`), with their defaults. */
+typedef struct mdl_solver_settings {
+    double t_end, output_step, rtol, atol;
+    int nominal_scales, max_order, stability_guard;
+    double newton_dgmax;
+    int newton_jac_age, newton_index2_scale_h;
+} mdl_solver_settings;
+
+typedef enum mdl_start { MDL_START_GIVEN = 0, MDL_START_STATIC = 1 } mdl_start;
+
+/* Reads path (and its includes) with the replacements sets (nsets of them, NULL if none),
+ * builds and compiles the model and places its start. NULL on failure with the message in err
+ * (file:line:column: path: key: what was expected, what was found). */
+BG_API mdl_model *mdl_load(const char *path, const mdl_set *sets, int nsets, bg_error *err);
+/* The same from a text in memory; name stands for the file in messages (includes are read
+ * relative to the current directory). */
+BG_API mdl_model *mdl_load_string(const char *text, const char *name, const mdl_set *sets,
+                                  int nsets, bg_error *err);
+BG_API void mdl_free(mdl_model **mm);
+
+/* The compiled bond graph (owned by the model). */
+BG_API bgr_model *mdl_bgr(mdl_model *mm);
+BG_API const char *mdl_name(const mdl_model *mm);
+BG_API const char *mdl_file(const mdl_model *mm);
+BG_API const mdl_solver_settings *mdl_solver(const mdl_model *mm);
+BG_API mdl_start mdl_start_kind(const mdl_model *mm);
+
+/* Outputs (`outputs:`): count, names (the columns of results.csv after t), and their values at
+ * (t, y). BG_OK or an error with the output's name and expression. */
+BG_API int mdl_noutputs(const mdl_model *mm);
+BG_API const char *mdl_output_name(const mdl_model *mm, int i);
+BG_API int mdl_outputs(const mdl_model *mm, double t, const double *y, double *out, bg_error *err);
+
+/* The solver options of the file's settings: tolerances, stop time t_end, the breakpoints of
+ * the model's sources in (0, t_end] (allocated into *breakpoints, free() it; NULL when none),
+ * the error test on the differential unknowns only (exclude_alg), the stability guard and the
+ * Newton settings. dae_default_options is applied first. BG_OK or BG_ERR_MEMORY. */
+BG_API int mdl_dae_options(const mdl_model *mm, dae_options *o, double **breakpoints);
+/* A dae_problem of the compiled model, with the nominal magnitudes when nominal_scales is on. */
+BG_API int mdl_dae_problem(mdl_model *mm, dae_problem *p);
+
+/* The value of a model parameter (after the replacements) by name; BG_OK or BG_ERR_ARGUMENT. */
+BG_API int mdl_parameter(const mdl_model *mm, const char *name, double *value);
+/* The model as run: the file's text as read, followed by the replacements applied, as
+ * comments. BG_OK or BG_ERR_IO. */
+BG_API int mdl_write_as_run(const mdl_model *mm, FILE *f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
