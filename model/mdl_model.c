@@ -108,6 +108,7 @@ static mdl_model *load(const char *path, const char *text, const mdl_set *sets, 
     if (r == BG_OK) r = mdl_place_all(mm);
     if (r == BG_OK) r = mdl_read_initial(mm);
     if (r == BG_OK) r = mdl_read_outputs(mm);
+    if (r == BG_OK) r = mdl_read_trim(mm);
     if (r != BG_OK) {
         if (r == BG_ERR_MEMORY && (!err || !err->message[0]))
             bg_error_raise(err, BG_ERR_MEMORY, "mdl_load", "out of memory");

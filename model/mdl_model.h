@@ -23,6 +23,7 @@
 
 #include "bg_api.h"
 #include "bg_dae.h"
+#include "bg_static.h"
 #include "bgr_model.h"
 
 #ifdef __cplusplus
@@ -78,6 +79,25 @@ BG_API int mdl_outputs(const mdl_model *mm, double t, const double *y, double *o
 BG_API int mdl_dae_options(const mdl_model *mm, dae_options *o, double **breakpoints);
 /* A dae_problem of the compiled model, with the nominal magnitudes when nominal_scales is on. */
 BG_API int mdl_dae_problem(mdl_model *mm, dae_problem *p);
+
+/* The static start (bgs --static, start: static): the equilibrium under the loads at t = 0
+ * (bgr_static), written into the model's initial values. With the file's `trim:` the parameter it
+ * names is adjusted until the output equals the value at the equilibrium (the Illinois variant of
+ * regula falsi on the file's bracket, the model built again for every trial value): *mm is then
+ * replaced by the model built with the value found. BG_OK, DAE_CONV_FAIL with the names and
+ * values when the condition cannot be met, or bgr_static's status. rep (may be NULL) receives
+ * the trim's figures and the last static solve's. */
+typedef struct mdl_trim_report {
+    int trimmed;            /* 1: a trim ran */
+    char parameter[128];    /* what it adjusted, */
+    char output[128];       /* the output it watched */
+    double target;          /* and the value wanted; */
+    double value, achieved; /* the parameter's value found and the output's there */
+    int solves;             /* static solves */
+    dae_static_result last; /* the last static solve */
+} mdl_trim_report;
+BG_API int mdl_static(mdl_model **mm, const dae_static_options *o, mdl_trim_report *rep,
+                      bg_error *err);
 
 /* The value of a model parameter (after the replacements) by name; BG_OK or BG_ERR_ARGUMENT. */
 BG_API int mdl_parameter(const mdl_model *mm, const char *name, double *value);

@@ -104,6 +104,7 @@ struct mdl_model {
     int nbonds, capbonds;
     mdl_inode **leaves;
     int nleaves, capleaves;
+    double trim_lo, trim_hi, trim_value, trim_tol; /* trim: (mdl_trim.c) */
     /* the chain of parameters being evaluated (cycle messages) */
     mdl_var *chain[64];
     int nchain;
@@ -156,5 +157,8 @@ int mdl_place_all(mdl_model *mm);
 int mdl_read_initial(mdl_model *mm);
 int mdl_read_outputs(mdl_model *mm);
 int mdl_read_solver(mdl_model *mm);
+
+/* ---- mdl_trim.c ---- */
+int mdl_read_trim(mdl_model *mm);
 
 #endif
