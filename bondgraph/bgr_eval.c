@@ -262,3 +262,26 @@ int bgr_check_jacobian(bgr_model *m, double t, const double *y, const double *yp
     }
     return ny + nyp;
 }
+
+/* ---- structure ---- */
+
+int bgr_check_structure(const bgr_model *m, char *report, size_t size)
+{
+    if (!m || (size > 0 && !report)) return BG_ERR_ARGUMENT;
+    if (m->compiled <= 0) return bgri_need_compiled((bgr_model *)m, "bgr_check_structure");
+    enum { SHOW = 8 };
+    int rows[SHOW], cols[SHOW];
+    int d = dae_structure_check(m->Jy, m->Jyp, rows, cols, SHOW);
+    if (d <= 0 || size == 0) return d;
+    size_t o = (size_t)snprintf(report, size, "%d equation%s and as many unknowns left unmatched "
+                                "(the equations do not determine the unknowns): equations ", d,
+                                d == 1 ? "" : "s");
+    for (int k = 0; k < SHOW && rows[k] >= 0 && o < size; k++)
+        o += (size_t)snprintf(report + o, size - o, "%s%s", k ? ", " : "", m->ename[rows[k]]);
+    if (d > SHOW && o < size) o += (size_t)snprintf(report + o, size - o, ", ...");
+    if (o < size) o += (size_t)snprintf(report + o, size - o, "; unknowns ");
+    for (int k = 0; k < SHOW && cols[k] >= 0 && o < size; k++)
+        o += (size_t)snprintf(report + o, size - o, "%s%s", k ? ", " : "", m->vname[cols[k]]);
+    if (d > SHOW && o < size) snprintf(report + o, size - o, ", ...");
+    return d;
+}

@@ -274,6 +274,13 @@ BG_API int bgr_jacobian(void *model, double t, const double *y, const double *yp
  * max > 0, t0 or t1 NaN), BG_ERR_MEMORY. Works before compilation as well. */
 BG_API int bgr_breakpoints(const bgr_model *m, double t0, double t1, double *t, int max);
 
+/* Structural check: a maximum matching of the equations to the unknowns on the pattern of
+ * dF/dy + dF/dy' (dae_structure_check). Returns 0 when the system is structurally regular, else
+ * how many equations (and unknowns) are left unmatched, with the first of them named in report
+ * (equations and unknowns by path); < 0: BG_ERR_ARGUMENT (m NULL, report NULL with size > 0),
+ * BG_ERR_STATE (not compiled), BG_ERR_MEMORY. */
+BG_API int bgr_check_structure(const bgr_model *m, char *report, size_t size);
+
 /* Listing: one line per equation: its name, its text (if the class describes it) and the
  * variables it depends on. BG_OK, BG_ERR_ARGUMENT (f NULL), BG_ERR_STATE (not compiled),
  * BG_ERR_IO. */

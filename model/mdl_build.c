@@ -442,5 +442,9 @@ int mdl_build_all(mdl_model *mm)
     if (bgr_compile(mm->m) != BG_OK)
         return mdl_fail(mm, NULL, NULL, "the bond graph does not compile: %s",
                         bgr_model_error(mm->m)->message);
+    char report[BG_MESSAGE_SIZE - 128];
+    int d = bgr_check_structure(mm->m, report, sizeof report);
+    if (d < 0) return d == BG_ERR_MEMORY ? d : mdl_fail(mm, NULL, NULL, "%s", bgr_model_error(mm->m)->message);
+    if (d > 0) return mdl_fail(mm, NULL, NULL, "the model is structurally singular: %s", report);
     return BG_OK;
 }

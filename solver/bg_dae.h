@@ -292,6 +292,13 @@ typedef struct dae_solver dae_solver;
  * are index 1. kind receives n values. Returns the number of index-2 variables, BG_ERR_ARGUMENT
  * (a NULL argument), BG_ERR_PATTERN (the patterns are not both n x n) or BG_ERR_MEMORY. */
 BG_API int dae_classify(const sp_csc *Jy, const sp_csc *Jyp, int *kind);
+/* The structural rank of the Newton matrix dF/dy + cj dF/dy' from the two patterns (a maximum
+ * matching of rows to columns of their union: btf_maxtrans, Duff's MC21): returns how many rows
+ * (= columns) a maximum matching leaves unmatched, 0 for a structurally regular system, and
+ * writes the first max unmatched rows (equations) into rows and columns (unknowns) into cols
+ * (-1 after the last). Which ones are named depends on the matching found; their number does
+ * not. < 0: BG_ERR_ARGUMENT (a NULL argument, max < 0), BG_ERR_PATTERN (shapes), BG_ERR_MEMORY. */
+BG_API int dae_structure_check(const sp_csc *Jy, const sp_csc *Jyp, int *rows, int *cols, int max);
 
 /* NULL on failure with the reason in err (may be NULL): BG_ERR_ARGUMENT (p NULL, n < 1, no
  * residual, options out of range, kinds that are not dae_var_kind or do not fit the patterns,

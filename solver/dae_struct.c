@@ -221,3 +221,42 @@ done:
     sp_csc_free(&P[1]);
     return ret;
 }
+
+int dae_structure_check(const sp_csc *Jy, const sp_csc *Jyp, int *rows, int *cols, int max)
+{
+    if (!Jy || !Jyp || max < 0 || (max > 0 && (!rows || !cols))) return BG_ERR_ARGUMENT;
+    if (Jy->nrow != Jy->ncol || Jyp->nrow != Jy->nrow || Jyp->ncol != Jy->ncol)
+        return BG_ERR_PATTERN;
+    int n = Jy->ncol, ret;
+    sp_union *u = sp_union_create(Jy, Jyp);
+    int *rowvar = malloc(((size_t)n + 1) * sizeof *rowvar);
+    int *colrow = malloc(((size_t)n + 1) * sizeof *colrow);
+    if (!u || !rowvar || !colrow) {
+        ret = BG_ERR_MEMORY;
+        goto done;
+    }
+    int matched = daei_match(u->M, NULL, NULL, rowvar);
+    if (matched < 0) {
+        ret = BG_ERR_MEMORY;
+        goto done;
+    }
+    for (int j = 0; j < n; j++)
+        colrow[j] = -1;
+    for (int i = 0; i < n; i++)
+        if (rowvar[i] >= 0) colrow[rowvar[i]] = i;
+    int nr = 0, nc = 0;
+    for (int i = 0; i < n; i++) {
+        if (rowvar[i] < 0 && nr < max) rows[nr++] = i;
+        if (colrow[i] < 0 && nc < max) cols[nc++] = i;
+    }
+    for (int k = nr; k < max; k++)
+        rows[k] = -1;
+    for (int k = nc; k < max; k++)
+        cols[k] = -1;
+    ret = n - matched;
+done:
+    sp_union_free(&u);
+    free(rowvar);
+    free(colrow);
+    return ret;
+}
