@@ -2,7 +2,11 @@
  * installed.
  *
  *   sweep_ini.c     the INI text: the line reader fed to inih, trimming, quoting, numbers
- *   sweep_spec.c    the rest: the parser, the schema (spec_finish), the axes and the cases
+ *   sweep_spec.c    the parser: each line checked, the keys recorded section by section (the
+ *                   raw sections below); sweep_spec_parse, sweep_spec_load, sweep_spec_free;
+ *                   the axes (value lists, ranges, the Latin-hypercube sample) and the cases
+ *   sweep_schema.c  the schema: the sections and their keys, the scene keys' check, the base
+ *                   scene, [sweep] and [set], and the whole file checked (spec_finish)
  *
  * The parser only records; the schema checks afterwards, so that a section's keys may come in
  * any order. Every check fails through spec_fail_line, which keeps the first message only. */
@@ -84,7 +88,7 @@ int spec_fail_line(parse_ctx *c, int line, const char *fmt, ...);
  * with the error recorded. */
 int spec_check_line(parse_ctx *c, char *line);
 
-/* ------------------------------------------------ sweep_spec.c: the schema ---- */
+/* ---------------------------------------------- sweep_schema.c: the schema ---- */
 
 /* The candidate nearest to name by edit distance (dist: the distance). */
 const char *spec_nearest(const char *name, const char *const *cands, int *dist);
