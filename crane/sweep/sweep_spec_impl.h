@@ -3,10 +3,11 @@
  *
  *   sweep_ini.c     the INI text: the line reader fed to inih, trimming, quoting, numbers
  *   sweep_spec.c    the parser: each line checked, the keys recorded section by section (the
- *                   raw sections below); sweep_spec_parse, sweep_spec_load, sweep_spec_free;
- *                   the axes (value lists, ranges, the Latin-hypercube sample) and the cases
+ *                   raw sections below); sweep_spec_parse, sweep_spec_load, sweep_spec_free
  *   sweep_schema.c  the schema: the sections and their keys, the scene keys' check, the base
  *                   scene, [sweep] and [set], and the whole file checked (spec_finish)
+ *   sweep_axes.c    the axes: value lists, ranges, the Latin-hypercube sample; the cases as
+ *                   their product (sweep_case_*)
  *
  * The parser only records; the schema checks afterwards, so that a section's keys may come in
  * any order. Every check fails through spec_fail_line, which keeps the first message only. */
@@ -112,7 +113,7 @@ int spec_check_scene_value(parse_ctx *c, const crane_scene *base, const crane_sc
  * limits and every sampled value. 0, or -1 with the error recorded. */
 int spec_finish(parse_ctx *c, const char *const *roots);
 
-/* -------------------------------------------------- sweep_spec.c: the axes ---- */
+/* -------------------------------------------------- sweep_axes.c: the axes ---- */
 
 /* An [axis] section -> the next axis and its swept key (values checked against base). */
 int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base);
