@@ -121,7 +121,7 @@
  *
  * Tolerances. The solver weighs the error of unknown i with rtol |y_i| + atol nominal_i. With
  * nominal_scales = true (the default) nominal_i is the magnitude the components give that
- * unknown from the scene's parameters (crane_model.c states them): the relief valves' full-flow
+ * unknown from the scene's parameters (crane_build.c states them): the relief valves' full-flow
  * pressure (relief_pressure + 5 MPa; the charge pressure without valves) for the line pressures,
  * the pump's full flow pump_disp pump_speed / (2 pi) for its flows, the plateau speed
  * rate * gear_ratio for the motor's, the weight of boom and load for the forces in boom, ties
