@@ -17,11 +17,17 @@ typedef enum range_kind {
     R_INT     /* integer in lo..hi */
 } range_kind;
 
+/* A key of crane_scene: its public description, its field (offset), range and default, and a
+ * note for the key list (docs/scene-keys.md). The table of them is the one place where the keys,
+ * their defaults, ranges, units and meanings are written. */
 typedef struct key_def {
     crane_scene_key pub;
     size_t off;
     range_kind range;
-    int lo, hi; /* R_INT */
+    int lo, hi;           /* R_INT */
+    double def[3];        /* default: a number or integer (def[0]), a vector */
+    const char *def_name; /* default of the name (CRANE_KEY_NAME) */
+    const char *note;     /* more on the key for the key list, or NULL */
 } key_def;
 
 /* The table (crane_scene_keys.c), one entry per key in the order of the sections. */
