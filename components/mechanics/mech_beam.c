@@ -63,7 +63,8 @@ static void beam_free(void *p)
 /* The nodal triad t[3*i + r] = (R(q) E0)_{r,i}, R(q) = N(q)/(q.q), of one node whose quaternion q
  * is the unknowns off..off+3 of the AD space. t depends on those four unknowns only: its value,
  * gradient and Hessian in q are computed in plain arithmetic and scattered, instead of carrying
- * 14-wide AD numbers through the products (which took a fifth of the crane's run).
+ * 14-wide AD numbers (gradients of 14, Hessians of 14 x 14) through the products of what depends
+ * on four unknowns.
  * N_k(q) = q^T A_k q with the symmetric A_k below (k column-major over the 3 x 3 matrix), s = q.q:
  *   dR = (dN - R ds) / s,  d2R_mn = (d2N_mn - dR_m ds_n - dR_n ds_m - R d2s_mn) / s. */
 static const double QA[9][4][4] = {
