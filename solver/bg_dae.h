@@ -37,7 +37,7 @@
  * 4, costs a new Newton matrix and the steps that grow h back, more than the few further
  * iterations (dae_nls.c, newton_extends).
  * The details and the reasons are in the header comments of the solver's parts (solver/dae_*.c,
- * listed in bg_dae.c).
+ * listed in bg_dae_impl.h).
  *
  * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),
  * < 0 for a fatal one (the integration stops with DAE_CALLBACK_FAIL). The residual array is
