@@ -31,9 +31,9 @@
  * Ends of the stroke. The cylinder has no end stops: its equations hold for 0 <= x <= stroke.
  * A state outside (the piston through the cap or the head) makes the residual return 1, a
  * recoverable failure, with its rows pressure_a and pressure_b set to NaN: the integrator cuts
- * the step, and a motion that really drives the piston to an end stops the run (the integrator's
- * failure status) with a message naming <path>/pressure_a, the cylinder's equation. Keep the
- * motion inside the stroke (a relief valve, a controller) or model an end stop. The chamber
+ * the step, and a motion that really drives the piston to an end stops the run (DAE_RES_FAIL once
+ * the step has collapsed) with a message naming <path>/pressure_a, the cylinder's equation. Keep
+ * the motion inside the stroke (a relief valve, a controller) or model an end stop. The chamber
  * volumes are then at least V_a0 and V_b0 > 0.
  *
  * Energy. For a liquid of constant bulk modulus the stored (free) energy of the compressed oil
