@@ -9,11 +9,11 @@
  * default) into bgr_yp0, so that a dynamic run started from them starts at rest (when the
  * continuation fails, DAE_CONV_FAIL or DAE_TOO_MUCH_WORK, bgr_y0 receives the last state at rest,
  * the equilibrium under the load factor reached, for a look at what went wrong). Messages name
- * the model's equations and unknowns (crane/boom/el03/force_a2, crane/boom/node04/x2).
+ * the model's equations and unknowns (rig/beam/el03/force_a2, rig/beam/node04/x2).
  *
  * bgr_modes linearises at (t, y, yp) (y NULL: bgr_y0; yp NULL: zero) and names the modes by the
- * model's unknowns grouped by component path (dae_modes_describe with depth 2: crane/boom,
- * crane/hydraulics); the result keeps pointers to the model's names, so the model must outlive
+ * model's unknowns grouped by component path (dae_modes_describe with depth 2: rig/beam,
+ * rig/hydraulics); the result keeps pointers to the model's names, so the model must outlive
  * it.
  *
  * Both return BG_ERR_ARGUMENT for a NULL model, BG_ERR_STATE before bgr_compile, else the

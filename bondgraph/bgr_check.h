@@ -5,7 +5,7 @@
  * with BG_ERR_ARGUMENT and a message that names the element by the path it would have had (the
  * component's path and the name as given), the constructor, the parameter and what was
  * expected, e.g.
- *     element crane/hydraulics/line_high (hyd_volume): V = -0.001, expected a finite number > 0
+ *     element rig/hydraulics/line_high (hyd_volume): V = -0.001, expected a finite number > 0
  * Nothing is added to the model: the name stays free and the model stays as it was.
  *
  * The rules: every number finite (no NaN, no Inf), and besides

@@ -13,7 +13,7 @@
  * an element may also declare an unknown index 2 itself.
  *
  * Compilation numbers unknowns and equations, gives each a hierarchical name
- * (crane/boom/element07/node_b/vy), builds the patterns of dF/dy and dF/dy' once from the
+ * (rig/beam/element07/node_b/vy), builds the patterns of dF/dy and dF/dy' once from the
  * dependencies the elements declare, and assigns every declared partial derivative a fixed slot.
  * The residual and Jacobian callbacks then loop over the elements and scatter: no allocation and
  * no finite differences on that path.
@@ -112,7 +112,7 @@ BG_API bg_error *bgr_model_error_mut(bgr_model *m);
  * siblings and may not contain '/'. Returns the component (> 0), BG_ERR_ARGUMENT (bad name or
  * parent, a duplicate), BG_ERR_STATE (model compiled) or BG_ERR_MEMORY. */
 BG_API bgr_comp bgr_component(bgr_model *m, bgr_comp parent, const char *name);
-/* Full path of a component, e.g. "crane/boom/element07"; NULL for an unknown one. */
+/* Full path of a component, e.g. "rig/beam/element07"; NULL for an unknown one. */
 BG_API const char *bgr_component_path(const bgr_model *m, bgr_comp c);
 
 /* An element of class cls in component c. params is owned by the element from here on (freed by
@@ -218,7 +218,7 @@ BG_API int bgr_compile(bgr_model *m);
 
 typedef struct bgr_stats {
     int equations; /* = unknowns */
-    int nnz_dy;    /* entries of dF/dy (the paper's "partial derivative matrix") */
+    int nnz_dy;    /* entries of dF/dy (the "partial derivative matrix") */
     int nnz_dyp;   /* entries of dF/dy' (the "time-rate matrix") */
     int differential, algebraic, index2;
     int elements, bonds, components;

@@ -86,9 +86,9 @@ static inline double cmp_softplus(double z, double eps, double *dz)
  * (d >= 1e-3), 0 off; the bands of bgr_element_class.regime. A Jacobian from a band of larger
  * slope used in one of smaller slope is the stiffer one, which the Newton test cannot see
  * (bg_dae.h, dae_problem.regimes); within a band the slope it carries is at most 50 times the
- * true one, or below 1e-3 of the switch's full gain. The band at 1e-3 was needed on the crane:
- * a check valve's Jacobian from d = 0.019 used after it had closed (d ~ 1e-10) still pumped its
- * line by 5 MPa at rtol 3e-4 with three bands. */
+ * true one, or below 1e-3 of the switch's full gain. The band at 1e-3 is needed: with three
+ * bands, a Jacobian from d = 0.019 (between) used after the switch has closed (d ~ 1e-10) carries
+ * 1e8 times the true slope, and the iteration on it leaves a closed valve passing flow. */
 static inline int cmp_regime(double d)
 {
     return d > 0.98 ? 3 : d >= 0.02 ? 2 : d >= 1e-3 ? 1 : 0;

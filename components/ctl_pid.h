@@ -1,13 +1,14 @@
-/* PID controller of the crane paper, with optional smooth output limits.
+/* PID controller in parallel form, with optional smooth output limits.
  *
- * Control law (docs/crane.md, hydraulic drive; the paper's Eq. 7):
+ * Control law (the parallel form of Astrom and Hagglund, cited below):
  *   x(t) = Kp err + Kd d(err)/dt + Ki integral(err dt),   err = r - y,
- * with r the reference (the platform's reference angular velocity omega_r) and y the measured
- * value (its angular velocity omega). The derivative of the error is not differenced from
- * samples: it is err' = r' - y', with r' and y' signals of the model, the reference's derivative
- * given analytically (sig_sources, SIG_RATE) and the measured one algebraic (rot_sensor,
- * ROT_ACCELERATION: the net torque on the driven inertia over its J). So y' of another element
- * never enters this element's algebraic equation and the system stays semi-explicit.
+ * with r the reference (e.g. a reference angular velocity) and y the measured value (the
+ * angular velocity, from a sensor such as mech_sensor or rot_sensor). The derivative of the
+ * error is not differenced from samples: it is err' = r' - y', with r' and y' signals of the
+ * model, the reference's derivative given analytically (sig_sources, SIG_RATE) and the measured
+ * one algebraic (rot_sensor, ROT_ACCELERATION: the net torque on the driven inertia over its J).
+ * So y' of another element never enters this element's algebraic equation and the system stays
+ * semi-explicit.
  *
  * No ports; a state I = integral of err (named "integral", bgr_ref {BGR_STATE, id, 0}, starting
  * from its initial value, 0 by default) and an algebraic output u (named "out",

@@ -31,8 +31,8 @@
  *
  * Source: the ideal positive-displacement machine with laminar cross-port leakage, as in the
  * pump-controlled motor of H. E. Merritt, Hydraulic Control Systems (Wiley, 1967), with the
- * displacement per radian written Dp / (2 pi); the pump of the crane paper (docs/crane.md,
- * hydraulic drive) is this element with x the output of the PID controller. */
+ * displacement per radian written Dp / (2 pi); in a drive under PID control x is the
+ * controller's output (ctl_pid). */
 #ifndef HYD_PUMP_H
 #define HYD_PUMP_H
 

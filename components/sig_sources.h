@@ -7,12 +7,12 @@
  * for the source function u below, all three in closed form (no numerical differentiation or
  * quadrature):
  *   trapezoid  0 for t <= t0, rising linearly to h at t1, h until t2, falling linearly to 0 at
- *              t3, 0 after (t0 < t1 <= t2 < t3). The reference velocity of the crane paper
- *              (docs/crane.md, Eq. 8) is t0 = 0, t1 = 2, t2 = 10, t3 = 12, h = 0.5 rad/s:
- *                omega_r = 0.25 t (t <= 2), 0.5 (2 < t <= 10), 0.25 (12 - t) (10 < t <= 12),
+ *              t3, 0 after (t0 < t1 <= t2 < t3): a point-to-point velocity profile (constant
+ *              acceleration, cruise, constant deceleration). With t0 = 0, t1 = 2, t2 = 10,
+ *              t3 = 12, h = 0.5:
+ *                u = 0.25 t (t <= 2), 0.5 (2 < t <= 10), 0.25 (12 - t) (10 < t <= 12),
  *                0 (t > 12);
- *              its integral, the reference angle, is 0.125 t^2, 0.5 t - 0.5, ..., and 5 rad from
- *              t = 12 on.
+ *              its integral is 0.125 t^2, 0.5 t - 0.5, ..., and 5 from t = 12 on.
  *   pwl        piecewise linear through (t_k, v_k), k = 0 .. n-1, t_k strictly increasing,
  *              constant v_0 before t_0 and v_{n-1} after t_{n-1}.
  *   step       before for t <= t_s, after for t > t_s.
@@ -36,7 +36,8 @@
  * max |v_k| (values of pwl, trapezoid, constant, step), the steepest slope (rates of pwl and
  * trapezoid, |slope| of a ramp), |a| + |offset| and |a omega| (sine), the largest |integral| at
  * the knots when the function ends at 0 (trapezoid); none (1) where the output is unbounded or 0.
- * Source: the crane paper's Eq. 8 for the trapezoid; the integrals and derivatives are exact. */
+ * The integrals and derivatives are exact (piecewise polynomials integrated and differentiated
+ * piece by piece). */
 #ifndef SIG_SOURCES_H
 #define SIG_SOURCES_H
 

@@ -4,114 +4,16 @@
  * every key is optional and may appear at most once. Lines are "key = value", "[section]",
  * blank, or comments starting with ';' or '#'; an inline comment starts with " ;" (a ';' after
  * white space). Lines end with LF, CR LF or CR. Keys and section names are matched without
- * regard to case. Values:
- *   number   a finite decimal number, e.g. 76, 0.0443, 1.08e11 (not hexadecimal: "0x4c" is
- *            refused, as are "inf" and "nan")
- *   integer  decimal digits with an optional sign
- *   boolean  true/false, yes/no, on/off, 1/0
- *   vector   three numbers "x, y, z"
- *   name     1 to 63 characters of [A-Za-z0-9_.-] (it names the output folder)
- * The sections and keys mirror the fields of crane_scene (crane_model.h); the key is the field's
- * name without the section's prefix. Units are SI: m, kg, s, N, Pa, rad.
+ * regard to case.
  *
- *   [scene]          name             name           results go to results/<name>/
- *   [environment]    g                number >= 0    m/s^2, gravity along -Z0
- *   [platform]       mass             number > 0     kg
- *                    inertia          vector > 0     kg m^2, principal, about the mass centre
- *                    com              vector         m, mass centre (platform frame)
- *                    joint_A          vector         m, slewing joint A on the axis (global)
- *   [boom]           elements         0..512         beam elements; 0: one rigid body
- *                    foot             vector         m, hinge B (platform frame)
- *                    length           number > 0     m
- *                    tip_radius       number >= 0    m, tip's distance to the slewing axis
- *                    E, G             number > 0     Pa, Young's and shear moduli
- *                    A                number > 0     m^2, cross-section area
- *                    I_luff, I_side   number > 0     m^4, second moments (bending in / out of
- *                                                    the luffing plane)
- *                    J                number > 0     m^4, torsion constant
- *                    rho              number > 0     kg/m^3, density
- *                    beta             number >= 0    s, stiffness-proportional damping: mode i
- *                                                    gets the damping ratio beta omega_i / 2
- *   [ties]           enabled          boolean        build the suspension ties
- *                    gantry_top       vector         m, upper end on the platform (platform frame)
- *                    spread           number >= 0    m; > 0: a pair of ties ending at gantry_top
- *                                                    -/+ (0, spread, 0); 0: one tie
- *                    E                number > 0     Pa
- *                    A                number > 0     m^2
- *                    rho              number >= 0    kg/m^3; each tie's mass rho A L0 lumped half
- *                                                    at each end (the tip's half into the boom's
- *                                                    tip; the gantry's counts in the platform's
- *                                                    mass); 0: massless
- *                    beta             number >= 0    s, stiffness-proportional damping of each tie
- *                                                    (damping coefficient beta E A / L0)
- *   [rope]           enabled          boolean        build the rope and the load
- *                    length           number > 0     m, unstretched
- *                    E                number > 0     Pa (stiffness E A / length)
- *                    A                number > 0     m^2
- *                    damping          number >= 0    N s/m
- *   [load]           mass             number > 0     kg (load with hook; built with the rope)
- *   [counterweight]  enabled          boolean
- *                    mass             number > 0     kg
- *                    pos              vector         m (platform frame)
- *   [hydraulics]     enabled          boolean        false: the platform's rate is prescribed
- *                    pump_speed       number > 0     rad/s, drive speed of the pump
- *                    pump_disp        number > 0     m^3/rev at x = 1
- *                    pump_leak        number >= 0    m^3/(s Pa)
- *                    motor_disp       number > 0     m^3/rev
- *                    motor_leak       number >= 0    m^3/(s Pa)
- *                    motor_inertia    number > 0     kg m^2
- *                    gear_ratio       number > 0     motor turns per platform turn
- *                    line_volume      number > 0     m^3, each line
- *                    bulk_modulus     number > 0     Pa
- *                    charge_pressure  number >= 0    Pa
- *                    relief_pressure  number >= 0    Pa, cross-port relief cracking (0: none;
- *                                                    with it, anti-cavitation check valves)
- *                    pump_servo_bandwidth number >= 0 Hz, the pump's displacement actuator: its
- *                                                    swash plate follows the PID's command as a
- *                                                    first-order lag (hyd_pump_servo); 0: at once.
- *                                                    With kd_filter > 0 the drive's loop is
- *                                                    unstable with any lag (docs/crane.md)
- *   [controller]     kp, kd, ki       number >= 0    PID gains (x = fraction of the pump's
- *                                                    displacement; kp 1/(rad/s), kd 1/(rad/s^2),
- *                                                    ki 1/rad)
- *                    kd_filter        number >= 0    s, time constant of the rate filter of the
- *                                                    derivative term; 0: the measured acceleration
- *                    x_limit          number >= 0    |x| <= x_limit (smooth); 0: no limit
- *   [reference]      t1, t2, t3       number >= 0    s, end of the ramp up, end of the plateau,
- *                                                    stop time (0 < t1 <= t2 < t3)
- *                    rate             number         rad/s, plateau rate
- *   [initial]        static_start     boolean        start from the static equilibrium
- *   [solver]         t_end            number > 0     s, end time
- *                    rtol             number in (0, 1)  relative tolerance
- *                    atol             number > 0     absolute tolerance
- *                    output_step      number > 0     s, output interval (<= t_end)
- *                    nominal_scales   boolean        absolute tolerances scaled by the unknowns'
- *                                                    nominal magnitudes (default true; see below)
- *                    nominal_length   number >= 0    m, the nominal magnitude of positions (a
- *                                                    member's stretch vector keeps its length if
- *                                                    larger); 0: 1 m (SI)
- *                    nominal_velocity number >= 0    m/s, of velocities; 0: 1 m/s
- *                    nominal_angular_velocity number >= 0  rad/s, of angular velocities; 0: 1
- *                    stability_guard  boolean        the solver's stability guard (default
- *                                                    false, as the paper scene; see below)
- *                    newton_dgmax     number in [0, 1)  the Newton matrix is formed again from
- *                                                    the saved Jacobian and refactored when
- *                                                    1/cj moved by more than this since it was
- *                                                    factored (default 0.3, CVODE's value;
- *                                                    0: only with a new Jacobian; bg_dae.h)
- *                    newton_jac_age   integer 0..1000000  the Jacobian is evaluated again once
- *                                                    this many steps old or after a Newton
- *                                                    failure, and the Newton rate carries from
- *                                                    step to step (applies with newton_dgmax >
- *                                                    0; default 51, CVODE's value; 0: when 1/cj
- *                                                    leaves [0.6, 1.67] of its value then, IDA's
- *                                                    rule; bg_dae.h)
- *                    newton_index2_scale_h boolean   index-2 unknowns (the hinge and joint
- *                                                    reactions, the PID's output on the
- *                                                    measured acceleration, the motor's torque)
- *                                                    weigh h times less in the Newton
- *                                                    convergence test (default true; bg_dae.h)
- * Both on in the shipped scenes since the Jacobian follows the switching elements' regimes
+ * The keys, their sections, value types and ranges, defaults, units and meanings are listed in
+ * docs/scene-keys.md, generated from the key table in crane_scene_keys.c (crane --list-keys
+ * prints it; tests/crane/test_crane_scene_keys.c fails when the two disagree). The sections and
+ * keys mirror the fields of crane_scene (crane_model.h). Units are SI: m, kg, s, N, Pa, rad.
+ *
+ * [solver] stability_guard, newton_dgmax, newton_jac_age and newton_index2_scale_h set the
+ * solver's options of the same names (bg_dae.h). newton_dgmax and newton_jac_age are on in the
+ * shipped scenes since the Jacobian follows the switching elements' regimes
  * (bg_dae.h, dae_problem.regimes): before, at rtol 1e-4, a Jacobian from an open check valve
  * used after it closed left phantom flows in the lines, and these settings, which keep a
  * Jacobian longer, made it worse (the line pressures off by 10 to 135 MPa over the 20 s). With
@@ -121,7 +23,7 @@
  *
  * Tolerances. The solver weighs the error of unknown i with rtol |y_i| + atol nominal_i. With
  * nominal_scales = true (the default) nominal_i is the magnitude the components give that
- * unknown from the scene's parameters (crane_model.c states them): the relief valves' full-flow
+ * unknown from the scene's parameters (crane_build.c states them): the relief valves' full-flow
  * pressure (relief_pressure + 5 MPa; the charge pressure without valves) for the line pressures,
  * the pump's full flow pump_disp pump_speed / (2 pi) for its flows, the plateau speed
  * rate * gear_ratio for the motor's, the weight of boom and load for the forces in boom, ties
@@ -150,9 +52,9 @@
  * 3 989 and 0.65 s with it; fewer steps at 1e-8 and 1e-7 too). So it is off there (false, the
  * default) and in the scenes derived from it.
  *
- * Besides the ranges above, a scene must be consistent: the boom must reach its tip radius
- * (|tip_radius - foot.x| < length), a flexible boom (elements > 0) must lean (tip_radius !=
- * foot.x: a vertical beam has no luffing plane) and the reference's times must be ordered.
+ * Besides its keys' ranges, a scene must be consistent (crane_scene_check; docs/scene-keys.md):
+ * the boom must reach its tip radius, a flexible boom must lean, the reference's times must be
+ * ordered and output_step <= t_end.
  *
  * Errors (the library never prints): every function returns BG_OK or a status (BG_ERR_IO: the
  * file cannot be read; BG_ERR_ARGUMENT: the text is wrong; BG_ERR_MEMORY) and writes the
@@ -197,6 +99,11 @@ int crane_scene_check(const crane_scene *s, const char *origin, bg_error *err);
 /* Write s as a complete scene file (every key, with its unit and meaning as a comment); parsing
  * it gives s back exactly. Returns BG_OK or BG_ERR_IO. */
 int crane_scene_write(const crane_scene *s, FILE *f);
+
+/* The key list, generated from the key table: every key with its section, value type and range,
+ * default, unit and meaning, as Markdown (docs/scene-keys.md is this text; crane --list-keys
+ * prints it). BG_OK or BG_ERR_IO. */
+int crane_scene_keys_markdown(FILE *f);
 
 /* Number of keys whose values differ between a and b; the first is named in what
  * ("[boom] length"; what may be NULL). */

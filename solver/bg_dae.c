@@ -1,17 +1,5 @@
 /* Modified BDF for semi-explicit index-2 DAEs F(t, y, y') = 0: the outer loop.
- *
- * Function index (the parts of the integrator, bg_dae_impl.h):
- *   bg_dae.c      dae_init, dae_reinit, dae_set_history, dae_solve_to, dae_step (the outer
- *                 loop over daei_step: stops, roots, restarts, projection), getters
- *   dae_create.c  dae_options_default, dae_create, dae_free
- *   dae_step.c    daei_step: coefficients, prediction, the retry loop, handle_failure
- *   dae_nls.c     daei_newton: the corrector, Jacobian reuse, the scaled Newton matrix
- *   dae_err.c     weights, the error test, order and step selection, the first step
- *   dae_disc.c    breakpoints, unannounced jumps, the crawl stop, the first-correction rule
- *   dae_out.c     dae_dense, roots of event functions, drift and projection
- *   dae_eval.c    residual and Jacobian calls, names for messages, dae_stats_line / _csv
- *   dae_struct.c  dae_classify, the maximum matching
- *   dae_ic.c      dae_consistent_init
+ * The integrator's files and what each holds: the index in bg_dae_impl.h.
  *
  * Method. Variable-order, variable-step BDF in fixed-leading-coefficient form with the history
  * kept as modified divided differences, as in DASSL and IDA (Brenan, Campbell and Petzold 1996,

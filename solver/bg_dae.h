@@ -34,9 +34,10 @@
  * The Newton iteration stops after max_newton iterations, except that with a Newton matrix
  * evaluated at the step itself it goes on, up to 2 max_newton, while it contracts at a rate of
  * 0.5 or better and that rate says it will converge within them: the alternative, a step cut by
- * 4, costs more (on the crane with 512 boom elements it tripled the Jacobians per step).
+ * 4, costs a new Newton matrix and the steps that grow h back, more than the few further
+ * iterations (dae_nls.c, newton_extends).
  * The details and the reasons are in the header comments of the solver's parts (solver/dae_*.c,
- * listed in bg_dae.c).
+ * listed in bg_dae_impl.h).
  *
  * Callbacks return 0 for success, > 0 for a recoverable failure (the step is cut and retried),
  * < 0 for a fatal one (the integration stops with DAE_CALLBACK_FAIL). The residual array is
@@ -127,8 +128,8 @@ typedef struct dae_problem {
        closed), and a modified Newton iteration on it makes small corrections that the
        convergence test, which sees corrections and not residuals, accepts while the
        switching element's equation is still far from satisfied; the error the iteration
-       leaves then acts as a phantom flow (measured on the crane at rtol 1e-4 .. 1e-3: the
-       check valves' residual flows pumped the closed circuit's lines to 40 .. 280 MPa). The
+       leaves then acts as a phantom source (a closed valve's residual flow that fills a line
+       step after step; the pressure rises smoothly, so the error test does not see it). The
        remedy is the event handling of hybrid DAE solvers reduced to what a smooth model
        needs: at a change of regime the integrator's linearisation is renewed, as Modelica
        tools do at every event (F. E. Cellier and E. Kofman, Continuous System Simulation,
@@ -219,8 +220,8 @@ typedef struct dae_options {
                                   Default 0: IDA's rule. Fewer Jacobians and Newton iterations,
                                   but a Jacobian kept longer meets more switches of sharp
                                   characteristics: give dae_problem.regimes where there are any
-                                  (dae_nls.c: the crane's line pressures drifted at rtol 1e-4
-                                  without them) */
+                                  (dae_nls.c: without them the errors of the switches
+                                  accumulate at loose tolerances) */
     int stability_guard;       /* 1: where a lightly damped oscillation holds BDF orders 3..5
                                   at their stability limit, the order is lowered to 2, which
                                   damps it (numerical dissipation of the unresolved high

@@ -1,20 +1,36 @@
 /* Internal to the solver: the solver record and the interfaces between the integrator's parts.
  * Not installed; nothing here is exported from the shared library.
  *
- *   bg_dae.c      the outer loop: dae_init, dae_solve_to / dae_step over daei_step
- *   dae_create.c  options, checks of the problem, creation and release
- *   dae_step.c    one step: coefficients, prediction, the retry loop and its failure policy
- *   dae_nls.c     the Newton corrector: Jacobian reuse, the scaled Newton matrix, linear solves
- *   dae_err.c     error control: weights and norms, the error test, step and order selection,
- *                 the first step
- *   dae_disc.c    discontinuities: restarts at breakpoints and unannounced jumps, the crawl
- *                 stop, the first-correction rule
- *   dae_out.c     output: dense output, roots of event functions, drift and projection
- *   dae_eval.c    callbacks (residual, Jacobian), names and notes for messages, statistics
- *   dae_struct.c  structure: classification of the unknowns, maximum matching
- *   dae_ic.c      row classes and consistent initial values (the Newton iteration for y' and
- *                 the index-2 unknowns: dae_ic_newton.c; their interface: dae_ic_impl.h)
- *   dae_reduce.c  index reduction of the constraints (DAE_I2_REDUCE) */
+ * The index of the integrator's files, the one place that lists them (each file's own header
+ * comment gives its method and references):
+ *   bg_dae.h          the public interface: problem, options, statistics, the calls
+ *   bg_dae_impl.h     this header: the solver record, the interfaces between the parts
+ *   bg_dae.c          the outer loop: dae_init, dae_reinit, dae_set_history, dae_solve_to and
+ *                     dae_step over daei_step (stops, roots, restarts, projection), getters
+ *   dae_create.c      dae_options_default, checks of the problem and options, dae_create,
+ *                     dae_free
+ *   dae_step.c        daei_step, one step: coefficients, prediction, the retry loop and its
+ *                     failure policy
+ *   dae_nls.c         daei_newton, the corrector: Jacobian reuse, the scaled Newton matrix,
+ *                     linear solves
+ *   dae_err.c         error control: weights and norms, the error test, order and step
+ *                     selection, the first step
+ *   dae_stab.c        the stability guard (options.stability_guard): the order lowered where a
+ *                     lightly damped oscillation holds orders 3..5 at their stability limit
+ *   dae_disc.c        discontinuities: restarts at breakpoints and unannounced jumps, the crawl
+ *                     stop, the first-correction rule
+ *   dae_out.c         output: dae_dense, roots of event functions, drift and projection
+ *   dae_eval.c        residual and Jacobian calls, names and notes for messages, dae_stats_line
+ *                     and _csv, dae_return_name
+ *   dae_struct.c      structure: dae_classify, the maximum matching
+ *   dae_ic.c          row classes and consistent initial values (dae_consistent_init)
+ *   dae_ic_newton.c   their Newton iteration for y' and the index-2 unknowns
+ *   dae_ic_impl.h     the interface between dae_ic.c and dae_ic_newton.c
+ *   dae_reduce.c      index reduction of the constraints (DAE_I2_REDUCE)
+ * The rest of solver/ has interfaces of its own: what the integrator builds on (bg_status,
+ * bg_sparse, bg_linsol, bg_fdjac), what builds on its problem form (bg_static, and bg_modes with
+ * bg_modes_sparse.c and bg_modes_impl.h, both through bg_jaceval), and bg_api.h, the export
+ * mark. */
 #ifndef BG_DAE_IMPL_H
 #define BG_DAE_IMPL_H
 

@@ -78,8 +78,10 @@ ls_solver *ls_create(ls_kind kind, const sp_csc *P, bg_error *err)
         klu_defaults(&s->common);
         /* COLAMD, not KLU's default AMD: AMD orders A + A^T for diagonal pivots, while Newton
          * matrices of DAEs pivot off the diagonal (equations and unknowns are not paired by
-         * value), and at large alpha/h the crane's with 256 beam elements filled in to 2.1
-         * million entries in L (factor 63 ms) against 68 thousand (3 ms) with COLAMD */
+         * value), so at large alpha/h the pivots taken are not the ones AMD planned for and L
+         * fills in; COLAMD orders the columns for the Cholesky factor of A^T A, which bounds the
+         * fill of LU under any row pivoting (T. A. Davis, J. R. Gilbert, S. I. Larimore and
+         * E. G. Ng, ACM TOMS 30 (2004) 353-376) */
         s->common.ordering = 1;
         s->sym = klu_analyze(s->n, s->pattern->colptr, s->pattern->rowind, &s->common);
         if (!s->sym) {

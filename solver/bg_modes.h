@@ -34,8 +34,8 @@
  *
  * Naming. Each mode is described by the differential unknowns that dominate it: amplitude
  * |z_i| / nominal_i (the problem's nominal magnitudes, else 1), shares of the squared amplitudes
- * summed by component path (the unknown's name cut after `depth` segments: crane/boom,
- * crane/hydraulics), and the leading unknowns (dae_modes_describe).
+ * summed by component path (the unknown's name cut after `depth` segments: rig/beam,
+ * rig/hydraulics), and the leading unknowns (dae_modes_describe).
  *
  * Methods. Dense (up to options.dense_max differential unknowns): every eigenvalue of C by
  * LAPACK dgeevx with left and right eigenvectors, all three kinds. Sparse (larger models, or on
@@ -52,9 +52,10 @@
  * shift-invert, OP = (B + i sigma A)^-1 A with KLU's complex LU and ARPACK znaupd: the zero modes
  * are at distance sigma from the shift, so every mode in the disc |s - i sigma| < sigma comes
  * before them. Every eigenvalue found is refined by Rayleigh-quotient iteration with KLU's complex
- * LU of s A + B (the real shift's rounding along the drift directions limits the Ritz values to
- * about 1e-4 on the crane with 512 boom elements; the refined damping ratios of undamped modes are
- * 1e-20). The sparse method finds elastic modes only.
+ * LU of s A + B (the real shift's rounding along the drift directions of a model with many bodies
+ * limits the Ritz values to a relative accuracy of about 1e-4; a solve with the shift at the mode
+ * itself has no such limit, and the refined damping ratios of undamped modes come out at the
+ * rounding level). The sparse method finds elastic modes only.
  *
  * Errors: BG_ERR_ARGUMENT (NULL problem, state or result, options out of range), BG_ERR_PATTERN,
  * BG_ERR_MEMORY, BG_ERR_CALLBACK (the Jacobian failed), BG_ERR_SINGULAR (B + sigma A singular
@@ -136,7 +137,7 @@ BG_API int dae_modes_info(const dae_modes *m, int *elastic, int *rigid, int *con
  * to a largest weighted amplitude |z_i| / nominal_i of 1 among the differential unknowns.
  * BG_OK or BG_ERR_ARGUMENT. */
 BG_API int dae_modes_vector(const dae_modes *m, int k, double *re, double *im);
-/* "crane/boom 93%, crane/ties_left 4%, ... | crane/boom/node16/x0, ..." : the shares of the
+/* "rig/beam 93%, rig/ties 4%, ... | rig/beam/node16/x0, ..." : the shares of the
  * component paths cut after depth segments (depth < 1: whole names) above 1 %, at most ngroups
  * of them, then the top leading unknowns. The result keeps the problem's names array (it must
  * stay valid, as a compiled bond-graph model's does) and a copy of its nominal magnitudes. The

@@ -44,7 +44,7 @@ static int apply_op(mctx *c, double sigma, const double *x, double *y)
 /* Rayleigh-quotient iteration on one mode in complex arithmetic (KLU's complex LU of s A + B on
  * the union pattern): the window's eigenvalues come from -s/(sigma - s)^2 through solves with
  * B + sigma A, whose rounding along the model's drift directions (small singular values
- * sigma |A|) limits them to a relative 1e-4 on the crane with 512 elements; a solve with the
+ * sigma |A|) limits them to a relative 1e-4 or so on models with many bodies; a solve with the
  * shift at the mode itself does not have that weakness. Two factorizations per mode. */
 typedef struct refiner {
     klu_common common;

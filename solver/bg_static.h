@@ -43,7 +43,7 @@
  * Nonlinear invariants. The backward-Euler steps keep linear invariants exactly and nonlinear
  * ones (a joint's closure through rotating bodies, the length of a pendulum held at velocity
  * level) to second order in each step's rotation: a structure loaded from its assembled state
- * (the crane: hinge gap 1e-11 m) keeps them, a pendulum started 40 degrees off its rest loses
+ * (small rotations) keeps them, a pendulum started 40 degrees off its rest loses
  * 23 % of its length (tests/solver/test_static.c). Problems that declare their position
  * constraints (dae_problem.cons, ncons, cons_pattern) are projected back onto g(y) = g(y_start)
  * after every step (minimum-norm Gauss-Newton by CHOLMOD), which keeps them exactly.

@@ -45,15 +45,14 @@
  * and the linearisation at the predictor says little about where the unknowns that depend on
  * it go. The chain that makes this matter: a reference acceleration jumps, the Newton matrix of
  * a saturated controller has d(out)/d(in) = 0, the first correction moves the input and leaves
- * the output at the predictor's value; the rate of earlier steps (1e-7 on the crane in
- * saturation) then accepts the step with the controller on the wrong side, out of the error
- * test (exclude_alg), and the run goes on silently wrong (the crane's reference kinks without
- * breakpoints, rtol 1e-6: 4.3e4 tolerances at the end). Another iteration evaluates the
- * residual where the first one went and measures the rate there. The last condition keeps
- * unknowns that the steps do not resolve out: beam efforts near zero that the predictor misses
- * by about their change per step (at 512 boom elements, without it, the rule fired at half
- * the steps and cost 10 % more Newton iterations); a source that jumps after constant or slowly
- * varying values has a change per step far below the jump. */
+ * the output at the predictor's value; the rate of earlier steps (tiny while the controller
+ * saturates) then accepts the step with the controller on the wrong side, out of the error
+ * test (exclude_alg), and the run goes on silently wrong, by far more than the tolerance.
+ * Another iteration evaluates the residual where the first one went and measures the rate
+ * there. The last condition keeps unknowns that the steps do not resolve out: beam efforts near
+ * zero that the predictor misses by about their change per step (on long beam chains, without
+ * it, the rule fires at a large share of the steps and costs Newton iterations); a source that
+ * jumps after constant or slowly varying values has a change per step far below the jump. */
 int daei_first_correction_jumps(const dae_solver *s)
 {
     const double *restrict y = s->y, *restrict ee = s->ee, *restrict w = s->ewt,

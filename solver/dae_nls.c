@@ -14,11 +14,11 @@
  * msbj, CVodeSetJacEvalFrequency, 51 by default), sound here because the refactorizations keep
  * the matrix within newton_dgmax of the current cj; the Jacobian then follows the state, not
  * the step size. And the rate is not reset when cj changes (below): CVODE keeps its crate from
- * step to step and resets it only when the matrix is formed again (cvNlsLSetup). Caution,
- * measured: a Jacobian kept longer meets more switches of sharp characteristics, and without
- * dae_problem.regimes the crane's check valves then left phantom flows in its lines (at rtol
- * 1e-4 the pressures of paper-undamped ended 135 MPa too high). With the regimes the crane
- * scenes use it (crane/crane_scene.h); off by default.
+ * step to step and resets it only when the matrix is formed again (cvNlsLSetup). Caution: a
+ * Jacobian kept longer meets more switches of sharp characteristics, and without
+ * dae_problem.regimes a modified Newton iteration on a Jacobian from the other side of a switch
+ * leaves that switch's equation unsatisfied (bg_dae.h, dae_problem.regimes): give the regimes
+ * with it. Off by default.
  * At most max_newton iterations per attempt, or up to twice that on a matrix evaluated at the
  * step itself while the rate (0.5 or better) says it will converge within them
  * (newton_extends).
@@ -150,10 +150,10 @@ static void note_newton(dae_solver *s, double t, double rate)
  * norm dn at rate: only on a Newton matrix evaluated at this step (a stale one is refreshed
  * instead, at the same h), while it contracts at RATE_EXTEND or better, and while the rate says
  * it will pass the test within NEWTON_EXTEND * max_newton iterations in all. Failing there
- * instead cuts the step by 4. On the crane with 512 boom elements the predictor misses the
- * index-2 reactions by about 200 tolerances, the iteration then needs 5 or 6 iterations at rates
- * of 0.2 to 0.4, and the cut steps cost 1.23 Jacobians and 22 ms per step against 0.4 and 11 ms
- * with the extension (bench scaling series). */
+ * instead cuts the step by 4. Where the predictor misses the index-2 unknowns by hundreds of
+ * tolerances (the reactions of large flexible structures), a converging iteration needs 5 or 6
+ * iterations at rates of 0.2 to 0.4, and cutting its steps costs more Jacobians and more time
+ * per step than letting it finish. */
 static int newton_extends(const dae_solver *s, int m, double dn, double rate)
 {
     if (!s->jac_current || m < 1 || !(rate <= RATE_EXTEND) || rate <= 0) return 0;
@@ -182,9 +182,9 @@ int daei_newton(dae_solver *s, double t)
     int n = s->n;
     /* y and yp start at the predictor (predict); ee accumulates the corrections, which keep
      * their own digits. Formed as y - ypred after the iteration instead, it carries the
-     * rounding of every update of y (eps |y|) into the history: the crane with a 1000 times
-     * stiffer boom then started with steps of 1e-11 at order 1, its Newton iteration stalling
-     * at rate 1 on a beam effort, and took over 60 s instead of 0.5 s */
+     * rounding of every update of y (eps |y|) into the history, which on stiff structures is
+     * not small against the corrections: the iteration then stalls at rate 1 on the stiffest
+     * efforts and the steps collapse */
     memset(s->ee, 0, (size_t)n * sizeof(double));
     double ratio = s->cj / (s->cjj != 0 ? s->cjj : s->cj);
     int old_jac = s->o.newton_jac_age > 0 ? s->st.steps - s->jac_nst >= s->o.newton_jac_age
@@ -283,8 +283,8 @@ int daei_newton(dae_solver *s, double t)
              * steps of 1e-12 s left the multipliers' corrections 1e4 tolerances large while the
              * positions' and velocities' stayed at 2e-6, their round-off, and the steps
              * collapsed at t = 4.5e-12. A fixed floor of 3e-5 instead (10 eps / rtol at rtol
-             * 1e-10 and above it at 1e-8) accepts unconverged iterations at 1e-8: the crane's
-             * hinge drift after 3 s grew from 1.6e-8 m to 6e-7 m. With rtol = 0 (atol alone)
+             * 1e-10 and above it at 1e-8) accepts unconverged iterations at 1e-8, and the drift
+             * of the position constraints grows with them. With rtol = 0 (atol alone)
              * the rounding has no bound relative to the tolerance: 1e-6; and at most 1e-2. */
             double floor_diff =
                 s->o.rtol > 0 ? fmin(1e-2, fmax(1e-6, 10 * DBL_EPSILON / s->o.rtol)) : 1e-6;

@@ -43,8 +43,8 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
         d = d * gam + c / s->psi[j - 1];
         c = c * gam;
         gam = (delt + s->psi[j - 1]) / s->psi[j];
-        /* branch-free loops that vectorise: the crane writes an output every 1 ms, five per
-         * step, and this was 7 % of its run with the tests inside the loop */
+        /* branch-free loops that vectorise (the tests for y and yp kept out of them): dense
+         * output runs at every output time, often several per step */
         const double *restrict pj = s->phi[j];
         if (y && yp) {
             double *restrict a = y, *restrict b = yp;

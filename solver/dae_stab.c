@@ -67,8 +67,9 @@
  *
  * Whether the dissipation is acceptable is the analyst's choice, as the amount of numerical
  * dissipation is in structural dynamics, hence an option (options.stability_guard, off by
- * default): on the crane, whose answer is the slow motion, it costs nothing measurable; on the
- * IVP Test Set's crank, whose elastic modes are scored, it costs up to a digit: leave it off
+ * default): where the answer is the slow motion and the fast modes are not resolved anyway, it
+ * costs nothing measurable in that answer; where the fast modes are part of the answer (the IVP
+ * Test Set's crank, whose elastic modes are scored), it costs up to a digit: leave it off
  * there. */
 #include <math.h>
 #include <string.h>

@@ -95,7 +95,8 @@ if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
   bad=""
   pc --libs --static bgdae | grep -q inih && bad="$bad pkg-config --static names inih;"
   ldd "$dest$libdir/libbgdae.so" 2>/dev/null | grep -q inih && bad="$bad libbgdae.so needs inih;"
-  for h in mech_util.h mech_ad.h cmp_internal.h bg_dae_impl.h crane_model.h crane_scene.h; do
+  for h in mech_util.h mech_ad.h mech_beam_impl.h cmp_internal.h bg_dae_impl.h crane_model.h \
+           crane_scene.h; do
     [ -e "$dest$includedir/bgdae/$h" ] && bad="$bad $h installed;"
   done
   grep -q 'crane_' <<<"$(nm -D --defined-only "$dest$libdir/libbgdae.so")" \

@@ -1,9 +1,10 @@
-/* The co-rotational beam element and the chain builder (equations in mech_beam.h). The energy W
- * is written once on second-order automatic-differentiation numbers in the 14 configuration
- * unknowns (x_a, x_b, q_a, q_b): its gradient gives the port loads, its Hessian their Jacobian.
- * The residual, evaluated a hundred times as often as the Jacobian, computes the same loads in
- * plain arithmetic with one reverse (adjoint) pass through the deformations instead
- * (beam_loads_plain); the tests hold the two to each other. */
+/* The co-rotational beam element (equations in mech_beam.h; the chain builder that lumps the
+ * mass into node bodies is mech_beam_chain.c, what it takes from here mech_beam_impl.h). The
+ * energy W is written once on second-order automatic-differentiation numbers in the 14
+ * configuration unknowns (x_a, x_b, q_a, q_b): its gradient gives the port loads, its Hessian
+ * their Jacobian. The residual, evaluated a hundred times as often as the Jacobian, computes
+ * the same loads in plain arithmetic with one reverse (adjoint) pass through the deformations
+ * instead (beam_loads_plain); the tests hold the two to each other. */
 #include "mech_beam.h"
 
 #include <stdio.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 
 #include "mech_ad.h"
+#include "mech_beam_impl.h"
 #include "mech_body.h"
 #include "mech_util.h"
 
@@ -38,8 +40,15 @@ typedef struct beam {
     mech_scales sc; /* stated nominal scales (the chain builder states its weight) */
 } beam;
 
+beam_work *mech_beam_work_new_(void)
+{
+    beam_work *w = calloc(1, sizeof *w);
+    if (w) w->refs = 1;
+    return w;
+}
+
 /* Drops one reference to a scratch; the last frees it. */
-static void work_release(beam_work *w)
+void mech_beam_work_release_(beam_work *w)
 {
     if (w && --w->refs == 0) free(w);
 }
@@ -47,14 +56,15 @@ static void work_release(beam_work *w)
 static void beam_free(void *p)
 {
     beam *b = p;
-    if (b) work_release(b->work);
+    if (b) mech_beam_work_release_(b->work);
     free(b);
 }
 
 /* The nodal triad t[3*i + r] = (R(q) E0)_{r,i}, R(q) = N(q)/(q.q), of one node whose quaternion q
  * is the unknowns off..off+3 of the AD space. t depends on those four unknowns only: its value,
  * gradient and Hessian in q are computed in plain arithmetic and scattered, instead of carrying
- * 14-wide AD numbers through the products (which took a fifth of the crane's run).
+ * 14-wide AD numbers (gradients of 14, Hessians of 14 x 14) through the products of what depends
+ * on four unknowns.
  * N_k(q) = q^T A_k q with the symmetric A_k below (k column-major over the 3 x 3 matrix), s = q.q:
  *   dR = (dN - R ds) / s,  d2R_mn = (d2N_mn - dR_m ds_n - dR_n ds_m - R d2s_mn) / s. */
 static const double QA[9][4][4] = {
@@ -622,8 +632,8 @@ mech_scales *mech_beam_scales_(bgr_element *el)
 
 /* BG_OK if the section obeys the rules of mech_beam.h (where: the constructor), else the
  * refusal naming the field. */
-static int bad_section(bgr_model *m, bgr_comp c, const char *name, const char *w,
-                       const mech_section *s)
+int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const char *w,
+                           const mech_section *s)
 {
     if (!s) return bgr_refuse(m, c, name, w, "the section is NULL");
     if (bgr_check_value(m, c, name, w, "section.E", s->E, BGR_POSITIVE) ||
@@ -641,8 +651,8 @@ static int bad_section(bgr_model *m, bgr_comp c, const char *name, const char *w
 
 /* BG_OK if the local stiffness of the section over the length L0 (and its damping beta K) is
  * finite, else the refusal (products of the section's numbers that overflow). */
-static int bad_stiffness(bgr_model *m, bgr_comp c, const char *name, const char *w,
-                         const mech_section *s, double L0)
+int mech_beam_bad_stiffness_(bgr_model *m, bgr_comp c, const char *name, const char *w,
+                             const mech_section *s, double L0)
 {
     beam b;
     memset(&b, 0, sizeof b);
@@ -692,14 +702,14 @@ static int bad_node(bgr_model *m, bgr_comp c, const char *name, const char *w, c
 }
 
 /* mech_beam with the scratch shared (NULL: its own). */
-static int beam_add(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
-                    const mech_section *sec, const double *E0, double L0, beam_work *shared)
+int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
+                   const mech_section *sec, const double *E0, double L0, beam_work *shared)
 {
     const char *w = "mech_beam";
-    if (bad_section(m, c, name, w, sec) || bad_frame(m, c, name, w, E0) ||
+    if (mech_beam_bad_section_(m, c, name, w, sec) || bad_frame(m, c, name, w, E0) ||
         bgr_check_value(m, c, name, w, "L0", L0, BGR_POSITIVE) ||
         bad_node(m, c, name, w, "node_a", node_a) || bad_node(m, c, name, w, "node_b", node_b) ||
-        bad_stiffness(m, c, name, w, sec, L0))
+        mech_beam_bad_stiffness_(m, c, name, w, sec, L0))
         return BG_ERR_ARGUMENT;
     if (node_a == node_b)
         return bgr_refuse(m, c, name, w, "node_a = node_b = %d, expected two different bodies",
@@ -729,189 +739,7 @@ static int beam_add(bgr_model *m, bgr_comp c, const char *name, int node_a, int 
 int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
               const mech_section *sec, const double *E0, double L0)
 {
-    return beam_add(m, c, name, node_a, node_b, sec, E0, L0, NULL);
-}
-
-static int frame(const double *p0, const double *p1, const double *up, double *E0, double *L)
-{
-    double d[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-    *L = sqrt(mech_dot(d, d));
-    if (!(*L > 0) || !up) return 0;
-    for (int i = 0; i < 3; i++)
-        E0[i] = d[i] / *L;
-    double pu = mech_dot(up, E0), w[3];
-    for (int i = 0; i < 3; i++)
-        w[i] = up[i] - pu * E0[i];
-    double nw = sqrt(mech_dot(w, w));
-    if (!(nw > 1e-12 * sqrt(mech_dot(up, up)))) return 0;
-    for (int i = 0; i < 3; i++)
-        E0[3 + i] = w[i] / nw;
-    mech_cross(E0, E0 + 3, E0 + 6);
-    return 1;
-}
-
-static int node_ports(int k, int n, const int *extra, const int *extra3)
-{
-    return (k > 0) + (k < n) + (extra ? extra[k] : 0) + (extra3 ? extra3[k] : 0);
-}
-
-/* The lumped mass and the global inertia tensor J (exactly symmetric) of a chain node that
- * stands for the length l of rod with the local frame E0. */
-static double node_inertia(const mech_section *sec, const double *E0, double l, double *J)
-{
-    /* rotary inertia of the section over that length, local frame: torsion (polar), then
-     * bending; the rod's own length-wise distribution of mass is carried by the neighbouring
-     * nodes' translation (adding rho A l^3/12 here too lowered the third bending frequency
-     * of a 20-element cantilever by 1.4 %, to 0.6 % without it) */
-    double Jl[3] = {sec->rho * (sec->Iy + sec->Iz) * l, sec->rho * sec->Iy * l,
-                    sec->rho * sec->Iz * l};
-    for (int i = 0; i < 3; i++) /* E0 diag(Jl) E0^T */
-        for (int j = 0; j < 3; j++) {
-            double sum = 0;
-            for (int a = 0; a < 3; a++)
-                sum += E0[i + 3 * a] * Jl[a] * E0[j + 3 * a];
-            J[i + 3 * j] = sum;
-        }
-    for (int i = 0; i < 3; i++) /* exact symmetry for the body's check */
-        for (int j = i + 1; j < 3; j++)
-            J[j + 3 * i] = J[i + 3 * j];
-    double mass = sec->rho * sec->A * l;
-    return mass > 0 ? mass : 1e-12;
-}
-
-int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
-                    const double *p1, const double *up, const mech_section *sec,
-                    const double *gravity, const int *extra, const int *extra3, int *nodes,
-                    int *elems)
-{
-    bg_error *err = bgr_model_error_mut(m);
-    /* everything is checked before the component is made: a refused chain leaves nothing */
-    const char *w = "mech_beam_chain";
-    if (bad_section(m, c, name, w, sec)) return BG_ERR_ARGUMENT;
-    if (!(sec->rho > 0))
-        return bgr_refuse(m, c, name, w,
-                          "section.rho = %g, expected a finite number > 0 (the chain lumps the "
-                          "mass rho A l and the rotary inertia rho I l into its nodes)",
-                          sec->rho);
-    if (n < 1) return bgr_refuse(m, c, name, w, "n = %d, expected at least 1 element", n);
-    if (!p0 || !p1) return bgr_refuse(m, c, name, w, "the end point %s is NULL", p0 ? "p1" : "p0");
-    if (!up) return bgr_refuse(m, c, name, w, "the up vector is NULL");
-    if (bgr_check_values(m, c, name, w, "p0", p0, 3, BGR_FINITE) ||
-        bgr_check_values(m, c, name, w, "p1", p1, 3, BGR_FINITE) ||
-        bgr_check_values(m, c, name, w, "up", up, 3, BGR_FINITE) ||
-        bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE))
-        return BG_ERR_ARGUMENT;
-    double E0[9], L;
-    if (!frame(p0, p1, up, E0, &L) || !isfinite(L))
-        return bgr_refuse(m, c, name, w,
-                          "p0 = (%g, %g, %g), p1 = (%g, %g, %g), up = (%g, %g, %g): expected two "
-                          "distinct end points at a finite distance and an up vector not along "
-                          "the beam",
-                          p0[0], p0[1], p0[2], p1[0], p1[1], p1[2], up[0], up[1], up[2]);
-    if (!nodes || !elems)
-        return bgr_refuse(m, c, name, w, "the arrays for the node and element ids are NULL");
-    for (int k = 0; k <= n; k++) {
-        if ((extra && extra[k] < 0) || (extra3 && extra3[k] < 0))
-            return bgr_refuse(m, c, name, w, "node %d has a negative number of extra ports (%d)",
-                              k, extra && extra[k] < 0 ? extra[k] : extra3[k]);
-        int np = node_ports(k, n, extra, extra3);
-        if (np > MECH_MAXPORTS)
-            return bgr_refuse(m, c, name, w, "node %d has %d ports, expected at most %d", k, np,
-                              MECH_MAXPORTS);
-    }
-    double Le = L / n;
-    if (bad_stiffness(m, c, name, w, sec, Le)) return BG_ERR_ARGUMENT;
-    for (int end = 0; end < 2; end++) { /* the lumped inertias of the end and inner nodes */
-        double J[9], l = end ? 0.5 * Le : Le;
-        double mass = node_inertia(sec, E0, l, J);
-        if (!isfinite(mass) || bgr_check_spd(m, c, name, w, "the lumped inertia of a node", J, 3))
-            return bgr_refuse(m, c, name, w,
-                              "a node standing for l = %g m of rod gets the mass %g and the "
-                              "inertia diag(%g, %g, %g): expected finite section properties "
-                              "that make them finite and > 0",
-                              l, mass, sec->rho * (sec->Iy + sec->Iz) * l, sec->rho * sec->Iy * l,
-                              sec->rho * sec->Iz * l);
-    }
-    bgr_comp cc = bgr_component(m, c, name);
-    if (cc < 0) return cc;
-    for (int k = 0; k <= n; k++) {
-        double l = (k == 0 || k == n) ? 0.5 * Le : Le; /* length of rod the node stands for */
-        double J[9], mass = node_inertia(sec, E0, l, J);
-        int np = node_ports(k, n, extra, extra3);
-        double *r = calloc((size_t)3 * np + 3, sizeof *r);
-        int *dims = malloc(((size_t)np + 1) * sizeof *dims);
-        if (!r || !dims) {
-            free(r);
-            free(dims);
-            return bg_error_raise(err, BG_ERR_MEMORY, "mech_beam_chain", "out of memory");
-        }
-        for (int j = 0; j < np; j++)
-            dims[j] = j < np - (extra3 ? extra3[k] : 0) ? 6 : 3;
-        char nm[32];
-        snprintf(nm, sizeof nm, "node%02d", k);
-        nodes[k] = mech_body(m, cc, nm, mass, J, gravity, np, r, dims);
-        free(r);
-        free(dims);
-        if (nodes[k] < 0) return nodes[k];
-    }
-    /* one scratch for the chain, held here until its elements have taken their references */
-    beam_work *shared = calloc(1, sizeof *shared);
-    if (!shared) return bg_error_raise(err, BG_ERR_MEMORY, "mech_beam_chain", "out of memory");
-    shared->refs = 1;
-    for (int k = 0; k < n; k++) {
-        char nm[32];
-        snprintf(nm, sizeof nm, "el%02d", k);
-        elems[k] = beam_add(m, cc, nm, nodes[k], nodes[k + 1], sec, E0, Le, shared);
-        if (elems[k] < 0) {
-            work_release(shared);
-            return elems[k];
-        }
-        /* the weight of the whole chain, rho A L |g|, as the elements' force scale: what a chain
-         * supported at one end carries there (mech_set_nominal may state more, e.g. a load) */
-        double W = sec->rho * sec->A * L * (gravity ? sqrt(mech_dot(gravity, gravity)) : 0.0);
-        if (W > 0 && isfinite(W)) mech_beam_scales_(bgr_element_get(m, elems[k]))->force = W;
-        int pa = k > 0 ? 1 : 0; /* node k: next port; node k+1: prev port (0) */
-        snprintf(nm, sizeof nm, "ba%02d", k);
-        int st = bgr_bond(m, cc, nm, 6, bgr_port_of(m, nodes[k], pa), bgr_port_of(m, elems[k], 0),
-                          NULL, NULL);
-        if (st < 0) {
-            work_release(shared);
-            return st;
-        }
-        snprintf(nm, sizeof nm, "bb%02d", k);
-        st = bgr_bond(m, cc, nm, 6, bgr_port_of(m, nodes[k + 1], 0), bgr_port_of(m, elems[k], 1),
-                      NULL, NULL);
-        if (st < 0) {
-            work_release(shared);
-            return st;
-        }
-    }
-    work_release(shared);
-    return cc;
-}
-
-bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra, int k,
-                              int j)
-{
-    bgr_port none = {-1, -1};
-    (void)extra;
-    if (!m || !nodes || k < 0 || k > n || j < 0) return none;
-    return bgr_port_of(m, nodes[k], (k > 0) + (k < n) + j); /* 6D extras, then 3D ones */
-}
-
-int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1)
-{
-    if (!nodes || n < 1 || !p0 || !p1)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam_chain_set",
-                              "needs the node ids, n >= 1 and both end points");
-    for (int k = 0; k <= n; k++) {
-        double x[3];
-        for (int i = 0; i < 3; i++)
-            x[i] = p0[i] + (p1[i] - p0[i]) * k / n;
-        int st = mech_body_set(m, nodes[k], x, NULL, NULL, NULL);
-        if (st != BG_OK) return st;
-    }
-    return BG_OK;
+    return mech_beam_add_(m, c, name, node_a, node_b, sec, E0, L0, NULL);
 }
 
 double mech_beam_energy(const bgr_model *m, int elem, const double *y)

@@ -1,4 +1,5 @@
-/* Co-rotational 3D Euler-Bernoulli beam element, and a builder for chains of them.
+/* Co-rotational 3D Euler-Bernoulli beam element. The builder of chains of them with lumped node
+ * bodies is declared in mech_beam_chain.h, which this header includes at its end.
  *
  * Kinematics (co-rotational, after Crisfield, Non-linear Finite Element Analysis of Solids and
  * Structures vol. 2, ch. 17, and Battini and Pacoste, CMAME 191 (2002) 1755): the two nodes are
@@ -22,14 +23,12 @@
  * Jacobian by second-order automatic differentiation (mech_ad.h). W is invariant under any rigid
  * motion, so a rigidly rotating element has no deformation energy, however large the rotation.
  * Ports 0 (node a) and 1 (node b) are 6D (conventions of mech_body.h).
- * Mass: lumped into the node bodies by the chain builder: half of each element's mass to each
- * end node, with the rotary inertia of the section over that length (rho I l; rho Ip l in
- * torsion). Lumped because the node bodies carry it without coupling terms; the consistent mass
- * of a co-rotational element depends on the configuration and would couple the nodes. No damping
- * in the element unless beta > 0: stiffness-proportional (Rayleigh) damping, the gradient with
- * respect to the port velocities of D = beta/2 d'^T K d', d' the rates of the local deformations
- * and K the local stiffness, so that it acts on deformation only (a rigid motion is not damped)
- * and mode i of the linearised structure gets the damping ratio beta w_i / 2. */
+ * Mass: none in the element; the chain builder (mech_beam_chain.h) lumps it into the node
+ * bodies. No damping in the element unless beta > 0: stiffness-proportional (Rayleigh) damping,
+ * the gradient with respect to the port velocities of D = beta/2 d'^T K d', d' the rates of the
+ * local deformations and K the local stiffness, so that it acts on deformation only (a rigid
+ * motion is not damped) and mode i of the linearised structure gets the damping ratio
+ * beta w_i / 2. */
 #ifndef MECH_BEAM_H
 #define MECH_BEAM_H
 
@@ -63,31 +62,6 @@ typedef struct mech_section {
 BG_API int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
                      const mech_section *sec, const double *E0, double L0);
 
-/* A straight chain of n elements from p0 to p1 in component c (created here with the given
- * name): n + 1 node bodies named node00, node01, ... with lumped masses (gravity may be NULL),
- * elements el00, el01, ..., bonded together. up: a vector not parallel to the beam giving the
- * local e2 direction. Node k gets extra[k] additional 6D ports, then extra3[k] 3D (force only)
- * ports, at its centre (NULL: none) for the caller to bond (supports, loads, dampers, ties,
- * ropes); their handles come from mech_beam_chain_port. nodes (n+1) and elems (n) receive the
- * element ids. Returns the chain's component, or BG_ERR_ARGUMENT (a bad section or one with
- * rho = 0, n < 1, NULL, non-finite or coincident end points, up NULL, not finite or along the
- * beam, gravity not finite, nodes or elems NULL, a negative extra count or more than 64 ports at
- * a node, lumped node masses or inertias that are not finite and > 0), or the status of the
- * component, element or bond that failed. The arguments are all checked before the component is
- * made: a refused chain leaves nothing in the model (the message names the chain's path and the
- * parameter). */
-BG_API int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
-                           const double *p1, const double *up, const mech_section *sec,
-                           const double *gravity, const int *extra, const int *extra3, int *nodes,
-                           int *elems);
-/* The j-th extra port of node k (the 6D ones first, then the 3D ones); {-1, -1} if there is no
- * such port (or m, nodes NULL). */
-BG_API bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra,
-                                     int k, int j);
-/* Positions of the chain's nodes into bgr_y0 (after bgr_compile), orientation identity. BG_OK,
- * or BG_ERR_ARGUMENT (NULL arrays, n < 1, a node that is not a body of a compiled model). */
-BG_API int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0,
-                               const double *p1);
 /* The deformation energy W of an element at a state vector y (after bgr_compile); NaN if elem
  * is not a beam element of a compiled model, or y is NULL. */
 BG_API double mech_beam_energy(const bgr_model *m, int elem, const double *y);
@@ -104,4 +78,10 @@ BG_API int mech_beam_loads(const bgr_model *m, int elem, const double *y, int pa
 #ifdef __cplusplus
 }
 #endif
+
+/* The chain builder comes with the element, so that a program that includes this header alone
+ * keeps its declarations (mech_beam_chain.h includes this one for mech_section; the include
+ * guards end the cycle whichever of the two comes first). */
+#include "mech_beam_chain.h"
+
 #endif

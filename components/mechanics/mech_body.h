@@ -16,8 +16,8 @@
  *     J w' + w x (J w) = sum_k [ r_k x (R^T s_k F_k) + R^T s_k M_k ]    (Euler, body frame)
  *     q' = q (x) (0, w) / 2
  *     v_k = v + R (w x r_k),    omega_k = R w   (6D ports only)
- * as in the crane paper (docs/crane.md: dp/dt = F_C in the global frame, dH/dt + w x H = M
- * in the body frame, v_k = v_C + w x r_Ck), with the port quantities rotated to the global frame
+ * These are the Newton-Euler equations (dp/dt = F_C in the global frame, dH/dt + w x H = M in
+ * the body frame, v_k = v_C + w x r_Ck), with the port quantities rotated to the global frame
  * here so that joints and springs need no orientation of their own.
  * J: inertia tensor about the mass centre in the body frame (symmetric positive definite). */
 #ifndef MECH_BODY_H

@@ -14,8 +14,8 @@
  *     (s_B M_B).a + s_d e_d = 0   (no drive: (s_B M_B).a = 0),   f_d = (w_B - w_A).a.
  * (s_B M_B is the moment on the joint at B, so body B receives s_d e_d about a.) Power is
  * conserved: the bodies receive s_d e_d f_d, the drive's input. The reactions (forces
- * and the moments across the axis) are index-2 unknowns; velocity-level constraints as in the
- * paper (docs/crane.md). */
+ * and the moments across the axis) are index-2 unknowns: the constraints are written on the
+ * velocities (the flows of the bond graph), not on the positions. */
 #ifndef MECH_PARTS_H
 #define MECH_PARTS_H
 

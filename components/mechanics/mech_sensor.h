@@ -3,9 +3,8 @@
  * Signals (own unknowns): the angular velocity w_a = (R(q) w_body).a and the angle theta, a state
  * with theta' = w_a, so that it keeps counting past +-pi (no wrap-around, no kink):
  *     theta' - (R w).a = 0,     w_a - (R w).a = 0.
- * theta starts at its initial value (bgr_y0; 0 by default). Used for the crane's platform angle
- * and rate (docs/crane.md, the PID measurement). The outputs are bgr_ref
- * {BGR_STATE, id, 0} (theta) and {BGR_OWN, id, 0} (w_a). */
+ * theta starts at its initial value (bgr_y0; 0 by default). The outputs, e.g. the measurement of
+ * a controller (ctl_pid), are bgr_ref {BGR_STATE, id, 0} (theta) and {BGR_OWN, id, 0} (w_a). */
 #ifndef MECH_SENSOR_H
 #define MECH_SENSOR_H
 

@@ -95,7 +95,8 @@ int cp_parse_args(int argc, char **argv, cp_options *o)
                   {"--anim-step", NULL, NULL},
                   {"--anim-scale", NULL, NULL}};
     static const char *flags[] = {"--no-plots", "--quiet",  "--help",  "--version",       "--vtk",
-                                  "--animate",  "--static", "--modes", "--error-estimate"};
+                                  "--animate",  "--static", "--modes", "--error-estimate",
+                                  "--list-keys"};
     const int nvalued = (int)(sizeof valued / sizeof *valued),
               nflags = (int)(sizeof flags / sizeof *flags);
     int positional_only = 0;
@@ -180,6 +181,7 @@ int cp_parse_args(int argc, char **argv, cp_options *o)
                     printf("crane (bgdae) %s\n", CRANE_VERSION);
                     return CP_EXIT_OK;
                 }
+                if (k == 9) return crane_scene_keys_markdown(stdout) ? CP_EXIT_RUN : CP_EXIT_OK;
             }
         for (int k = 0; k < nvalued && !found; k++) {
             if (strcmp(name, valued[k].name)) continue;

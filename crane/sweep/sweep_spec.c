@@ -1,22 +1,18 @@
-/* Sweep files (sweep_spec.h): read, check, expand into cases.
+/* Sweep files (sweep_spec.h): the parser and the public entry points; the parts are listed in
+ * sweep_spec_impl.h.
  *
  * inih does the INI syntax, as for the scene files (crane_scene.c): the text is fed to
- * ini_parse_stream through a reader of our own that counts lines and checks each line before
- * inih sees it, so that every message has its line; the reader also sees the section headers,
- * which is how repeated [axis] sections become separate axes. The handler only records the
- * keys; the values are checked afterwards, section by section (finish()), so that the keys of a
- * section may come in any order. Every swept or set value is checked with crane_scene_set, the
- * scene files' own check, and its message is passed on behind "FILE:LINE: key '...' in [...]". */
-#define _XOPEN_SOURCE 700 /* realpath */
-#include "sweep_spec.h"
-
+ * ini_parse_stream through a reader of our own (sweep_ini.c) that counts lines and checks each
+ * line (spec_check_line, here) before inih sees it, so that every message has its line; the
+ * check also sees the section headers, which is how repeated [axis] sections become separate
+ * axes. The handler only records the keys; the values are checked afterwards, section by section
+ * (spec_finish, sweep_schema.c), so that the keys of a section may come in any order. Every
+ * swept or set value is checked with crane_scene_set, the scene files' own check, and its
+ * message is passed on behind "FILE:LINE: key '...' in [...]". */
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <limits.h>
-#include <math.h>
 #include <stdarg.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,56 +22,15 @@
 #include <ini.h>
 
 #include "crane_scene.h"
-#include "sweep_row.h"
+#include "sweep_spec_impl.h"
 
-/* ------------------------------------------------------------ the sections ---- */
-
-enum { SEC_NONE = -1, SEC_SWEEP, SEC_SET, SEC_AXIS, SEC_LHS, NSEC };
-static const char *const SEC_NAMES[NSEC + 1] = {"sweep", "set", "axis", "lhs", NULL};
-static const char *const SWEEP_KEYS[] = {"name",   "scene",        "time_limit",
-                                         "report", "case_figures", NULL};
-static const char *const AXIS_KEYS[] = {"key", "values", "from", "to", "count", "spacing", NULL};
-static const char *const LHS_KEYS[] = {"samples", "seed", NULL}; /* and SECTION.KEY */
-
-#define RAW_MAX (SWEEP_MAX_SETS + 8)
-#define NRAW (SWEEP_MAX_AXES + 4)
-
-typedef struct raw_kv {
-    char key[64];
-    char value[SWEEP_VALUE_SIZE];
-    int line;
-} raw_kv;
-
-typedef struct raw_section {
-    int kind, line, n;
-    raw_kv kv[RAW_MAX];
-} raw_section;
-
-typedef struct parse_ctx {
-    sweep_spec *s;
-    const char *file;
-    const char *text;
-    size_t pos, len;
-    int line, failed, have_prev_key;
-    int cur; /* the raw section being read, -1 before the first */
-    int nraw;
-    raw_section raw[NRAW];
-    char *err;
-    size_t errsize;
-} parse_ctx;
-
-static int ieq(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++)
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b)) return 0;
-    return *a == *b;
-}
+/* ------------------------------------------------------------------ errors ---- */
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static int
-fail_line(parse_ctx *c, int line, const char *fmt, ...)
+int
+spec_fail_line(parse_ctx *c, int line, const char *fmt, ...)
 {
     if (c->failed) return -1;
     char msg[1536];
@@ -91,70 +46,9 @@ fail_line(parse_ctx *c, int line, const char *fmt, ...)
     return -1;
 }
 
-/* A value quoted for a message: at most 60 characters. */
-static void quote(const char *v, char *buf, size_t size)
-{
-    size_t n = 0, max = size - 4 < 60 ? size - 4 : 60;
-    for (; v[n] && v[n] != '\n' && v[n] != '\r' && n < max; n++)
-        buf[n] = v[n];
-    buf[n] = '\0';
-    if (v[n] && v[n] != '\n' && v[n] != '\r') strcat(buf, "...");
-}
+/* ------------------------------------------------------------------- lines ---- */
 
-static void trim_copy(const char *a, const char *b, char *out, size_t size)
-{
-    while (a < b && isspace((unsigned char)*a))
-        a++;
-    while (b > a && isspace((unsigned char)b[-1]))
-        b--;
-    size_t n = (size_t)(b - a) < size - 1 ? (size_t)(b - a) : size - 1;
-    memcpy(out, a, n);
-    out[n] = '\0';
-}
-
-/* Like inih's: the first of chars, or an inline comment (';' after white space), or the end. */
-static const char *find_chars_or_comment(const char *s, const char *chars)
-{
-    int was_space = 0;
-    while (*s && (!chars || !strchr(chars, *s)) && !(was_space && *s == ';')) {
-        was_space = isspace((unsigned char)*s);
-        s++;
-    }
-    return s;
-}
-
-static const char *nearest(const char *name, const char *const *cands, int *dist)
-{
-    const char *best = "";
-    int bd = 1 << 30;
-    for (int i = 0; cands[i]; i++) {
-        int d = crane_scene_edit_distance(name, cands[i]);
-        if (d < bd) bd = d, best = cands[i];
-    }
-    *dist = bd;
-    return best;
-}
-
-static void join(const char *const *names, const char *pre, const char *post, char *buf,
-                 size_t size)
-{
-    size_t len = 0;
-    buf[0] = '\0';
-    for (int i = 0; names[i] && len < size; i++)
-        len +=
-            (size_t)snprintf(buf + len, size - len, "%s%s%s%s", i ? ", " : "", pre, names[i], post);
-}
-
-static int section_kind(const char *name)
-{
-    for (int k = 0; k < NSEC; k++)
-        if (ieq(name, SEC_NAMES[k])) return k;
-    return SEC_NONE;
-}
-
-/* --------------------------------------------------------------- the reader ---- */
-
-static int check_line(parse_ctx *c, char *line)
+int spec_check_line(parse_ctx *c, char *line)
 {
     char *p = line, q[80];
     if (c->line == 1 && (unsigned char)p[0] == 0xEF && (unsigned char)p[1] == 0xBB &&
@@ -164,48 +58,51 @@ static int check_line(parse_ctx *c, char *line)
     while (*p && isspace((unsigned char)*p))
         p++;
     if (!*p || *p == ';' || *p == '#') return 1;
-    quote(p, q, sizeof q);
+    spec_quote(p, q, sizeof q);
     if (c->have_prev_key && p > start)
-        return fail_line(c, c->line,
-                         "indented line '%s': continuation lines are not supported (remove the "
-                         "indentation)",
-                         q),
+        return spec_fail_line(
+                   c, c->line,
+                   "indented line '%s': continuation lines are not supported (remove the "
+                   "indentation)",
+                   q),
                0;
     if (*p == '[') {
-        const char *e = find_chars_or_comment(p + 1, "]");
-        if (*e != ']') return fail_line(c, c->line, "section header without ']': '%s'", q), 0;
+        const char *e = spec_find_chars_or_comment(p + 1, "]");
+        if (*e != ']') return spec_fail_line(c, c->line, "section header without ']': '%s'", q), 0;
         char name[128];
-        trim_copy(p + 1, e, name, sizeof name);
+        spec_trim_copy(p + 1, e, name, sizeof name);
         const char *rest = e + 1;
         while (*rest && isspace((unsigned char)*rest))
             rest++;
         if (*rest && *rest != ';' && *rest != '#')
-            return fail_line(c, c->line, "unexpected text after [%s]: '%s'", name, q), 0;
-        int kind = section_kind(name);
+            return spec_fail_line(c, c->line, "unexpected text after [%s]: '%s'", name, q), 0;
+        int kind = spec_section_kind(name);
         if (kind == SEC_NONE) {
             int d;
             char all[128];
-            const char *near = nearest(name, SEC_NAMES, &d);
-            join(SEC_NAMES, "[", "]", all, sizeof all);
-            return fail_line(c, c->line, "unknown section [%s]; did you mean [%s]? (sections: %s)",
-                             name, near, all),
+            const char *near = spec_nearest(name, SEC_NAMES, &d);
+            spec_join(SEC_NAMES, "[", "]", all, sizeof all);
+            return spec_fail_line(c, c->line,
+                                  "unknown section [%s]; did you mean [%s]? (sections: %s)", name,
+                                  near, all),
                    0;
         }
         if (kind != SEC_AXIS)
             for (int i = 0; i < c->nraw; i++)
                 if (c->raw[i].kind == kind)
-                    return fail_line(c, c->line,
-                                     "section [%s] given twice (first on line %d): one is "
-                                     "allowed%s",
-                                     SEC_NAMES[kind], c->raw[i].line,
-                                     kind == SEC_LHS ? " (its keys are sampled together)" : ""),
+                    return spec_fail_line(c, c->line,
+                                          "section [%s] given twice (first on line %d): one is "
+                                          "allowed%s",
+                                          SEC_NAMES[kind], c->raw[i].line,
+                                          kind == SEC_LHS ? " (its keys are sampled together)"
+                                                          : ""),
                            0;
         int naxis = 0;
         for (int i = 0; i < c->nraw; i++)
             naxis += c->raw[i].kind == SEC_AXIS;
         if (c->nraw >= NRAW || (kind == SEC_AXIS && naxis >= SWEEP_MAX_AXES - 1))
-            return fail_line(c, c->line, "too many [axis] sections (at most %d)",
-                             SWEEP_MAX_AXES - 1),
+            return spec_fail_line(c, c->line, "too many [axis] sections (at most %d)",
+                                  SWEEP_MAX_AXES - 1),
                    0;
         raw_section *r = &c->raw[c->nraw];
         memset(r, 0, sizeof *r);
@@ -215,66 +112,17 @@ static int check_line(parse_ctx *c, char *line)
         c->have_prev_key = 0;
         return 1;
     }
-    const char *e = find_chars_or_comment(p, "=:");
+    const char *e = spec_find_chars_or_comment(p, "=:");
     if (*e != '=' && *e != ':')
-        return fail_line(c, c->line, "expected 'key = value' or '[section]', got '%s'", q), 0;
+        return spec_fail_line(c, c->line, "expected 'key = value' or '[section]', got '%s'", q), 0;
     char key[128];
-    trim_copy(p, e, key, sizeof key);
-    if (!key[0]) return fail_line(c, c->line, "key missing before '%c': '%s'", *e, q), 0;
+    spec_trim_copy(p, e, key, sizeof key);
+    if (!key[0]) return spec_fail_line(c, c->line, "key missing before '%c': '%s'", *e, q), 0;
     c->have_prev_key = 1;
     return 1;
 }
 
-static size_t line_length(const char *p, size_t rest)
-{
-    size_t n = 0;
-    while (n < rest && p[n] != '\n' && p[n] != '\r')
-        n++;
-    return n;
-}
-
-static size_t line_end_length(const char *p, size_t rest)
-{
-    if (rest == 0) return 0;
-    return p[0] == '\r' && rest > 1 && p[1] == '\n' ? 2 : 1;
-}
-
-static char *reader(char *str, int num, void *stream)
-{
-    parse_ctx *c = stream;
-    if (c->failed || c->pos >= c->len) return NULL;
-    const char *p = c->text + c->pos;
-    size_t rest = c->len - c->pos, n = line_length(p, rest);
-    c->line++;
-    c->pos += n + line_end_length(p + n, rest - n);
-    if (memchr(p, '\0', n)) {
-        fail_line(c, c->line, "the line contains a NUL character (not a text file?)");
-        return NULL;
-    }
-    if (n + 2 > (size_t)num) {
-        char key[64] = "";
-        const char *e = memchr(p, '=', n);
-        if (e && p[0] != '[' && p[0] != ';' && p[0] != '#') trim_copy(p, e, key, sizeof key);
-        if (key[0])
-            fail_line(c, c->line, "line longer than %d characters (key '%s')%s", num - 2, key,
-                      ieq(key, "values") ? ": split the values over several [axis] sections or "
-                                           "give a range (from, to, count)"
-                                         : "");
-        else
-            fail_line(c, c->line, "line longer than %d characters", num - 2);
-        return NULL;
-    }
-    memcpy(str, p, n);
-    str[n] = '\n';
-    str[n + 1] = '\0';
-    if (!check_line(c, str)) return NULL;
-    return str;
-}
-
-static int is_scene_key_name(const char *name)
-{
-    return strchr(name, '.') != NULL;
-}
+/* -------------------------------------------------------------------- keys ---- */
 
 static int handler(void *user, const char *section, const char *name, const char *value)
 {
@@ -282,10 +130,11 @@ static int handler(void *user, const char *section, const char *name, const char
     if (c->failed) return 0;
     (void)section; /* the reader's c->cur says which section instance it is */
     if (c->cur < 0) {
-        fail_line(c, c->line,
-                  "key '%s' before any section; a sweep file starts with [sweep], [set], [axis] "
-                  "or [lhs]",
-                  name);
+        spec_fail_line(
+            c, c->line,
+            "key '%s' before any section; a sweep file starts with [sweep], [set], [axis] "
+            "or [lhs]",
+            name);
         return 0;
     }
     raw_section *r = &c->raw[c->cur];
@@ -293,48 +142,50 @@ static int handler(void *user, const char *section, const char *name, const char
     const char *const *known = r->kind == SEC_SWEEP  ? SWEEP_KEYS
                                : r->kind == SEC_AXIS ? AXIS_KEYS
                                                      : LHS_KEYS;
-    int scene_key = r->kind == SEC_SET || (r->kind == SEC_LHS && is_scene_key_name(name));
+    int scene_key = r->kind == SEC_SET || (r->kind == SEC_LHS && spec_is_scene_key_name(name));
     if (!scene_key) {
         int found = 0;
         for (int i = 0; known[i] && !found; i++)
-            found = ieq(known[i], name);
+            found = spec_ieq(known[i], name);
         if (!found) {
             int d;
             char all[160];
-            const char *near = nearest(name, known, &d);
-            join(known, "", "", all, sizeof all);
+            const char *near = spec_nearest(name, known, &d);
+            spec_join(known, "", "", all, sizeof all);
             if (r->kind == SEC_LHS)
-                fail_line(c, c->line,
-                          "unknown key '%s' in [lhs]; did you mean '%s'? (keys of [lhs]: %s, and "
-                          "the sampled scene keys as SECTION.KEY = LO, HI)",
-                          name, near, all);
-            else if (r->kind == SEC_AXIS && is_scene_key_name(name))
-                fail_line(c, c->line,
-                          "unknown key '%s' in [axis]: an axis names its scene key with "
-                          "'key = %s' and its values with 'values' or 'from', 'to', 'count'",
-                          name, name);
+                spec_fail_line(
+                    c, c->line,
+                    "unknown key '%s' in [lhs]; did you mean '%s'? (keys of [lhs]: %s, and "
+                    "the sampled scene keys as SECTION.KEY = LO, HI)",
+                    name, near, all);
+            else if (r->kind == SEC_AXIS && spec_is_scene_key_name(name))
+                spec_fail_line(c, c->line,
+                               "unknown key '%s' in [axis]: an axis names its scene key with "
+                               "'key = %s' and its values with 'values' or 'from', 'to', 'count'",
+                               name, name);
             else if (d <= 3 && (size_t)d < strlen(name))
-                fail_line(c, c->line, "unknown key '%s' in [%s]; did you mean '%s'?", name, sec,
-                          near);
+                spec_fail_line(c, c->line, "unknown key '%s' in [%s]; did you mean '%s'?", name,
+                               sec, near);
             else
-                fail_line(c, c->line,
-                          "unknown key '%s' in [%s]; did you mean '%s'? (keys of [%s]: %s)", name,
-                          sec, near, sec, all);
+                spec_fail_line(c, c->line,
+                               "unknown key '%s' in [%s]; did you mean '%s'? (keys of [%s]: %s)",
+                               name, sec, near, sec, all);
             return 0;
         }
     }
     for (int i = 0; i < r->n; i++)
-        if (ieq(r->kv[i].key, name)) {
-            fail_line(c, c->line, "key '%s' in [%s] given twice (first on line %d)", name, sec,
-                      r->kv[i].line);
+        if (spec_ieq(r->kv[i].key, name)) {
+            spec_fail_line(c, c->line, "key '%s' in [%s] given twice (first on line %d)", name, sec,
+                           r->kv[i].line);
             return 0;
         }
     if (r->n >= RAW_MAX) {
-        fail_line(c, c->line, "too many keys in [%s] (at most %d)", sec, RAW_MAX);
+        spec_fail_line(c, c->line, "too many keys in [%s] (at most %d)", sec, RAW_MAX);
         return 0;
     }
     if (strlen(name) >= sizeof r->kv[0].key) {
-        fail_line(c, c->line, "key name longer than %d characters", (int)sizeof r->kv[0].key - 1);
+        spec_fail_line(c, c->line, "key name longer than %d characters",
+                       (int)sizeof r->kv[0].key - 1);
         return 0;
     }
     raw_kv *kv = &r->kv[r->n++];
@@ -342,630 +193,6 @@ static int handler(void *user, const char *section, const char *name, const char
     snprintf(kv->value, sizeof kv->value, "%s", value);
     kv->line = c->line;
     return 1;
-}
-
-/* ---------------------------------------------------------------- values ---- */
-
-/* A decimal number (as the scene files': no hexadecimal, inf or nan). */
-static int parse_double(const char *v, double *out)
-{
-    while (isspace((unsigned char)*v))
-        v++;
-    if (!*v) return 0;
-    const char *q = v;
-    while (*q && !isspace((unsigned char)*q))
-        if (!strchr("0123456789+-.eE", *q++)) return 0;
-    char *end;
-    errno = 0;
-    double x = strtod(v, &end);
-    while (isspace((unsigned char)*end))
-        end++;
-    if (*end || end == v || !isfinite(x)) return 0;
-    if (errno == ERANGE && fabs(x) > 1) return 0;
-    *out = x;
-    return 1;
-}
-
-static int parse_long(const char *v, long long lo, long long hi, long long *out)
-{
-    while (isspace((unsigned char)*v))
-        v++;
-    if (!*v || strspn(v, "+-0123456789") == 0) return 0;
-    char *end;
-    errno = 0;
-    long long x = strtoll(v, &end, 10);
-    while (isspace((unsigned char)*end))
-        end++;
-    if (*end || errno == ERANGE || x < lo || x > hi) return 0;
-    *out = x;
-    return 1;
-}
-
-static raw_kv *get(raw_section *r, const char *key)
-{
-    for (int i = 0; i < r->n; i++)
-        if (ieq(r->kv[i].key, key)) return &r->kv[i];
-    return NULL;
-}
-
-static int bad_value(parse_ctx *c, const raw_kv *kv, const char *sec, const char *expected)
-{
-    char q[80];
-    quote(kv->value, q, sizeof q);
-    return fail_line(c, kv->line, "key '%s' in [%s]: expected %s, got '%s'", kv->key, sec, expected,
-                     q);
-}
-
-/* The scene key "section.key" (any case) -> its table entry; NULL with a message. */
-static const crane_scene_key *scene_key(parse_ctx *c, const char *name, int line, const char *where)
-{
-    const char *dot = strchr(name, '.');
-    char sec[64] = "", key[64] = "";
-    if (dot && dot > name && dot[1] && (size_t)(dot - name) < sizeof sec &&
-        strlen(dot + 1) < sizeof key) {
-        snprintf(sec, sizeof sec, "%.*s", (int)(dot - name), name);
-        snprintf(key, sizeof key, "%s", dot + 1);
-        for (int i = 0; i < crane_scene_nkeys(); i++) {
-            const crane_scene_key *k = crane_scene_key_at(i);
-            if (ieq(k->section, sec) && ieq(k->key, key)) return k;
-        }
-    }
-    int best = -1, bd = 1 << 30;
-    for (int i = 0; i < crane_scene_nkeys(); i++) {
-        const crane_scene_key *k = crane_scene_key_at(i);
-        char full[132];
-        snprintf(full, sizeof full, "%s.%s", k->section, k->key);
-        int d = crane_scene_edit_distance(name, full);
-        if (d < bd) bd = d, best = i;
-    }
-    const crane_scene_key *b = crane_scene_key_at(best);
-    char q[80];
-    quote(name, q, sizeof q);
-    fail_line(c, line,
-              "%s: unknown scene key '%s'; did you mean '%s.%s'? (scene keys are "
-              "SECTION.KEY as in crane --set, listed in crane/crane_scene.h)",
-              where, q, b ? b->section : "", b ? b->key : "");
-    return NULL;
-}
-
-/* Checks value for scene key k with the scene files' own check (crane_scene_set on a scratch
- * copy of the base scene); what leads the message ("key 'values' in [axis]: value 3 of ..."). */
-static int check_scene_value(parse_ctx *c, const crane_scene *base, const crane_scene_key *k,
-                             const char *value, int line, const char *what)
-{
-    crane_scene tmp = *base;
-    bg_error err = {0};
-    char origin[1200];
-    snprintf(origin, sizeof origin, "%s:%d: %s", c->file, line, what);
-    if (crane_scene_set(&tmp, k->section, k->key, value, origin, &err) != BG_OK) {
-        c->failed = 1;
-        snprintf(c->err, c->errsize, "%s", err.message);
-        return -1;
-    }
-    return 0;
-}
-
-/* A generated value's text, 12 significant digits (a range's 0.30000000000000004 is written
- * 0.3): the text is the value the crane gets and sweep.csv shows. */
-static void fmt_value(double x, char *buf, size_t size)
-{
-    snprintf(buf, size, "%.12g", x);
-}
-
-/* --------------------------------------------------------- the base scene ---- */
-
-static int regular_file(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
-}
-
-/* The scene file for arg: relative to dir (the sweep file's folder), then a bare name in each
- * scene folder of roots, with or without .ini. 1 with the absolute path, or 0 with what was
- * tried. */
-static int resolve_scene(const char *arg, const char *dir, const char *const *roots, char *out,
-                         size_t size, char *tried, size_t tsize)
-{
-    char cand[SWEEP_PATH_SIZE + 16];
-    size_t tl = 0;
-    tried[0] = '\0';
-    const char *suf[2] = {"", ".ini"};
-    for (int pass = 0; pass < 2; pass++) {
-        int nroots = 1;
-        if (pass == 1) {
-            if (strchr(arg, '/')) break;
-            nroots = 0;
-            while (roots && roots[nroots])
-                nroots++;
-        }
-        for (int r = 0; r < nroots; r++)
-            for (int f = 0; f < 2; f++) {
-                const char *base = pass == 0 ? (arg[0] == '/' ? "" : dir) : roots[r];
-                int n =
-                    snprintf(cand, sizeof cand, "%s%s%s%s", base, base[0] ? "/" : "", arg, suf[f]);
-                if (n < 0 || (size_t)n >= sizeof cand) continue;
-                if (regular_file(cand) && realpath(cand, out) && strlen(out) < size) return 1;
-                if (tl < tsize) {
-                    n = snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", cand);
-                    tl = n < 0 ? tsize : tl + (size_t)n;
-                }
-            }
-    }
-    return 0;
-}
-
-/* ------------------------------------------------------------ Latin hypercube ---- */
-
-/* splitmix64 (Steele, Lea, Flood 2014): a small generator that gives the same numbers on every
- * machine, so that a seed names one sample. */
-static uint64_t next_u64(uint64_t *state)
-{
-    uint64_t z = (*state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-static double next_unit(uint64_t *state) /* in [0, 1) */
-{
-    return (double)(next_u64(state) >> 11) * (1.0 / 9007199254740992.0);
-}
-
-/* ------------------------------------------------------------------ finish ---- */
-
-static int add_param(parse_ctx *c, const crane_scene_key *k, int axis, int line)
-{
-    sweep_spec *s = c->s;
-    for (int i = 0; i < s->nparams; i++)
-        if (!strcmp(s->params[i].section, k->section) && !strcmp(s->params[i].key, k->key))
-            return fail_line(c, line,
-                             "%s.%s is swept twice (also on line %d): a key belongs to "
-                             "one axis",
-                             k->section, k->key, s->params[i].line);
-    for (int i = 0; i < s->nsets; i++)
-        if (!strcmp(s->sets[i].section, k->section) && !strcmp(s->sets[i].key, k->key))
-            return fail_line(c, line, "%s.%s is swept here and set in [set] (line %d): remove one",
-                             k->section, k->key, s->sets[i].line);
-    if (s->nparams >= SWEEP_MAX_PARAMS)
-        return fail_line(c, line, "too many swept keys (at most %d)", SWEEP_MAX_PARAMS);
-    sweep_param *p = &s->params[s->nparams];
-    memset(p, 0, sizeof *p);
-    snprintf(p->section, sizeof p->section, "%s", k->section);
-    snprintf(p->key, sizeof p->key, "%s", k->key);
-    snprintf(p->name, sizeof p->name, "%s.%s", k->section, k->key);
-    p->type = (int)k->type;
-    p->axis = axis;
-    p->line = line;
-    return s->nparams++;
-}
-
-static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, crane_scene *base)
-{
-    sweep_spec *s = c->s;
-    raw_kv *kv;
-    if (r && (kv = get(r, "name")) != NULL) {
-        crane_scene tmp;
-        crane_scene_default(&tmp);
-        bg_error e = {0};
-        if (crane_scene_set(&tmp, "scene", "name", kv->value, NULL, &e) != BG_OK)
-            return bad_value(c, kv, "sweep", "a name of 1 to 63 characters from [A-Za-z0-9_.-]");
-        snprintf(s->name, sizeof s->name, "%s", tmp.name);
-    }
-    if (r && (kv = get(r, "time_limit")) != NULL &&
-        (!parse_double(kv->value, &s->time_limit) || s->time_limit < 0))
-        return bad_value(c, kv, "sweep", "a number >= 0 (s; 0: no limit)");
-    if (r && (kv = get(r, "case_figures")) != NULL) {
-        static const char *yes[] = {"true", "yes", "on", "1"}, *no[] = {"false", "no", "off", "0"};
-        int v = -1;
-        for (int i = 0; i < 4; i++) {
-            if (ieq(kv->value, yes[i])) v = 1;
-            if (ieq(kv->value, no[i])) v = 0;
-        }
-        if (v < 0) return bad_value(c, kv, "sweep", "a boolean (true/false, yes/no, on/off, 1/0)");
-        s->case_figures = v;
-    }
-    s->nreport = 0;
-    if (r && (kv = get(r, "report")) != NULL) {
-        const char *p = kv->value;
-        for (int i = 1;; i++) {
-            const char *e = strchr(p, ',');
-            char name[64];
-            trim_copy(p, e ? e : p + strlen(p), name, sizeof name);
-            int q = sweep_quantity_index(name);
-            if (q < 0) {
-                const char *names[SWEEP_NQ + 1];
-                for (int j = 0; j < SWEEP_NQ; j++)
-                    names[j] = sweep_quantities[j].name;
-                names[SWEEP_NQ] = NULL;
-                int d;
-                char all[400];
-                join(names, "", "", all, sizeof all);
-                return fail_line(c, kv->line,
-                                 "key 'report' in [sweep]: quantity %d '%s' is not one of the "
-                                 "summary quantities; did you mean '%s'? (quantities: %s)",
-                                 i, name, nearest(name, names, &d), all);
-            }
-            for (int j = 0; j < s->nreport; j++)
-                if (s->report[j] == q)
-                    return fail_line(c, kv->line, "key 'report' in [sweep]: '%s' named twice",
-                                     sweep_quantities[q].name);
-            if (s->nreport >= SWEEP_MAX_REPORT)
-                return fail_line(c, kv->line, "key 'report' in [sweep]: too many quantities");
-            s->report[s->nreport++] = q;
-            if (!e) break;
-            p = e + 1;
-        }
-    } else {
-        for (int q = 0; q < SWEEP_NQ; q++)
-            if (sweep_quantities[q].is_default) s->report[s->nreport++] = q;
-    }
-    /* the base scene */
-    kv = r ? get(r, "scene") : NULL;
-    snprintf(s->scene_arg, sizeof s->scene_arg, "%s", kv ? kv->value : "paper");
-    char dir[SWEEP_PATH_SIZE], tried[2048];
-    snprintf(dir, sizeof dir, "%s", c->file);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(dir, sizeof dir, ".");
-    if (!s->scene_arg[0]) return bad_value(c, kv, "sweep", "a scene file or a scene's name");
-    if (!resolve_scene(s->scene_arg, dir, roots, s->scene_path, sizeof s->scene_path, tried,
-                       sizeof tried))
-        return fail_line(c, kv ? kv->line : 0, "%s '%s': scene file not found (tried %s)",
-                         kv ? "key 'scene' in [sweep]" : "the base scene (default)", s->scene_arg,
-                         tried);
-    bg_error e = {0};
-    int nkeys = 0;
-    if (crane_scene_load_counted(base, s->scene_path, &nkeys, &e) != BG_OK)
-        return fail_line(c, kv ? kv->line : 0, "key 'scene' in [sweep]: the base scene: %s",
-                         e.message);
-    if (!s->name[0]) { /* the sweep file's name without .ini */
-        const char *b = strrchr(c->file, '/');
-        b = b ? b + 1 : c->file;
-        size_t n = 0;
-        char stem[64];
-        for (; b[n] && n < sizeof stem - 1; n++) {
-            int ch = (unsigned char)b[n];
-            stem[n] = (char)(isalnum(ch) || ch == '_' || ch == '.' || ch == '-' ? ch : '_');
-        }
-        stem[n] = '\0';
-        if (n > 4 && !strcmp(stem + n - 4, ".ini")) stem[n - 4] = '\0';
-        snprintf(s->name, sizeof s->name, "%s", stem[0] && strcmp(stem, ".") ? stem : "sweep");
-    }
-    return 0;
-}
-
-static int finish_set(parse_ctx *c, raw_section *r, crane_scene *base)
-{
-    sweep_spec *s = c->s;
-    for (int i = 0; i < r->n; i++) {
-        raw_kv *kv = &r->kv[i];
-        const crane_scene_key *k = scene_key(c, kv->key, kv->line, "[set]");
-        if (!k) return -1;
-        for (int j = 0; j < s->nsets; j++)
-            if (!strcmp(s->sets[j].section, k->section) && !strcmp(s->sets[j].key, k->key))
-                return fail_line(c, kv->line, "[set]: %s.%s given twice (first on line %d)",
-                                 k->section, k->key, s->sets[j].line);
-        char what[200];
-        snprintf(what, sizeof what, "[set] %s.%s", k->section, k->key);
-        if (check_scene_value(c, base, k, kv->value, kv->line, what)) return -1;
-        bg_error e = {0};
-        crane_scene_set(base, k->section, k->key, kv->value, NULL, &e);
-        sweep_set *st = &s->sets[s->nsets++];
-        snprintf(st->section, sizeof st->section, "%s", k->section);
-        snprintf(st->key, sizeof st->key, "%s", k->key);
-        snprintf(st->value, sizeof st->value, "%s", kv->value);
-        st->line = kv->line;
-    }
-    return 0;
-}
-
-static int numeric_type(int type)
-{
-    return type == CRANE_KEY_NUMBER || type == CRANE_KEY_INTEGER;
-}
-
-static int finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
-{
-    sweep_spec *s = c->s;
-    raw_kv *kkey = get(r, "key"), *kvals = get(r, "values"), *kfrom = get(r, "from"),
-           *kto = get(r, "to"), *kcount = get(r, "count"), *kspace = get(r, "spacing");
-    if (!kkey)
-        return fail_line(c, r->line,
-                         "[axis] without 'key': name the swept scene key, e.g. "
-                         "'key = controller.kp'");
-    const crane_scene_key *k = scene_key(c, kkey->value, kkey->line, "key 'key' in [axis]");
-    if (!k) return -1;
-    int ax = s->naxes;
-    sweep_axis *a = &s->axes[ax];
-    memset(a, 0, sizeof *a);
-    a->line = r->line;
-    int p = add_param(c, k, ax, kkey->line);
-    if (p < 0) return -1;
-    a->nparams = 1;
-    a->param[0] = p;
-    char what[400];
-    if (kvals) {
-        if (kfrom || kto || kcount || kspace) {
-            raw_kv *other = kfrom ? kfrom : kto ? kto : kcount ? kcount : kspace;
-            return fail_line(c, other->line,
-                             "key '%s' in [axis]: an axis has either 'values' (line %d) or a "
-                             "range ('from', 'to', 'count'), not both",
-                             other->key, kvals->line);
-        }
-        a->kind = SWEEP_AXIS_LIST;
-        char sep = k->type == CRANE_KEY_VECTOR ? '|' : ',';
-        int n = 1;
-        for (const char *q = kvals->value; *q; q++)
-            n += *q == sep;
-        a->values = calloc((size_t)n, sizeof *a->values);
-        if (!a->values) return fail_line(c, kvals->line, "out of memory");
-        const char *q = kvals->value;
-        for (int i = 0; i < n; i++) {
-            const char *e = strchr(q, sep);
-            trim_copy(q, e ? e : q + strlen(q), a->values[i], SWEEP_VALUE_SIZE);
-            if (!a->values[i][0])
-                return fail_line(c, kvals->line,
-                                 "key 'values' in [axis]: value %d of %s is empty (values are "
-                                 "separated by '%c'%s)",
-                                 i + 1, s->params[p].name, sep,
-                                 sep == '|' ? ": a vector's values are 'x, y, z | x, y, z'" : "");
-            for (int j = 0; j < i; j++)
-                if (!strcmp(a->values[j], a->values[i]))
-                    return fail_line(
-                        c, kvals->line,
-                        "key 'values' in [axis]: value %d of %s ('%s') repeats value %d", i + 1,
-                        s->params[p].name, a->values[i], j + 1);
-            snprintf(what, sizeof what, "key 'values' in [axis]: value %d of %s", i + 1,
-                     s->params[p].name);
-            if (check_scene_value(c, base, k, a->values[i], kvals->line, what)) return -1;
-            q = e ? e + 1 : q + strlen(q);
-        }
-        a->npoints = n;
-    } else {
-        if (!kfrom)
-            return fail_line(c, r->line,
-                             "[axis] %s has no values: give 'values = v1, v2, ...' or a range "
-                             "'from', 'to', 'count'",
-                             s->params[p].name);
-        if (!numeric_type(k->type))
-            return fail_line(c, kfrom->line,
-                             "key 'from' in [axis]: %s is %s, not a number: list its values with "
-                             "'values'",
-                             s->params[p].name, k->expected);
-        a->kind = SWEEP_AXIS_RANGE;
-        double from, to = 0;
-        long long count = 0;
-        if (!parse_double(kfrom->value, &from))
-            return bad_value(c, kfrom, "axis", "a decimal number (the range's first value)");
-        if (!kcount)
-            return fail_line(c, r->line,
-                             "[axis] %s: a range needs 'count' (the number of values, "
-                             "'to' included)",
-                             s->params[p].name);
-        if (!parse_long(kcount->value, 1, SWEEP_MAX_CASES, &count))
-            return bad_value(c, kcount, "axis", "an integer in 1..100000");
-        if (count > 1 && !kto)
-            return fail_line(c, r->line, "[axis] %s: a range of %lld values needs 'to'",
-                             s->params[p].name, count);
-        if (kto && !parse_double(kto->value, &to))
-            return bad_value(c, kto, "axis", "a decimal number (the range's last value)");
-        if (!kto) to = from;
-        if (count > 1 && to == from)
-            return fail_line(c, kto->line, "key 'to' in [axis]: equal to 'from': %lld equal values",
-                             count);
-        if (kspace) {
-            if (ieq(kspace->value, "log"))
-                a->log = 1;
-            else if (!ieq(kspace->value, "linear"))
-                return bad_value(c, kspace, "axis", "linear or log");
-        }
-        if (a->log && !(from > 0 && to > 0))
-            return fail_line(c, kspace->line,
-                             "key 'spacing' in [axis]: log spacing needs 'from' and 'to' > 0 "
-                             "(got %g and %g)",
-                             from, to);
-        a->npoints = (int)count;
-        a->values = calloc((size_t)count, sizeof *a->values);
-        if (!a->values) return fail_line(c, kcount->line, "out of memory");
-        for (int i = 0; i < a->npoints; i++) {
-            double f = count > 1 ? (double)i / (double)(count - 1) : 0, x;
-            if (i == a->npoints - 1 && count > 1)
-                x = to;
-            else if (a->log)
-                x = from * pow(to / from, f);
-            else
-                x = from + f * (to - from);
-            if (k->type == CRANE_KEY_INTEGER) {
-                double rx = round(x);
-                if (fabs(x - rx) > 1e-9 * fmax(1, fabs(x)))
-                    return fail_line(c, kcount->line,
-                                     "[axis] %s is an integer key: the range %g .. %g in %lld "
-                                     "values gives %.6g (choose 'count' so that the step is whole, "
-                                     "or list the values)",
-                                     s->params[p].name, from, to, count, x);
-                if (fabs(rx) > 1e9) return bad_value(c, kfrom, "axis", k->expected);
-                snprintf(a->values[i], SWEEP_VALUE_SIZE, "%.0f", rx);
-            } else {
-                fmt_value(x, a->values[i], SWEEP_VALUE_SIZE);
-            }
-            for (int j = 0; j < i; j++)
-                if (!strcmp(a->values[j], a->values[i]))
-                    return fail_line(c, kcount->line,
-                                     "[axis] %s: the range gives the value %s twice (fewer values, "
-                                     "or a wider range)",
-                                     s->params[p].name, a->values[i]);
-            raw_kv *at = i == a->npoints - 1 && kto ? kto : kfrom;
-            snprintf(what, sizeof what, "key '%s' in [axis]: value %d of the range of %s", at->key,
-                     i + 1, s->params[p].name);
-            if (check_scene_value(c, base, k, a->values[i], at->line, what)) return -1;
-        }
-    }
-    s->params[p].log = a->log;
-    s->naxes++;
-    return 0;
-}
-
-static int finish_lhs(parse_ctx *c, raw_section *r, const crane_scene *base)
-{
-    sweep_spec *s = c->s;
-    raw_kv *ks = get(r, "samples"), *kseed = get(r, "seed");
-    long long n = 0, seed = 1;
-    if (!ks)
-        return fail_line(c, r->line, "[lhs] without 'samples': give the number of cases to sample");
-    if (!parse_long(ks->value, 1, SWEEP_MAX_CASES, &n))
-        return bad_value(c, ks, "lhs", "an integer in 1..100000");
-    if (kseed && !parse_long(kseed->value, 0, LLONG_MAX, &seed))
-        return bad_value(c, kseed, "lhs", "an integer >= 0");
-    if (s->naxes >= SWEEP_MAX_AXES) return fail_line(c, r->line, "too many axes");
-    int ax = s->naxes;
-    sweep_axis *a = &s->axes[ax];
-    memset(a, 0, sizeof *a);
-    a->kind = SWEEP_AXIS_LHS;
-    a->line = r->line;
-    a->npoints = (int)n;
-    for (int i = 0; i < r->n; i++) {
-        raw_kv *kv = &r->kv[i];
-        if (!is_scene_key_name(kv->key)) continue;
-        const crane_scene_key *k = scene_key(c, kv->key, kv->line, "[lhs]");
-        if (!k) return -1;
-        char name[132];
-        snprintf(name, sizeof name, "%s.%s", k->section, k->key);
-        if (!numeric_type(k->type))
-            return fail_line(c, kv->line,
-                             "[lhs] %s is %s: only number and integer keys can be "
-                             "sampled",
-                             name, k->expected);
-        /* LO, HI [, log] */
-        char parts[3][SWEEP_VALUE_SIZE];
-        int np = 0;
-        const char *q = kv->value;
-        while (np < 3) {
-            const char *e = strchr(q, ',');
-            trim_copy(q, e ? e : q + strlen(q), parts[np++], SWEEP_VALUE_SIZE);
-            if (!e) break;
-            q = e + 1;
-            if (np == 3) np = 4; /* a fourth part */
-        }
-        double lo, hi;
-        char qv[80];
-        quote(kv->value, qv, sizeof qv);
-        if (np < 2 || np > 3 || !parse_double(parts[0], &lo) || !parse_double(parts[1], &hi) ||
-            (np == 3 && !ieq(parts[2], "log") && !ieq(parts[2], "linear")))
-            return fail_line(c, kv->line,
-                             "[lhs] %s: expected 'LO, HI' or 'LO, HI, log' (the interval to "
-                             "sample), got '%s'",
-                             name, qv);
-        if (!(hi > lo))
-            return fail_line(c, kv->line, "[lhs] %s: expected LO < HI, got '%s'", name, qv);
-        int lg = np == 3 && ieq(parts[2], "log");
-        if (lg && !(lo > 0))
-            return fail_line(c, kv->line, "[lhs] %s: log sampling needs LO > 0, got '%s'", name,
-                             qv);
-        char what[300];
-        snprintf(what, sizeof what, "[lhs] %s: LO", name);
-        if (check_scene_value(c, base, k, parts[0], kv->line, what)) return -1;
-        snprintf(what, sizeof what, "[lhs] %s: HI", name);
-        if (check_scene_value(c, base, k, parts[1], kv->line, what)) return -1;
-        int p = add_param(c, k, ax, kv->line);
-        if (p < 0) return -1;
-        s->params[p].lo = lo;
-        s->params[p].hi = hi;
-        s->params[p].log = lg;
-        a->param[a->nparams++] = p;
-    }
-    if (a->nparams == 0)
-        return fail_line(c, r->line,
-                         "[lhs] samples no key: add the keys as 'SECTION.KEY = LO, HI'");
-    a->values = calloc((size_t)n * (size_t)a->nparams, sizeof *a->values);
-    int *perm = malloc((size_t)n * sizeof *perm);
-    if (!a->values || !perm) {
-        free(perm);
-        return fail_line(c, r->line, "out of memory");
-    }
-    uint64_t st = (uint64_t)seed;
-    for (int j = 0; j < a->nparams; j++) {
-        sweep_param *pp = &s->params[a->param[j]];
-        for (int i = 0; i < (int)n; i++)
-            perm[i] = i;
-        for (int i = (int)n - 1; i > 0; i--) { /* Fisher-Yates */
-            int m = (int)(next_unit(&st) * (double)(i + 1));
-            if (m > i) m = i;
-            int t = perm[i];
-            perm[i] = perm[m];
-            perm[m] = t;
-        }
-        for (int i = 0; i < (int)n; i++) {
-            double u = ((double)perm[i] + next_unit(&st)) / (double)n, x;
-            x = pp->log ? exp(log(pp->lo) + u * (log(pp->hi) - log(pp->lo)))
-                        : pp->lo + u * (pp->hi - pp->lo);
-            char *v = a->values[(size_t)i * (size_t)a->nparams + (size_t)j];
-            if (pp->type == CRANE_KEY_INTEGER)
-                snprintf(v, SWEEP_VALUE_SIZE, "%.0f", round(x));
-            else
-                snprintf(v, SWEEP_VALUE_SIZE, "%.8g", x);
-        }
-    }
-    free(perm);
-    s->lhs_samples = (int)n;
-    s->seed = (unsigned long long)seed;
-    s->naxes++;
-    return 0;
-}
-
-static int finish(parse_ctx *c, const char *const *roots)
-{
-    sweep_spec *s = c->s;
-    crane_scene base;
-    raw_section *sw = NULL, *set = NULL;
-    for (int i = 0; i < c->nraw; i++) {
-        if (c->raw[i].kind == SEC_SWEEP) sw = &c->raw[i];
-        if (c->raw[i].kind == SEC_SET) set = &c->raw[i];
-    }
-    if (finish_sweep(c, sw, roots, &base)) return -1;
-    if (set && finish_set(c, set, &base)) return -1;
-    for (int i = 0; i < c->nraw; i++)
-        if (c->raw[i].kind == SEC_AXIS && finish_axis(c, &c->raw[i], &base)) return -1;
-    for (int i = 0; i < c->nraw; i++)
-        if (c->raw[i].kind == SEC_LHS && finish_lhs(c, &c->raw[i], &base)) return -1;
-    if (s->naxes == 0)
-        return fail_line(c, 0,
-                         "nothing to sweep: add an [axis] (key and values, or a range) or "
-                         "an [lhs] sample");
-    if (s->nsets + s->nparams > SWEEP_MAX_SETS)
-        return fail_line(c, 0,
-                         "[set] and the swept keys are %d keys, more than the crane's %d "
-                         "(--set)",
-                         s->nsets + s->nparams, SWEEP_MAX_SETS);
-    double n = 1;
-    for (int a = 0; a < s->naxes; a++)
-        n *= s->axes[a].npoints;
-    if (n > SWEEP_MAX_CASES)
-        return fail_line(c, s->axes[s->naxes - 1].line, "the axes make %.0f cases, more than %ld",
-                         n, SWEEP_MAX_CASES);
-    s->ncases = (long)n;
-    /* every sampled value against its key's range (the interval's ends were checked) */
-    for (int a = 0; a < s->naxes; a++) {
-        sweep_axis *ax = &s->axes[a];
-        if (ax->kind != SWEEP_AXIS_LHS) continue;
-        for (int i = 0; i < ax->npoints; i++)
-            for (int j = 0; j < ax->nparams; j++) {
-                sweep_param *pp = &s->params[ax->param[j]];
-                const crane_scene_key *k = NULL;
-                for (int q = 0; q < crane_scene_nkeys() && !k; q++) {
-                    const crane_scene_key *t = crane_scene_key_at(q);
-                    if (!strcmp(t->section, pp->section) && !strcmp(t->key, pp->key)) k = t;
-                }
-                char what[300];
-                snprintf(what, sizeof what, "[lhs] %s: sample %d", pp->name, i + 1);
-                if (!k || check_scene_value(c, &base, k,
-                                            ax->values[(size_t)i * (size_t)ax->nparams + (size_t)j],
-                                            pp->line, what))
-                    return -1;
-            }
-    }
-    return 0;
 }
 
 /* ------------------------------------------------------------------ public ---- */
@@ -988,16 +215,16 @@ int sweep_spec_parse(sweep_spec *s, const char *text, const char *file,
     c->cur = -1;
     c->err = err;
     c->errsize = errsize;
-    int r = ini_parse_stream(reader, c, handler, c);
+    int r = ini_parse_stream(spec_reader, c, handler, c);
     int rc = 0;
     if (c->failed)
         rc = -1;
     else if (r == -2)
-        rc = fail_line(c, 0, "out of memory");
+        rc = spec_fail_line(c, 0, "out of memory");
     else if (r != 0)
-        rc = fail_line(c, r, "syntax error");
+        rc = spec_fail_line(c, r, "syntax error");
     else
-        rc = finish(c, scene_roots);
+        rc = spec_finish(c, scene_roots);
     free(c);
     return rc;
 }
@@ -1080,62 +307,4 @@ void sweep_spec_free(sweep_spec *s)
     }
     free(s->text);
     s->text = NULL;
-}
-
-void sweep_case_coords(const sweep_spec *s, long c, int *coord)
-{
-    for (int a = s->naxes - 1; a >= 0; a--) {
-        coord[a] = (int)(c % s->axes[a].npoints);
-        c /= s->axes[a].npoints;
-    }
-}
-
-const char *sweep_case_value(const sweep_spec *s, long c, int p)
-{
-    int coord[SWEEP_MAX_AXES];
-    sweep_case_coords(s, c, coord);
-    const sweep_param *pp = &s->params[p];
-    const sweep_axis *a = &s->axes[pp->axis];
-    int j = 0;
-    while (j < a->nparams && a->param[j] != p)
-        j++;
-    return a->values[(size_t)coord[pp->axis] * (size_t)a->nparams + (size_t)j];
-}
-
-int sweep_case_scene(const sweep_spec *s, long c, crane_scene *scene, char *err, size_t errsize)
-{
-    bg_error e = {0};
-    if (crane_scene_load(scene, s->scene_path, &e) != BG_OK) {
-        snprintf(err, errsize, "%s", e.message);
-        return -1;
-    }
-    for (int i = 0; i < s->nsets; i++)
-        if (crane_scene_set(scene, s->sets[i].section, s->sets[i].key, s->sets[i].value, "[set]",
-                            &e) != BG_OK) {
-            snprintf(err, errsize, "%s", e.message);
-            return -1;
-        }
-    for (int p = 0; p < s->nparams; p++)
-        if (crane_scene_set(scene, s->params[p].section, s->params[p].key,
-                            sweep_case_value(s, c, p), "case", &e) != BG_OK) {
-            snprintf(err, errsize, "%s", e.message);
-            return -1;
-        }
-    if (crane_scene_check(scene, "case", &e) != BG_OK) {
-        snprintf(err, errsize, "%s", e.message);
-        return -1;
-    }
-    return 0;
-}
-
-int sweep_case_set_args(const sweep_spec *s, long c, char (*out)[SWEEP_SET_ARG_SIZE])
-{
-    int n = 0;
-    for (int i = 0; i < s->nsets; i++)
-        snprintf(out[n++], SWEEP_SET_ARG_SIZE, "%s.%s=%s", s->sets[i].section, s->sets[i].key,
-                 s->sets[i].value);
-    for (int p = 0; p < s->nparams; p++)
-        snprintf(out[n++], SWEEP_SET_ARG_SIZE, "%s.%s=%s", s->params[p].section, s->params[p].key,
-                 sweep_case_value(s, c, p));
-    return n;
 }

@@ -1,0 +1,51 @@
+/* Chains of co-rotational beam elements (mech_beam.h) with lumped node bodies.
+ *
+ * A straight chain from p0 to p1 is cut into n elements of length l = L/n between n + 1 rigid
+ * node bodies (mech_body). The mass is lumped into the nodes: half of each element's mass
+ * rho A l to each end node, with the rotary inertia of the section over that length (rho I l;
+ * rho Ip l in torsion), so an inner node stands for the length l and an end node for l/2.
+ * Lumped because the node bodies carry it without coupling terms; the consistent mass of a
+ * co-rotational element depends on the configuration and would couple the nodes. The elements
+ * of a chain state the chain's weight rho A L |g| as the nominal magnitude of their port forces
+ * (mech_body.h, mech_set_nominal). */
+#ifndef MECH_BEAM_CHAIN_H
+#define MECH_BEAM_CHAIN_H
+
+#include "bg_api.h"
+#include "bgr_model.h"
+#include "mech_beam.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A straight chain of n elements from p0 to p1 in component c (created here with the given
+ * name): n + 1 node bodies named node00, node01, ... with lumped masses (gravity may be NULL),
+ * elements el00, el01, ..., bonded together. up: a vector not parallel to the beam giving the
+ * local e2 direction. Node k gets extra[k] additional 6D ports, then extra3[k] 3D (force only)
+ * ports, at its centre (NULL: none) for the caller to bond (supports, loads, dampers, ties,
+ * ropes); their handles come from mech_beam_chain_port. nodes (n+1) and elems (n) receive the
+ * element ids. Returns the chain's component, or BG_ERR_ARGUMENT (a bad section or one with
+ * rho = 0, n < 1, NULL, non-finite or coincident end points, up NULL, not finite or along the
+ * beam, gravity not finite, nodes or elems NULL, a negative extra count or more than 64 ports at
+ * a node, lumped node masses or inertias that are not finite and > 0), or the status of the
+ * component, element or bond that failed. The arguments are all checked before the component is
+ * made: a refused chain leaves nothing in the model (the message names the chain's path and the
+ * parameter). */
+BG_API int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
+                           const double *p1, const double *up, const mech_section *sec,
+                           const double *gravity, const int *extra, const int *extra3, int *nodes,
+                           int *elems);
+/* The j-th extra port of node k (the 6D ones first, then the 3D ones); {-1, -1} if there is no
+ * such port (or m, nodes NULL). */
+BG_API bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra,
+                                     int k, int j);
+/* Positions of the chain's nodes into bgr_y0 (after bgr_compile), orientation identity. BG_OK,
+ * or BG_ERR_ARGUMENT (NULL arrays, n < 1, a node that is not a body of a compiled model). */
+BG_API int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0,
+                               const double *p1);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
