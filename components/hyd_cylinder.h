@@ -11,12 +11,14 @@
  * It acts along the line A-B as the axial elements of mech_axial.h do. States: the vector
  * d = x_B - x_A (named d0 d1 d2; d' = v_B - v_A), the chamber pressures p_a and p_b (named "p_a",
  * "p_b"). With L = |d|, u = d / L, the extension x = L - L_min and its rate x' = L' = u.(v_B -
- * v_A): V_a = V_a0 + A_a x,   V_b = V_b0 + A_b (stroke - x)                   chamber volumes q_l =
- * G (p_a - p_b)                                                     leakage a -> b p_a' = (beta /
- * V_a) (q_a - A_a x' - q_l)                                ("pressure_a") p_b' = (beta / V_b) (q_b
- * + A_b x' + q_l)                                ("pressure_b") T = -(p_a A_a - p_b A_b) + c x'
- * axial tension s_A F_A = -T u,   s_B F_B = T u       (the forces on the cylinder; "forceA0..2",
- *                                          "forceB0..2"; T > 0 pulls A and B together, so the
+ * v_A):
+ *   V_a = V_a0 + A_a x,   V_b = V_b0 + A_b (stroke - x)               chamber volumes
+ *   q_l = G (p_a - p_b)                                                leakage a -> b
+ *   p_a' = (beta / V_a) (q_a - A_a x' - q_l)                           ("pressure_a")
+ *   p_b' = (beta / V_b) (q_b + A_b x' + q_l)                           ("pressure_b")
+ *   T = -(p_a A_a - p_b A_b) + c x'                                    axial tension
+ *   s_A F_A = -T u,   s_B F_B = T u       (the forces on the cylinder; "forceA0..2",
+ *                                         "forceB0..2"; T > 0 pulls A and B together, so the
  *                                          cap pressure pushes them apart)
  *   e_a = p_a,   e_b = p_b                                                ("port_a", "port_b")
  *   d' = v_B - v_A                                                        ("stretch0..2")
