@@ -13,8 +13,9 @@ static int build_leaf(mdl_model *mm, mdl_inode *leaf);
 static const char *kind_word(mdl_kind k)
 {
     static const char *const w[] = {"a number", "a whole number", "true or false", "a list of numbers",
-                                    "a word", "an element's path", "a signal's path", "points"};
-    return k >= 0 && k <= MDL_POINTS ? w[k] : "?";
+                                    "a word", "an element's path", "a signal's path", "points",
+                                    "a list of names"};
+    return k >= 0 && k <= MDL_NAMES ? w[k] : "?";
 }
 
 static void range_words(const mdl_param_def *d, char *buf, size_t size)
@@ -104,6 +105,38 @@ static int read_points(mdl_model *mm, mdl_inode *leaf, const mdl_y_node *n, cons
             return r;
         if (dim != 3 && dim != 6) return mdl_fail(mm, mdl_y_get(p, "dim"), w, "dim: expected 3 or 6, got %g", dim);
         v->pdim[i] = (int)dim;
+    }
+    return BG_OK;
+}
+
+static int is_word(const char *s)
+{
+    if (!s || !(*s == '_' || (*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z'))) return 0;
+    for (s++; *s; s++)
+        if (!(*s == '_' || (*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9')))
+            return 0;
+    return 1;
+}
+
+/* a list of distinct words (port names), kept in v->pname / v->npts */
+static int read_names(mdl_model *mm, const mdl_y_node *n, const char *where, mdl_value *v)
+{
+    if (!n || n->kind != MDL_Y_SEQUENCE || mdl_y_count(n) < 1)
+        return mdl_fail(mm, n, where, "expected a list of one name or more ([a, b])");
+    int nn = mdl_y_count(n);
+    v->pname = calloc((size_t)nn, sizeof *v->pname);
+    if (!v->pname) return BG_ERR_MEMORY;
+    for (int i = 0; i < nn; i++) {
+        const mdl_y_node *it = mdl_y_item(n, i);
+        if (it->kind != MDL_Y_SCALAR || !is_word(it->text))
+            return mdl_fail(mm, it, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*)%s%s%s", i,
+                            it->kind == MDL_Y_SCALAR ? ", got '" : "",
+                            it->kind == MDL_Y_SCALAR ? it->text : "", it->kind == MDL_Y_SCALAR ? "'" : "");
+        for (int j = 0; j < i; j++)
+            if (!strcmp(v->pname[j], it->text))
+                return mdl_fail(mm, it, where, "'%s' is named twice", it->text);
+        if (!(v->pname[i] = strdup(it->text))) return BG_ERR_MEMORY;
+        v->npts = i + 1;
     }
     return BG_OK;
 }
@@ -213,6 +246,9 @@ static int read_param(mdl_model *mm, mdl_inode *leaf, const mdl_param_def *d, md
     case MDL_POINTS:
         if (text) return mdl_fail(mm, at, where, "points cannot be replaced with --set");
         return read_points(mm, leaf, n, where, v);
+    case MDL_NAMES:
+        if (text) return mdl_fail(mm, at, where, "names cannot be replaced with --set");
+        return read_names(mm, n, where, v);
     }
     return r;
 }

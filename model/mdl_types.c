@@ -60,6 +60,7 @@ static const char *kind_name(mdl_kind k)
     case MDL_ELEMENT: return "element path";
     case MDL_SIGNAL: return "signal path";
     case MDL_POINTS: return "points";
+    case MDL_NAMES: return "list of names";
     }
     return "?";
 }
