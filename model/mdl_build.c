@@ -287,7 +287,7 @@ static int build_leaf(mdl_model *mm, mdl_inode *leaf)
         int r = read_param(mm, leaf, &t->params[i], &in->args.v[i]);
         if (r != BG_OK) return r;
     }
-    bg_error e;
+    bg_error e = {0}; /* no handler: build() only records its message */
     bg_error_clear(&e);
     int r = t->build(mm->m, leaf->comp, leaf->name, &in->args, in, &e);
     if (r != BG_OK)
