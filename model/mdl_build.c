@@ -118,27 +118,48 @@ static int is_word(const char *s)
     return 1;
 }
 
-/* a list of distinct words (port names), kept in v->pname / v->npts */
-static int read_names(mdl_model *mm, const mdl_y_node *n, const char *where, mdl_value *v)
+/* one name of a list: a word, not taken before; kept as entry v->npts */
+static int add_name(mdl_model *mm, const mdl_y_node *at, const char *where, mdl_value *v,
+                    const char *s, size_t len)
 {
-    if (!n || n->kind != MDL_Y_SEQUENCE || mdl_y_count(n) < 1)
-        return mdl_fail(mm, n, where, "expected a list of one name or more ([a, b])");
-    int nn = mdl_y_count(n);
-    v->pname = calloc((size_t)nn, sizeof *v->pname);
-    if (!v->pname) return BG_ERR_MEMORY;
-    for (int i = 0; i < nn; i++) {
-        const mdl_y_node *it = mdl_y_item(n, i);
-        if (it->kind != MDL_Y_SCALAR || !is_word(it->text))
-            return mdl_fail(mm, it, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*)%s%s%s", i,
-                            it->kind == MDL_Y_SCALAR ? ", got '" : "",
-                            it->kind == MDL_Y_SCALAR ? it->text : "", it->kind == MDL_Y_SCALAR ? "'" : "");
-        for (int j = 0; j < i; j++)
-            if (!strcmp(v->pname[j], it->text))
-                return mdl_fail(mm, it, where, "'%s' is named twice", it->text);
-        if (!(v->pname[i] = strdup(it->text))) return BG_ERR_MEMORY;
-        v->npts = i + 1;
-    }
+    char w[128];
+    snprintf(w, sizeof w, "%.*s", (int)len, s);
+    if (len >= sizeof w || !is_word(w))
+        return mdl_fail(mm, at, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*), got '%s'",
+                        v->npts, w);
+    for (int j = 0; j < v->npts; j++)
+        if (!strcmp(v->pname[j], w)) return mdl_fail(mm, at, where, "'%s' is named twice", w);
+    if (!(v->pname[v->npts] = strdup(w))) return BG_ERR_MEMORY;
+    v->npts++;
     return BG_OK;
+}
+
+/* a list of distinct words (port names), kept in v->pname / v->npts: a sequence of the file, or
+ * the default's text "[a, b]" */
+static int read_names(mdl_model *mm, const mdl_y_node *n, const char *text, const mdl_y_node *at,
+                      const char *where, mdl_value *v)
+{
+    int r = BG_OK, cap = text ? (int)strlen(text) / 2 + 1 : n && n->kind == MDL_Y_SEQUENCE ? mdl_y_count(n) : 0;
+    if (cap < 1 || (text && text[0] != '['))
+        return mdl_fail(mm, at, where, "expected a list of one name or more ([a, b])");
+    if (!(v->pname = calloc((size_t)cap, sizeof *v->pname))) return BG_ERR_MEMORY;
+    if (text) {
+        for (const char *s = text + 1; r == BG_OK && *s && *s != ']';) {
+            s += strspn(s, " ,");
+            size_t k = strcspn(s, " ,]");
+            if (k) r = add_name(mm, at, where, v, s, k);
+            s += k;
+        }
+    } else {
+        for (int i = 0; r == BG_OK && i < cap; i++) {
+            const mdl_y_node *it = mdl_y_item(n, i);
+            if (it->kind != MDL_Y_SCALAR)
+                return mdl_fail(mm, it, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*)", i);
+            r = add_name(mm, it, where, v, it->text, strlen(it->text));
+        }
+    }
+    if (r == BG_OK && v->npts == 0) return mdl_fail(mm, at, where, "expected a list of one name or more ([a, b])");
+    return r;
 }
 
 /* an element or signal reference: the leaf it names, built first */
@@ -247,8 +268,8 @@ static int read_param(mdl_model *mm, mdl_inode *leaf, const mdl_param_def *d, md
         if (text) return mdl_fail(mm, at, where, "points cannot be replaced with --set");
         return read_points(mm, leaf, n, where, v);
     case MDL_NAMES:
-        if (text) return mdl_fail(mm, at, where, "names cannot be replaced with --set");
-        return read_names(mm, n, where, v);
+        if (text && text != d->dflt) return mdl_fail(mm, at, where, "names cannot be replaced with --set");
+        return read_names(mm, n, text, at, where, v);
     }
     return r;
 }
