@@ -111,6 +111,14 @@ int mdl_locate(mdl_locator *loc, int port, double x[3]);
 /* ---- the type table's parts (mdl_types_*.c) ---- */
 extern const mdl_type *const mdl_types_mech[];
 extern const int mdl_types_mech_count;
+extern const mdl_type *const mdl_types_hyd[];
+extern const int mdl_types_hyd_count;
+extern const mdl_type *const mdl_types_rot[];
+extern const int mdl_types_rot_count;
+extern const mdl_type *const mdl_types_ctl[];
+extern const int mdl_types_ctl_count;
+extern const mdl_type *const mdl_types_bg[];
+extern const int mdl_types_bg_count;
 
 /* Builders' common failure: the message of the model's error record into err. */
 int mdl_fail_model(bg_error *err, bgr_model *m, int status);
