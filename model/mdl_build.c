@@ -103,7 +103,8 @@ static int read_points(mdl_model *mm, mdl_inode *leaf, const mdl_y_node *n, cons
         if (mdl_y_get(p, "dim") &&
             (r = mdl_eval_number(mm, &leaf->scope, mdl_y_get(p, "dim"), NULL, w, &dim)) != BG_OK)
             return r;
-        if (dim != 3 && dim != 6) return mdl_fail(mm, mdl_y_get(p, "dim"), w, "dim: expected 3 or 6, got %g", dim);
+        if (dim != 3 && dim != 6)
+            return mdl_fail(mm, mdl_y_get(p, "dim"), w, "dim: expected 3 or 6, got %g", dim);
         v->pdim[i] = (int)dim;
     }
     return BG_OK;
@@ -113,7 +114,8 @@ static int is_word(const char *s)
 {
     if (!s || !(*s == '_' || (*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z'))) return 0;
     for (s++; *s; s++)
-        if (!(*s == '_' || (*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9')))
+        if (!(*s == '_' || (*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z') ||
+              (*s >= '0' && *s <= '9')))
             return 0;
     return 1;
 }
@@ -125,8 +127,8 @@ static int add_name(mdl_model *mm, const mdl_y_node *at, const char *where, mdl_
     char w[128];
     snprintf(w, sizeof w, "%.*s", (int)len, s);
     if (len >= sizeof w || !is_word(w))
-        return mdl_fail(mm, at, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*), got '%s'",
-                        v->npts, w);
+        return mdl_fail(mm, at, where,
+                        "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*), got '%s'", v->npts, w);
     for (int j = 0; j < v->npts; j++)
         if (!strcmp(v->pname[j], w)) return mdl_fail(mm, at, where, "'%s' is named twice", w);
     if (!(v->pname[v->npts] = strdup(w))) return BG_ERR_MEMORY;
@@ -139,7 +141,9 @@ static int add_name(mdl_model *mm, const mdl_y_node *at, const char *where, mdl_
 static int read_names(mdl_model *mm, const mdl_y_node *n, const char *text, const mdl_y_node *at,
                       const char *where, mdl_value *v)
 {
-    int r = BG_OK, cap = text ? (int)strlen(text) / 2 + 1 : n && n->kind == MDL_Y_SEQUENCE ? mdl_y_count(n) : 0;
+    int r = BG_OK, cap = text                             ? (int)strlen(text) / 2 + 1
+                         : n && n->kind == MDL_Y_SEQUENCE ? mdl_y_count(n)
+                                                          : 0;
     if (cap < 1 || (text && text[0] != '['))
         return mdl_fail(mm, at, where, "expected a list of one name or more ([a, b])");
     if (!(v->pname = calloc((size_t)cap, sizeof *v->pname))) return BG_ERR_MEMORY;
@@ -154,11 +158,13 @@ static int read_names(mdl_model *mm, const mdl_y_node *n, const char *text, cons
         for (int i = 0; r == BG_OK && i < cap; i++) {
             const mdl_y_node *it = mdl_y_item(n, i);
             if (it->kind != MDL_Y_SCALAR)
-                return mdl_fail(mm, it, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*)", i);
+                return mdl_fail(mm, it, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*)",
+                                i);
             r = add_name(mm, it, where, v, it->text, strlen(it->text));
         }
     }
-    if (r == BG_OK && v->npts == 0) return mdl_fail(mm, at, where, "expected a list of one name or more ([a, b])");
+    if (r == BG_OK && v->npts == 0)
+        return mdl_fail(mm, at, where, "expected a list of one name or more ([a, b])");
     return r;
 }
 

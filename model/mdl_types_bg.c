@@ -123,7 +123,8 @@ static int S_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a
     int d = mdl_arg_int(a, "dim"), n;
     const double *v = mdl_arg_vec(a, "value", &n);
     if (v && n != d)
-        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "value: %d numbers, expected dim = %d", n, d);
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "value: %d numbers, expected dim = %d",
+                              n, d);
     int id = effort ? bgr_Se(m, c, name, d, v) : bgr_Sf(m, c, name, d, v);
     return single(m, id, out, name_p, 1, d, err);
 }
@@ -157,13 +158,15 @@ static const mdl_param_def Ssig_params[] = {
 static int Se_signal_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
                            mdl_instance *out, bg_error *err)
 {
-    return single(m, bgr_Se_signal(m, c, name, mdl_arg_signal(a, "signal")), out, name_p, 1, 1, err);
+    return single(m, bgr_Se_signal(m, c, name, mdl_arg_signal(a, "signal")), out, name_p, 1, 1,
+                  err);
 }
 
 static int Sf_signal_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
                            mdl_instance *out, bg_error *err)
 {
-    return single(m, bgr_Sf_signal(m, c, name, mdl_arg_signal(a, "signal")), out, name_p, 1, 1, err);
+    return single(m, bgr_Sf_signal(m, c, name, mdl_arg_signal(a, "signal")), out, name_p, 1, 1,
+                  err);
 }
 
 static const mdl_type Se_signal_type = {
@@ -186,7 +189,8 @@ static const mdl_param_def TF_params[] = {
 static int modulus(const mdl_args *a, double *mod, bg_error *err)
 {
     *mod = mdl_arg_num(a, "modulus");
-    if (*mod == 0) return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "modulus: 0, expected a number != 0");
+    if (*mod == 0)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "modulus: 0, expected a number != 0");
     return BG_OK;
 }
 
@@ -251,7 +255,8 @@ static int J_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a
     int n, d = mdl_arg_int(a, "dim");
     const char *const *names = mdl_arg_names(a, "ports", &n);
     if (n < 2)
-        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "ports: %d name, a junction needs two or more", n);
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "ports: %d name, a junction needs two or more", n);
     int id = one ? bgr_one(m, c, name, n, d) : bgr_zero(m, c, name, n, d);
     return single(m, id, out, names, n, d, err);
 }

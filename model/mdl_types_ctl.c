@@ -25,7 +25,8 @@ static int output(bgr_model *m, int id, const char *sig, mdl_instance *out, bg_e
 /* ---- ctl.pid ---- */
 
 static const mdl_param_def pid_params[] = {
-    {"kp", MDL_NUMBER, 0, "-", NULL, -INF, INF, MDL_FINITE, NULL, "proportional gain (units of u per unit of r)"},
+    {"kp", MDL_NUMBER, 0, "-", NULL, -INF, INF, MDL_FINITE, NULL,
+     "proportional gain (units of u per unit of r)"},
     {"ki", MDL_NUMBER, 0, "-", "0", -INF, INF, MDL_FINITE, NULL, "integral gain (per second)"},
     {"kd", MDL_NUMBER, 0, "-", "0", -INF, INF, MDL_FINITE, NULL,
      "derivative gain (seconds); != 0 needs measurement_rate or derivative_filter"},
@@ -66,26 +67,31 @@ static int pid_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args 
         s.measurement_rate = mdl_arg_signal(a, "measurement_rate");
     s.derivative_filter = mdl_arg_num(a, "derivative_filter");
     if (s.use_measurement_rate && s.derivative_filter > 0)
-        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
-                              "measurement_rate: given with derivative_filter = %g: one or the other",
-                              s.derivative_filter);
+        return bg_error_raise(
+            err, BG_ERR_ARGUMENT, "model",
+            "measurement_rate: given with derivative_filter = %g: one or the other",
+            s.derivative_filter);
     if (s.kd != 0 && !s.use_measurement_rate && !(s.derivative_filter > 0))
-        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
-                              "kd: %g needs measurement_rate (e.g. a rot.sensor of the acceleration) or "
-                              "derivative_filter > 0", s.kd);
+        return bg_error_raise(
+            err, BG_ERR_ARGUMENT, "model",
+            "kd: %g needs measurement_rate (e.g. a rot.sensor of the acceleration) or "
+            "derivative_filter > 0",
+            s.kd);
     int lo = mdl_arg_has(a, "out_min"), hi = mdl_arg_has(a, "out_max");
     if (lo != hi)
         return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "%s: give both limits or neither",
                               lo ? "out_max" : "out_min");
     if (!lo && mdl_arg_has(a, "smoothing"))
-        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "smoothing: given without out_min and out_max");
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "smoothing: given without out_min and out_max");
     if ((s.limit = lo)) {
         s.out_min = mdl_arg_num(a, "out_min");
         s.out_max = mdl_arg_num(a, "out_max");
         if (!(s.out_max > s.out_min))
-            return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "out_max: %g, expected > out_min = %g",
-                                  s.out_max, s.out_min);
-        s.smoothing = mdl_arg_has(a, "smoothing") ? mdl_arg_num(a, "smoothing") : 0.01 * (s.out_max - s.out_min);
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "out_max: %g, expected > out_min = %g", s.out_max, s.out_min);
+        s.smoothing = mdl_arg_has(a, "smoothing") ? mdl_arg_num(a, "smoothing")
+                                                  : 0.01 * (s.out_max - s.out_min);
     }
     int id = ctl_pid(m, c, name, &s);
     int r = output(m, id, "u", out, err);
@@ -137,8 +143,9 @@ static const mdl_param_def trap_params[] = {
 static int trap_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
                       mdl_instance *out, bg_error *err)
 {
-    int id = sig_trapezoid(m, c, name, mdl_arg_num(a, "t0"), mdl_arg_num(a, "t1"), mdl_arg_num(a, "t2"),
-                           mdl_arg_num(a, "t3"), mdl_arg_num(a, "height"), output_of(a));
+    int id =
+        sig_trapezoid(m, c, name, mdl_arg_num(a, "t0"), mdl_arg_num(a, "t1"), mdl_arg_num(a, "t2"),
+                      mdl_arg_num(a, "t3"), mdl_arg_num(a, "height"), output_of(a));
     return output(m, id, "y", out, err);
 }
 
@@ -147,8 +154,10 @@ SOURCE_TYPE(trap_type, "sig.trapezoid", "trapezoidal profile (sig_sources.h)",
             trap_params, trap_build);
 
 static const mdl_param_def pwl_params[] = {
-    {"times", MDL_VECTOR, 0, "s", NULL, -INF, INF, MDL_FINITE, NULL, "the knots t_k, strictly increasing"},
-    {"values", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_FINITE, NULL, "the values v_k, as many as times"},
+    {"times", MDL_VECTOR, 0, "s", NULL, -INF, INF, MDL_FINITE, NULL,
+     "the knots t_k, strictly increasing"},
+    {"values", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_FINITE, NULL,
+     "the values v_k, as many as times"},
     OUTPUT,
 };
 
@@ -158,12 +167,16 @@ static int pwl_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args 
     int nt, nv;
     const double *t = mdl_arg_vec(a, "times", &nt), *v = mdl_arg_vec(a, "values", &nv);
     if (nt != nv)
-        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "values: %d of them, expected as many as "
-                              "times (%d)", nv, nt);
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "values: %d of them, expected as many as "
+                              "times (%d)",
+                              nv, nt);
     for (int k = 1; k < nt; k++)
         if (!(t[k] > t[k - 1]))
-            return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "times[%d] = %g, expected > times[%d] "
-                                  "= %g (strictly increasing)", k, t[k], k - 1, t[k - 1]);
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "times[%d] = %g, expected > times[%d] "
+                                  "= %g (strictly increasing)",
+                                  k, t[k], k - 1, t[k - 1]);
     return output(m, sig_pwl(m, c, name, nt, t, v, output_of(a)), "y", out, err);
 }
 
@@ -206,7 +219,8 @@ static int ramp_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args
 }
 
 SOURCE_TYPE(ramp_type, "sig.ramp", "ramp (sig_sources.h)",
-            "u = offset (t <= t_start), offset + slope (t - t_start) after", ramp_params, ramp_build);
+            "u = offset (t <= t_start), offset + slope (t - t_start) after", ramp_params,
+            ramp_build);
 
 static const mdl_param_def sine_params[] = {
     {"amplitude", MDL_NUMBER, 0, "-", NULL, -INF, INF, MDL_FINITE, NULL, "the amplitude a"},

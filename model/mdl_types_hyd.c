@@ -114,7 +114,8 @@ static const mdl_type pump_type = {
     pump_ports, COUNT(pump_ports), NULL, 0, 0, pump_build, NULL, NULL};
 
 static const mdl_type pump_servo_type = {
-    "hyd.pump_servo", "pump whose swash plate follows the command with a first-order lag (hyd_pump.h)",
+    "hyd.pump_servo",
+    "pump whose swash plate follows the command with a first-order lag (hyd_pump.h)",
     "s'     = 2 pi fc (x - s)                           swash plate (state s)\n" PUMP_EQS
     "\n(s in place of x; Dp: displacement, Cl: leakage, fc: bandwidth, x: command)",
     pump_servo_params, COUNT(pump_servo_params), pump_ports, COUNT(pump_ports), pump_servo_signals,
@@ -152,7 +153,8 @@ static int motor_build(bgr_model *m, bgr_comp c, const char *name, const mdl_arg
 }
 
 static const mdl_type motor_type = {
-    "hyd.motor", "fixed-displacement motor with cross-port leakage and viscous friction (hyd_motor.h)",
+    "hyd.motor",
+    "fixed-displacement motor with cross-port leakage and viscous friction (hyd_motor.h)",
     "q_ain  = D w / (2 pi) + Cl (p_a - p_b)             flow drawn\n"
     "q_bout = q_ain                                     the leak leaves at b\n"
     "T      = D (p_a - p_b) / (2 pi) - b w              shaft torque\n"
@@ -200,8 +202,8 @@ static int volume_place(bgr_model *m, const mdl_instance *in, const mdl_args *a,
     int ip = bgr_ref_var(m, (bgr_ref){BGR_STATE, mdl_instance_main(in), 0});
     double *y = bgr_y0(m);
     if (ip < 0 || !y)
-        return bg_error_raise(err, BG_ERR_STATE, "model", "%s: the volume's pressure is not numbered",
-                              mdl_arg_path(a));
+        return bg_error_raise(err, BG_ERR_STATE, "model",
+                              "%s: the volume's pressure is not numbered", mdl_arg_path(a));
     y[ip] = mdl_arg_num(a, "pressure");
     return BG_OK;
 }
@@ -227,7 +229,8 @@ static const mdl_param_def tank_params[] = {
 static int tank_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
                       mdl_instance *out, bg_error *err)
 {
-    return single(m, hyd_tank(m, c, name, mdl_arg_num(a, "pressure")), out, name_p, one_hyd, 1, err);
+    return single(m, hyd_tank(m, c, name, mdl_arg_num(a, "pressure")), out, name_p, one_hyd, 1,
+                  err);
 }
 
 static const mdl_type tank_type = {

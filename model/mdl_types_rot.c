@@ -30,7 +30,8 @@ static const char *const name_p[] = {"p"};
 /* ---- rot.inertia ---- */
 
 static const mdl_param_def inertia_params[] = {
-    {"J", MDL_NUMBER, 0, "kg m^2", NULL, 0, INF, MDL_LO_OPEN, NULL, "moment of inertia about the axis"},
+    {"J", MDL_NUMBER, 0, "kg m^2", NULL, 0, INF, MDL_LO_OPEN, NULL,
+     "moment of inertia about the axis"},
     {"speed", MDL_NUMBER, 0, "rad/s", "0", -INF, INF, MDL_FINITE, NULL, "initial angular velocity"},
     {"angle", MDL_NUMBER, 0, "rad", "0", -INF, INF, MDL_FINITE, NULL, "initial angle"},
     {"nominal_speed", MDL_NUMBER, 0, "rad/s", "0", 0, INF, 0, NULL,
@@ -62,11 +63,12 @@ static int inertia_place(bgr_model *m, const mdl_instance *in, const mdl_args *a
 {
     (void)loc;
     int id = mdl_instance_main(in);
-    int ip = bgr_ref_var(m, (bgr_ref){BGR_STATE, id, 0}), ia = bgr_ref_var(m, (bgr_ref){BGR_STATE, id, 1});
+    int ip = bgr_ref_var(m, (bgr_ref){BGR_STATE, id, 0}),
+        ia = bgr_ref_var(m, (bgr_ref){BGR_STATE, id, 1});
     double *y = bgr_y0(m);
     if (ip < 0 || ia < 0 || !y)
-        return bg_error_raise(err, BG_ERR_STATE, "model", "%s: the inertia's states are not numbered",
-                              mdl_arg_path(a));
+        return bg_error_raise(err, BG_ERR_STATE, "model",
+                              "%s: the inertia's states are not numbered", mdl_arg_path(a));
     y[ip] = mdl_arg_num(a, "J") * mdl_arg_num(a, "speed");
     y[ia] = mdl_arg_num(a, "angle");
     return BG_OK;
@@ -124,8 +126,8 @@ static int damper_build(bgr_model *m, bgr_comp c, const char *name, const mdl_ar
 
 static const mdl_type damper_type = {
     "rot.damper", "linear viscous rotary damper (rot_damper.h)", "T = b w_in  (dissipates b w^2)",
-    damper_params, COUNT(damper_params), damper_ports, COUNT(damper_ports), NULL, 0, 0, damper_build,
-    NULL, NULL};
+    damper_params, COUNT(damper_params), damper_ports, COUNT(damper_ports), NULL, 0, 0,
+    damper_build, NULL, NULL};
 
 /* ---- rot.sensor ---- */
 
@@ -142,10 +144,13 @@ static int sensor_build(bgr_model *m, bgr_comp c, const char *name, const mdl_ar
                         mdl_instance *out, bg_error *err)
 {
     const char *q = mdl_arg_choice(a, "quantity");
-    rot_quantity k = !strcmp(q, "angle") ? ROT_ANGLE : !strcmp(q, "velocity") ? ROT_VELOCITY : ROT_ACCELERATION;
+    rot_quantity k = !strcmp(q, "angle")      ? ROT_ANGLE
+                     : !strcmp(q, "velocity") ? ROT_VELOCITY
+                                              : ROT_ACCELERATION;
     int j = mdl_arg_element(a, "inertia");
     if (!(rot_inertia_moment(bgr_element_get(m, j)) > 0))
-        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "inertia: the element it names is no rot.inertia");
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "inertia: the element it names is no rot.inertia");
     int id = rot_sensor(m, c, name, j, k);
     if (id < 0) return mdl_fail_model(err, m, id);
     int r = mdl_instance_element(out, id);

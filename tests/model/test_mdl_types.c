@@ -75,11 +75,13 @@ static int default_ok(const mdl_param_def *p, char *why, size_t size)
     case MDL_INTEGER: {
         double x = strtod(d, &end);
         if (*end || end == d) return snprintf(why, size, "'%s' is no number", d), 0;
-        if (p->kind == MDL_INTEGER && x != floor(x)) return snprintf(why, size, "'%s' is no integer", d), 0;
+        if (p->kind == MDL_INTEGER && x != floor(x))
+            return snprintf(why, size, "'%s' is no integer", d), 0;
         if (!in_range(p, x)) return snprintf(why, size, "'%s' out of its range", d), 0;
         return 1;
     }
-    case MDL_FLAG: return !strcmp(d, "true") || !strcmp(d, "false") || (snprintf(why, size, "'%s'", d), 0);
+    case MDL_FLAG:
+        return !strcmp(d, "true") || !strcmp(d, "false") || (snprintf(why, size, "'%s'", d), 0);
     case MDL_CHOICE: {
         size_t n = strlen(d);
         for (const char *c = p->choices; c && *c;) {
@@ -99,10 +101,12 @@ static int default_ok(const mdl_param_def *p, char *why, size_t size)
             count++;
             char buf[64];
             snprintf(buf, sizeof buf, "%.*s", (int)n, it);
-            if (p->kind == MDL_NAMES && !is_word(it, n)) return snprintf(why, size, "'%s': '%s'", d, buf), 0;
+            if (p->kind == MDL_NAMES && !is_word(it, n))
+                return snprintf(why, size, "'%s': '%s'", d, buf), 0;
             if (p->kind == MDL_VECTOR) {
                 double x = strtod(buf, &end);
-                if (*end || end == buf || !in_range(p, x)) return snprintf(why, size, "'%s': '%s'", d, buf), 0;
+                if (*end || end == buf || !in_range(p, x))
+                    return snprintf(why, size, "'%s': '%s'", d, buf), 0;
             }
         }
         if (r < 0 || count == 0) return snprintf(why, size, "'%s' malformed or empty", d), 0;
@@ -112,7 +116,8 @@ static int default_ok(const mdl_param_def *p, char *why, size_t size)
     }
     case MDL_ELEMENT:
     case MDL_SIGNAL:
-    case MDL_POINTS: return snprintf(why, size, "a %d-kind parameter has no default", (int)p->kind), 0;
+    case MDL_POINTS:
+        return snprintf(why, size, "a %d-kind parameter has no default", (int)p->kind), 0;
     }
     return 0;
 }
@@ -136,7 +141,8 @@ static void check_table(const mdl_type *t)
     for (int i = 0; i < t->nparams && ok; i++) {
         const mdl_param_def *p = &t->params[i];
         for (int j = 0; j < i; j++)
-            if (!strcmp(t->params[j].name, p->name)) ok = 0, snprintf(why, sizeof why, "%s twice", p->name);
+            if (!strcmp(t->params[j].name, p->name))
+                ok = 0, snprintf(why, sizeof why, "%s twice", p->name);
         if (ok && !(p->kind >= MDL_NUMBER && p->kind <= MDL_NAMES))
             ok = 0, snprintf(why, sizeof why, "%s: kind %d", p->name, (int)p->kind);
         if (ok && (!p->unit || !p->meaning || !*p->meaning))
@@ -157,18 +163,21 @@ static void check_table(const mdl_type *t)
     for (int i = 0; i < t->nports && ok; i++) {
         const mdl_port_def *p = &t->ports[i];
         for (int j = 0; j < i; j++)
-            if (!strcmp(t->ports[j].name, p->name)) ok = 0, snprintf(why, sizeof why, "%s twice", p->name);
+            if (!strcmp(t->ports[j].name, p->name))
+                ok = 0, snprintf(why, sizeof why, "%s twice", p->name);
         if (ok && p->dim != 0 && p->dim != 1 && p->dim != 3 && p->dim != 6)
             ok = 0, snprintf(why, sizeof why, "%s: dim %d", p->name, p->dim);
         int np = names_param(t);
         int points = np >= 0 && t->params[np].kind == MDL_POINTS;
         if (ok && p->dim == 0 && !(!strcmp(p->name, "*") && points)) {
             const mdl_param_def *d = mdl_type_param(t, "dim");
-            if (!d || d->kind != MDL_INTEGER) ok = 0, snprintf(why, sizeof why, "%s: dim 0 without `dim`", p->name);
+            if (!d || d->kind != MDL_INTEGER)
+                ok = 0, snprintf(why, sizeof why, "%s: dim 0 without `dim`", p->name);
         }
         if (ok && !strcmp(p->name, "*") && np < 0)
             ok = 0, snprintf(why, sizeof why, "a port family without a parameter naming it");
-        if (ok && (!p->meaning || !*p->meaning)) ok = 0, snprintf(why, sizeof why, "%s: no meaning", p->name);
+        if (ok && (!p->meaning || !*p->meaning))
+            ok = 0, snprintf(why, sizeof why, "%s: no meaning", p->name);
     }
     tap_ok(ok, "%s: ports well formed%s%s", t->name, ok ? "" : ": ", ok ? "" : why);
     ok = 1;
@@ -221,8 +230,10 @@ static void check_docs(void)
             line += file[i] == '\n';
         tap_diag("first difference at line %d", line);
     }
-    tap_ok(same, "docs/model-types.md is the table's reference (%s; regenerate: test_mdl_types "
-           "--write docs/model-types.md)", file ? "differs" : "not found");
+    tap_ok(same,
+           "docs/model-types.md is the table's reference (%s; regenerate: test_mdl_types "
+           "--write docs/model-types.md)",
+           file ? "differs" : "not found");
     free(fresh);
     free(file);
 }
