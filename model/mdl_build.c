@@ -13,8 +13,9 @@ static int build_leaf(mdl_model *mm, mdl_inode *leaf);
 static const char *kind_word(mdl_kind k)
 {
     static const char *const w[] = {"a number", "a whole number", "true or false", "a list of numbers",
-                                    "a word", "an element's path", "a signal's path", "points"};
-    return k >= 0 && k <= MDL_POINTS ? w[k] : "?";
+                                    "a word", "an element's path", "a signal's path", "points",
+                                    "a list of names"};
+    return k >= 0 && k <= MDL_NAMES ? w[k] : "?";
 }
 
 static void range_words(const mdl_param_def *d, char *buf, size_t size)
@@ -102,10 +103,69 @@ static int read_points(mdl_model *mm, mdl_inode *leaf, const mdl_y_node *n, cons
         if (mdl_y_get(p, "dim") &&
             (r = mdl_eval_number(mm, &leaf->scope, mdl_y_get(p, "dim"), NULL, w, &dim)) != BG_OK)
             return r;
-        if (dim != 3 && dim != 6) return mdl_fail(mm, mdl_y_get(p, "dim"), w, "dim: expected 3 or 6, got %g", dim);
+        if (dim != 3 && dim != 6)
+            return mdl_fail(mm, mdl_y_get(p, "dim"), w, "dim: expected 3 or 6, got %g", dim);
         v->pdim[i] = (int)dim;
     }
     return BG_OK;
+}
+
+static int is_word(const char *s)
+{
+    if (!s || !(*s == '_' || (*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z'))) return 0;
+    for (s++; *s; s++)
+        if (!(*s == '_' || (*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z') ||
+              (*s >= '0' && *s <= '9')))
+            return 0;
+    return 1;
+}
+
+/* one name of a list: a word, not taken before; kept as entry v->npts */
+static int add_name(mdl_model *mm, const mdl_y_node *at, const char *where, mdl_value *v,
+                    const char *s, size_t len)
+{
+    char w[128];
+    snprintf(w, sizeof w, "%.*s", (int)len, s);
+    if (len >= sizeof w || !is_word(w))
+        return mdl_fail(mm, at, where,
+                        "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*), got '%s'", v->npts, w);
+    for (int j = 0; j < v->npts; j++)
+        if (!strcmp(v->pname[j], w)) return mdl_fail(mm, at, where, "'%s' is named twice", w);
+    if (!(v->pname[v->npts] = strdup(w))) return BG_ERR_MEMORY;
+    v->npts++;
+    return BG_OK;
+}
+
+/* a list of distinct words (port names), kept in v->pname / v->npts: a sequence of the file, or
+ * the default's text "[a, b]" */
+static int read_names(mdl_model *mm, const mdl_y_node *n, const char *text, const mdl_y_node *at,
+                      const char *where, mdl_value *v)
+{
+    int r = BG_OK, cap = text                             ? (int)strlen(text) / 2 + 1
+                         : n && n->kind == MDL_Y_SEQUENCE ? mdl_y_count(n)
+                                                          : 0;
+    if (cap < 1 || (text && text[0] != '['))
+        return mdl_fail(mm, at, where, "expected a list of one name or more ([a, b])");
+    if (!(v->pname = calloc((size_t)cap, sizeof *v->pname))) return BG_ERR_MEMORY;
+    if (text) {
+        for (const char *s = text + 1; r == BG_OK && *s && *s != ']';) {
+            s += strspn(s, " ,");
+            size_t k = strcspn(s, " ,]");
+            if (k) r = add_name(mm, at, where, v, s, k);
+            s += k;
+        }
+    } else {
+        for (int i = 0; r == BG_OK && i < cap; i++) {
+            const mdl_y_node *it = mdl_y_item(n, i);
+            if (it->kind != MDL_Y_SCALAR)
+                return mdl_fail(mm, it, where, "entry %d: expected a name ([A-Za-z_][A-Za-z0-9_]*)",
+                                i);
+            r = add_name(mm, it, where, v, it->text, strlen(it->text));
+        }
+    }
+    if (r == BG_OK && v->npts == 0)
+        return mdl_fail(mm, at, where, "expected a list of one name or more ([a, b])");
+    return r;
 }
 
 /* an element or signal reference: the leaf it names, built first */
@@ -213,6 +273,9 @@ static int read_param(mdl_model *mm, mdl_inode *leaf, const mdl_param_def *d, md
     case MDL_POINTS:
         if (text) return mdl_fail(mm, at, where, "points cannot be replaced with --set");
         return read_points(mm, leaf, n, where, v);
+    case MDL_NAMES:
+        if (text && text != d->dflt) return mdl_fail(mm, at, where, "names cannot be replaced with --set");
+        return read_names(mm, n, text, at, where, v);
     }
     return r;
 }
@@ -251,7 +314,7 @@ static int build_leaf(mdl_model *mm, mdl_inode *leaf)
         int r = read_param(mm, leaf, &t->params[i], &in->args.v[i]);
         if (r != BG_OK) return r;
     }
-    bg_error e;
+    bg_error e = {0}; /* no handler: build() only records its message */
     bg_error_clear(&e);
     int r = t->build(mm->m, leaf->comp, leaf->name, &in->args, in, &e);
     if (r != BG_OK)

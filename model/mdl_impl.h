@@ -16,7 +16,7 @@ typedef struct mdl_value {
     char *word; /* MDL_CHOICE (owned) */
     int elem;   /* MDL_ELEMENT: the main element of the referenced instance */
     bgr_ref sig;
-    int npts; /* MDL_POINTS: names (owned), r (3 each), dims */
+    int npts; /* MDL_POINTS: names (owned), r (3 each), dims; MDL_NAMES: the names only */
     char **pname;
     double *pr;
     int *pdim;
@@ -76,6 +76,8 @@ bgr_ref mdl_arg_signal(const mdl_args *a, const char *name);
 /* MDL_POINTS: how many points, and point i's name, position r[3] and dimension. */
 int mdl_arg_npoints(const mdl_args *a, const char *name);
 const char *mdl_arg_point(const mdl_args *a, const char *name, int i, double r[3], int *dim);
+/* MDL_NAMES: the names (how many into *n if n not NULL); NULL if absent. */
+const char *const *mdl_arg_names(const mdl_args *a, const char *name, int *n);
 /* The instance's path ("boom/element03"), for messages. */
 const char *mdl_arg_path(const mdl_args *a);
 
@@ -109,6 +111,14 @@ int mdl_locate(mdl_locator *loc, int port, double x[3]);
 /* ---- the type table's parts (mdl_types_*.c) ---- */
 extern const mdl_type *const mdl_types_mech[];
 extern const int mdl_types_mech_count;
+extern const mdl_type *const mdl_types_hyd[];
+extern const int mdl_types_hyd_count;
+extern const mdl_type *const mdl_types_rot[];
+extern const int mdl_types_rot_count;
+extern const mdl_type *const mdl_types_ctl[];
+extern const int mdl_types_ctl_count;
+extern const mdl_type *const mdl_types_bg[];
+extern const int mdl_types_bg_count;
 
 /* Builders' common failure: the message of the model's error record into err. */
 int mdl_fail_model(bg_error *err, bgr_model *m, int status);

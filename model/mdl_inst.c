@@ -80,6 +80,13 @@ const char *mdl_arg_point(const mdl_args *a, const char *name, int i, double r[3
     return v->pname[i];
 }
 
+const char *const *mdl_arg_names(const mdl_args *a, const char *name, int *n)
+{
+    const mdl_value *v = val(a, name, MDL_NAMES);
+    if (n) *n = v ? v->npts : 0;
+    return v ? (const char *const *)v->pname : NULL;
+}
+
 const char *mdl_arg_path(const mdl_args *a)
 {
     return a && a->path ? a->path : "";

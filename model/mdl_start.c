@@ -72,7 +72,7 @@ int mdl_place_all(mdl_model *mm)
             mdl_inode *l = mm->leaves[i];
             if (leaf_placed(l)) continue;
             mdl_locator loc = {&c, &l->inst, locate};
-            bg_error e;
+            bg_error e = {0}; /* no handler: place() only records its message */
             bg_error_clear(&e);
             int r = l->type->place(mm->m, &l->inst, &l->inst.args, &loc, &e);
             if (r == BG_OK) {

@@ -47,8 +47,10 @@ typedef enum mdl_kind {
     MDL_CHOICE,  /* one word of choices ("value|rate|integral") */
     MDL_ELEMENT, /* the path of another element of the model (the body that carries an axis) */
     MDL_SIGNAL,  /* the path of a signal another element offers ("platform_sensor.omega") */
-    MDL_POINTS   /* a mapping name -> {r: [x, y, z], dim: 3 or 6}: named attachment points, each a
+    MDL_POINTS,  /* a mapping name -> {r: [x, y, z], dim: 3 or 6}: named attachment points, each a
                   * port of the element (a body's points in its own frame) */
+    MDL_NAMES    /* a list of distinct words ([a, b, c]): the names of the element's ports (a
+                  * volume's, a junction's), at least one */
 } mdl_kind;
 
 typedef enum mdl_domain {
