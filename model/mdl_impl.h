@@ -117,6 +117,8 @@ extern const mdl_type *const mdl_types_rot[];
 extern const int mdl_types_rot_count;
 extern const mdl_type *const mdl_types_ctl[];
 extern const int mdl_types_ctl_count;
+extern const mdl_type *const mdl_types_drive[];
+extern const int mdl_types_drive_count;
 extern const mdl_type *const mdl_types_bg[];
 extern const int mdl_types_bg_count;
 

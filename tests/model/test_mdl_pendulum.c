@@ -61,7 +61,7 @@ static int col(const mdl_model *mm, const char *name)
 int main(void)
 {
     const char *path = MODELS_DIR "/double-pendulum.yaml";
-    bg_error e;
+    bg_error e = {0};
     bg_error_clear(&e);
     mdl_model *mm = mdl_load(path, NULL, 0, &e);
     tap_ok(mm != NULL, "double-pendulum.yaml loads (%s)", mm ? "ok" : e.message);

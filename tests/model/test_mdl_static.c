@@ -35,7 +35,7 @@ static const char *model_text(const char *trim)
 int main(void)
 {
     const double m = 2, k = 400, g = 9.81;
-    bg_error e;
+    bg_error e = {0};
     bg_error_clear(&e);
     mdl_model *mm = mdl_load_string(model_text(""), "hanging.yaml", NULL, 0, &e);
     tap_ok(mm != NULL, "the hanging mass loads (%s)", mm ? "ok" : e.message);

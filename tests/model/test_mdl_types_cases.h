@@ -42,8 +42,12 @@ static const build_case builds[] = {
     {"mech.revolute", "axis: [0, 0, 1], drive: true",
      "s: {type: mech.support}; f: {type: mech.free}; w: {type: bg.Sf, value: [1]}",
      "s.p -> dut.a; dut.b -> f.p; w.p -> dut.d", 13, ""},
-    {"mech.revolute", "axis: [0, 1, 0]", "s: {type: mech.support}; f: {type: mech.free}",
-     "s.p -> dut.a; dut.b -> f.p", 12, ""},
+    /* without a drive the b side needs inertia: a free end's rotation about the axis would be
+     * undetermined (structurally singular) */
+    {"mech.revolute", "axis: [0, 1, 0]",
+     "s: {type: mech.support}; b: {type: mech.body, mass: 1, " BODY_INERTIA
+     ", points: {a: {r: [0, 0, 0]}}}",
+     "s.p -> dut.a; dut.b -> b.a", 12, ""},
     {"mech.spring", "k: 100, L0: 0.9", AXIAL_FIX, "s.p -> dut.a; dut.b -> s2.p", 9, ""},
     {"mech.truss", "E: 2e11, A: 1e-4, L0: 1", AXIAL_FIX, "s.p -> dut.a; dut.b -> s2.p", 9, ""},
     {"mech.rope", "k: 1e5, L0: 1.1", AXIAL_FIX, "s.p -> dut.a; dut.b -> s2.p", 9, ""},
@@ -52,6 +56,15 @@ static const build_case builds[] = {
      ", points: {a: {r: [0, 0, 0]}}}; f: {type: mech.free}",
      "b.a -> f.p", 2, ""},
     {"mech.free", "dim: 3", "s: {type: mech.support, dim: 3}", "s.p -> dut.p", 3, ""},
+    /* the linear drive */
+    {"hyd.cylinder",
+     "area_a: 0.01, area_b: 0.005, length_min: 0.8, stroke: 0.5, volume_a0: 1e-4, "
+     "volume_b0: 1e-4, beta: 1.4e9, nominal_pressure: 1e7",
+     AXIAL_FIX "; " HYD_AB, "s.p -> dut.A; dut.B -> s2.p; pa.p -> dut.a; pb.p -> dut.b", 13, ""},
+    {"hyd.directional_valve", "command: x.y, flow_rated: 1e-3, dp_rated: 35e5, underlap: 0.01",
+     "x: {type: sig.constant, value: 0.5}; sp: {type: bg.Se, value: [1e7]}; st: {type: bg.Se}; "
+     "sa: {type: bg.Se, value: [3e6]}; sb: {type: bg.Se, value: [2e6]}",
+     "sp.p -> dut.P; st.p -> dut.T; sa.p -> dut.A; sb.p -> dut.B", 4, ""},
     /* hydraulics */
     {"hyd.pump", "displacement: 1e-5, leakage: 1e-12, command: x.y, nominal_pressure: 1e7",
      "x: {type: sig.constant, value: 0.5}; w: {type: bg.Sf, value: [100]}; " HYD_AB,
@@ -222,6 +235,15 @@ typedef struct error_case {
 
 static const error_case errors[] = {
     {"mech.spring", "k: -1, L0: 1", "", {"dut.k", "out of range"}},
+    {"hyd.cylinder",
+     "area_a: 0.01, area_b: 0.02, length_min: 0.8, stroke: 0.5, volume_a0: 1e-4, "
+     "volume_b0: 1e-4, beta: 1.4e9",
+     "",
+     {"dut", "area_b"}},
+    {"hyd.directional_valve",
+     "command: x.y, flow_rated: 1e-3, dp_rated: 35e5, underlap: 0.7",
+     "x: {type: sig.constant, value: 1}",
+     {"dut.underlap", "out of range"}},
     {"mech.body",
      "mass: 0, " BODY_INERTIA ", points: {a: {r: [0, 0, 0]}}",
      "",
