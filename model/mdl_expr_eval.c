@@ -38,13 +38,13 @@ static int ev_path(const evaluator *c, int id, char *buf)
 {
     const mdl_expr *x = c->x;
     const node *n = &x->nodes[id];
-    size_t len = 0;
+    size_t len = 0, cut = 0;
     buf[0] = '\0';
     for (int s = n->a; s >= 0; s = x->segs[s].next) {
         const seg *g = &x->segs[s];
         int w = snprintf(buf + len, MDL_EXPR_NAME_MAX - len, "%s%.*s", s == n->a ? "" : ".", g->len,
                          x->text + g->start);
-        if (w < 0 || (size_t)w >= MDL_EXPR_NAME_MAX - len) break;
+        if ((cut = w < 0 || (size_t)w >= MDL_EXPR_NAME_MAX - len)) break;
         len += (size_t)w;
         if (g->index < 0) continue;
         double v;
@@ -58,10 +58,10 @@ static int ev_path(const evaluator *c, int id, char *buf)
             return -1;
         }
         w = snprintf(buf + len, MDL_EXPR_NAME_MAX - len, "[%d]", (int)v);
-        if (w < 0 || (size_t)w >= MDL_EXPR_NAME_MAX - len) break;
+        if ((cut = w < 0 || (size_t)w >= MDL_EXPR_NAME_MAX - len)) break;
         len += (size_t)w;
     }
-    if (len + 1 >= MDL_EXPR_NAME_MAX) {
+    if (cut) {
         mdl_expri_set_error(c->e, n->start, "name too long (more than %d characters)",
                             MDL_EXPR_NAME_MAX - 2);
         return -1;

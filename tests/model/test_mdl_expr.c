@@ -414,6 +414,25 @@ static void test_subst(void)
                 0);
 }
 
+/* A path within the parser's length limit whose indices, written out, pass MDL_EXPR_NAME_MAX. */
+static void test_long_names(void)
+{
+    char *text = repeat("a[1e9]", ".a[1e9]", 20, "");
+    mdl_expr_error e = {0, ""};
+    mdl_expr *x = mdl_expr_parse(text, &e);
+    double v;
+    tap_ok(x && mdl_expr_eval(x, lookup, NULL, &v, &e) == -1 &&
+               !strcmp(e.message, "name too long (more than 254 characters)"),
+           "a name too long once its indices are written: %s", e.message);
+    mdl_expr_free(x);
+    free(text);
+    text = repeat("a", ".a", 200, "");
+    tap_ok(!mdl_expr_parse(text, &e) &&
+               !strcmp(e.message, "name too long (more than 240 characters)"),
+           "a name too long to parse: %s", e.message);
+    free(text);
+}
+
 int main(void)
 {
     test_precedence();
@@ -426,5 +445,6 @@ int main(void)
     test_depth();
     test_names_listing();
     test_subst();
+    test_long_names();
     return tap_done();
 }
