@@ -99,6 +99,28 @@ typedef struct mdl_trim_report {
 BG_API int mdl_static(mdl_model **mm, const dae_static_options *o, mdl_trim_report *rep,
                       bg_error *err);
 
+/* The model drawn at state y for ParaView series (model/mdl_geom.c says what each mechanical
+ * type draws: bodies, point masses, supports, axial members, cylinders, beam chains): points in
+ * the global frame, polylines and marked points, each tagged with its part (an instance, by its
+ * path and type). Fill with mdl_geometry (the arrays are reused from call to call), free with
+ * mdl_geom_clear; start from a zeroed record. */
+typedef struct mdl_geom {
+    int npoints;
+    double *x;       /* 3 per point */
+    int *point_part; /* the part of each point */
+    int nlines;
+    int *line_start; /* line i: line_conn[line_start[i] .. line_start[i + 1]) (nlines + 1) */
+    int *line_conn;
+    int *line_part;
+    int nmarks;
+    int *mark_point, *mark_part;
+    int nparts;
+    const char **part_path, **part_type; /* owned by the model */
+    int cap_x, cap_pp, cap_ls, cap_lc, cap_lp, cap_mp, cap_mk, cap_pa, cap_pt;
+} mdl_geom;
+BG_API int mdl_geometry(const mdl_model *mm, const double *y, mdl_geom *g, bg_error *err);
+BG_API void mdl_geom_clear(mdl_geom *g);
+
 /* The value of a model parameter (after the replacements) by name; BG_OK or BG_ERR_ARGUMENT. */
 BG_API int mdl_parameter(const mdl_model *mm, const char *name, double *value);
 /* The model as run: the file's text as read, followed by the replacements applied, as

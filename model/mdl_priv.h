@@ -155,6 +155,9 @@ int mdl_build_all(mdl_model *mm);
 
 /* ---- mdl_start.c: start configuration, initial values, outputs, settings ---- */
 int mdl_place_all(mdl_model *mm);
+/* The position at state y of what port `port` of leaf is bonded to (through joints). */
+int mdl_neighbour_position(const mdl_model *mm, const mdl_inode *leaf, int port, const double *y,
+                           double x[3]);
 int mdl_read_initial(mdl_model *mm);
 int mdl_read_outputs(mdl_model *mm);
 int mdl_read_solver(mdl_model *mm);

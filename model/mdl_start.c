@@ -8,7 +8,8 @@
 #include "mdl_priv.h"
 
 typedef struct place_ctx {
-    mdl_model *mm;
+    const mdl_model *mm;
+    const double *y; /* the state the positions are taken at (NULL: the start, bgr_y0) */
     int depth;
 } place_ctx;
 
@@ -23,7 +24,7 @@ static int own_position(place_ctx *c, const mdl_inode *l, int port, double x[3])
 /* the position at the other end of the bond at port `port` of leaf `self` */
 static int locate_neighbour(place_ctx *c, const mdl_inode *self, int port, double x[3])
 {
-    mdl_model *mm = c->mm;
+    const mdl_model *mm = c->mm;
     for (int i = 0; i < mm->nbonds; i++)
         for (int s = 0; s < 2; s++)
             if (mm->bonds[i].leaf[s] == self && mm->bonds[i].port[s] == port)
@@ -49,7 +50,7 @@ static int own_position(place_ctx *c, const mdl_inode *l, int port, double x[3])
     }
     if (!l->type->port_position) return BG_ERR_ARGUMENT;
     if (!leaf_placed(l)) return MDL_NOT_YET;
-    return l->type->port_position(c->mm->m, &l->inst, port, bgr_y0(c->mm->m), x);
+    return l->type->port_position(c->mm->m, &l->inst, port, c->y ? c->y : bgr_y0(c->mm->m), x);
 }
 
 static int locate(void *ctx, const mdl_instance *self, int port, double x[3])
@@ -63,9 +64,16 @@ static int locate(void *ctx, const mdl_instance *self, int port, double x[3])
     return locate_neighbour(c, leaf, port, x);
 }
 
+int mdl_neighbour_position(const mdl_model *mm, const mdl_inode *leaf, int port, const double *y,
+                           double x[3])
+{
+    place_ctx c = {mm, y, 0};
+    return locate_neighbour(&c, leaf, port, x);
+}
+
 int mdl_place_all(mdl_model *mm)
 {
-    place_ctx c = {mm, 0};
+    place_ctx c = {mm, NULL, 0};
     for (int round = 0; round <= mm->nleaves; round++) {
         int left = 0, progress = 0;
         for (int i = 0; i < mm->nleaves; i++) {
