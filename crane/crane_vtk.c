@@ -1,15 +1,12 @@
 /* The crane's ParaView time series (crane_vtk.h): crane.pvd and vtk/frame_NNNNN.vtp. */
 #include "crane_vtk.h"
 
-#include <dirent.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "pu_fs.h"
+#include "pu_vtk.h"
 
 enum { P_PLATFORM, P_BOOM, P_GANTRY, P_LOAD, P_CW, P_TIE, P_ROPE, P_FOOT };
 
@@ -25,118 +22,34 @@ typedef struct frame {
 } frame;
 
 struct crane_vtk {
-    char dir[4096];
-    FILE *pvd;
-    int frames;
+    pu_vtk *series;
     frame fr; /* the frame being written */
 };
-
-/* Removes the frame files a former run left in dir/vtk (frame_NNNNN.vtp only). */
-static void remove_old_frames(const char *vdir)
-{
-    DIR *d = opendir(vdir);
-    if (!d) return;
-    struct dirent *e;
-    char path[4400];
-    while ((e = readdir(d))) {
-        unsigned k;
-        char tail[8];
-        if (sscanf(e->d_name, "frame_%5u%7s", &k, tail) == 2 && !strcmp(tail, ".vtp") &&
-            strlen(e->d_name) == 15) {
-            snprintf(path, sizeof path, "%s/%s", vdir, e->d_name);
-            remove(path);
-        }
-    }
-    closedir(d);
-}
 
 crane_vtk *crane_vtk_open(const char *dir, const char *scene_name, char *msg, size_t size)
 {
     crane_vtk *v = calloc(1, sizeof *v);
-    char path[4200];
+    char comment[512];
     if (!v) {
         snprintf(msg, size, "out of memory");
         return NULL;
     }
-    snprintf(v->dir, sizeof v->dir, "%s", dir);
-    snprintf(path, sizeof path, "%s/vtk", dir);
-    if (pu_mkdir_p(path, 0777, msg, size) != 0) {
+    snprintf(comment, sizeof comment,
+             "crane scene %s: the motion as a time series, one PolyData file per frame;\n"
+             "     global frame, Z0 up; SI units (m, kg, s, N, N m, Pa); see crane/crane_vtk.h",
+             scene_name ? scene_name : "?");
+    v->series = pu_vtk_open(dir, "crane.pvd", comment, msg, size);
+    if (!v->series) {
         free(v);
         return NULL;
     }
-    remove_old_frames(path);
-    snprintf(path, sizeof path, "%s/crane.pvd", dir);
-    v->pvd = fopen(path, "w");
-    if (!v->pvd) {
-        snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
-        free(v);
-        return NULL;
-    }
-    fprintf(v->pvd,
-            "<?xml version=\"1.0\"?>\n"
-            "<!-- crane scene %s: the motion as a time series, one PolyData file per frame;\n"
-            "     global frame, Z0 up; SI units (m, kg, s, N, N m, Pa); see crane/crane_vtk.h -->\n"
-            "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-            "  <Collection>\n",
-            scene_name ? scene_name : "?");
-    fflush(v->pvd);
     return v;
 }
 
-/* ------------------------------------------------------------ arrays ---- */
-
-static void array_head(FILE *f, const char *type, const char *name, int ncomp)
-{
-    fprintf(f, "        <DataArray type=\"%s\"", type);
-    if (name) fprintf(f, " Name=\"%s\"", name);
-    if (ncomp > 1) fprintf(f, " NumberOfComponents=\"%d\"", ncomp);
-    fprintf(f, " format=\"ascii\">\n         ");
-}
-
-static void array_tail(FILE *f)
-{
-    fprintf(f, "\n        </DataArray>\n");
-}
-
-static void ints(FILE *f, const char *name, const int *a, int n)
-{
-    array_head(f, "Int32", name, 1);
-    for (int i = 0; i < n; i++)
-        fprintf(f, " %d", a[i]);
-    array_tail(f);
-}
-
-/* n tuples of ncomp values; NULL rows (rows[i] == NULL) are zeros */
-static void reals(FILE *f, const char *name, const double *const *rows, int n, int ncomp)
-{
-    array_head(f, "Float64", name, ncomp);
-    for (int i = 0; i < n; i++)
-        for (int k = 0; k < ncomp; k++) {
-            double x = rows[i] ? rows[i][k] : 0.0;
-            fprintf(f, " %.10g", isfinite(x) ? x : 0.0);
-        }
-    array_tail(f);
-}
-
-static void field(FILE *f, const char *name, const double *x, int n)
-{
-    fprintf(f,
-            "      <DataArray type=\"Float64\" Name=\"%s\" NumberOfTuples=\"%d\" "
-            "format=\"ascii\">",
-            name, n);
-    for (int i = 0; i < n; i++)
-        fprintf(f, " %.10g", x[i]);
-    fprintf(f, " </DataArray>\n");
-}
-
-/* cells: connectivity and offsets */
-static void cells(FILE *f, const char *tag, const int *conn, const int *off, int n)
-{
-    fprintf(f, "      <%s>\n", tag);
-    ints(f, "connectivity", conn, off[n - 1]);
-    ints(f, "offsets", off, n);
-    fprintf(f, "      </%s>\n", tag);
-}
+#define ints pu_vtk_ints
+#define reals pu_vtk_reals
+#define field pu_vtk_field
+#define cells pu_vtk_cells
 
 /* ------------------------------------------------------------ frames ---- */
 
@@ -285,35 +198,18 @@ static int write_vtp(FILE *f, const crane_geom *g, const frame *fr)
 
 int crane_vtk_frame(crane_vtk *v, const crane_geom *g, char *msg, size_t size)
 {
-    char name[64], path[4200];
-    if (!v || !g || !v->pvd) return -1;
-    snprintf(name, sizeof name, "vtk/frame_%05d.vtp", v->frames);
-    snprintf(path, sizeof path, "%s/%s", v->dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
-        return -1;
-    }
+    if (!v || !g || !v->series) return -1;
+    FILE *f = pu_vtk_frame_begin(v->series, msg, size);
+    if (!f) return -1;
     build_frame(g, &v->fr);
     int bad = write_vtp(f, g, &v->fr);
-    if (fclose(f) != 0 || bad) {
-        snprintf(msg, size, "writing %s failed", path);
-        return -1;
-    }
-    fprintf(v->pvd, "    <DataSet timestep=\"%.10g\" group=\"\" part=\"0\" file=\"%s\"/>\n", g->t,
-            name);
-    fflush(v->pvd);
-    v->frames++;
-    return 0;
+    return pu_vtk_frame_end(v->series, f, g->t, bad, msg, size);
 }
 
 int crane_vtk_close(crane_vtk **v)
 {
     if (!v || !*v) return 0;
-    int n = (*v)->frames;
-    fprintf((*v)->pvd, "  </Collection>\n</VTKFile>\n");
-    int bad = ferror((*v)->pvd);
-    if (fclose((*v)->pvd) != 0 || bad) n = -1;
+    int n = pu_vtk_close(&(*v)->series);
     free(*v);
     *v = NULL;
     return n;
