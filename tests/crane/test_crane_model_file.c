@@ -210,8 +210,9 @@ static void compare(const char *label, const char *scene, const char *file, doub
     so.max_steps = 150;
     mdl_trim_report tr;
     rc = mdl_static(&mm, &so, &tr, &e);
-    tap_ok(rc == BG_OK && tr.trimmed, "%s: the file's static start with its trim (%s): %d solves",
-           label, rc == BG_OK ? "ok" : e.message, tr.solves);
+    tap_ok(rc == BG_OK && tr.trimmed,
+           "%s: the file's static start with its trim (%s): %d static solves (C crane %d)", label,
+           rc == BG_OK ? "ok" : e.message, tr.solves, rep.solves);
     if (rc != BG_OK) {
         crane_free(&c);
         mdl_free(&mm);
