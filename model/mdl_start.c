@@ -100,7 +100,8 @@ int mdl_place_all(mdl_model *mm)
 
 /* ---- unknowns by path ---- */
 
-/* "rod1.body.x0" -> the unknown's id, or a signal's; -1 with the message set */
+/* "rod1.body.x0" -> the unknown's id, or a signal's, or a port's bond ("supply.p.f": the
+ * flow of the bond at supply's port p, oriented as the bond is written); -1 with the message set */
 static int var_of_path(mdl_model *mm, const char *path, const mdl_y_node *at, const char *where)
 {
     mdl_inode *leaf;
@@ -117,6 +118,25 @@ static int var_of_path(mdl_model *mm, const char *path, const mdl_y_node *at, co
         int v = bgr_ref_var(mm->m, s->r);
         if (v < 0) mdl_fail(mm, at, where, "'%s': the signal has no unknown", path);
         return v;
+    }
+    /* "port.e", "port.f" (1D) or "port.e2" (a vector port's entry): the bond at that port */
+    const char *dot = strrchr(rest, '.');
+    if (dot && (dot[1] == 'e' || dot[1] == 'f')) {
+        char pname[256];
+        int len = (int)(dot - rest), idx = 0, nd = 0;
+        if (len < (int)sizeof pname && (dot[2] == '\0' || sscanf(dot + 2, "%d%n", &idx, &nd) == 1) &&
+            dot[2 + nd] == '\0') {
+            memcpy(pname, rest, (size_t)len);
+            pname[len] = '\0';
+            int k = mdl_instance_find_port(&leaf->inst, pname);
+            const mdl_iport *ip = k >= 0 ? mdl_instance_port_at(&leaf->inst, k) : NULL;
+            if (ip && idx >= 0 && idx < ip->dim) {
+                const bgr_element *el = bgr_element_get(mm->m, ip->p.elem);
+                int v = dot[1] == 'e' ? bgr_ev(el, mm->m, ip->p.port, idx)
+                                      : bgr_fv(el, mm->m, ip->p.port, idx);
+                if (v >= 0) return v;
+            }
+        }
     }
     char full[1024];
     int o = snprintf(full, sizeof full, "%s/%s/%s", mm->name, leaf->path, rest);
