@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "bench_util.h"
+#include "crane_setup.h"
 
 /* The outputs that enter the crane's scd. */
 static const char *const SCORED[] = {"theta",  "omega",  "tip_x",      "tip_y",  "tip_z", "load_x",
@@ -93,13 +94,6 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
     }
     bc->ext = c;
     bc->ext_free = free_crane;
-    /* the Newton settings as the crane program runs the scene */
-    dae_options so;
-    dae_options_default(&so);
-    crane_scene_solver_options(&s, &so);
-    bc->newton_dgmax = so.newton_dgmax;
-    bc->newton_jac_age = so.newton_jac_age;
-    bc->newton_index2_scale_h = so.newton_index2_scale_h;
     if (settle) {
         bg_error_clear(&err);
         int r = settle == BENCH_SETTLE_DAMPED ? crane_settle_damped(c, &err) : crane_settle(c, &err);
@@ -133,17 +127,25 @@ int bench_crane_case(bench_case *bc, const crane_scene *s0, int settle, double t
     bc->yp0 = malloc(sz);
     bc->ys = malloc(sz);
     bc->yps = malloc(sz);
-    double bk[256];
-    int nb = crane_breakpoints(c, bk, 256);
-    if (nb > 256) nb = 256;
+    /* the options as the crane program runs the scene (crane_setup.h): the Newton settings,
+     * and the breakpoints, of which the harness keeps those inside (0, tend) */
+    dae_options so;
+    double *bk = NULL;
+    int okb = crane_solver_setup(&s, c, &so, &bk, &err) == BG_OK;
+    bc->newton_dgmax = so.newton_dgmax;
+    bc->newton_jac_age = so.newton_jac_age;
+    bc->newton_index2_scale_h = so.newton_index2_scale_h;
+    int nb = so.nbreakpoints;
     bc->breakpoints = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *bc->breakpoints);
-    if (!bc->y0 || !bc->yp0 || !bc->ys || !bc->yps || !bc->breakpoints) {
+    if (!okb || !bc->y0 || !bc->yp0 || !bc->ys || !bc->yps || !bc->breakpoints) {
+        free(bk);
         snprintf(msg, msz, "out of memory");
         bench_case_free(bc);
         return BG_ERR_MEMORY;
     }
     for (int i = 0; i < nb; i++)
         if (bk[i] > 0 && bk[i] < tend) bc->breakpoints[bc->nbreakpoints++] = bk[i];
+    free(bk);
     memcpy(bc->y0, bgr_y0(m), sz);
     memcpy(bc->yp0, bgr_yp0(m), sz);
     memcpy(bc->ys, bc->y0, sz);
@@ -274,12 +276,9 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
             bench_prof pw;
             dae_problem dp;
             bench_prof_wrap(&pw, &bc.dp, &dp);
-            dae_options o;
-            dae_options_default(&o);
+            dae_options o; /* as the crane program, at 1e-6, to t_max, no breakpoints */
+            crane_solver_setup(&s, NULL, &o, NULL, NULL);
             o.rtol = o.atol = 1e-6;
-            o.exclude_alg = 1;
-            crane_scene_solver_options(&s, &o);
-            o.has_t_stop = 1;
             o.t_stop = t_max;
             o.max_steps = 10000000;
             y = malloc((size_t)bc.n * sizeof *y);

@@ -19,7 +19,7 @@
  * largest). Drift: the hinge mismatch (output constraint_drift). No reference yet (yref NULL).
  * Our stability guard off (bc->stability_guard 0): a caller that runs the crane as the crane
  * program does sets it from the scene. The Newton settings (newton_dgmax, newton_jac_age,
- * newton_index2_scale_h) as the scene states them (crane_scene_solver_options). 0, or a negative
+ * newton_index2_scale_h) as the scene states them (crane_solver_setup). 0, or a negative
  * status with the message in msg. */
 /* settle: 0 the geometric start, 1 the static start (crane_settle), BENCH_SETTLE_DAMPED the
  * damped settling run the crane started from before the static solver (crane_settle_damped) */

@@ -13,6 +13,7 @@
 
 #include "bench_crane.h"
 #include "bench_util.h"
+#include "crane_setup.h"
 
 /* the window after a corner of the reference counted as its transient */
 #define CORNER_WINDOW 0.25
@@ -69,14 +70,8 @@ static int rt_measure(const crane_scene *s0, rt_run *o)
     bench_prof pw;
     dae_problem dp;
     bench_prof_wrap(&pw, &bc.dp, &dp);
-    dae_options opt;
-    dae_options_default(&opt);
-    opt.rtol = s.rtol;
-    opt.atol = s.atol;
-    opt.exclude_alg = 1;
-    crane_scene_solver_options(&s, &opt);
-    opt.has_t_stop = 1;
-    opt.t_stop = s.t_end;
+    dae_options opt; /* as the crane program; the case's breakpoints (inside (0, t_end)) */
+    crane_solver_setup(&s, NULL, &opt, NULL, NULL);
     opt.breakpoints = bc.breakpoints;
     opt.nbreakpoints = bc.nbreakpoints;
     opt.max_steps = 10000000;

@@ -55,6 +55,7 @@
 
 #include "crane_program.h"
 #include "crane_scene.h"
+#include "pu_fs.h"
 
 static int print_scene_copy(cp_run *r, FILE *f, const void *ctx)
 {
@@ -260,7 +261,7 @@ int main(int argc, char **argv)
         return 128 + cp_signal();
     }
     char msg[CP_PATH_SIZE + 256];
-    if (cp_make_folder(r.outdir, msg, sizeof msg) != 0) {
+    if (pu_mkdir_p(r.outdir, 0777, msg, sizeof msg) != 0) {
         fprintf(stderr, "crane: cannot use the output folder %s: %s\n", r.outdir, msg);
         return CP_EXIT_RUN;
     }

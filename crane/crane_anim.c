@@ -1,5 +1,5 @@
 /* The crane's animation (crane_anim.h): anim.dat and anim_track.dat during the run, anim.gp and
- * gnuplot's crane.gif and crane_frame.png at the end. */
+ * gnuplot's crane.gif and crane_frame.png at the end (pu_gnuplot.h: no shell between). */
 #include "crane_anim.h"
 
 #include <errno.h>
@@ -7,6 +7,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+
+#include "pu_gnuplot.h"
 
 enum { A_PLATFORM, A_BOOM, A_BOOM_TRUE, A_LOAD, A_CW, A_TIE, A_ROPE };
 
@@ -140,23 +143,6 @@ int crane_anim_frame(crane_anim *a, const crane_geom *g, char *msg, size_t size)
     return 0;
 }
 
-/* Single-quoted for the shell. */
-static void shell_quote(const char *s, char *buf, size_t size)
-{
-    size_t n = 0;
-    buf[n++] = '\'';
-    for (; *s && n + 6 < size; s++) {
-        if (*s == '\'') {
-            memcpy(buf + n, "'\\''", 4);
-            n += 4;
-        } else {
-            buf[n++] = *s;
-        }
-    }
-    buf[n++] = '\'';
-    buf[n] = '\0';
-}
-
 /* The range [lo, hi] widened by a margin, at least 10 m wide. */
 static void range(FILE *f, const char *axis, double lo, double hi)
 {
@@ -261,14 +247,16 @@ int crane_anim_close(crane_anim **ap, int render, int quiet)
     if (fclose(a->track) != 0) n = -1;
     if (a->frames > 0 && write_script(a) != 0) n = -1;
     if (n > 0 && render) {
-        if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+        char exe[4200];
+        if (!pu_gnuplot_find(exe, sizeof exe)) {
             if (!quiet) printf("gnuplot not found: animation skipped (anim.gp written)\n");
         } else {
-            char q[8300], cmd[8400], log[4200];
-            shell_quote(a->dir, q, sizeof q);
-            snprintf(cmd, sizeof cmd, "cd %s && gnuplot anim.gp >/dev/null 2>anim.log", q);
+            /* gnuplot anim.gp in the folder, its messages into anim.log (pu_gnuplot.h) */
+            char log[4200], last[512];
+            pu_gnuplot_job job = {exe, a->dir, "anim.gp", NULL, "anim.log", NULL};
+            int st = pu_gnuplot_run(&job, last, sizeof last);
             snprintf(log, sizeof log, "%s/anim.log", a->dir);
-            if (system(cmd) != 0) {
+            if (st == -1 || !WIFEXITED(st) || WEXITSTATUS(st) != 0) {
                 if (!quiet) printf("gnuplot failed on the animation: see %s\n", log);
             } else {
                 remove(log); /* gnuplot's count of the frames */

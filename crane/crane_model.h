@@ -100,16 +100,6 @@ typedef struct crane_scene {
  * crane/scenes/paper.ini). */
 void crane_scene_default(crane_scene *s);
 
-/* The solver settings the scene states (stability guard, Newton matrix refresh) into o, so that
- * every program that runs a scene runs it as the crane program does. */
-static inline void crane_scene_solver_options(const crane_scene *s, dae_options *o)
-{
-    o->stability_guard = s->stability_guard;
-    o->newton_dgmax = s->newton_dgmax;
-    o->newton_jac_age = s->newton_dgmax > 0 ? s->newton_jac_age : 0; /* needs newton_dgmax */
-    o->newton_index2_scale_h = s->newton_index2_scale_h;
-}
-
 typedef struct crane crane;
 
 /* Builds and compiles the model; NULL with the reason in err. */

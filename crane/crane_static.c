@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "bgr_analysis.h"
+#include "crane_setup.h"
 
 /* ------------------------------------------------------------------ helpers ---- */
 
@@ -449,20 +450,12 @@ int crane_modes(crane *c, double T, dae_modes **out, double *yout, bg_error *err
     }
     memcpy(y, bgr_y0(m), (size_t)n * sizeof *y);
     if (T > 0) { /* the dynamic run to T, as the crane program sets it up */
-        double bk[64];
+        double *bk = NULL;
         dae_options o;
-        dae_options_default(&o);
-        o.rtol = s->rtol;
-        o.atol = s->atol;
-        o.has_t_stop = 1;
+        st = crane_solver_setup(s, c, &o, &bk, err);
         o.t_stop = T;
-        o.nbreakpoints = crane_breakpoints(c, bk, 64);
-        if (o.nbreakpoints > 64) o.nbreakpoints = 64;
-        o.breakpoints = bk;
-        o.exclude_alg = 1;
-        crane_scene_solver_options(s, &o);
         o.max_steps = 100000000;
-        dae_solver *sol = dae_create(&p, &o, err);
+        dae_solver *sol = st == BG_OK ? dae_create(&p, &o, err) : NULL;
         double tr;
         if (!sol) {
             st = err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
@@ -476,6 +469,7 @@ int crane_modes(crane *c, double T, dae_modes **out, double *yout, bg_error *err
             st = BG_OK;
         }
         dae_free(&sol);
+        free(bk);
     }
     if (st == BG_OK) {
         dae_modes_options mo;

@@ -24,15 +24,6 @@ typedef struct crane_viz_options {
     double vtk_step, anim_step, anim_scale; /* 0: the defaults above */
 } crane_viz_options;
 
-/* The options' lines of the program's --help. */
-#define CRANE_VIZ_USAGE                                                                            \
-    "  --vtk                ParaView time series: crane.pvd and vtk/frame_NNNNN.vtp\n"             \
-    "  --vtk-step DT        its frame interval in s (default 0.05; implies --vtk)\n"               \
-    "  --animate            animated GIF crane.gif (side and top view, with gnuplot)\n"            \
-    "  --anim-step DT       its frame interval in s (default 0.1; implies --animate)\n"            \
-    "  --anim-scale K       its magnification of the boom's deflection (default 10;\n"             \
-    "                       implies --animate)\n"
-
 /* Takes the option name (--vtk, --animate: value NULL; --vtk-step, --anim-step, --anim-scale: a
  * positive number). 0 taken, 1 not one of these names, -1 a bad value. */
 int crane_viz_option(crane_viz_options *o, const char *name, const char *value);

@@ -9,6 +9,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "pu_fs.h"
+
 enum { P_PLATFORM, P_BOOM, P_GANTRY, P_LOAD, P_CW, P_TIE, P_ROPE, P_FOOT };
 
 enum { MAXP = CRANE_MAX_NODES + 16, MAXC = 16, MAXCONN = CRANE_MAX_NODES + 64 };
@@ -58,8 +60,7 @@ crane_vtk *crane_vtk_open(const char *dir, const char *scene_name, char *msg, si
     }
     snprintf(v->dir, sizeof v->dir, "%s", dir);
     snprintf(path, sizeof path, "%s/vtk", dir);
-    if (mkdir(path, 0777) != 0 && errno != EEXIST) {
-        snprintf(msg, size, "cannot create %s: %s", path, strerror(errno));
+    if (pu_mkdir_p(path, 0777, msg, size) != 0) {
         free(v);
         return NULL;
     }

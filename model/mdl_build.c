@@ -14,8 +14,8 @@ static const char *kind_word(mdl_kind k)
 {
     static const char *const w[] = {"a number", "a whole number", "true or false", "a list of numbers",
                                     "a word", "an element's path", "a signal's path", "points",
-                                    "a list of names"};
-    return k >= 0 && k <= MDL_NAMES ? w[k] : "?";
+                                    "a list of names", "node ports"};
+    return k >= 0 && k <= MDL_NODE_PORTS ? w[k] : "?";
 }
 
 static void range_words(const mdl_param_def *d, char *buf, size_t size)
@@ -64,29 +64,49 @@ static int read_flag(mdl_model *mm, const mdl_y_node *n, const char *text, const
     return mdl_fail(mm, n, where, "expected true or false, got '%s'", t);
 }
 
+/* MDL_POINTS: name: {r: [x, y, z], dim}; MDL_NODE_PORTS: name: {node: k, dim} (k into r[0]) */
 static int read_points(mdl_model *mm, mdl_inode *leaf, const mdl_y_node *n, const char *where,
-                       mdl_value *v)
+                       mdl_value *v, int nodes)
 {
     if (!n || n->kind != MDL_Y_MAPPING)
-        return mdl_fail(mm, n, where, "expected a mapping name: {r: [x, y, z], dim: 6}");
+        return mdl_fail(mm, n, where, nodes ? "expected a mapping name: {node: k, dim: 6}"
+                                            : "expected a mapping name: {r: [x, y, z], dim: 6}");
     int np = mdl_y_count(n);
     v->pname = calloc((size_t)(np ? np : 1), sizeof *v->pname);
     v->pr = calloc((size_t)(np ? np : 1) * 3, sizeof *v->pr);
     v->pdim = calloc((size_t)(np ? np : 1), sizeof *v->pdim);
     if (!v->pname || !v->pr || !v->pdim) return BG_ERR_MEMORY;
-    static const char *const keys[] = {"r", "dim"};
+    static const char *const keys[] = {"r", "dim"}, *const nkeys[] = {"node", "dim"};
     for (int i = 0; i < np; i++) {
         const mdl_y_node *k = mdl_y_key(n, i), *p = mdl_y_value(n, i);
         char w[1100];
         snprintf(w, sizeof w, "%s.%s", where, k->text);
-        if (p->kind != MDL_Y_MAPPING) return mdl_fail(mm, p, w, "expected {r: [x, y, z], dim: 6 or 3}");
-        int r = mdl_check_keys(mm, p, w, keys, 2);
+        if (p->kind != MDL_Y_MAPPING)
+            return mdl_fail(mm, p, w, nodes ? "expected {node: k, dim: 6 or 3}" : "expected {r: [x, y, z], dim: 6 or 3}");
+        int r = mdl_check_keys(mm, p, w, nodes ? nkeys : keys, 2);
         if (r != BG_OK) return r;
+        for (int j = 0; j < i; j++)
+            if (!strcmp(v->pname[j], k->text)) return mdl_fail(mm, k, w, "a second port named '%s'", k->text);
         v->pname[i] = strdup(k->text);
         if (!v->pname[i]) return BG_ERR_MEMORY;
         v->npts = i + 1;
         double *vec = NULL, dim = 6;
         int len;
+        if (nodes) {
+            double node;
+            if (!mdl_y_get(p, "node")) return mdl_fail(mm, p, w, "node: missing (the node's index, from 0)");
+            if ((r = mdl_eval_number(mm, &leaf->scope, mdl_y_get(p, "node"), NULL, w, &node)) != BG_OK)
+                return r;
+            if (node != floor(node) || node < 0 || node > 1e6)
+                return mdl_fail(mm, mdl_y_get(p, "node"), w, "node: expected a node's index (0, 1, ...), got %g", node);
+            v->pr[3 * i] = node;
+            if (mdl_y_get(p, "dim") &&
+                (r = mdl_eval_number(mm, &leaf->scope, mdl_y_get(p, "dim"), NULL, w, &dim)) != BG_OK)
+                return r;
+            if (dim != 3 && dim != 6) return mdl_fail(mm, mdl_y_get(p, "dim"), w, "dim: expected 3 or 6, got %g", dim);
+            v->pdim[i] = (int)dim;
+            continue;
+        }
         if (!mdl_y_get(p, "r")) return mdl_fail(mm, p, w, "r: missing (the point in the body frame)");
         if ((r = mdl_eval_vector(mm, &leaf->scope, mdl_y_get(p, "r"), NULL, w, &vec, &len)) != BG_OK)
             return r;
@@ -272,7 +292,10 @@ static int read_param(mdl_model *mm, mdl_inode *leaf, const mdl_param_def *d, md
     case MDL_SIGNAL: return read_ref(mm, leaf, n, text, where, d, v);
     case MDL_POINTS:
         if (text) return mdl_fail(mm, at, where, "points cannot be replaced with --set");
-        return read_points(mm, leaf, n, where, v);
+        return read_points(mm, leaf, n, where, v, 0);
+    case MDL_NODE_PORTS:
+        if (text) return mdl_fail(mm, at, where, "node ports cannot be replaced with --set");
+        return read_points(mm, leaf, n, where, v, 1);
     case MDL_NAMES:
         if (text && text != d->dflt) return mdl_fail(mm, at, where, "names cannot be replaced with --set");
         return read_names(mm, n, text, at, where, v);

@@ -73,7 +73,8 @@ const char *mdl_arg_choice(const mdl_args *a, const char *name); /* MDL_CHOICE *
 int mdl_arg_element(const mdl_args *a, const char *name);
 /* MDL_SIGNAL: the unknown (bgr_ref) of the referenced signal ({BGR_OWN, -1, 0} if absent). */
 bgr_ref mdl_arg_signal(const mdl_args *a, const char *name);
-/* MDL_POINTS: how many points, and point i's name, position r[3] and dimension. */
+/* MDL_POINTS: how many points, and point i's name, position r[3] and dimension; MDL_NODE_PORTS:
+ * the same with the node's index in r[0]. */
 int mdl_arg_npoints(const mdl_args *a, const char *name);
 const char *mdl_arg_point(const mdl_args *a, const char *name, int i, double r[3], int *dim);
 /* MDL_NAMES: the names (how many into *n if n not NULL); NULL if absent. */
@@ -117,6 +118,8 @@ extern const mdl_type *const mdl_types_rot[];
 extern const int mdl_types_rot_count;
 extern const mdl_type *const mdl_types_ctl[];
 extern const int mdl_types_ctl_count;
+extern const mdl_type *const mdl_types_beam[];
+extern const int mdl_types_beam_count;
 extern const mdl_type *const mdl_types_drive[];
 extern const int mdl_types_drive_count;
 extern const mdl_type *const mdl_types_bg[];

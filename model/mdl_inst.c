@@ -68,12 +68,14 @@ bgr_ref mdl_arg_signal(const mdl_args *a, const char *name)
 int mdl_arg_npoints(const mdl_args *a, const char *name)
 {
     const mdl_value *v = val(a, name, MDL_POINTS);
+    if (!v) v = val(a, name, MDL_NODE_PORTS);
     return v ? v->npts : 0;
 }
 
 const char *mdl_arg_point(const mdl_args *a, const char *name, int i, double r[3], int *dim)
 {
     const mdl_value *v = val(a, name, MDL_POINTS);
+    if (!v) v = val(a, name, MDL_NODE_PORTS);
     if (!v || i < 0 || i >= v->npts) return NULL;
     if (r) memcpy(r, v->pr + 3 * i, 3 * sizeof *r);
     if (dim) *dim = v->pdim[i];

@@ -104,6 +104,7 @@ struct mdl_model {
     int nbonds, capbonds;
     mdl_inode **leaves;
     int nleaves, capleaves;
+    long ninstances;
     double trim_lo, trim_hi, trim_value, trim_tol; /* trim: (mdl_trim.c) */
     /* the chain of parameters being evaluated (cycle messages) */
     mdl_var *chain[64];

@@ -18,6 +18,13 @@ static const char *const sub_keys[] = {"description", "parameters", "ports", "si
 
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
+/* The most instances (components and subsystem instances) a model may have: far above any
+ * machine (a 512-element boom has about 1 000), low enough that a hostile file cannot make the
+ * reader run for minutes. The fuzz build sets a lower bound (fuzz/meson.build). */
+#ifndef MDL_MAX_INSTANCES
+#define MDL_MAX_INSTANCES 200000
+#endif
+
 static int add_doc(mdl_model *mm, mdl_y_doc *d)
 {
     if (mm->ndocs == mm->capdocs) {
@@ -284,6 +291,9 @@ static int sub_params(mdl_model *mm, mdl_inode *k)
 static int make_kid(mdl_model *mm, mdl_inode *node, const mdl_y_node *key, const mdl_y_node *entry,
                     const char *name, const char *loopvar, long loopval, int depth)
 {
+    if (++mm->ninstances > MDL_MAX_INSTANCES)
+        return mdl_fail(mm, key, node->dotpath, "more than %d instances: a model this large is "
+                        "refused", MDL_MAX_INSTANCES);
     mdl_inode *k = calloc(1, sizeof *k);
     if (!k) return BG_ERR_MEMORY;
     k->inst.main = -1;

@@ -14,7 +14,7 @@ typedef struct part {
 static const part parts[] = {
     {mdl_types_mech, &mdl_types_mech_count}, {mdl_types_hyd, &mdl_types_hyd_count},
     {mdl_types_rot, &mdl_types_rot_count},   {mdl_types_ctl, &mdl_types_ctl_count},
-    {mdl_types_drive, &mdl_types_drive_count}, {mdl_types_bg, &mdl_types_bg_count},
+    {mdl_types_beam, &mdl_types_beam_count},   {mdl_types_drive, &mdl_types_drive_count}, {mdl_types_bg, &mdl_types_bg_count},
 };
 
 int mdl_type_count(void)
@@ -63,6 +63,7 @@ static const char *kind_name(mdl_kind k)
     case MDL_SIGNAL: return "signal path";
     case MDL_POINTS: return "points";
     case MDL_NAMES: return "list of names";
+    case MDL_NODE_PORTS: return "node ports";
     }
     return "?";
 }

@@ -49,8 +49,10 @@ typedef enum mdl_kind {
     MDL_SIGNAL,  /* the path of a signal another element offers ("platform_sensor.omega") */
     MDL_POINTS,  /* a mapping name -> {r: [x, y, z], dim: 3 or 6}: named attachment points, each a
                   * port of the element (a body's points in its own frame) */
-    MDL_NAMES    /* a list of distinct words ([a, b, c]): the names of the element's ports (a
+    MDL_NAMES,   /* a list of distinct words ([a, b, c]): the names of the element's ports (a
                   * volume's, a junction's), at least one */
+    MDL_NODE_PORTS /* a mapping name -> {node: k, dim: 6 or 3}: named ports at nodes of a chain
+                    * (k from 0), each a port of the element */
 } mdl_kind;
 
 typedef enum mdl_domain {

@@ -2,8 +2,9 @@
 # Builds the libFuzzer targets with clang in build-fuzz/ (-Dfuzz=true: libFuzzer, ASan, UBSan)
 # and runs each for FUZZ_TIME seconds from a temporary copy of its seed corpus (fuzz/corpus/*),
 # so that the repository is not changed: fuzz_scene (the scene-file parser, with the dictionary
-# fuzz/scene.dict), fuzz_dae_input (the DAE solver's input validation) and fuzz_model_yaml
-# (the model files' YAML loader and expressions). Every seed is run
+# fuzz/scene.dict), fuzz_dae_input (the DAE solver's input validation), fuzz_model_yaml
+# (the model files' YAML loader and expressions) and fuzz_model (the whole model-file reader).
+# Every seed is run
 # first. Prints one TAP point per target; exit status 0 when all passed. A crashing input is
 # kept in build-fuzz/artifacts/ (add it to the corpus once the bug is fixed); the logs are in
 # build-fuzz/fuzz-<target>.log.
@@ -14,7 +15,7 @@ cd "$(dirname "$0")/.."
 B=${BUILD_FUZZ:-build-fuzz}
 T=${FUZZ_TIME:-30}
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(fuzz_scene fuzz_dae_input fuzz_model_yaml)
+[ ${#targets[@]} -eq 0 ] && targets=(fuzz_scene fuzz_dae_input fuzz_model_yaml fuzz_model)
 fail_all() { for t in "${targets[@]}"; do echo "not ok - fuzz $t: $1"; done; exit 1; }
 bash tools/install-deps.sh >&2 || fail_all "installing packages failed"
 command -v clang >/dev/null || fail_all "clang is not installed (libFuzzer)"
@@ -32,6 +33,7 @@ for t in "${targets[@]}"; do
     fuzz_scene) corpus=fuzz/corpus/scene; extra=(-dict=fuzz/scene.dict) ;;
     fuzz_dae_input) corpus=fuzz/corpus/dae; extra=() ;;
     fuzz_model_yaml) corpus=fuzz/corpus/model; extra=() ;;
+    fuzz_model) corpus=fuzz/corpus/modelfile; extra=() ;;
     *) echo "not ok - fuzz $t: unknown target"; failed=1; continue ;;
   esac
   mkdir -p "$work/$t"

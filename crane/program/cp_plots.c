@@ -1,5 +1,5 @@
 /* The crane program's figures (crane_program.h): plots.gp, the paper's Fig. 5 a-f from
- * results.csv, drawn by gnuplot (crane_gnuplot.h) and checked; modes.png for --modes. */
+ * results.csv, drawn by gnuplot (pu_gnuplot.h) and checked; modes.png for --modes. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -9,9 +9,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "crane_gnuplot.h"
 #include "crane_program.h"
 #include "crane_scene.h"
+#include "pu_gnuplot.h"
 
 /* A curve of the figures: an output column, or the difference ref - val of two (the errors,
  * when the model gives the quantities and their references only). */
@@ -130,8 +130,8 @@ static int write_plot_script(FILE *f, const crane_scene *s, double radius, doubl
  * it. Its wait status, or -1 with the reason in msg. */
 static int run_gnuplot(const cp_run *r, const char *exe, const char *script, char *msg, size_t size)
 {
-    crane_gnuplot_job job = {exe, r->outdir, script, NULL, "gnuplot.log", cp_signal_flag()};
-    return crane_gnuplot_run(&job, msg, size);
+    pu_gnuplot_job job = {exe, r->outdir, script, NULL, "gnuplot.log", cp_signal_flag()};
+    return pu_gnuplot_run(&job, msg, size);
 }
 
 int cp_draw_figures(cp_run *r)
@@ -160,7 +160,7 @@ int cp_draw_figures(cp_run *r)
         free(gp);
         return cp_write_failed(r, path, e);
     }
-    if (!crane_gnuplot_find(exe, sizeof exe)) {
+    if (!pu_gnuplot_find(exe, sizeof exe)) {
         free(gp);
         if (!r->o->quiet) printf("gnuplot not found: figures skipped (plots.gp written)\n");
         return 0;
@@ -182,13 +182,13 @@ int cp_draw_figures(cp_run *r)
             cp_path_in(r, name, fig, sizeof fig);
             if (cp_signal())
                 remove(fig);
-            else if (!crane_png_whole(fig) && ml < sizeof missing)
+            else if (!pu_png_whole(fig) && ml < sizeof missing)
                 ml += (size_t)snprintf(missing + ml, sizeof missing - ml, "%s%s", ml ? ", " : "",
                                        name);
             p = e;
         }
         char first[256];
-        crane_gnuplot_log_first(r->outdir, "gnuplot.log", 0, first, sizeof first);
+        pu_gnuplot_log_first(r->outdir, "gnuplot.log", 0, first, sizeof first);
         if (!cp_signal() && (!WIFEXITED(st) || WEXITSTATUS(st) != 0 || missing[0])) {
             snprintf(msg, sizeof msg, "gnuplot %s %d%s%s%s%s%s",
                      WIFEXITED(st) ? "exited with" : "ended by signal",
@@ -209,11 +209,11 @@ int cp_draw_figures(cp_run *r)
 int cp_draw_modes(cp_run *r)
 {
     char exe[CP_PATH_SIZE], png[CP_PATH_SIZE], why[512], first[256];
-    if (r->o->no_plots || !crane_gnuplot_find(exe, sizeof exe)) return 0;
+    if (r->o->no_plots || !pu_gnuplot_find(exe, sizeof exe)) return 0;
     int gs = run_gnuplot(r, exe, "modes.gp", why, sizeof why);
     cp_path_in(r, "modes.png", png, sizeof png);
-    if (gs == -1 || !WIFEXITED(gs) || WEXITSTATUS(gs) != 0 || !crane_png_whole(png))
+    if (gs == -1 || !WIFEXITED(gs) || WEXITSTATUS(gs) != 0 || !pu_png_whole(png))
         return cp_fail_run(r, "drawing modes.png", "gnuplot failed (see gnuplot.log)");
-    crane_gnuplot_log_first(r->outdir, "gnuplot.log", 1, first, sizeof first);
+    pu_gnuplot_log_first(r->outdir, "gnuplot.log", 1, first, sizeof first);
     return 0;
 }

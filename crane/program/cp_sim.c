@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "crane_program.h"
+#include "crane_setup.h"
 #include "crane_static.h"
 
 static void progress(cp_run *r, int tty, double *last)
@@ -192,7 +193,7 @@ int cp_simulate(cp_run *r)
     bg_error err = {0};
     int tty = isatty(STDERR_FILENO) && !o->quiet;
     double *bk = NULL, *y = NULL, *yp = NULL;
-    int code = CP_EXIT_OK, nbk = 0;
+    int code = CP_EXIT_OK;
     dae_options dopt;
     dae_options_default(&dopt);
 
@@ -213,36 +214,12 @@ int cp_simulate(cp_run *r)
         return cp_fail_run(r, "problem", bgr_model_error(m)->message);
     int n = p.n;
 
-    int cap = 64;
-    bk = malloc((size_t)cap * sizeof *bk);
     y = malloc((size_t)n * sizeof *y);
     yp = malloc((size_t)n * sizeof *yp);
-    if (!bk || !y || !yp) {
+    if (!y || !yp || crane_solver_setup(&r->scene, r->c, &dopt, &bk, &err) != BG_OK) {
         code = cp_fail_run(r, "memory", "out of memory");
         goto done;
     }
-    nbk = crane_breakpoints(r->c, bk, cap);
-    if (nbk > cap) { /* more than fit: ask again with room for all */
-        double *nb = realloc(bk, (size_t)nbk * sizeof *bk);
-        if (!nb) {
-            code = cp_fail_run(r, "memory", "out of memory");
-            goto done;
-        }
-        bk = nb;
-        cap = nbk;
-        nbk = crane_breakpoints(r->c, bk, cap);
-    }
-    if (nbk < 0) nbk = 0;
-    if (nbk > cap) nbk = cap;
-
-    dopt.rtol = r->scene.rtol;
-    dopt.atol = r->scene.atol;
-    dopt.has_t_stop = 1;
-    dopt.t_stop = r->scene.t_end;
-    dopt.breakpoints = bk;
-    dopt.nbreakpoints = nbk;
-    dopt.exclude_alg = 1;
-    crane_scene_solver_options(&r->scene, &dopt);
     bg_error_clear(&err);
     r->s = dae_create(&p, &dopt, &err);
     if (!r->s) {
@@ -355,7 +332,7 @@ done:
         !strcmp(r->status, "completed"))
         code = cp_fail_run(r, "writing the ParaView series or the animation", "see above");
     if (r->s) {
-        solver_stats_ctx ctx = {&dopt, nbk, bk};
+        solver_stats_ctx ctx = {&dopt, dopt.nbreakpoints, bk};
         if (cp_save_file(r, "solver_stats.txt", print_solver_stats, &ctx) != 0) code = CP_EXIT_RUN;
     }
     free(bk);

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "crane_program.h"
+#include "pu_fs.h"
 
 /* ------------------------------------------------------------------ signals ---- */
 
@@ -36,22 +37,6 @@ const char *cp_signal_name(int sig)
                             : "signal";
 }
 
-/* write(2) until all is written; 0, or -1 with errno (EIO for a write of nothing). */
-static int write_all(int fd, const char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) {
-            if (w == 0) errno = EIO;
-            return -1;
-        }
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
 static void on_signal(int sig)
 {
     int saved = errno, second = g_signal != 0;
@@ -66,16 +51,17 @@ static void on_signal(int sig)
         const char *name = cp_signal_name(sig);
         int fd = open(g_signal_tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
         if (fd >= 0) {
-            int bad = write_all(fd, g_pre[k], g_pre_len[k]) || write_all(fd, name, strlen(name)) ||
-                      write_all(fd, g_post[k], g_post_len[k]) || fsync(fd) != 0;
+            int bad = pu_write_all(fd, g_pre[k], g_pre_len[k]) ||
+                      pu_write_all(fd, name, strlen(name)) ||
+                      pu_write_all(fd, g_post[k], g_post_len[k]) || fsync(fd) != 0;
             if (close(fd) != 0) bad = 1;
             if (bad || rename(g_signal_tmp, g_status_path) != 0) unlink(g_signal_tmp);
         }
     }
     static const char note[] = " received: stopped at once\n";
-    if (write_all(STDERR_FILENO, "crane: ", 7) == 0 &&
-        write_all(STDERR_FILENO, cp_signal_name(sig), strlen(cp_signal_name(sig))) == 0 &&
-        write_all(STDERR_FILENO, note, sizeof note - 1) == 0) {
+    if (pu_write_all(STDERR_FILENO, "crane: ", 7) == 0 &&
+        pu_write_all(STDERR_FILENO, cp_signal_name(sig), strlen(cp_signal_name(sig))) == 0 &&
+        pu_write_all(STDERR_FILENO, note, sizeof note - 1) == 0) {
     }
     _exit(128 + sig);
 }
@@ -178,23 +164,14 @@ int cp_write_failed(cp_run *r, const char *path, int e)
 int cp_save_atomic(const char *path, const char *text, size_t len)
 {
     char tmp[CP_PATH_SIZE];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) {
-        errno = ENAMETOOLONG;
-        return -1;
-    }
+    if (pu_atomic_temp_name(path, tmp, sizeof tmp) != 0) return -1;
     g_temp_live = 0;
     memcpy(g_temp_path, tmp, strlen(tmp) + 1);
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return -1;
-    g_temp_live = 1;
-    int e = 0;
-    if (write_all(fd, text, len) != 0 || fsync(fd) != 0) e = errno;
-    if (close(fd) != 0 && !e) e = errno;
-    if (!e && rename(tmp, path) != 0) e = errno;
-    if (e) unlink(tmp);
+    g_temp_live = 1; /* from here the handler removes it (perhaps before it exists) */
+    int rc = pu_write_atomic_via(path, tmp, text, len), e = errno;
     g_temp_live = 0;
     errno = e;
-    return e ? -1 : 0;
+    return rc;
 }
 
 /* Writes DIR/name, atomically, from what print prints (into memory: print returns 0, or -1 on

@@ -1,12 +1,13 @@
 /* The crane program's parts (private to the program: crane/crane.c and crane/program/cp_*.c,
  * prefix cp_). crane.c has the program's contract (files, signals, exit statuses); here:
  *
- *   cp_cli.c     the command line (--help text, options, --set overrides), the scene's file
+ *   cp_cli.c     the command line (options' table for pu_cli.h, --set overrides), the scene's
+ *                file
  *   cp_status.c  the signal handler, status.txt (prepared for a signal, written atomically),
  *                failures, the atomic writes of the small files, the output folder's paths
  *   cp_csv.c     results.csv: rows formatted into a buffer, written whole
  *   cp_fmt.c     its numbers as printf's %.12g writes them, without printf
- *   cp_plots.c   plots.gp and the figures of Fig. 5, modes.png (gnuplot, crane_gnuplot.h)
+ *   cp_plots.c   plots.gp and the figures of Fig. 5, modes.png (gnuplot, pu_gnuplot.h)
  *   cp_sim.c     the dynamic run (the loop over the output times), --static and --modes, the
  *                statistics files and the summary
  *   cp_errest.c  --error-estimate: the companion run (crane_errest.h) and error_estimate.csv */
@@ -69,8 +70,6 @@ int cp_parse_args(int argc, char **argv, cp_options *o);
  * no regular file (its path and what it is). */
 int cp_find_scene(const char *arg, char *path, size_t size, char *tried, size_t tsize, char *odd,
                   size_t osize);
-/* Creates the folder dir and its parents. 0, or -1 with the reason in msg. */
-int cp_make_folder(const char *dir, char *msg, size_t size);
 
 /* ------------------------------------------------------------------ the run ---- */
 
@@ -119,7 +118,7 @@ enum { CP_PHASE_OTHER = 0, CP_PHASE_SETUP = 1, CP_PHASE_LOOP = 2 };
 /* The handler for SIGINT, SIGTERM and SIGHUP, and SIGPIPE ignored. */
 void cp_signals_install(void);
 /* The first signal received (0: none), and the flag itself for crane_errest_spec.stop and
- * crane_gnuplot_job.stop. */
+ * pu_gnuplot_job.stop. */
 int cp_signal(void);
 const volatile sig_atomic_t *cp_signal_flag(void);
 const char *cp_signal_name(int sig);

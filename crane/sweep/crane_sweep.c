@@ -43,6 +43,8 @@
 #endif
 
 #include "crane_scene.h"
+#include "pu_cli.h"
+#include "pu_fs.h"
 #include "sweep_engine.h"
 #include "sweep_plot.h"
 #include "sweep_row.h"
@@ -70,38 +72,6 @@ static const char *signal_name(int sig)
                             : "signal";
 }
 
-static const char *USAGE =
-    "usage: crane-sweep SWEEP.ini [options]\n"
-    "\n"
-    "Runs the crane program once per case of the sweep file (a base scene, fixed keys, axes:\n"
-    "a key with a list of values, a range, or a Latin-hypercube sample; the summary quantities)\n"
-    "and gathers one row per case into sweep.csv, with a picture per quantity for 1-D and 2-D\n"
-    "sweeps. The format: crane/sweep/sweep_spec.h and README.md (Parameter sweeps).\n"
-    "\n"
-    "options (a value may also be given as --option=VALUE):\n"
-    "  --out DIR          output folder (default results/sweeps/<sweep name>/)\n"
-    "  --jobs N           cases at a time (default: the number of processors, at most 64;\n"
-    "                     under MPI per rank, default 1)\n"
-    "  --resume           keep the cases whose folder holds a completed run of the same scene,\n"
-    "                     run the rest\n"
-    "  --time-limit S     wall time per case in s (0: none; default [sweep] time_limit): the case\n"
-    "                     then gets SIGTERM, 5 s later SIGKILL, and is recorded as timeout\n"
-    "  --crane PATH       the crane program (default: next to crane-sweep, then the build's)\n"
-    "  --engine E         auto (default: MPI when started by mpirun or srun), local or mpi\n"
-    "  --no-plots         no pictures\n"
-    "  --list             print the cases and exit (nothing is run or written)\n"
-    "  --quiet            no line per case\n"
-    "  --help, --version\n"
-    "\n"
-    "files in DIR: status.txt (running, then completed, interrupted or failed), sweep.ini (the\n"
-    "sweep file as run), sweep.csv (case, the swept keys, status, message, t_reached, the\n"
-    "quantities), cases/NNNN/ (the crane's files, crane.log, case.txt), plot.dat, plots.gp,\n"
-    "plot_<quantity>.png.\n"
-    "case statuses: completed, failed, invalid (the crane refused the case's scene), timeout,\n"
-    "crashed, interrupted, not_run.\n"
-    "exit status: 0 every case completed, 1 a case did not complete or a file could not be\n"
-    "written, 2 bad command line or sweep file, 128 + N interrupted by signal N.\n";
-
 typedef struct options {
     const char *sweep, *out, *crane, *engine;
     int jobs, resume, no_plots, list, quiet;
@@ -128,109 +98,93 @@ usage_error(const char *fmt, ...)
     return EXIT_USAGE;
 }
 
+#define AT(m) PU_CLI_AT(options, m)
+#define STR_(x) #x
+#define STR(x) STR_(x)
+
+/* clang-format off: one option per entry, its fields in the order of pu_cli_option */
+static const pu_cli_option OPTIONS[] = {
+    {.name = "--out", .kind = PU_CLI_STRING, .arg = "DIR", .at = AT(out),
+     .help = "output folder (default results/sweeps/<sweep name>/)"},
+    {.name = "--jobs", .alias = "-j", .kind = PU_CLI_INT, .arg = "N", .at = AT(jobs), .min = 1,
+     .max = SWEEP_MAX_JOBS, .what = "an integer in 1.." STR(SWEEP_MAX_JOBS),
+     .help = "cases at a time (default: the number of processors, at most 64; under MPI per "
+             "rank, default 1)"},
+    {.name = "--resume", .kind = PU_CLI_FLAG, .at = AT(resume),
+     .help = "keep the cases whose folder holds a completed run of the same scene, run the "
+             "rest"},
+    {.name = "--time-limit", .kind = PU_CLI_DOUBLE, .arg = "S", .at = AT(time_limit), .min = 0,
+     .max = HUGE_VAL, .what = "a number of seconds >= 0",
+     .help = "wall time per case in s (0: none; default [sweep] time_limit): the case then gets "
+             "SIGTERM, 5 s later SIGKILL, and is recorded as timeout"},
+    {.name = "--crane", .kind = PU_CLI_STRING, .arg = "PATH", .at = AT(crane),
+     .help = "the crane program (default: next to crane-sweep, then the build's)"},
+    {.name = "--engine", .kind = PU_CLI_CHOICE, .arg = "E", .at = AT(engine),
+     .choices = "auto|local|mpi", .what = "auto, local or mpi",
+     .help = "auto (default: MPI when started by mpirun or srun), local or mpi"},
+    {.name = "--no-plots", .kind = PU_CLI_FLAG, .at = AT(no_plots), .help = "no pictures"},
+    {.name = "--list", .kind = PU_CLI_FLAG, .at = AT(list),
+     .help = "print the cases and exit (nothing is run or written)"},
+    {.name = "--quiet", .alias = "-q", .kind = PU_CLI_FLAG, .at = AT(quiet),
+     .help = "no line per case"},
+    {.name = "--help", .alias = "-h", .kind = PU_CLI_STOP, .help = "this text"},
+    {.name = "--version", .alias = "-V", .kind = PU_CLI_STOP, .help = "the program's version"},
+};
+
+static const pu_cli CLI = {
+    .program = "crane-sweep",
+    .usage = "SWEEP.ini [options]",
+    .intro =
+        "Runs the crane program once per case of the sweep file (a base scene, fixed keys, axes:\n"
+        "a key with a list of values, a range, or a Latin-hypercube sample; the summary "
+        "quantities)\n"
+        "and gathers one row per case into sweep.csv, with a picture per quantity for 1-D and 2-D\n"
+        "sweeps. The format: crane/sweep/sweep_spec.h and README.md (Parameter sweeps).\n",
+    .options_title = "options (a value may also be given as --option=VALUE):",
+    .epilogue =
+        "files in DIR: status.txt (running, then completed, interrupted or failed), sweep.ini "
+        "(the\n"
+        "sweep file as run), sweep.csv (case, the swept keys, status, message, t_reached, the\n"
+        "quantities), cases/NNNN/ (the crane's files, crane.log, case.txt), plot.dat, plots.gp,\n"
+        "plot_<quantity>.png.\n"
+        "case statuses: completed, failed, invalid (the crane refused the case's scene), timeout,\n"
+        "crashed, interrupted, not_run.\n"
+        "exit status: 0 every case completed, 1 a case did not complete or a file could not be\n"
+        "written, 2 bad command line or sweep file, 128 + N interrupted by signal N.\n",
+    .options = OPTIONS,
+    .noptions = (int)(sizeof OPTIONS / sizeof *OPTIONS),
+    .positional = AT(sweep),
+    .positional_many = "more than one sweep file given ('%s' and '%s')",
+    .suggest = 1,
+    .column = 21,
+    .width = 92,
+};
+/* clang-format on */
+
 static int parse_args(int argc, char **argv, options *o)
 {
-    static const char *valued[] = {"--out", "--jobs", "--time-limit", "--crane", "--engine"};
-    static const char *flags[] = {"--resume", "--no-plots", "--list",
-                                  "--quiet",  "--help",     "--version"};
-    const int nvalued = 5, nflags = 6;
     memset(o, 0, sizeof *o);
     o->time_limit = -1;
     o->engine = "auto";
     o->argc = argc;
     o->argv = argv;
-    int positional_only = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (positional_only || a[0] != '-' || !strcmp(a, "-")) {
-            if (o->sweep)
-                return usage_error("more than one sweep file given ('%s' and '%s')", o->sweep, a);
-            o->sweep = a;
-            continue;
+    const pu_cli_option *stop;
+    char msg[512];
+    int rc = pu_cli_parse(&CLI, argc, argv, o, &stop, msg, sizeof msg);
+    if (rc == PU_CLI_ERROR) return usage_error("%s", msg);
+    if (rc == PU_CLI_STOPPED && !strcmp(stop->name, "--help")) {
+        char *text = pu_cli_help(&CLI);
+        if (!text) {
+            if (g_print) fprintf(stderr, "crane-sweep: out of memory\n");
+            return EXIT_RUN;
         }
-        if (!strcmp(a, "--")) {
-            positional_only = 1;
-            continue;
-        }
-        if (!strcmp(a, "-h")) a = "--help";
-        if (!strcmp(a, "-q")) a = "--quiet";
-        if (!strcmp(a, "-V")) a = "--version";
-        if (!strcmp(a, "-j")) a = "--jobs";
-        char name[64];
-        const char *eq = strchr(a, '='), *value = NULL;
-        size_t n = eq ? (size_t)(eq - a) : strlen(a);
-        if (n >= sizeof name) return usage_error("unknown option '%.40s...'", a);
-        memcpy(name, a, n);
-        name[n] = '\0';
-        int found = 0;
-        for (int k = 0; k < nflags && !found; k++)
-            if (!strcmp(name, flags[k])) {
-                found = 1;
-                if (eq) return usage_error("option %s takes no value (got '%s')", name, eq + 1);
-                if (k == 0) o->resume = 1;
-                if (k == 1) o->no_plots = 1;
-                if (k == 2) o->list = 1;
-                if (k == 3) o->quiet = 1;
-                if (k == 4) {
-                    if (g_print) fputs(USAGE, stdout);
-                    return EXIT_OK;
-                }
-                if (k == 5) {
-                    if (g_print) printf("crane-sweep (bgdae) %s\n", CRANE_VERSION);
-                    return EXIT_OK;
-                }
-            }
-        for (int k = 0; k < nvalued && !found; k++) {
-            if (strcmp(name, valued[k])) continue;
-            found = 1;
-            if (eq)
-                value = eq + 1;
-            else if (i + 1 < argc)
-                value = argv[++i];
-            else
-                return usage_error("option %s needs a value", name);
-            if (!*value) return usage_error("option %s needs a value (got '')", name);
-            if (!eq && !strncmp(value, "--", 2))
-                return usage_error("option %s needs a value (got the option '%s')", name, value);
-            if (k == 0) o->out = value;
-            if (k == 3) o->crane = value;
-            if (k == 1) {
-                char *end;
-                errno = 0;
-                long v = strtol(value, &end, 10);
-                if (strspn(value, "0123456789") != strlen(value) || *end || errno || v < 1 ||
-                    v > SWEEP_MAX_JOBS)
-                    return usage_error("option --jobs needs an integer in 1..%d (got '%s')",
-                                       SWEEP_MAX_JOBS, value);
-                o->jobs = (int)v;
-            }
-            if (k == 2) {
-                char *end;
-                double v = strtod(value, &end);
-                if (strspn(value, "0123456789.eE+-") != strlen(value) || *end || !isfinite(v) ||
-                    v < 0)
-                    return usage_error("option --time-limit needs a number of seconds >= 0 (got "
-                                       "'%s')",
-                                       value);
-                o->time_limit = v;
-            }
-            if (k == 4) {
-                if (strcmp(value, "auto") && strcmp(value, "local") && strcmp(value, "mpi"))
-                    return usage_error("option --engine needs auto, local or mpi (got '%s')",
-                                       value);
-                o->engine = value;
-            }
-        }
-        if (!found) {
-            const char *best = NULL;
-            int bd = 1 << 30;
-            for (int k = 0; k < nvalued + nflags; k++) {
-                const char *cand = k < nvalued ? valued[k] : flags[k - nvalued];
-                int d = crane_scene_edit_distance(name, cand);
-                if (d < bd) bd = d, best = cand;
-            }
-            return usage_error("unknown option '%s'; did you mean %s?", name, best);
-        }
+        if (g_print) fputs(text, stdout);
+        free(text);
+        return EXIT_OK;
+    }
+    if (rc == PU_CLI_STOPPED) { /* --version */
+        if (g_print) printf("crane-sweep (bgdae) %s\n", CRANE_VERSION);
+        return EXIT_OK;
     }
     if (!o->sweep) return usage_error("no sweep file given (e.g. crane/sweeps/pid-kp-kd.ini)");
     return -1;
@@ -384,7 +338,7 @@ static int write_status(sweep_state *st, int final)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/status.txt", r->outdir);
-    int rc = sweep_save_atomic(path, buf, len);
+    int rc = pu_write_atomic(path, buf, len);
     int e = errno;
     free(buf);
     if (rc) fprintf(stderr, "crane-sweep: cannot write %s: %s\n", path, strerror(e));
@@ -475,7 +429,7 @@ static int write_final_csv(sweep_run *r, char *msg, size_t size)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/sweep.csv", r->outdir);
-    int rc = sweep_save_atomic(path, buf, len);
+    int rc = pu_write_atomic(path, buf, len);
     if (rc) snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
     free(buf);
     return rc;
@@ -488,7 +442,7 @@ static int prepare(sweep_state *st)
     sweep_run *r = st->run;
     const sweep_spec *s = st->spec;
     char msg[SWEEP_PATH_SIZE + 256], path[SWEEP_PATH_SIZE + 32];
-    if (sweep_make_folder(r->outdir, msg, sizeof msg) != 0) {
+    if (pu_mkdir_p(r->outdir, 0777, msg, sizeof msg) != 0) {
         fprintf(stderr, "crane-sweep: cannot use the output folder %s: %s\n", r->outdir, msg);
         return EXIT_RUN;
     }
@@ -508,12 +462,12 @@ static int prepare(sweep_state *st)
     }
     if (write_status(st, 0) != 0) return EXIT_RUN;
     snprintf(path, sizeof path, "%s/sweep.ini", r->outdir);
-    if (sweep_save_atomic(path, s->text ? s->text : "", s->text ? s->text_len : 0) != 0) {
+    if (pu_write_atomic(path, s->text ? s->text : "", s->text ? s->text_len : 0) != 0) {
         fprintf(stderr, "crane-sweep: cannot write %s: %s\n", path, strerror(errno));
         return EXIT_RUN;
     }
     snprintf(path, sizeof path, "%s/cases", r->outdir);
-    if (sweep_make_folder(path, msg, sizeof msg) != 0) {
+    if (pu_mkdir_p(path, 0777, msg, sizeof msg) != 0) {
         fprintf(stderr, "crane-sweep: cannot create %s: %s\n", path, msg);
         return EXIT_RUN;
     }

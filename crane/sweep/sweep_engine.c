@@ -12,75 +12,7 @@
 #include <unistd.h>
 
 #include "crane_scene.h"
-
-int sweep_save_atomic(const char *path, const char *text, size_t len)
-{
-    char tmp[SWEEP_DIR_SIZE + 64];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return -1;
-    size_t done = 0;
-    while (done < len) {
-        ssize_t w = write(fd, text + done, len - done);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) {
-            int e = w == 0 ? EIO : errno;
-            close(fd);
-            unlink(tmp);
-            errno = e;
-            return -1;
-        }
-        done += (size_t)w;
-    }
-    if (fsync(fd) != 0) {
-        int e = errno;
-        close(fd);
-        unlink(tmp);
-        errno = e;
-        return -1;
-    }
-    if (close(fd) != 0 || rename(tmp, path) != 0) {
-        int e = errno;
-        unlink(tmp);
-        errno = e;
-        return -1;
-    }
-    return 0;
-}
-
-int sweep_make_folder(const char *dir, char *msg, size_t size)
-{
-    char buf[SWEEP_PATH_SIZE];
-    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
-        snprintf(msg, size, "the name is too long");
-        return -1;
-    }
-    size_t n = strlen(buf);
-    for (size_t i = 1; i <= n; i++) {
-        if (buf[i] != '/' && buf[i] != '\0') continue;
-        if (buf[i - 1] == '/') continue;
-        char keep = buf[i];
-        buf[i] = '\0';
-        struct stat st;
-        if (stat(buf, &st) != 0) {
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
-                snprintf(msg, size, "cannot create %s: %s", buf, strerror(errno));
-                return -1;
-            }
-            if (stat(buf, &st) != 0) {
-                snprintf(msg, size, "cannot create %s: %s", buf, strerror(errno));
-                return -1;
-            }
-        }
-        if (!S_ISDIR(st.st_mode)) {
-            snprintf(msg, size, "%s is %s, not a folder", buf,
-                     crane_file_kind((unsigned)st.st_mode));
-            return -1;
-        }
-        buf[i] = keep;
-    }
-    return 0;
-}
+#include "pu_fs.h"
 
 void sweep_case_dir(const sweep_run *r, long index, char *buf, size_t size)
 {
@@ -134,7 +66,7 @@ static void write_case_txt(const sweep_run *r, long index, const char *dir, cons
     if (fclose(f) == 0) {
         char path[SWEEP_DIR_SIZE + 16];
         snprintf(path, sizeof path, "%s/case.txt", dir);
-        sweep_save_atomic(path, buf, len); /* a record: its failure is not the case's */
+        pu_write_atomic(path, buf, len); /* a record: its failure is not the case's */
     }
     free(buf);
 }
@@ -161,7 +93,7 @@ int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
     memset(p, 0, sizeof *p);
     p->index = index;
     snprintf(p->dir, sizeof p->dir, "%s", dir);
-    if (sweep_make_folder(dir, msg, sizeof msg) != 0) {
+    if (pu_mkdir_p(dir, 0777, msg, sizeof msg) != 0) {
         p->out.errno_start = errno ? errno : EIO;
         return -1;
     }

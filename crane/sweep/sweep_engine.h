@@ -63,9 +63,4 @@ void sweep_engine_local(sweep_run *r);
 void sweep_engine_mpi(sweep_run *r);
 #endif
 
-/* Writes text to path atomically (path.tmp, fsync, rename). 0, or -1 with errno. */
-int sweep_save_atomic(const char *path, const char *text, size_t len);
-/* Creates dir and its parents. 0, or -1 with the reason in msg. */
-int sweep_make_folder(const char *dir, char *msg, size_t size);
-
 #endif

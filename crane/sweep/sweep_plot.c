@@ -9,8 +9,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "crane_gnuplot.h"
 #include "crane_scene.h"
+#include "pu_fs.h"
+#include "pu_gnuplot.h"
 #include "sweep_engine.h"
 
 static int numeric(const sweep_param *p)
@@ -143,7 +144,7 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
         return -1;
     }
     snprintf(path, sizeof path, "%s/plot.dat", outdir);
-    if (sweep_save_atomic(path, dat, dlen) != 0) {
+    if (pu_write_atomic(path, dat, dlen) != 0) {
         snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
         free(dat);
         free(has);
@@ -218,14 +219,14 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
         return -1;
     }
     snprintf(path, sizeof path, "%s/plots.gp", outdir);
-    int rc = sweep_save_atomic(path, gp, glen);
+    int rc = pu_write_atomic(path, gp, glen);
     free(gp);
     if (rc != 0) {
         snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
         return -1;
     }
     char exe[SWEEP_PATH_SIZE];
-    if (!crane_gnuplot_find(exe, sizeof exe)) {
+    if (!pu_gnuplot_find(exe, sizeof exe)) {
         snprintf(msg, size, "gnuplot not found: pictures skipped (plots.gp written)");
         return 0;
     }
@@ -233,22 +234,22 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
         snprintf(path, sizeof path, "%s/%s", outdir, names[i]);
         unlink(path);
     }
-    /* gnuplot plots.gp in the output folder (crane_gnuplot.h: started as the cases are, by
+    /* gnuplot plots.gp in the output folder (pu_gnuplot.h: started as the cases are, by
      * posix_spawn: an MPI rank does not fork), its messages into gnuplot.log */
-    crane_gnuplot_job job = {exe, outdir, "plots.gp", NULL, "gnuplot.log", NULL};
-    int st = crane_gnuplot_run(&job, msg, size);
+    pu_gnuplot_job job = {exe, outdir, "plots.gp", NULL, "gnuplot.log", NULL};
+    int st = pu_gnuplot_run(&job, msg, size);
     if (st == -1) return -1;
     char missing[512] = "", first[256] = "";
     size_t ml = 0;
     for (int i = 0; i < nnames; i++) {
         snprintf(path, sizeof path, "%s/%s", outdir, names[i]);
-        if (crane_png_whole(path))
+        if (pu_png_whole(path))
             (*nfig)++;
         else if (ml < sizeof missing)
             ml += (size_t)snprintf(missing + ml, sizeof missing - ml, "%s%s", ml ? ", " : "",
                                    names[i]);
     }
-    crane_gnuplot_log_first(outdir, "gnuplot.log", 1, first, sizeof first);
+    pu_gnuplot_log_first(outdir, "gnuplot.log", 1, first, sizeof first);
     if (!WIFEXITED(st) || WEXITSTATUS(st) != 0 || missing[0]) {
         snprintf(msg, size, "gnuplot %s %d%s%s%s%s%s",
                  WIFEXITED(st) ? "exited with" : "ended by signal",

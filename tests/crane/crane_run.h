@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "crane_model.h"
+#include "crane_setup.h"
 #include "tap.h"
 
 static const double PI = 3.14159265358979323846;
@@ -40,6 +41,7 @@ typedef struct run {
     int n;
     double *y, *yp, out[CRANE_NOUT];
     double pmin, pmax; /* line pressures over the steps of step_past */
+    double *bp;        /* the breakpoints (crane_solver_setup), owned */
 } run;
 
 static inline int start_tol(run *r, const crane_scene *sc, int settle, double tol)
@@ -56,18 +58,18 @@ static inline int start_tol(run *r, const crane_scene *sc, int settle, double to
         return -1;
     }
     bgr_model *m = crane_model(r->c);
-    static double bp[32];
     dae_problem p;
     dae_options o;
     crane_dae_problem(r->c, &p); /* the scene's tolerance convention, as the program */
-    dae_options_default(&o);
+    /* the options as the program (crane_setup.h), at the tolerance tol */
+    if (crane_solver_setup(sc, r->c, &o, &r->bp, &err) != BG_OK) {
+        tap_diag("setup: %s", err.message);
+        return -1;
+    }
     o.rtol = tol;
     o.atol = tol;
-    o.exclude_alg = 1; /* as the crane program: forces follow the states they are functions of */
-    crane_scene_solver_options(sc, &o); /* the guard and the Newton settings, as the program */
+    o.has_t_stop = 0; /* the tests step on past the scene's t_end */
     o.max_steps = 1000000;
-    o.nbreakpoints = crane_breakpoints(r->c, bp, 32);
-    o.breakpoints = bp;
     r->n = bgr_n(m);
     r->y = calloc(2 * (size_t)r->n, sizeof(double));
     r->yp = r->y + r->n;
@@ -128,6 +130,8 @@ static inline void finish(run *r)
 {
     dae_free(&r->s);
     free(r->y);
+    free(r->bp);
+    r->bp = NULL;
     crane_free(&r->c);
 }
 

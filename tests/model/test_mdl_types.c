@@ -117,6 +117,7 @@ static int default_ok(const mdl_param_def *p, char *why, size_t size)
     case MDL_ELEMENT:
     case MDL_SIGNAL:
     case MDL_POINTS:
+    case MDL_NODE_PORTS:
         return snprintf(why, size, "a %d-kind parameter has no default", (int)p->kind), 0;
     }
     return 0;
@@ -125,7 +126,9 @@ static int default_ok(const mdl_param_def *p, char *why, size_t size)
 static int names_param(const mdl_type *t)
 {
     for (int i = 0; i < t->nparams; i++)
-        if (t->params[i].kind == MDL_POINTS || t->params[i].kind == MDL_NAMES) return i;
+        if (t->params[i].kind == MDL_POINTS || t->params[i].kind == MDL_NAMES ||
+            t->params[i].kind == MDL_NODE_PORTS)
+            return i;
     return -1;
 }
 
@@ -143,7 +146,7 @@ static void check_table(const mdl_type *t)
         for (int j = 0; j < i; j++)
             if (!strcmp(t->params[j].name, p->name))
                 ok = 0, snprintf(why, sizeof why, "%s twice", p->name);
-        if (ok && !(p->kind >= MDL_NUMBER && p->kind <= MDL_NAMES))
+        if (ok && !(p->kind >= MDL_NUMBER && p->kind <= MDL_NODE_PORTS))
             ok = 0, snprintf(why, sizeof why, "%s: kind %d", p->name, (int)p->kind);
         if (ok && (!p->unit || !p->meaning || !*p->meaning))
             ok = 0, snprintf(why, sizeof why, "%s: unit or meaning missing", p->name);
@@ -168,7 +171,7 @@ static void check_table(const mdl_type *t)
         if (ok && p->dim != 0 && p->dim != 1 && p->dim != 3 && p->dim != 6)
             ok = 0, snprintf(why, sizeof why, "%s: dim %d", p->name, p->dim);
         int np = names_param(t);
-        int points = np >= 0 && t->params[np].kind == MDL_POINTS;
+        int points = np >= 0 && (t->params[np].kind == MDL_POINTS || t->params[np].kind == MDL_NODE_PORTS);
         if (ok && p->dim == 0 && !(!strcmp(p->name, "*") && points)) {
             const mdl_param_def *d = mdl_type_param(t, "dim");
             if (!d || d->kind != MDL_INTEGER)

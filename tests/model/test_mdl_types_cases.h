@@ -55,6 +55,14 @@ static const build_case builds[] = {
      "b: {type: mech.body, mass: 1, " BODY_INERTIA
      ", points: {a: {r: [0, 0, 0]}}}; f: {type: mech.free}",
      "b.a -> f.p", 2, ""},
+    /* 4 elements: 5 node bodies of 13 states, each with one equation per port component: the 8
+     * ports to the elements (6 each) and the foot (6) and the tip (3); 4 elements of 12 (6 at
+     * each end): 65 + 48 + 9 + 48 = 170 */
+    {"mech.beam_chain",
+     "elements: 4, start: [0, 0, 0], end: [2, 0, 0], E: 2e11, G: 8e10, A: 1e-3, Iy: 1e-6, "
+     "Iz: 2e-6, J: 1e-6, rho: 7850, ports: {foot: {node: 0}, tip: {node: 4, dim: 3}}",
+     "s: {type: mech.support}; f: {type: mech.free, dim: 3}", "s.p -> dut.foot; dut.tip -> f.p",
+     170, ""},
     {"mech.free", "dim: 3", "s: {type: mech.support, dim: 3}", "s.p -> dut.p", 3, ""},
     /* the linear drive */
     {"hyd.cylinder",

@@ -1,6 +1,6 @@
-/* gnuplot for the crane's programs (crane_gnuplot.h). */
+/* gnuplot for the programs (pu_gnuplot.h). */
 #define _GNU_SOURCE /* posix_spawn_file_actions_addchdir_np (glibc 2.29) */
-#include "crane_gnuplot.h"
+#include "pu_gnuplot.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -17,7 +17,7 @@
 
 extern char **environ;
 
-int crane_gnuplot_find(char *buf, size_t size)
+int pu_gnuplot_find(char *buf, size_t size)
 {
     const char *path = getenv("PATH");
     if (!path || !*path) path = "/usr/local/bin:/usr/bin:/bin";
@@ -34,7 +34,7 @@ int crane_gnuplot_find(char *buf, size_t size)
     }
 }
 
-int crane_png_whole(const char *path)
+int pu_png_whole(const char *path)
 {
     static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
     unsigned char tail[12];
@@ -46,8 +46,8 @@ int crane_png_whole(const char *path)
     return ok;
 }
 
-void crane_gnuplot_log_first(const char *dir, const char *log, int remove_empty, char *buf,
-                             size_t size)
+void pu_gnuplot_log_first(const char *dir, const char *log, int remove_empty, char *buf,
+                          size_t size)
 {
     char path[4200];
     buf[0] = '\0';
@@ -62,13 +62,12 @@ void crane_gnuplot_log_first(const char *dir, const char *log, int remove_empty,
 
 /* Starts gnuplot with argv in job->dir, standard input and output /dev/null, standard error
  * onto err_fd (the pipe's end for writing, or -1: dir/log). *pid, or an errno value. */
-static int spawn(const crane_gnuplot_job *job, char *const *argv, int err_fd, int close_fd,
-                 pid_t *pid)
+static int spawn(const pu_gnuplot_job *job, char *const *argv, int err_fd, int close_fd, pid_t *pid)
 {
     char logp[4200];
     if (err_fd < 0 && snprintf(logp, sizeof logp, "%s/%s", job->dir, job->log) >= (int)sizeof logp)
         return ENAMETOOLONG;
-#ifdef CRANE_HAVE_ADDCHDIR
+#ifdef PU_HAVE_ADDCHDIR
     posix_spawn_file_actions_t fa;
     posix_spawnattr_t at;
     sigset_t none, dfl;
@@ -141,7 +140,7 @@ static void pause_20ms(void)
     nanosleep(&ts, NULL);
 }
 
-int crane_gnuplot_run(const crane_gnuplot_job *job, char *msg, size_t size)
+int pu_gnuplot_run(const pu_gnuplot_job *job, char *msg, size_t size)
 {
     if (size > 0) msg[0] = '\0';
     if (!job || !job->exe || !job->dir || (!job->script && !job->commands)) {
