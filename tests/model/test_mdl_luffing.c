@@ -153,8 +153,8 @@ static int element(bgr_model *m, const char *name)
     return -1;
 }
 
-/* The static start at the file's angle (with the replacements sets). The static solver's first
- * pseudo-time step is 1e-2 s: see the tutorial (docs/tutorial-luffing-boom.md, "Static"). */
+/* The static start at the file's angle (with the replacements sets), the default options: the
+ * sources' place() start the supply, the tank and the reference at their values at t = 0. */
 static mdl_model *at_rest(const mdl_set *sets, int nsets, const char *what)
 {
     bg_error e = {0};
@@ -162,11 +162,9 @@ static mdl_model *at_rest(const mdl_set *sets, int nsets, const char *what)
     mdl_model *mm = mdl_load(PATH, sets, nsets, &e);
     tap_ok(mm != NULL, "%s: loads (%s)", what, mm ? "ok" : e.message);
     if (!mm) return NULL;
-    dae_static_options so;
-    dae_static_options_default(&so);
-    so.h0 = 1e-2;
+    tap_ok(mdl_start_kind(mm) == MDL_START_STATIC, "%s: the file asks for the static start", what);
     mdl_trim_report rep;
-    int r = mdl_static(&mm, &so, &rep, &e);
+    int r = mdl_static(&mm, NULL, &rep, &e);
     tap_ok(r == BG_OK, "%s: static equilibrium (%s; %ld steps)", what, r ? e.message : "ok",
            rep.last.steps);
     if (r != BG_OK) mdl_free(&mm);
