@@ -109,6 +109,19 @@ void mdl_instance_clear(mdl_instance *in);
  * joints); BG_OK, MDL_NOT_YET (not placed yet), BG_ERR_ARGUMENT (no such port, unconnected). */
 int mdl_locate(mdl_locator *loc, int port, double x[3]);
 
+/* ---- for place(): sources ---- */
+/* What a source imposes: the efforts at its port 0, the flows there, its own signal. */
+typedef enum mdl_source_output { MDL_SRC_EFFORT, MDL_SRC_FLOW, MDL_SRC_SIGNAL } mdl_source_output;
+/* The start of source element elem: its own equations made to hold at t = 0 (a general rule:
+ * the assembled start satisfies the sources' equations, so a static solve's load homotopy does
+ * not ramp a supply pressure or a reference). Equation i is solved for the i-th unknown of
+ * `what` (the element's equations are linear in them with a nonzero coefficient: a value
+ * against what it imposes); nothing else moves. follows: the signal a signal-driven source
+ * reads (NULL: none): a signal source (sig.*) there is set to its own start first, any other
+ * signal is taken at its start value as assembled. BG_OK or BG_ERR_ARGUMENT with the message. */
+int mdl_place_source(bgr_model *m, int elem, mdl_source_output what, const bgr_ref *follows,
+                     bg_error *err);
+
 /* ---- the type table's parts (mdl_types_*.c) ---- */
 extern const mdl_type *const mdl_types_mech[];
 extern const int mdl_types_mech_count;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "mdl_priv.h"
+#include "sig_sources.h"
 
 typedef struct place_ctx {
     const mdl_model *mm;
@@ -106,9 +107,60 @@ int mdl_place_all(mdl_model *mm)
     return BG_OK;
 }
 
+/* ---- the sources' start ---- */
+
+static int settle(bgr_model *m, int elem, mdl_source_output what, bg_error *err)
+{
+    bgr_element *el = bgr_element_get(m, elem);
+    if (!el || !el->cls->residual || el->neq < 1)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model", "element %d: not a source", elem);
+    double *y = bgr_y0(m), *yp = bgr_yp0(m);
+    double *F = calloc(2 * (size_t)el->neq, sizeof *F);
+    if (!F) return bg_error_raise(err, BG_ERR_MEMORY, "model", "out of memory");
+    int r = BG_OK;
+    for (int i = 0; r == BG_OK && i < el->neq; i++) {
+        int v = what == MDL_SRC_EFFORT ? bgr_ev(el, m, 0, i)
+                : what == MDL_SRC_FLOW ? bgr_fv(el, m, 0, i)
+                                       : bgr_av(el, i);
+        if (v < 0) {
+            r = bg_error_raise(err, BG_ERR_ARGUMENT, "model", "%s: no unknown for equation %d",
+                               el->name ? el->name : "source", i);
+            break;
+        }
+        double old = y[v], *F1 = F + el->neq;
+        int a = el->cls->residual(el, 0.0, y, yp, F);
+        y[v] = old + 1;
+        int b = el->cls->residual(el, 0.0, y, yp, F1);
+        y[v] = old;
+        double slope = F1[i] - F[i]; /* exact: the equation is linear in y[v] */
+        if (a < 0 || b < 0 || !(fabs(slope) > 0) || !isfinite(F[i]))
+            r = bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                               "%s: its equation %d cannot be solved for its output at t = 0",
+                               el->name ? el->name : "source", i);
+        else
+            y[v] = old - F[i] / slope;
+    }
+    free(F);
+    return r;
+}
+
+int mdl_place_source(bgr_model *m, int elem, mdl_source_output what, const bgr_ref *follows,
+                     bg_error *err)
+{
+    if (follows && follows->type == BGR_OWN) {
+        const bgr_element *src = bgr_element_get(m, follows->id);
+        if (src && src->cls == &sig_class_source) {
+            int r = settle(m, follows->id, MDL_SRC_SIGNAL, err);
+            if (r != BG_OK) return r;
+        }
+    }
+    return settle(m, elem, what, err);
+}
+
 /* ---- unknowns by path ---- */
 
-/* "rod1.body.x0" -> the unknown's id, or a signal's; -1 with the message set */
+/* "rod1.body.x0" -> the unknown's id, or a signal's, or a port's bond ("supply.p.f": the
+ * flow of the bond at supply's port p, oriented as the bond is written); -1 with the message set */
 static int var_of_path(mdl_model *mm, const char *path, const mdl_y_node *at, const char *where)
 {
     mdl_inode *leaf;
@@ -125,6 +177,25 @@ static int var_of_path(mdl_model *mm, const char *path, const mdl_y_node *at, co
         int v = bgr_ref_var(mm->m, s->r);
         if (v < 0) mdl_fail(mm, at, where, "'%s': the signal has no unknown", path);
         return v;
+    }
+    /* "port.e", "port.f" (1D) or "port.e2" (a vector port's entry): the bond at that port */
+    const char *dot = strrchr(rest, '.');
+    if (dot && (dot[1] == 'e' || dot[1] == 'f')) {
+        char pname[256];
+        int len = (int)(dot - rest), idx = 0, nd = 0;
+        if (len < (int)sizeof pname && (dot[2] == '\0' || sscanf(dot + 2, "%d%n", &idx, &nd) == 1) &&
+            dot[2 + nd] == '\0') {
+            memcpy(pname, rest, (size_t)len);
+            pname[len] = '\0';
+            int k = mdl_instance_find_port(&leaf->inst, pname);
+            const mdl_iport *ip = k >= 0 ? mdl_instance_port_at(&leaf->inst, k) : NULL;
+            if (ip && idx >= 0 && idx < ip->dim) {
+                const bgr_element *el = bgr_element_get(mm->m, ip->p.elem);
+                int v = dot[1] == 'e' ? bgr_ev(el, mm->m, ip->p.port, idx)
+                                      : bgr_fv(el, mm->m, ip->p.port, idx);
+                if (v >= 0) return v;
+            }
+        }
     }
     char full[1024];
     int o = snprintf(full, sizeof full, "%s/%s/%s", mm->name, leaf->path, rest);

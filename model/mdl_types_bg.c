@@ -135,6 +135,34 @@ static int Se_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *
     return S_build(m, c, name, a, out, err, 1);
 }
 
+/* the start: what the source imposes at its value at t = 0 (mdl_place_source) */
+static int Se_place(bgr_model *m, const mdl_instance *in, const mdl_args *a, mdl_locator *loc,
+                    bg_error *err)
+{
+    (void)a, (void)loc;
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_EFFORT, NULL, err);
+}
+static int Sf_place(bgr_model *m, const mdl_instance *in, const mdl_args *a, mdl_locator *loc,
+                    bg_error *err)
+{
+    (void)a, (void)loc;
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_FLOW, NULL, err);
+}
+static int Se_signal_place(bgr_model *m, const mdl_instance *in, const mdl_args *a,
+                           mdl_locator *loc, bg_error *err)
+{
+    (void)loc;
+    bgr_ref r = mdl_arg_signal(a, "signal");
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_EFFORT, &r, err);
+}
+static int Sf_signal_place(bgr_model *m, const mdl_instance *in, const mdl_args *a,
+                           mdl_locator *loc, bg_error *err)
+{
+    (void)loc;
+    bgr_ref r = mdl_arg_signal(a, "signal");
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_FLOW, &r, err);
+}
+
 static int Sf_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
                     mdl_instance *out, bg_error *err)
 {
@@ -144,12 +172,12 @@ static int Sf_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *
 static const mdl_type Se_type = {
     "bg.Se", "constant effort source (bgr_elements.h)",
     "e = E  (E: value; zeros make a free end of what it is bonded to)", S_params, COUNT(S_params),
-    oneport_out, COUNT(oneport_out), NULL, 0, 0, Se_build, NULL, NULL};
+    oneport_out, COUNT(oneport_out), NULL, 0, 0, Se_build, Se_place, NULL};
 
 static const mdl_type Sf_type = {
     "bg.Sf", "constant flow source (bgr_elements.h)",
     "f_out = F  (F: value; zeros make the effort a constraint effort)", S_params, COUNT(S_params),
-    oneport_out, COUNT(oneport_out), NULL, 0, 0, Sf_build, NULL, NULL};
+    oneport_out, COUNT(oneport_out), NULL, 0, 0, Sf_build, Sf_place, NULL};
 
 static const mdl_param_def Ssig_params[] = {
     {"signal", MDL_SIGNAL, 0, "-", NULL, 0, 0, 0, NULL, "the signal that gives the value"},
@@ -172,12 +200,12 @@ static int Sf_signal_build(bgr_model *m, bgr_comp c, const char *name, const mdl
 static const mdl_type Se_signal_type = {
     "bg.Se_signal", "effort source following a signal (bgr_elements.h)", "e = x  (x: signal)",
     Ssig_params, COUNT(Ssig_params), oneport1_out, COUNT(oneport1_out), NULL, 0, 0, Se_signal_build,
-    NULL, NULL};
+    Se_signal_place, NULL};
 
 static const mdl_type Sf_signal_type = {
     "bg.Sf_signal", "flow source following a signal (bgr_elements.h)", "f_out = x  (x: signal)",
     Ssig_params, COUNT(Ssig_params), oneport1_out, COUNT(oneport1_out), NULL, 0, 0, Sf_signal_build,
-    NULL, NULL};
+    Sf_signal_place, NULL};
 
 /* ---- TF, GY ---- */
 

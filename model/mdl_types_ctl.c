@@ -127,9 +127,20 @@ static sig_output output_of(const mdl_args *a)
     return !strcmp(o, "rate") ? SIG_RATE : !strcmp(o, "integral") ? SIG_INTEGRAL : SIG_VALUE;
 }
 
+/* the start: y at t = 0, the source's own equation (mdl_place_source) */
+static int source_place(bgr_model *m, const mdl_instance *in, const mdl_args *a, mdl_locator *loc,
+                        bg_error *err)
+{
+    (void)a, (void)loc;
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_SIGNAL, NULL, err);
+}
+
 #define SOURCE_TYPE(var, tname, summary, eqs, params, build)                                       \
-    static const mdl_type var = {tname, summary, eqs SIG_EQS, params, COUNT(params), NULL, 0,     \
-                                 source_signals, COUNT(source_signals), 0, build, NULL, NULL}
+    static const mdl_type var = {tname,          summary,                eqs SIG_EQS,              \
+                                 params,         COUNT(params),          NULL,                     \
+                                 0,              source_signals,         COUNT(source_signals),    \
+                                 0,              build,                  source_place,             \
+                                 NULL}
 
 static const mdl_param_def trap_params[] = {
     {"t0", MDL_NUMBER, 0, "s", NULL, -INF, INF, MDL_FINITE, NULL, "start of the rise"},

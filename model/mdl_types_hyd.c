@@ -218,6 +218,34 @@ static const mdl_type volume_type = {
 
 /* ---- sources ---- */
 
+/* the start: the port's pressure (flow) at its value at t = 0 (mdl_place_source) */
+static int effort_place(bgr_model *m, const mdl_instance *in, const mdl_args *a,
+                        mdl_locator *loc, bg_error *err)
+{
+    (void)a, (void)loc;
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_EFFORT, NULL, err);
+}
+static int flow_place(bgr_model *m, const mdl_instance *in, const mdl_args *a, mdl_locator *loc,
+                      bg_error *err)
+{
+    (void)a, (void)loc;
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_FLOW, NULL, err);
+}
+static int effort_signal_place(bgr_model *m, const mdl_instance *in, const mdl_args *a,
+                               mdl_locator *loc, bg_error *err)
+{
+    (void)loc;
+    bgr_ref r = mdl_arg_signal(a, "pressure");
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_EFFORT, &r, err);
+}
+static int flow_signal_place(bgr_model *m, const mdl_instance *in, const mdl_args *a,
+                             mdl_locator *loc, bg_error *err)
+{
+    (void)loc;
+    bgr_ref r = mdl_arg_signal(a, "flow");
+    return mdl_place_source(m, mdl_instance_main(in), MDL_SRC_FLOW, &r, err);
+}
+
 static const mdl_port_def source_ports[] = {
     {"p", 1, MDL_HYDRAULIC, "the port (power out of the source)"}};
 
@@ -236,7 +264,7 @@ static int tank_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args
 static const mdl_type tank_type = {
     "hyd.tank", "reservoir at a constant pressure (hyd_source.h)", "p = P  (whatever the flow)",
     tank_params, COUNT(tank_params), source_ports, COUNT(source_ports), NULL, 0, 0, tank_build,
-    NULL, NULL};
+    effort_place, NULL};
 
 static const mdl_param_def psource_params[] = {
     {"pressure", MDL_SIGNAL, 0, "Pa", NULL, 0, 0, 0, NULL, "the signal that gives the pressure"},
@@ -252,7 +280,7 @@ static int psource_build(bgr_model *m, bgr_comp c, const char *name, const mdl_a
 static const mdl_type psource_type = {
     "hyd.pressure_source", "pressure source following a signal (hyd_source.h)",
     "p = P(t)  (the signal `pressure`, whatever the flow)", psource_params, COUNT(psource_params),
-    source_ports, COUNT(source_ports), NULL, 0, 0, psource_build, NULL, NULL};
+    source_ports, COUNT(source_ports), NULL, 0, 0, psource_build, effort_signal_place, NULL};
 
 static const mdl_param_def fsource_params[] = {
     {"flow", MDL_NUMBER, 0, "m^3/s", NULL, -INF, INF, MDL_FINITE, NULL,
@@ -269,7 +297,7 @@ static int fsource_build(bgr_model *m, bgr_comp c, const char *name, const mdl_a
 static const mdl_type fsource_type = {
     "hyd.flow_source", "constant flow source: an ideal pump at constant speed (hyd_source.h)",
     "q_out = Q  (whatever the pressure)", fsource_params, COUNT(fsource_params), source_ports,
-    COUNT(source_ports), NULL, 0, 0, fsource_build, NULL, NULL};
+    COUNT(source_ports), NULL, 0, 0, fsource_build, flow_place, NULL};
 
 static const mdl_param_def fsource_sig_params[] = {
     {"flow", MDL_SIGNAL, 0, "m^3/s", NULL, 0, 0, 0, NULL, "the signal that gives the flow"},
@@ -286,7 +314,7 @@ static const mdl_type fsource_sig_type = {
     "hyd.flow_source_signal", "flow source following a signal (hyd_source.h)",
     "q_out = Q(t)  (the signal `flow`, whatever the pressure)", fsource_sig_params,
     COUNT(fsource_sig_params), source_ports, COUNT(source_ports), NULL, 0, 0, fsource_sig_build,
-    NULL, NULL};
+    flow_signal_place, NULL};
 
 /* ---- restrictions ---- */
 

@@ -1,7 +1,9 @@
 /* The static start and the trim of model files (mdl_static) against closed forms: a mass hanging
  * on a linear spring from a fixed point rests at z = -(L0 + m g / k); trimmed to rest at z = -1
  * the spring's unstretched length must come out as 1 - m g / k. A bracket that cannot hold the
- * condition is refused with the names and values. */
+ * condition is refused with the names and values. The sources start at their values at t = 0
+ * (every source type's place()): the assembled start satisfies their own equations, whatever
+ * way their bonds are written, and a hydraulic node between them rests at the flow balance. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -32,8 +34,80 @@ static const char *model_text(const char *trim)
     return buf;
 }
 
+/* Every kind of source, on one oil volume: supply 5 MPa and a pressure source following a ramp
+ * (offset 2 MPa) through conductances G, bg.Se 1 MPa through G, a flow source of 1e-4 m^3/s into
+ * it, one of -2e-5 with its bond written into the source (it draws 2e-5 from the volume: the
+ * bond's flow is +2e-5), bg.Sf 3e-5 with its bond written into it (it feeds 3e-5: the bond's
+ * flow is -3e-5); the signals start at ramp 2e6, pwl rate 2, sine 0.25 + sin 0.5. At rest
+ * G (5e6 + 2e6 + 1e6 - 3 p) + 1e-4 - 2e-5 + 3e-5 = 0. */
+static const char *sources_text =
+    "format: bgsim 1\n"
+    "name: sources\n"
+    "parameters: {G: 1e-10}\n"
+    "components:\n"
+    "  supply: {type: hyd.tank, pressure: 5e6}\n"
+    "  ramp: {type: sig.ramp, slope: 1e5, offset: 2e6}\n"
+    "  prof: {type: sig.pwl, times: [-1, 1], values: [0, 4], output: rate}\n"
+    "  wave: {type: sig.sine, amplitude: 1, omega: 2, phase: 0.5, offset: 0.25}\n"
+    "  pump: {type: hyd.pressure_source, pressure: ramp.y}\n"
+    "  fin: {type: hyd.flow_source, flow: 1e-4}\n"
+    "  fback: {type: hyd.flow_source, flow: -2e-5}\n"
+    "  se: {type: bg.Se, value: [1e6]}\n"
+    "  sf: {type: bg.Sf, value: [3e-5]}\n"
+    "  node: {type: hyd.volume, volume: 1e-3, bulk_modulus: 1e9, ports: [a, b, c, d, e, f]}\n"
+    "  o1: {type: hyd.leakage, conductance: G}\n"
+    "  o2: {type: hyd.leakage, conductance: G}\n"
+    "  o3: {type: hyd.leakage, conductance: G}\n"
+    "bonds:\n"
+    "  - supply.p -> o1.a\n"
+    "  - o1.b -> node.a\n"
+    "  - pump.p -> o2.a\n"
+    "  - o2.b -> node.b\n"
+    "  - fin.p -> node.c\n"
+    "  - node.d -> fback.p\n"
+    "  - se.p -> o3.a\n"
+    "  - o3.b -> node.e\n"
+    "  - node.f -> sf.p\n"
+    "outputs:\n"
+    "  p_supply: supply.p.e\n"
+    "  p_pump: pump.p.e\n"
+    "  q_fin: fin.p.f\n"
+    "  q_fback: fback.p.f\n"
+    "  e_se: se.p.e\n"
+    "  f_sf: sf.p.f\n"
+    "  ramp: ramp.y\n"
+    "  rate: prof.y\n"
+    "  wave: wave.y\n"
+    "  p: node.p\n";
+
+static void check_sources(void)
+{
+    bg_error e = {0};
+    bg_error_clear(&e);
+    mdl_model *mm = mdl_load_string(sources_text, "sources.yaml", NULL, 0, &e);
+    tap_ok(mm != NULL, "sources: loads (%s)", mm ? "ok" : e.message);
+    if (!mm) return;
+    double out[10];
+    const char *what[10] = {"hyd.tank's pressure", "hyd.pressure_source's (the ramp's offset)",
+                            "hyd.flow_source's flow", "a flow source's, its bond written into it",
+                            "bg.Se's effort", "bg.Sf's flow, its bond written into it",
+                            "sig.ramp", "sig.pwl's rate", "sig.sine"};
+    const double want[9] = {5e6, 2e6, 1e-4, 2e-5, 1e6, -3e-5, 2e6, 2, 0.25 + sin(0.5)};
+    mdl_outputs(mm, 0, bgr_y0(mdl_bgr(mm)), out, &e);
+    for (int i = 0; i < 9; i++)
+        tap_close(out[i], want[i], 1e-15, 0, "sources: the start has %s at t = 0, %g", what[i],
+                  want[i]);
+    int r = mdl_static(&mm, NULL, NULL, &e);
+    tap_ok(r == BG_OK, "sources: static with the default options (%s)", r ? e.message : "ok");
+    const double G = 1e-10, p = (G * 8e6 + 1e-4 - 2e-5 + 3e-5) / (3 * G);
+    if (r == BG_OK) mdl_outputs(mm, 0, bgr_y0(mdl_bgr(mm)), out, &e);
+    tap_close(out[9], p, 1e-7, 0, "sources: the node rests at the flow balance, %.1f Pa", p);
+    mdl_free(&mm);
+}
+
 int main(void)
 {
+    check_sources();
     const double m = 2, k = 400, g = 9.81;
     bg_error e = {0};
     bg_error_clear(&e);
