@@ -172,13 +172,17 @@ int rn_print_solver_stats(rn_run *r, FILE *f, const void *info)
     return 0;
 }
 
+/* The top-level component: the first segment under the model's root ("pendulum/rod1 93%" ->
+ * "rod1"), the whole first segment when the name has no root. */
 const char *rn_mode_part_top(const dae_modes *M, int k, char *buf, size_t size)
 {
     char d[256];
     snprintf(buf, size, "other");
-    if (dae_modes_describe(M, k, 1, 1, 0, d, sizeof d) <= 0) return buf;
-    size_t l = strcspn(d, " /(");
-    if (l > 0) snprintf(buf, size, "%.*s", (int)(l < 63 ? l : 63), d);
+    if (dae_modes_describe(M, k, 2, 1, 0, d, sizeof d) <= 0) return buf;
+    const char *a = strchr(d, '/');
+    a = a && a < d + strcspn(d, " ") ? a + 1 : d;
+    size_t l = strcspn(a, " /");
+    if (l > 0) snprintf(buf, size, "%.*s", (int)(l < 63 ? l : 63), a);
     return buf;
 }
 

@@ -210,7 +210,8 @@ typedef struct rn_stats_info {
 int rn_print_solver_stats(rn_run *r, FILE *f, const void *info);
 
 /* modes.csv: index,frequency_hz,damping_ratio,kind,part,dominant; part(M, k) names the part of
- * the model a mode lives in (NULL: the first component of its dominant unknowns' path). */
+ * the model a mode lives in (NULL: rn_mode_part_top, the top-level component under the model's
+ * root with the largest share). */
 typedef const char *(*rn_part_fn)(const dae_modes *M, int k, char *buf, size_t size);
 int rn_modes_write(const dae_modes *M, rn_part_fn part, FILE *f);
 const char *rn_mode_part_top(const dae_modes *M, int k, char *buf, size_t size);
