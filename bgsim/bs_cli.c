@@ -187,7 +187,8 @@ int bs_parse_args(int argc, char **argv, bs_options *o)
         printf("bgsim (bgdae) %s\n", BGSIM_VERSION);
         return RN_EXIT_OK;
     }
-    if (o->list_types && o->describe) return usage_error("--list-types and --describe: one of them");
+    if (o->list_types && o->describe)
+        return usage_error("--list-types and --describe: one of them");
     if (o->list_types) return list_types(o->markdown);
     if (o->describe) return describe(o->describe, o->markdown);
     if (o->markdown) return usage_error("--markdown belongs to --list-types or --describe");

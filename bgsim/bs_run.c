@@ -55,7 +55,8 @@ static int print_model_stats(rn_run *rn, FILE *f, const void *ctx)
         int j = 0;
         while (j < ninst && (strlen(inst[j]) != l || strncmp(inst[j], name, l)))
             j++;
-        if (j == ninst) snprintf(inst[ninst++], sizeof inst[0], "%.*s", (int)(l < 127 ? l : 127), name);
+        if (j == ninst)
+            snprintf(inst[ninst++], sizeof inst[0], "%.*s", (int)(l < 127 ? l : 127), name);
         cnt[j][kind && kind[i] != 0]++;
     }
     fprintf(f, "\nunknowns by top-level instance (differential, algebraic):\n");

@@ -92,9 +92,9 @@ void rn_path_in(const rn_run *r, const char *name, char *buf, size_t size)
     if (n < 0 || (size_t)n >= size) buf[0] = '\0';
 }
 
-/* The text of status.txt: how the run stands (status, reason), what it is (pid, scene or model, command
- * line, start) and how far it got; final: with the end time and the wall time. NULL: out of
- * memory. */
+/* The text of status.txt: how the run stands (status, reason), what it is (pid, scene or
+ * model, command line, start) and how far it got; final: with the end time and the wall time.
+ * NULL: out of memory. */
 static char *status_text(const rn_run *r, const char *status, const char *reason, int final)
 {
     char *buf = NULL;

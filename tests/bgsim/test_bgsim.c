@@ -248,7 +248,8 @@ int main(int argc, char **argv)
     snprintf(path, sizeof path, "%s/modes.csv", dir);
     slurp(path, text, sizeof text);
     const char *m1 = strstr(text, "\n1,");
-    double f = m1 ? strtod(m1 + 3, NULL) : NAN, fw = sqrt(800.0 / 2.0) / (2 * 3.14159265358979323846);
+    double f = m1 ? strtod(m1 + 3, NULL) : NAN;
+    double fw = sqrt(800.0 / 2.0) / (2 * 3.14159265358979323846);
     tap_ok(r.exited && r.code == 0 && fabs(f - fw) < 1e-8 * fw && strstr(text, ",elastic,mass,"),
            "--modes mass-spring: %.10g Hz (sqrt(k/m)/(2 pi) = %.10g)", f, fw);
 
