@@ -502,21 +502,6 @@ const char *crane_mode_part(const dae_modes *M, int k, char *buf, size_t size)
     return buf;
 }
 
-int crane_modes_write(const dae_modes *M, FILE *f)
-{
-    fprintf(f, "index,frequency_hz,damping_ratio,kind,part,dominant\n");
-    char part[64], d[512];
-    for (int k = 0; k < dae_modes_count(M); k++) {
-        const dae_mode *md = dae_modes_get(M, k);
-        dae_modes_describe(M, k, 2, 4, 3, d, sizeof d);
-        for (char *q = d; *q; q++)
-            if (*q == '"') *q = '\'';
-        fprintf(f, "%d,%.10g,%.6g,%s,%s,\"%s\"\n", k + 1, md->freq_hz, md->damping,
-                dae_mode_kind_name(md->kind), crane_mode_part(M, k, part, sizeof part), d);
-    }
-    return ferror(f) ? BG_ERR_IO : BG_OK;
-}
-
 int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, FILE *f)
 {
     /* the parts present among the elastic modes */

@@ -84,9 +84,7 @@ int crane_modes(crane *c, double T, dae_modes **out, double *y, bg_error *err);
  * "hydraulics", "load", "ties", "rope", "platform", ...; the left and right ties together).
  * Writes into buf, returns buf. */
 const char *crane_mode_part(const dae_modes *M, int k, char *buf, size_t size);
-/* modes.csv: index, frequency_hz, damping_ratio, kind, part, dominant (the shares by component
- * and the leading unknowns, quoted). BG_OK or BG_ERR_IO. */
-int crane_modes_write(const dae_modes *M, FILE *f);
+/* modes.csv is the programs' writer (runner/rn_run.h: rn_modes_write with crane_mode_part). */
 /* modes.gp: the elastic modes' damping ratio against frequency (log scale), one colour per part,
  * the lowest labelled, into modes.png, from modes.csv. BG_OK or BG_ERR_IO. */
 int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, FILE *f);

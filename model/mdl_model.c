@@ -1,4 +1,5 @@
 /* Loading a model file in its stages (mdl_model.h) and the loaded model's accessors. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -152,6 +153,17 @@ const char *mdl_file(const mdl_model *mm)
 const mdl_solver_settings *mdl_solver(const mdl_model *mm)
 {
     return mm ? &mm->solver : NULL;
+}
+
+int mdl_solver_override(mdl_model *mm, const mdl_solver_settings *s)
+{
+    if (!mm || !s) return BG_ERR_ARGUMENT;
+    const double v[4] = {s->t_end, s->output_step, s->rtol, s->atol};
+    for (int i = 0; i < 4; i++)
+        if (!isfinite(v[i]) || !(v[i] > 0)) return BG_ERR_ARGUMENT;
+    if (s->max_order < 1 || s->max_order > 5) return BG_ERR_ARGUMENT;
+    mm->solver = *s;
+    return BG_OK;
 }
 
 mdl_start mdl_start_kind(const mdl_model *mm)

@@ -64,6 +64,10 @@ BG_API bgr_model *mdl_bgr(mdl_model *mm);
 BG_API const char *mdl_name(const mdl_model *mm);
 BG_API const char *mdl_file(const mdl_model *mm);
 BG_API const mdl_solver_settings *mdl_solver(const mdl_model *mm);
+/* Replaces the solver settings (a program's overrides of the file's: bgsim --t-end, --rtol,
+ * ...); t_end, output_step, rtol and atol must be finite and > 0, max_order in 1..5. A model
+ * mdl_static rebuilds for a trim has the file's settings again. BG_OK or BG_ERR_ARGUMENT. */
+BG_API int mdl_solver_override(mdl_model *mm, const mdl_solver_settings *s);
 BG_API mdl_start mdl_start_kind(const mdl_model *mm);
 
 /* Outputs (`outputs:`): count, names (the columns of results.csv after t), and their values at

@@ -173,7 +173,7 @@ static const pu_cli CLI = {
 static int usage_error(const char *msg)
 {
     fprintf(stderr, "crane: %s\n(crane --help lists the options)\n", msg);
-    return CP_EXIT_USAGE;
+    return RN_EXIT_USAGE;
 }
 
 /* Returns -1 to go on, or an exit status (help and version: 0). */
@@ -192,17 +192,17 @@ int cp_parse_args(int argc, char **argv, cp_options *o)
         char *text = pu_cli_help(&CLI);
         if (!text) {
             fprintf(stderr, "crane: out of memory\n");
-            return CP_EXIT_RUN;
+            return RN_EXIT_RUN;
         }
         fputs(text, stdout);
         free(text);
-        return CP_EXIT_OK;
+        return RN_EXIT_OK;
     }
     if (rc == PU_CLI_STOPPED && !strcmp(stop->name, "--list-keys"))
-        return crane_scene_keys_markdown(stdout) ? CP_EXIT_RUN : CP_EXIT_OK;
+        return crane_scene_keys_markdown(stdout) ? RN_EXIT_RUN : RN_EXIT_OK;
     if (rc == PU_CLI_STOPPED) { /* --version */
         printf("crane (bgdae) %s\n", CRANE_VERSION);
-        return CP_EXIT_OK;
+        return RN_EXIT_OK;
     }
     if (o->errest && (o->static_only || o->modes)) {
         snprintf(msg, sizeof msg,

@@ -27,7 +27,7 @@ void cp_errest_open(cp_run *r, const dae_problem *p, const dae_options *dopt, co
 {
     if (!r->o->errest) return;
     crane_errest_spec sp = {p,       dopt, r->o->errest_factor, 0.0, y0, yp0, 1, CRANE_NOUT,
-                            outputs, r->c, cp_signal_flag()};
+                            outputs, r->c, rn_signal_flag()};
     bg_error err = {0};
     r->errest = crane_errest_create(&sp, &err);
     if (!r->errest)
@@ -59,7 +59,7 @@ static int state(const cp_run *r)
 {
     if (!r->o->errest) return OFF;
     if (!r->errest || crane_errest_status(r->errest) < 0) return UNAVAILABLE;
-    if (crane_errest_count(r->errest) < r->rows) return PARTIAL;
+    if (crane_errest_count(r->errest) < r->rn.rows) return PARTIAL;
     return AVAILABLE;
 }
 
@@ -81,9 +81,10 @@ static int worst_column(const cp_run *r, double *rel)
     return worst;
 }
 
-static int print_csv(cp_run *r, FILE *f, const void *ctx)
+static int print_csv(rn_run *rn, FILE *f, const void *ctx)
 {
     (void)ctx;
+    const cp_run *r = CP_RUN(rn);
     int st = state(r), avail = st != UNAVAILABLE;
     double covered = r->errest ? crane_errest_last(r->errest) : NAN;
     fprintf(f, "column,max_abs_error,t_at_max [s],max_abs_value,max_rel_error,t_covered [s],"
@@ -110,13 +111,14 @@ static int print_csv(cp_run *r, FILE *f, const void *ctx)
 int cp_errest_write(cp_run *r)
 {
     if (!r->o->errest) return 0;
-    if (cp_save_file(r, "error_estimate.csv", print_csv, NULL) != 0) return CP_EXIT_RUN;
+    if (rn_save_file(&r->rn, "error_estimate.csv", print_csv, NULL) != 0) return RN_EXIT_RUN;
     r->errest_written = 1;
     return 0;
 }
 
-void cp_errest_status_lines(const cp_run *r, FILE *f)
+void cp_errest_status_lines(const rn_run *rn, FILE *f)
 {
+    const cp_run *r = CP_RUN(rn);
     int st = state(r);
     if (st == OFF) return;
     double covered = r->errest ? crane_errest_last(r->errest) : NAN;
@@ -129,8 +131,9 @@ void cp_errest_status_lines(const cp_run *r, FILE *f)
                 crane_errest_count(r->errest), covered);
 }
 
-void cp_errest_stats_lines(const cp_run *r, FILE *f)
+void cp_errest_stats_lines(const rn_run *rn, FILE *f)
 {
+    const cp_run *r = CP_RUN(rn);
     int st = state(r);
     if (st == OFF) return;
     double rtol, atol, K, rel;
@@ -140,7 +143,7 @@ void cp_errest_stats_lines(const cp_run *r, FILE *f)
             "error_estimate: a second run at rtol / %g and atol / %g (rtol %g, atol %g), "
             "compared at every row: error_estimate.csv\n",
             K, K, rtol, atol);
-    cp_errest_status_lines(r, f);
+    cp_errest_status_lines(rn, f);
     const dae_stats *cs = crane_errest_stats(r->errest);
     if (cs) {
         char line[2048];

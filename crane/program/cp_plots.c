@@ -130,7 +130,7 @@ static int write_plot_script(FILE *f, const crane_scene *s, double radius, doubl
  * it. Its wait status, or -1 with the reason in msg. */
 static int run_gnuplot(const cp_run *r, const char *exe, const char *script, char *msg, size_t size)
 {
-    pu_gnuplot_job job = {exe, r->outdir, script, NULL, "gnuplot.log", cp_signal_flag()};
+    pu_gnuplot_job job = {exe, r->rn.outdir, script, NULL, "gnuplot.log", rn_signal_flag()};
     return pu_gnuplot_run(&job, msg, size);
 }
 
@@ -140,25 +140,25 @@ int cp_draw_figures(cp_run *r)
     double radius = tx >= 0 && ty >= 0 ? hypot(r->first_out[tx] - r->scene.joint_A[0],
                                                r->first_out[ty] - r->scene.joint_A[1])
                                        : r->scene.boom_tip_radius;
-    char path[CP_PATH_SIZE], exe[CP_PATH_SIZE];
-    cp_path_in(r, "plots.gp", path, sizeof path);
+    char path[RN_PATH_SIZE], exe[RN_PATH_SIZE];
+    rn_path_in(&r->rn, "plots.gp", path, sizeof path);
     char *gp = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&gp, &len);
-    if (!f) return cp_write_failed(r, path, errno);
+    if (!f) return rn_write_failed(&r->rn, path, errno);
     int n = write_plot_script(f, &r->scene, radius, r->reach);
     if (fclose(f) != 0) {
         free(gp);
-        return cp_write_failed(r, path, ENOMEM);
+        return rn_write_failed(&r->rn, path, ENOMEM);
     }
     if (n == 0) {
         free(gp);
         return 0;
     }
-    if (cp_save_atomic(path, gp, len) != 0) {
+    if (rn_save_atomic(path, gp, len) != 0) {
         int e = errno;
         free(gp);
-        return cp_write_failed(r, path, e);
+        return rn_write_failed(&r->rn, path, e);
     }
     if (!pu_gnuplot_find(exe, sizeof exe)) {
         free(gp);
@@ -168,7 +168,7 @@ int cp_draw_figures(cp_run *r)
     char why[512];
     int st = run_gnuplot(r, exe, "plots.gp", why, sizeof why), rc = 0;
     if (st == -1) {
-        rc = cp_fail_run(r, "drawing the figures", why);
+        rc = rn_fail_run(&r->rn, "drawing the figures", why);
     } else {
         /* each figure the script names ("set output 'fig5a.png'") must be a whole PNG */
         char missing[512] = "", msg[1024];
@@ -177,10 +177,10 @@ int cp_draw_figures(cp_run *r)
             p += strlen("set output '");
             const char *e = strchr(p, '\'');
             if (!e) break;
-            char name[64], fig[CP_PATH_SIZE];
+            char name[64], fig[RN_PATH_SIZE];
             snprintf(name, sizeof name, "%.*s", (int)(e - p), p);
-            cp_path_in(r, name, fig, sizeof fig);
-            if (cp_signal())
+            rn_path_in(&r->rn, name, fig, sizeof fig);
+            if (rn_signal())
                 remove(fig);
             else if (!pu_png_whole(fig) && ml < sizeof missing)
                 ml += (size_t)snprintf(missing + ml, sizeof missing - ml, "%s%s", ml ? ", " : "",
@@ -188,17 +188,17 @@ int cp_draw_figures(cp_run *r)
             p = e;
         }
         char first[256];
-        pu_gnuplot_log_first(r->outdir, "gnuplot.log", 0, first, sizeof first);
-        if (!cp_signal() && (!WIFEXITED(st) || WEXITSTATUS(st) != 0 || missing[0])) {
+        pu_gnuplot_log_first(r->rn.outdir, "gnuplot.log", 0, first, sizeof first);
+        if (!rn_signal() && (!WIFEXITED(st) || WEXITSTATUS(st) != 0 || missing[0])) {
             snprintf(msg, sizeof msg, "gnuplot %s %d%s%s%s%s%s",
                      WIFEXITED(st) ? "exited with" : "ended by signal",
                      WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st),
                      missing[0] ? "; not written whole: " : "", missing,
                      first[0] ? " (gnuplot.log: " : "", first, first[0] ? ")" : "");
-            rc = cp_fail_run(r, "drawing the figures", msg);
+            rc = rn_fail_run(&r->rn, "drawing the figures", msg);
         } else if (!first[0]) {
-            char log[CP_PATH_SIZE];
-            cp_path_in(r, "gnuplot.log", log, sizeof log);
+            char log[RN_PATH_SIZE];
+            rn_path_in(&r->rn, "gnuplot.log", log, sizeof log);
             remove(log);
         }
     }
@@ -208,12 +208,12 @@ int cp_draw_figures(cp_run *r)
 
 int cp_draw_modes(cp_run *r)
 {
-    char exe[CP_PATH_SIZE], png[CP_PATH_SIZE], why[512], first[256];
+    char exe[RN_PATH_SIZE], png[RN_PATH_SIZE], why[512], first[256];
     if (r->o->no_plots || !pu_gnuplot_find(exe, sizeof exe)) return 0;
     int gs = run_gnuplot(r, exe, "modes.gp", why, sizeof why);
-    cp_path_in(r, "modes.png", png, sizeof png);
+    rn_path_in(&r->rn, "modes.png", png, sizeof png);
     if (gs == -1 || !WIFEXITED(gs) || WEXITSTATUS(gs) != 0 || !pu_png_whole(png))
-        return cp_fail_run(r, "drawing modes.png", "gnuplot failed (see gnuplot.log)");
-    pu_gnuplot_log_first(r->outdir, "gnuplot.log", 1, first, sizeof first);
+        return rn_fail_run(&r->rn, "drawing modes.png", "gnuplot failed (see gnuplot.log)");
+    pu_gnuplot_log_first(r->rn.outdir, "gnuplot.log", 1, first, sizeof first);
     return 0;
 }

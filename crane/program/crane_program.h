@@ -1,15 +1,14 @@
 /* The crane program's parts (private to the program: crane/crane.c and crane/program/cp_*.c,
- * prefix cp_). crane.c has the program's contract (files, signals, exit statuses); here:
+ * prefix cp_), on the run machinery it shares with bgsim (runner/rn_run.h: the signal handler
+ * and status.txt, results.csv and its numbers, the output folder, the run loop,
+ * solver_stats.txt, modes.csv). crane.c has the program's contract (files, signals, exit
+ * statuses); here the crane's own:
  *
  *   cp_cli.c     the command line (options' table for pu_cli.h, --set overrides), the scene's
  *                file
- *   cp_status.c  the signal handler, status.txt (prepared for a signal, written atomically),
- *                failures, the atomic writes of the small files, the output folder's paths
- *   cp_csv.c     results.csv: rows formatted into a buffer, written whole
- *   cp_fmt.c     its numbers as printf's %.12g writes them, without printf
  *   cp_plots.c   plots.gp and the figures of Fig. 5, modes.png (gnuplot, pu_gnuplot.h)
- *   cp_sim.c     the dynamic run (the loop over the output times), --static and --modes, the
- *                statistics files and the summary
+ *   cp_sim.c     the dynamic run (the crane's outputs, watches and viz around rn_loop), --static
+ *                and --modes, model_stats.txt and the summary
  *   cp_errest.c  --error-estimate: the companion run (crane_errest.h) and error_estimate.csv */
 #ifndef CRANE_PROGRAM_H
 #define CRANE_PROGRAM_H
@@ -21,6 +20,7 @@
 #include "crane_errest.h"
 #include "crane_model.h"
 #include "crane_viz.h"
+#include "rn_run.h"
 
 #ifndef CRANE_VERSION
 #define CRANE_VERSION "unknown"
@@ -28,15 +28,9 @@
 
 #define CP_DEFAULT_SCENE "crane/scenes/paper.ini"
 #define CP_MAX_SETS 64
-/* paths: the output folder's name is at most CP_OUT_MAX characters, so that its files' names
- * fit */
-#define CP_PATH_SIZE 4096
-#define CP_OUT_MAX (CP_PATH_SIZE - 64)
 /* output rows: at most --max-rows (default CP_DEFAULT_MAX_ROWS, about 300 MB of results.csv) */
 #define CP_DEFAULT_MAX_ROWS 1000000LL
 #define CP_MAX_MAX_ROWS 1000000000000LL
-
-enum { CP_EXIT_OK = 0, CP_EXIT_RUN = 1, CP_EXIT_USAGE = 2 };
 
 /* ------------------------------------------------------------------ cp_cli.c ---- */
 
@@ -74,30 +68,13 @@ int cp_find_scene(const char *arg, char *path, size_t size, char *tried, size_t 
 /* ------------------------------------------------------------------ the run ---- */
 
 typedef struct cp_run {
+    rn_run rn; /* status.txt, results.csv, the folder, the solver (rn_run.h); rn.owner = this */
     const cp_options *o;
     crane_scene scene;
-    char scene_path[CP_PATH_SIZE], outdir[CP_PATH_SIZE];
-    char command[4096]; /* the command line, quoted as for the shell (status.txt) */
-    char started[64];   /* local start time */
+    char scene_path[RN_PATH_SIZE];
     crane *c;
-    dae_solver *s;
-    /* results.csv (cp_csv.c): rows are formatted into csv_buf and written whole (write(2)) when
-     * it is full or a second has passed since the last write; a write that fails is cut back to
-     * the last whole row (ftruncate), so that the file holds whole rows at every moment */
-    int csv_fd;
-    char *csv_buf;
-    size_t csv_len, csv_cap;
-    off_t csv_size;       /* bytes on disk */
-    double csv_written;   /* wall time of the last write */
-    long rows, rows_disk; /* rows formatted; rows on disk */
-    double t_row, t_disk; /* time of the last row formatted; on disk */
     /* columns of the outputs the rows are watched for (-1: the model has none) */
     int col_d1, col_d2, col_tx, col_ty;
-    long nout;                /* output times after t = 0 (main bounds it by --max-rows) */
-    double t, t_start, wall0; /* t: how far the integration got */
-    const char *status;       /* "running", "completed", "interrupted", "failed" */
-    int sig;                  /* the signal that interrupted the run */
-    char reason[2 * BG_MESSAGE_SIZE + 512];
     double peak[2], first_out[CRANE_NOUT], final_out[CRANE_NOUT];
     double reach; /* largest |tip_x - A_x|, |tip_y - A_y| */
     int have_final;
@@ -108,73 +85,13 @@ typedef struct cp_run {
     char errest_note[BG_MESSAGE_SIZE + 64]; /* why the estimate is unavailable */
 } cp_run;
 
-/* --------------------------------------------------------------- cp_status.c ---- */
-
-/* Phases: CP_PHASE_SETUP, a signal ends the program at once (long library calls that cannot be
- * stopped); CP_PHASE_LOOP, the first signal stops the integration between two steps and a
- * second one ends the program at once; CP_PHASE_OTHER, the program ends the run in order. */
-enum { CP_PHASE_OTHER = 0, CP_PHASE_SETUP = 1, CP_PHASE_LOOP = 2 };
-
-/* The handler for SIGINT, SIGTERM and SIGHUP, and SIGPIPE ignored. */
-void cp_signals_install(void);
-/* The first signal received (0: none), and the flag itself for crane_errest_spec.stop and
- * pu_gnuplot_job.stop. */
-int cp_signal(void);
-const volatile sig_atomic_t *cp_signal_flag(void);
-const char *cp_signal_name(int sig);
-/* Enters a phase (CP_PHASE_SETUP: status.txt says "interrupted while what" if a signal comes;
- * one that came just before ends the program now). */
-void cp_set_phase(cp_run *r, int phase, const char *what);
-int cp_phase(void);
-/* status.txt written by the handler from now on (ready 1) or not (0); the paths are r's. */
-void cp_status_ready(const cp_run *r, int ready);
-/* The status.txt the handler writes on a second signal while integrating, and after the
- * integration. */
-void cp_arm_loop(cp_run *r);
-void cp_arm_finishing(cp_run *r);
-/* status.txt from r->status and r->reason (final: with the end). 0, or CP_EXIT_RUN. */
-int cp_write_status(cp_run *r, int final);
-
-/* Records a failure and says it on stderr ("crane: what: msg"); the first failure's reason
- * leads. Returns CP_EXIT_RUN. */
-int cp_fail_run(cp_run *r, const char *what, const char *msg);
-int cp_write_failed(cp_run *r, const char *path, int e);
-/* Writes len bytes to path through path.tmp (write, fsync, close, rename). 0, or -1 with
- * errno. */
-int cp_save_atomic(const char *path, const char *text, size_t len);
-/* Writes DIR/name atomically from what print prints into memory (0, or -1). 0, or
- * CP_EXIT_RUN. */
-typedef int (*cp_print_fn)(cp_run *r, FILE *f, const void *ctx);
-int cp_save_file(cp_run *r, const char *name, cp_print_fn print, const void *ctx);
-/* DIR/name (main has checked that the folder's name leaves room). */
-void cp_path_in(const cp_run *r, const char *name, char *buf, size_t size);
-double cp_wall_now(void);
-void cp_local_time(char *buf, size_t size);
-
-/* ------------------------------------------------------------------ cp_fmt.c ---- */
-
-/* x as snprintf(buf, CP_FMT_SIZE, "%.12g", x) writes it, the same text, several times faster
- * (cp_fmt.c); buf holds at least CP_FMT_SIZE characters. The length. */
-#define CP_FMT_SIZE 32
-int cp_fmt_g12(char *buf, double x);
-
-/* ------------------------------------------------------------------ cp_csv.c ---- */
-
-/* Opens results.csv with its header (buffered). 0, or the failure (CP_EXIT_RUN). */
-int cp_csv_open(cp_run *r);
-/* One row (buffered; written when the buffer is full or a second has passed). 0, or the
- * failure of a write. */
-int cp_csv_row(cp_run *r, double t, const double *out);
-/* Writes the rows formatted so far. 0, or the failure (the file cut back to its last whole
- * row). */
-int cp_csv_flush(cp_run *r);
-/* Writes the rest, makes it durable and closes. 0, or the failure. */
-int cp_csv_close(cp_run *r);
+/* The crane's run of a runner's hook (rn.owner). */
+#define CP_RUN(rn) ((cp_run *)(rn)->owner)
 
 /* ---------------------------------------------------------------- cp_plots.c ---- */
 
 /* plots.gp, then the figures with gnuplot (skipped when it is missing); each figure checked.
- * 0, or the failure (CP_EXIT_RUN). A signal stops gnuplot: the figures drawn are removed. */
+ * 0, or the failure (RN_EXIT_RUN). A signal stops gnuplot: the figures drawn are removed. */
 int cp_draw_figures(cp_run *r);
 /* modes.png from modes.gp (--modes). 0, or the failure. */
 int cp_draw_modes(cp_run *r);
@@ -198,11 +115,12 @@ void cp_errest_open(cp_run *r, const dae_problem *p, const dae_options *dopt, co
  * CRANE_ERREST_STOPPED when a signal came first, else 0 (a failure of the companion is kept,
  * said on stderr once, and the run goes on). */
 int cp_errest_row(cp_run *r, double t, const double *out);
-/* error_estimate.csv (available or not). 0, or CP_EXIT_RUN. */
+/* error_estimate.csv (available or not). 0, or RN_EXIT_RUN. */
 int cp_errest_write(cp_run *r);
-/* The estimate's lines of status.txt and solver_stats.txt, and of the summary. */
-void cp_errest_status_lines(const cp_run *r, FILE *f);
-void cp_errest_stats_lines(const cp_run *r, FILE *f);
+/* The estimate's lines of status.txt and solver_stats.txt (rn_run's hooks: rn is the crane's
+ * run's), and of the summary. */
+void cp_errest_status_lines(const rn_run *rn, FILE *f);
+void cp_errest_stats_lines(const rn_run *rn, FILE *f);
 void cp_errest_summary(const cp_run *r);
 
 #endif

@@ -1,4 +1,4 @@
-/* The numbers of results.csv (crane/program/cp_fmt.c, cp_fmt_g12) against the C library's
+/* The numbers of results.csv (runner/rn_fmt.c, rn_fmt_g12) against the C library's
  * snprintf "%.12g", the text results.csv had before and the truth here: the same characters for
  *   - numbers chosen at the edges: 0, -0, infinities, NaN, powers of ten, 12-digit integers and
  *     their neighbours, values that round up to the next power of ten, the limits of the fast
@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "crane_program.h"
+#include "rn_run.h"
 #include "tap.h"
 
 static uint64_t state = 0x9e3779b97f4a7c15ULL;
@@ -31,14 +31,14 @@ static double uniform(void)
     return (double)(next() >> 11) * 0x1.0p-53;
 }
 
-/* 1 if cp_fmt_g12 writes x as snprintf does; the first mismatch is kept in bad. */
+/* 1 if rn_fmt_g12 writes x as snprintf does; the first mismatch is kept in bad. */
 static long checked, wrong;
 static char bad[256];
 
 static void check(double x)
 {
     char a[64], b[64];
-    int na = cp_fmt_g12(a, x), nb = snprintf(b, sizeof b, "%.12g", x);
+    int na = rn_fmt_g12(a, x), nb = snprintf(b, sizeof b, "%.12g", x);
     checked++;
     if (na != nb || strcmp(a, b)) {
         if (!wrong++) snprintf(bad, sizeof bad, "%a: '%s' (%d) instead of '%s'", x, a, na, b);
@@ -126,10 +126,10 @@ int main(void)
     tap_ok(wrong == 0, "%ld random bit patterns written as %%.12g writes them%s%s", checked,
            wrong ? ": " : "", bad);
 
-    /* the buffer: the longest text fits CP_FMT_SIZE with room */
-    char buf[CP_FMT_SIZE];
-    int len = cp_fmt_g12(buf, -1.23456789012e-300);
-    tap_ok(len == (int)strlen(buf) && len < CP_FMT_SIZE && !strcmp(buf, "-1.23456789012e-300"),
-           "the longest text, '%s', fits CP_FMT_SIZE = %d", buf, CP_FMT_SIZE);
+    /* the buffer: the longest text fits RN_FMT_SIZE with room */
+    char buf[RN_FMT_SIZE];
+    int len = rn_fmt_g12(buf, -1.23456789012e-300);
+    tap_ok(len == (int)strlen(buf) && len < RN_FMT_SIZE && !strcmp(buf, "-1.23456789012e-300"),
+           "the longest text, '%s', fits RN_FMT_SIZE = %d", buf, RN_FMT_SIZE);
     return tap_done();
 }

@@ -1,4 +1,4 @@
-/* The numbers of results.csv as printf's "%.12g" writes them, without printf (crane_program.h).
+/* The numbers of results.csv as printf's "%.12g" writes them, without printf (rn_run.h).
  *
  * printf converts a double to decimal with multiple-precision arithmetic, a few hundred
  * nanoseconds a number; at a row every millisecond of a fast run that was a quarter of the CPU
@@ -16,7 +16,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "crane_program.h"
+#include "rn_run.h"
 
 static const double POW10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                  1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
@@ -43,15 +43,15 @@ static int scaled(double ax, int s, uint64_t *N)
     return 0;
 }
 
-int cp_fmt_g12(char *buf, double x)
+int rn_fmt_g12(char *buf, double x)
 {
-    if (!isfinite(x) || x == 0) return snprintf(buf, CP_FMT_SIZE, "%.12g", x);
+    if (!isfinite(x) || x == 0) return snprintf(buf, RN_FMT_SIZE, "%.12g", x);
     double ax = fabs(x);
     int X = (int)floor(log10(ax));
     uint64_t N = 0;
     for (int tries = 0;; tries++) {
         if (tries == 3 || scaled(ax, 11 - X, &N) != 0)
-            return snprintf(buf, CP_FMT_SIZE, "%.12g", x);
+            return snprintf(buf, RN_FMT_SIZE, "%.12g", x);
         if (N >= 1000000000000ULL) /* rounded up to 10^12, or log10 one too low */
             X++;
         else if (N < 100000000000ULL) /* log10 one too high */

@@ -1,0 +1,79 @@
+/* bgsim's parts (private to the program: bgsim/bgsim.c and bgsim/bs_*.c, prefix bs_), on the
+ * run machinery it shares with the crane program (runner/rn_run.h). bgsim.c has the program's
+ * contract (files, signals, exit statuses); here:
+ *
+ *   bs_cli.c   the command line (options' table for pu_cli.h), --list-types, --describe,
+ *              --list-unknowns
+ *   bs_run.c   the dynamic run on rn_loop, --static, --modes, model_stats.txt, model.yaml,
+ *              static.txt, equilibrium.csv, modes.csv and the summary */
+#ifndef BGSIM_H
+#define BGSIM_H
+
+#include <stdio.h>
+
+#include "bgr_model.h"
+#include "mdl_model.h"
+#include "rn_run.h"
+
+#ifndef BGSIM_VERSION
+#define BGSIM_VERSION "unknown"
+#endif
+
+#define BS_MAX_SETS 64
+/* output rows: at most --max-rows (default BS_DEFAULT_MAX_ROWS) */
+#define BS_DEFAULT_MAX_ROWS 1000000LL
+#define BS_MAX_MAX_ROWS 1000000000000LL
+
+typedef struct bs_options {
+    const char *model, *out;
+    mdl_set sets[BS_MAX_SETS]; /* --set PATH=VALUE: path in set_paths, value argv's */
+    char set_paths[BS_MAX_SETS][256];
+    int nsets;
+    double t_end, rtol, atol, output_step; /* the overrides, where given: */
+    int has_t_end, has_rtol, has_atol, has_output_step;
+    long long max_rows;
+    int static_only, modes; /* --static, --modes [T] */
+    double modes_t;
+    int quiet;
+    int list_types, markdown, list_unknowns;
+    const char *describe;
+    int argc; /* the command line, for status.txt */
+    char **argv;
+} bs_options;
+
+/* Returns -1 to go on (a run, or --list-unknowns with the model loaded), or an exit status
+ * (help, version, --list-types, --describe: 0; a bad command line or an unknown type: 2, said
+ * on stderr). */
+int bs_parse_args(int argc, char **argv, bs_options *o);
+/* --list-unknowns: every unknown of the model as the file names it ("rod1.body.x0"), its kind
+ * and initial value. 0, or RN_EXIT_RUN. */
+int bs_list_unknowns(mdl_model *mm, FILE *f);
+/* An unknown's name as the model file writes it: the bgr name without the model's name,
+ * '/' as '.'. */
+const char *bs_unknown_name(const mdl_model *mm, int var, char *buf, size_t size);
+
+typedef struct bs_run {
+    rn_run rn; /* status.txt, results.csv, the folder, the solver (rn_run.h); rn.owner = this */
+    const bs_options *o;
+    mdl_model *mm;
+    mdl_solver_settings solver; /* the file's, with the command line's overrides */
+    char model_path[RN_PATH_SIZE];
+    int static_done;  /* the static start ran: */
+    mdl_trim_report trim; /* its report */
+    int have_final;
+    double *final_out; /* the last row (t, outputs) */
+    int nmodes;        /* --modes: the modes found */
+} bs_run;
+
+#define BS_RUN(rn) ((bs_run *)(rn)->owner)
+
+/* The run (dynamic, or --static / --modes). 0 or an exit status; r->rn.status says how it
+ * ended. */
+int bs_simulate(bs_run *r);
+int bs_analyse(bs_run *r);
+/* model.yaml and model_stats.txt. 0, or RN_EXIT_RUN. */
+int bs_save_model(bs_run *r);
+/* The summary on stdout. */
+void bs_summary(const bs_run *r);
+
+#endif
