@@ -64,7 +64,7 @@ static inline int ieq(const char *a, const char *b)
 
 /* The section of the table named name (any case), or NULL. */
 const char *csk_known_section(const char *name);
-/* The section nearest to name by crane_scene_edit_distance, its distance in *dist. */
+/* The section nearest to name by pu_cli_edit_distance, its distance in *dist. */
 const char *csk_nearest_section(const char *name, int *dist);
 /* Index of the key (any case), or -1. */
 int csk_find_key(const char *section, const char *key);
