@@ -101,6 +101,7 @@
 #include "bench_stab.h"
 #include "bench_util.h"
 #include "problems.h"
+#include "pu_fs.h"
 
 #include "crane_scene.h"
 
@@ -155,30 +156,6 @@ static int load_full_scene(harness *b)
     const char *base = strrchr(file, '/');
     snprintf(b->full_name, sizeof b->full_name, "%s", base ? base + 1 : file);
     return BENCH_CLI_RUN;
-}
-
-/* Creates folder dir and its parents. 0, or -1 with errno (ENOTDIR: dir or a parent is a file). */
-static int mkdirs(const char *dir)
-{
-    char buf[BENCH_PATH_SIZE];
-    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
-        errno = ENAMETOOLONG; /* bench_cli refuses such a name first */
-        return -1;
-    }
-    for (char *q = buf + 1; *q; q++)
-        if (*q == '/') {
-            *q = '\0';
-            if (mkdir(buf, 0755) != 0 && errno != EEXIST) return -1;
-            *q = '/';
-        }
-    if (mkdir(buf, 0755) != 0 && errno != EEXIST) return -1;
-    struct stat st;
-    if (stat(buf, &st) != 0) return -1;
-    if (!S_ISDIR(st.st_mode)) {
-        errno = ENOTDIR;
-        return -1;
-    }
-    return 0;
 }
 
 /* The crane's real-time check (bench_realtime.h), into tail: the main scene (paper, or
@@ -411,7 +388,7 @@ static int start(harness *b, int argc, char **argv)
     if (rc != BENCH_CLI_RUN || b->cli.child) return rc;
     if ((rc = bench_cli_resolve(&b->cli)) != BENCH_CLI_RUN) return rc;
     if ((rc = load_full_scene(b)) != BENCH_CLI_RUN) return rc;
-    if (mkdirs(b->cli.out) != 0) {
+    if (pu_mkdir_p(b->cli.out, 0755, NULL, 0) != 0) { /* errno says why */
         fprintf(stderr, "bench: cannot create the output folder '%s': %s\n", b->cli.out,
                 strerror(errno));
         return 1;
