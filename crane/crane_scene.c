@@ -38,7 +38,8 @@ static int value_error(bg_error *err, const char *origin, const key_def *k, cons
     char exp[160], q[80];
     expected_text(k, exp, sizeof exp);
     pu_ini_quote(got, q, sizeof q);
-    int hex = k->pub.type != CRANE_KEY_NAME && k->pub.type != CRANE_KEY_BOOLEAN && pu_ini_looks_hex(got);
+    int hex =
+        k->pub.type != CRANE_KEY_NAME && k->pub.type != CRANE_KEY_BOOLEAN && pu_ini_looks_hex(got);
     return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene",
                           "%s%skey '%s' in [%s]: expected %s, got '%s'%s", origin ? origin : "",
                           origin ? ": " : "", k->pub.key, k->pub.section, exp, q,
@@ -103,11 +104,11 @@ static int set_value(crane_scene *s, const key_def *k, const char *value, const 
     case CRANE_KEY_BOOLEAN: {
         static const char *yes[] = {"true", "yes", "on", "1"}, *no[] = {"false", "no", "off", "0"};
         for (int i = 0; i < 4; i++) {
-            if (ieq(value, yes[i])) {
+            if (pu_ini_ieq(value, yes[i])) {
                 *ifield(s, k) = 1;
                 return BG_OK;
             }
-            if (ieq(value, no[i])) {
+            if (pu_ini_ieq(value, no[i])) {
                 *ifield(s, k) = 0;
                 return BG_OK;
             }
@@ -281,7 +282,7 @@ typedef struct parse_ctx {
     size_t len;
     int line; /* number of the line last read */
     int failed;
-    int seen[NKEYS];   /* line that set each key (0: none) */
+    int seen[NKEYS]; /* line that set each key (0: none) */
 } parse_ctx;
 
 #if defined(__GNUC__)
@@ -327,7 +328,7 @@ static int handler(void *user, const char *section, const char *name, const char
         char other[200] = "";
         size_t len = 0;
         for (int k = 0; k < NKEYS; k++)
-            if (ieq(KEYS[k].pub.key, name) && len < sizeof other)
+            if (pu_ini_ieq(KEYS[k].pub.key, name) && len < sizeof other)
                 len += (size_t)snprintf(other + len, sizeof other - len, "%s[%s]", len ? ", " : "",
                                         KEYS[k].pub.section);
         if (other[0])

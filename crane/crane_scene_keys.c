@@ -249,7 +249,7 @@ static int section_count(const char **names, int max)
 const char *csk_known_section(const char *name)
 {
     for (int i = 0; i < NKEYS; i++)
-        if (ieq(KEYS[i].pub.section, name)) return KEYS[i].pub.section;
+        if (pu_ini_ieq(KEYS[i].pub.section, name)) return KEYS[i].pub.section;
     return NULL;
 }
 
@@ -268,7 +268,7 @@ const char *csk_nearest_section(const char *name, int *dist)
 int csk_find_key(const char *section, const char *key)
 {
     for (int i = 0; i < NKEYS; i++)
-        if (ieq(KEYS[i].pub.section, section) && ieq(KEYS[i].pub.key, key)) return i;
+        if (pu_ini_ieq(KEYS[i].pub.section, section) && pu_ini_ieq(KEYS[i].pub.key, key)) return i;
     return -1;
 }
 
@@ -277,7 +277,7 @@ int csk_nearest_key(const char *section, const char *key, int *dist)
 {
     int best = -1, bd = 1 << 30;
     for (int i = 0; i < NKEYS; i++) {
-        if (!ieq(KEYS[i].pub.section, section)) continue;
+        if (!pu_ini_ieq(KEYS[i].pub.section, section)) continue;
         int d = pu_cli_edit_distance(key, KEYS[i].pub.key);
         if (d < bd) bd = d, best = i;
     }
@@ -291,7 +291,7 @@ void csk_list_keys(const char *section, char *buf, size_t size)
     size_t len = 0;
     buf[0] = '\0';
     for (int i = 0; i < NKEYS && len < size; i++)
-        if (ieq(KEYS[i].pub.section, section))
+        if (pu_ini_ieq(KEYS[i].pub.section, section))
             len +=
                 (size_t)snprintf(buf + len, size - len, "%s%s", len ? ", " : "", KEYS[i].pub.key);
 }
