@@ -101,10 +101,9 @@
 #include "bench_stab.h"
 #include "bench_util.h"
 #include "problems.h"
+#include "pu_fs.h"
 
-#ifdef BENCH_HAVE_SCENES
 #include "crane_scene.h"
-#endif
 
 /* larger cases run dense LU at the loosest tolerance only */
 #define DENSE_MAX_N 300
@@ -134,16 +133,12 @@ static int load_scene(harness *b)
 {
     crane_scene_default(&b->scene);
     if (!b->cli.scene_file) return BENCH_CLI_RUN;
-#ifdef BENCH_HAVE_SCENES
     bg_error err = {0};
     if (crane_scene_load(&b->scene, b->cli.scene_file, &err) != BG_OK) {
         fprintf(stderr, "bench: %s\n", err.message);
         return 2;
     }
     return BENCH_CLI_RUN;
-#else
-    return bench_cli_usage("--crane-scene: built without scene files (libinih-dev)");
-#endif
 }
 
 /* --crane-full's scene: --crane-full-scene FILE or paper-undamped.ini, and its name for the
@@ -151,7 +146,6 @@ static int load_scene(harness *b)
 static int load_full_scene(harness *b)
 {
     if (!b->cli.crane_full) return BENCH_CLI_RUN;
-#ifdef BENCH_HAVE_SCENES
     const char *file =
         b->cli.full_scene ? b->cli.full_scene : BENCH_SCENES_DIR "/paper-undamped.ini";
     bg_error err = {0};
@@ -162,38 +156,11 @@ static int load_full_scene(harness *b)
     const char *base = strrchr(file, '/');
     snprintf(b->full_name, sizeof b->full_name, "%s", base ? base + 1 : file);
     return BENCH_CLI_RUN;
-#else
-    return bench_cli_usage("--crane-full: built without scene files (libinih-dev)");
-#endif
-}
-
-/* Creates folder dir and its parents. 0, or -1 with errno (ENOTDIR: dir or a parent is a file). */
-static int mkdirs(const char *dir)
-{
-    char buf[BENCH_PATH_SIZE];
-    if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) {
-        errno = ENAMETOOLONG; /* bench_cli refuses such a name first */
-        return -1;
-    }
-    for (char *q = buf + 1; *q; q++)
-        if (*q == '/') {
-            *q = '\0';
-            if (mkdir(buf, 0755) != 0 && errno != EEXIST) return -1;
-            *q = '/';
-        }
-    if (mkdir(buf, 0755) != 0 && errno != EEXIST) return -1;
-    struct stat st;
-    if (stat(buf, &st) != 0) return -1;
-    if (!S_ISDIR(st.st_mode)) {
-        errno = ENOTDIR;
-        return -1;
-    }
-    return 0;
 }
 
 /* The crane's real-time check (bench_realtime.h), into tail: the main scene (paper, or
- * --crane-scene) and, with scene files, paper-undamped; the mesh series on the main scene over
- * 1 s (--quick: none). Run first, while this process is small: a child's ru_maxrss includes the
+ * --crane-scene) and paper-undamped; the mesh series on the main scene over 1 s (--quick:
+ * none). Run first, while this process is small: a child's ru_maxrss includes the
  * resident size it was forked with (Linux keeps the high-water mark across execve). */
 static void realtime_check(harness *b)
 {
@@ -213,7 +180,6 @@ static void realtime_check(harness *b)
     ex->rts[0].target = 50;
     ex->rts[0].max_steps = c->scene_file ? 0 : 8000;
     ex->nrt = 1;
-#ifdef BENCH_HAVE_SCENES
     bg_error err = {0};
     bench_rt_scene *u = &ex->rts[1];
     u->file = BENCH_SCENES_DIR "/paper-undamped.ini";
@@ -223,7 +189,6 @@ static void realtime_check(harness *b)
         ex->nrt = 2;
     else
         fprintf(stderr, "bench: the real-time check without paper-undamped: %s\n", err.message);
-#endif
     b->failures +=
         bench_crane_realtime(exe, ex->rts, ex->nrt, c->realtime_runs, c->scale,
                              c->quick ? 0 : c->nscale, 1.0, c->out, b->tail.f, ex->rt, &ex->mesh);
@@ -423,7 +388,7 @@ static int start(harness *b, int argc, char **argv)
     if (rc != BENCH_CLI_RUN || b->cli.child) return rc;
     if ((rc = bench_cli_resolve(&b->cli)) != BENCH_CLI_RUN) return rc;
     if ((rc = load_full_scene(b)) != BENCH_CLI_RUN) return rc;
-    if (mkdirs(b->cli.out) != 0) {
+    if (pu_mkdir_p(b->cli.out, 0755, NULL, 0) != 0) { /* errno says why */
         fprintf(stderr, "bench: cannot create the output folder '%s': %s\n", b->cli.out,
                 strerror(errno));
         return 1;

@@ -1,10 +1,12 @@
-/* The bench's command line (bench_cli.h): a table of options, the parser that walks it, the help
- * generated from it, and the resolution of the lists.
+/* The bench's command line (bench_cli.h): its table of options for progutil's table-driven
+ * parser (pu_cli.h), the help generated from it, and the resolution of the lists.
  *
  * Method: every argument is looked up by name (or alias) in the table, never by its place in it;
- * an entry says the kind of its value, the field of bench_cli it fills (offsetof), the range of a
- * number, and its help. Reordering the table reorders the help only. The table is plain data, to
- * be carried over to a shared table-driven parser as it stands. */
+ * an entry says the kind of its value, the field of bench_cli it fills (PU_CLI_AT), the range of
+ * a number with the bench's own message for a value out of it (.bad), and its help. Reordering
+ * the table reorders the help only. --crane-full-scene and --crane-full-rtols imply --crane-full
+ * (their .seen is its field); --out's length is checked by a take callback (never cut: the
+ * folder's name must fit the paths built in it). */
 #include <errno.h>
 #include <math.h>
 #include <stddef.h>
@@ -15,168 +17,132 @@
 #include "bench_cli.h"
 #include "bench_util.h"
 #include "problems.h"
+#include "pu_cli.h"
 
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
-typedef enum opt_kind {
-    OPT_FLAG, /* no value: the int field set to 1 */
-    OPT_TEXT, /* a value kept as given (char *): a list, a name, a path; hi > 0: at most hi chars */
-    OPT_INT,  /* a whole number in [lo, hi] (int) */
-    OPT_NUM,  /* a finite number in [lo, hi] (double) */
-    OPT_HELP, /* the help on the standard output, then the end */
-} opt_kind;
+#define AT(field) PU_CLI_AT(bench_cli, field)
 
-typedef struct opt {
-    const char *name;  /* "--repeat" */
-    const char *alias; /* another name ("-h"), or NULL */
-    opt_kind kind;
-    const char *meta; /* the value's name in the help ("K"); NULL for a flag */
-    size_t field;     /* offsetof(bench_cli, the field it fills); unused by OPT_HELP */
-    double lo, hi;    /* OPT_INT, OPT_NUM: the range; OPT_TEXT: hi the longest value, 0 none */
-    /* OPT_INT, OPT_NUM: what it takes, for the message "NAME takes WHAT, not 'VALUE'" and the
-     * help; OPT_TEXT with a limit: what the value is, for "NAME: WHAT has N characters, ..." */
-    const char *takes;
-    const char *help; /* NULL: internal, not in the help */
-} opt;
-
-#define F(field) offsetof(bench_cli, field)
+/* --out DIR: at most BENCH_OUT_MAX characters (data: what the value is, for the message). */
+static int take_out(const pu_cli_option *o, const char *value, void *base, char *msg, size_t size)
+{
+    if (strlen(value) > BENCH_OUT_MAX) {
+        snprintf(msg, size, "%s: %s has %zu characters, more than the %d allowed", o->name,
+                 (const char *)o->data, strlen(value), (int)BENCH_OUT_MAX);
+        return -1;
+    }
+    ((bench_cli *)base)->out = value;
+    return 0;
+}
 
 /* In the order of the usage line. */
-static const opt options[] = {
-    {"--problems", NULL, OPT_TEXT, "LIST|none", F(problems_text), 0, 0, NULL,
-     "the problems, comma-separated (default: all); none: no work-precision runs (and, unless "
-     "asked for, no crane scaling or real-time runs)"},
-    {"--solvers", NULL, OPT_TEXT, "LIST", F(solvers_text), 0, 0, NULL,
-     "the solvers, comma-separated (default: all)"},
-    {"--rtols", NULL, OPT_TEXT, "LIST", F(rtols_text), 0, 0, NULL,
-     "the tolerances, numbers in (0, 1), comma-separated (default 1e-4 .. 1e-10; --quick: 1e-4, "
-     "1e-7)"},
-    {"--repeat", NULL, OPT_INT, "K", F(repeat), 1, BENCH_MAXREP,
-     "a whole number from 1 to " STR(BENCH_MAXREP),
-     "timed runs of each problem, solver and tolerance (default 3; --quick 1)"},
-    {"--stability", NULL, OPT_FLAG, NULL, F(stability), 0, 0, NULL,
-     "the stability suite of stiff and extreme cases (stability.csv)"},
-    {"--quick", NULL, OPT_FLAG, NULL, F(quick), 0, 0, NULL,
-     "a short run (fewer tolerances, runs and elements, a shorter crane horizon, no real-time "
-     "runs) with the error estimate"},
-    {"--out", NULL, OPT_TEXT, "DIR", F(out), 0, BENCH_OUT_MAX, "the folder's name",
-     "the output folder, created with its parents (default results/bench)"},
-    {"--crane-horizon", NULL, OPT_NUM, "T", F(horizon), 1e-6, 1e4, "a time in s in [1e-6, 1e4]",
-     "the crane's horizon in seconds (default 1; --quick 0.1)"},
-    {"--crane-realtime", NULL, OPT_INT, "K", F(realtime_runs), 0, 99, "a number of runs 0..99",
-     "runs of each scene over its 20 s, paper (or --crane-scene) and paper-undamped.ini, for "
-     "realtime.csv with the mesh series over 1 s (default 5; --quick 0)"},
-    {"--scaling", NULL, OPT_TEXT, "LIST|none", F(scaling_text), 0, 0, NULL,
-     "boom element counts 1..512 (scaling.csv and realtime.csv's mesh series; default 8, 16, "
-     ".., 512; --quick 8 .. 64)"},
-    {"--crane-scene", NULL, OPT_TEXT, "FILE", F(scene_file), 0, 0, NULL,
-     "the crane's scene (default: the paper scene)"},
-    {"--stability-filter", NULL, OPT_TEXT, "TEXT", F(stab_filter), 0, 0, NULL,
-     "the stability cases whose name contains TEXT"},
-    {"--strict", NULL, OPT_FLAG, NULL, F(strict), 0, 0, NULL,
-     "exit status 1 also when a run of ours or of the crane failed or a stability case ended "
-     "wrong, at its time limit or without its set-up"},
-    {"--crane-full", NULL, OPT_FLAG, NULL, F(crane_full), 0, 0, NULL,
-     "paper-undamped.ini over 20 s, ours and IDA at rtol 1e-4..1e-9 (--crane-full-rtols) "
-     "against ours at 1e-10 (crane_wp.csv)"},
-    {"--crane-full-scene", NULL, OPT_TEXT, "FILE", F(full_scene), 0, 0, NULL,
-     "the scene of --crane-full (implies it)"},
-    {"--crane-full-rtols", NULL, OPT_TEXT, "LIST", F(full_rtols_text), 0, 0, NULL,
-     "the tolerances of --crane-full, numbers in (0, 1) (implies it)"},
-    {"--newton-dgmax", NULL, OPT_NUM, "G", F(newton_dgmax), 0, 0.999, "a number in [0, 1)",
-     "options.newton_dgmax of ours on the collection (default 0; the crane runs as its scene "
-     "says)"},
-    {"--error-estimate", NULL, OPT_FLAG, NULL, F(errest), 0, 0, NULL,
-     "crane --error-estimate's estimate against the true error (--quick: always, on its "
-     "tolerances)"},
-    {"--help", "-h", OPT_HELP, NULL, 0, 0, 0, NULL, "this help"},
-    {"--realtime-child", NULL, OPT_FLAG, NULL, F(child), 0, 0, NULL, NULL},
+static const pu_cli_option options[] = {
+    {.name = "--problems", .kind = PU_CLI_STRING, .arg = "LIST|none", .at = AT(problems_text),
+     .help = "the problems, comma-separated (default: all); none: no work-precision runs (and, "
+             "unless asked for, no crane scaling or real-time runs)"},
+    {.name = "--solvers", .kind = PU_CLI_STRING, .arg = "LIST", .at = AT(solvers_text),
+     .help = "the solvers, comma-separated (default: all)"},
+    {.name = "--rtols", .kind = PU_CLI_STRING, .arg = "LIST", .at = AT(rtols_text),
+     .help = "the tolerances, numbers in (0, 1), comma-separated (default 1e-4 .. 1e-10; "
+             "--quick: 1e-4, 1e-7)"},
+    {.name = "--repeat", .kind = PU_CLI_INT, .arg = "K", .at = AT(repeat), .min = 1,
+     .max = BENCH_MAXREP, .bad = "%s takes a whole number from 1 to " STR(BENCH_MAXREP) ", not '%s'",
+     .help = "timed runs of each problem, solver and tolerance (default 3; --quick 1); takes a "
+             "whole number from 1 to " STR(BENCH_MAXREP)},
+    {.name = "--stability", .kind = PU_CLI_FLAG, .at = AT(stability),
+     .help = "the stability suite of stiff and extreme cases (stability.csv)"},
+    {.name = "--quick", .kind = PU_CLI_FLAG, .at = AT(quick),
+     .help = "a short run (fewer tolerances, runs and elements, a shorter crane horizon, no "
+             "real-time runs) with the error estimate"},
+    {.name = "--out", .kind = PU_CLI_CALL, .arg = "DIR", .take = take_out,
+     .data = "the folder's name",
+     .help = "the output folder, created with its parents (default results/bench)"},
+    {.name = "--crane-horizon", .kind = PU_CLI_DOUBLE, .arg = "T", .at = AT(horizon), .min = 1e-6,
+     .max = 1e4, .bad = "%s takes a time in s in [1e-6, 1e4], not '%s'",
+     .help = "the crane's horizon in seconds (default 1; --quick 0.1); takes a time in s in "
+             "[1e-6, 1e4]"},
+    {.name = "--crane-realtime", .kind = PU_CLI_INT, .arg = "K", .at = AT(realtime_runs),
+     .min = 0, .max = 99, .bad = "%s takes a number of runs 0..99, not '%s'",
+     .help = "runs of each scene over its 20 s, paper (or --crane-scene) and paper-undamped.ini, "
+             "for realtime.csv with the mesh series over 1 s (default 5; --quick 0); takes a "
+             "number of runs 0..99"},
+    {.name = "--scaling", .kind = PU_CLI_STRING, .arg = "LIST|none", .at = AT(scaling_text),
+     .help = "boom element counts 1..512 (scaling.csv and realtime.csv's mesh series; default 8, "
+             "16, .., 512; --quick 8 .. 64)"},
+    {.name = "--crane-scene", .kind = PU_CLI_STRING, .arg = "FILE", .at = AT(scene_file),
+     .help = "the crane's scene (default: the paper scene)"},
+    {.name = "--stability-filter", .kind = PU_CLI_STRING, .arg = "TEXT", .at = AT(stab_filter),
+     .help = "the stability cases whose name contains TEXT"},
+    {.name = "--strict", .kind = PU_CLI_FLAG, .at = AT(strict),
+     .help = "exit status 1 also when a run of ours or of the crane failed or a stability case "
+             "ended wrong, at its time limit or without its set-up"},
+    {.name = "--crane-full", .kind = PU_CLI_FLAG, .at = AT(crane_full),
+     .help = "paper-undamped.ini over 20 s, ours and IDA at rtol 1e-4..1e-9 (--crane-full-rtols) "
+             "against ours at 1e-10 (crane_wp.csv)"},
+    {.name = "--crane-full-scene", .kind = PU_CLI_STRING, .arg = "FILE", .at = AT(full_scene),
+     .seen = AT(crane_full), .help = "the scene of --crane-full (implies it)"},
+    {.name = "--crane-full-rtols", .kind = PU_CLI_STRING, .arg = "LIST",
+     .at = AT(full_rtols_text), .seen = AT(crane_full),
+     .help = "the tolerances of --crane-full, numbers in (0, 1) (implies it)"},
+    {.name = "--newton-dgmax", .kind = PU_CLI_DOUBLE, .arg = "G", .at = AT(newton_dgmax),
+     .min = 0, .max = 0.999, .bad = "%s takes a number in [0, 1), not '%s'",
+     .help = "options.newton_dgmax of ours on the collection (default 0; the crane runs as its "
+             "scene says); takes a number in [0, 1)"},
+    {.name = "--error-estimate", .kind = PU_CLI_FLAG, .at = AT(errest),
+     .help = "crane --error-estimate's estimate against the true error (--quick: always, on its "
+             "tolerances)"},
+    {.name = "--help", .alias = "-h", .kind = PU_CLI_STOP, .help = "this help (also -h)"},
+    /* internal: one real-time run in a child process (bench_realtime.h) */
+    {.name = "--realtime-child", .kind = PU_CLI_FLAG, .at = AT(child), .hidden = 1},
 };
 
 #define NOPT ((int)(sizeof options / sizeof options[0]))
 
 /* ------------------------------------------------------------------ the help ---- */
 
-#define HELP_WIDTH 80
-#define HELP_COL 28 /* where an option's help starts */
-
-/* Prints text from column col (the cursor there) in words, wrapped before HELP_WIDTH onto lines
- * that start at column indent. Returns the column after it. */
-static int print_wrapped(FILE *f, const char *text, int col, int indent)
+/* The help: the usage line of every option, the solvers and problems (the collection's names),
+ * the options. Allocated (free()); NULL when out of memory. */
+static char *help_text(void)
 {
-    const char *p = text;
-    while (*p) {
-        size_t w = strcspn(p, " ");
-        if (col > indent && col + 1 + (int)w > HELP_WIDTH) {
-            fprintf(f, "\n%*s", indent, "");
-            col = indent;
-        } else if (col > indent) {
-            fputc(' ', f);
-            col++;
-        }
-        fprintf(f, "%.*s", (int)w, p);
-        col += (int)w;
-        p += w;
-        while (*p == ' ')
-            p++;
-    }
-    return col;
-}
-
-static void usage_text(FILE *f)
-{
-    static const char lead[] = "usage: bench";
-    int col = fprintf(f, "%s", lead);
-    for (int i = 0; i < NOPT; i++) {
-        const opt *o = &options[i];
-        char item[64];
-        if (!o->help) continue;
-        snprintf(item, sizeof item, "[%s%s%s]", o->name, o->meta ? " " : "",
-                 o->meta ? o->meta : "");
-        int w = (int)strlen(item);
-        if (col + 1 + w > HELP_WIDTH) {
-            fprintf(f, "\n%*s", (int)sizeof lead - 1, "");
-            col = (int)sizeof lead - 1;
-        }
-        col += fprintf(f, " %s", item);
-    }
-    fprintf(f, "\n  solvers:");
+    char *intro = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&intro, &len);
+    if (!f) return NULL;
+    fprintf(f, "solvers:");
     for (int s = 0; s < bench_nsolvers; s++)
         fprintf(f, " %s", bench_solvers[s].name);
-    fprintf(f, "\n  problems:");
+    fprintf(f, "\nproblems:");
     for (int i = 0; i < bp_count(); i++)
         fprintf(f, " %s", bp_get(i)->name);
     for (int i = 0; i < bp_testset_count(); i++)
         fprintf(f, " %s", bp_testset_get(i)->name);
     for (int i = 0; i < bp_osc_count(); i++)
         fprintf(f, " %s", bp_osc_get(i)->name);
-    fprintf(f, " crane\noptions:\n");
-    for (int i = 0; i < NOPT; i++) {
-        const opt *o = &options[i];
-        if (!o->help) continue;
-        int c = fprintf(f, "  %s%s%s%s%s", o->name, o->alias ? ", " : "", o->alias ? o->alias : "",
-                        o->meta ? " " : "", o->meta ? o->meta : "");
-        if (c >= HELP_COL) {
-            fprintf(f, "\n");
-            c = 0;
-        }
-        fprintf(f, "%*s", HELP_COL - c, "");
-        c = print_wrapped(f, o->help, HELP_COL, HELP_COL);
-        if ((o->kind == OPT_INT || o->kind == OPT_NUM) && o->takes) {
-            fputc(';', f);
-            c = print_wrapped(f, "takes", c + 1, HELP_COL);
-            print_wrapped(f, o->takes, c, HELP_COL);
-        }
-        fprintf(f, "\n");
+    fprintf(f, " crane\n");
+    if (fclose(f) != 0) {
+        free(intro);
+        return NULL;
     }
-    fprintf(f, "see the header of bench/bench.c\n");
+    const pu_cli cli = {.program = "bench",
+                        .intro = intro,
+                        .options_title = "options:",
+                        .epilogue = "see docs/bench.md and the header of bench/bench.c\n",
+                        .options = options,
+                        .noptions = NOPT,
+                        .column = 28,
+                        .width = 80};
+    char *help = pu_cli_help(&cli);
+    free(intro);
+    return help;
 }
 
 int bench_cli_usage(const char *bad)
 {
     fprintf(stderr, "bench: %s\n", bad);
-    usage_text(stderr);
+    char *help = help_text();
+    if (help) fputs(help, stderr);
+    free(help);
     return 2;
 }
 
@@ -201,87 +167,41 @@ static int parse_int(const char *s, int lo, int hi, int *v)
     return 0;
 }
 
-/* The table's entry named arg (by its name or alias), or NULL. */
-static const opt *find_option(const char *arg)
-{
-    for (int i = 0; i < NOPT; i++)
-        if (!strcmp(arg, options[i].name) || (options[i].alias && !strcmp(arg, options[i].alias)))
-            return &options[i];
-    return NULL;
-}
-
-/* Puts value v of option o into its field. 0, or -1 with the message in m. */
-static int set_value(bench_cli *c, const opt *o, char *v, char *m, size_t msz)
-{
-    char *field = (char *)c + o->field;
-    if (o->kind == OPT_TEXT) {
-        /* never cut: the folder's name and a file's must fit the paths */
-        if (o->hi > 0 && strlen(v) > (size_t)o->hi) {
-            snprintf(m, msz, "%s: %s has %zu characters, more than the %d allowed", o->name,
-                     o->takes, strlen(v), (int)o->hi);
-            return -1;
-        }
-        memcpy(field, &v, sizeof v);
-        return 0;
-    }
-    int bad;
-    if (o->kind == OPT_INT) {
-        int x;
-        bad = parse_int(v, (int)o->lo, (int)o->hi, &x);
-        if (!bad) memcpy(field, &x, sizeof x);
-    } else {
-        double x;
-        bad = parse_num(v, o->lo, o->hi, &x);
-        if (!bad) memcpy(field, &x, sizeof x);
-    }
-    if (bad) snprintf(m, msz, "%s takes %s, not '%s'", o->name, o->takes, v);
-    return bad ? -1 : 0;
-}
-
 int bench_cli_parse(bench_cli *c, int argc, char **argv)
 {
     memset(c, 0, sizeof *c);
     c->out = "results/bench";
     c->realtime_runs = -1;
+    const pu_cli cli = {.program = "bench", .options = options, .noptions = NOPT};
+    const pu_cli_option *stopped;
     char m[512];
-    for (int a = 1; a < argc; a++) {
-        const char *arg = argv[a];
-        const opt *o = find_option(arg);
-        if (!o) {
-            snprintf(m, sizeof m, "unknown argument '%s'", arg);
-            return bench_cli_usage(m);
+    int r = pu_cli_parse(&cli, argc, argv, c, &stopped, m, sizeof m);
+    if (r == PU_CLI_ERROR) return bench_cli_usage(m);
+    if (r == PU_CLI_STOPPED) { /* --help */
+        char *help = help_text();
+        if (!help) {
+            fprintf(stderr, "bench: out of memory\n");
+            return 1;
         }
-        if (o->kind == OPT_HELP) {
-            usage_text(stdout);
-            if (fflush(stdout) != 0 || ferror(stdout)) {
-                fprintf(stderr, "bench: cannot write the standard output: %s\n", strerror(errno));
-                return 1;
-            }
-            return 0;
+        fputs(help, stdout);
+        free(help);
+        if (fflush(stdout) != 0 || ferror(stdout)) {
+            fprintf(stderr, "bench: cannot write the standard output: %s\n", strerror(errno));
+            return 1;
         }
-        if (o->kind == OPT_FLAG) {
-            const int one = 1;
-            memcpy((char *)c + o->field, &one, sizeof one);
-            continue;
-        }
-        if (a + 1 >= argc || !argv[a + 1][0] || !strncmp(argv[a + 1], "--", 2)) {
-            snprintf(m, sizeof m, "option %s needs a value", arg);
-            return bench_cli_usage(m);
-        }
-        if (set_value(c, o, argv[++a], m, sizeof m) != 0) return bench_cli_usage(m);
+        return 0;
     }
-    /* the options that imply another */
-    if (c->full_scene || c->full_rtols_text) c->crane_full = 1;
     return BENCH_CLI_RUN;
 }
 
 /* ---------------------------------------------------------------- resolving ---- */
 
-/* Splits a comma-separated list in place; the number of items, or -1 if more than max. */
-static int split_list(char *s, char **items, int max)
+/* Splits a comma-separated list in place (argv's own text, which is writable); the number of
+ * items, or -1 if more than max. */
+static int split_list(const char *s, char **items, int max)
 {
     int n = 0;
-    for (char *tok = strtok(s, ","); tok; tok = strtok(NULL, ",")) {
+    for (char *tok = strtok((char *)s, ","); tok; tok = strtok(NULL, ",")) {
         if (n == max) return -1;
         items[n++] = tok;
     }
@@ -290,7 +210,7 @@ static int split_list(char *s, char **items, int max)
 
 /* Tolerances from list (of option name) into rtols: each in (0, 1), at least one, at most
  * BENCH_MAXRTOL. Their number, or -1 with the message in m. */
-static int tolerance_list(const char *name, char *list, double *rtols, char *m, size_t msz)
+static int tolerance_list(const char *name, const char *list, double *rtols, char *m, size_t msz)
 {
     char *items[BENCH_MAXRTOL];
     int k = split_list(list, items, BENCH_MAXRTOL), nr = 0;

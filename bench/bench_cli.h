@@ -1,5 +1,5 @@
-/* The bench's command line: a table of options (bench_cli.c), each found by its name, fills a
- * bench_cli; the help is generated from the same table. The lists given as text (problems,
+/* The bench's command line: a table of options (bench_cli.c) for progutil's parser (pu_cli.h),
+ * each found by its name, fills a bench_cli; the help is generated from the same table. The lists given as text (problems,
  * solvers, tolerances, element counts) are then checked and resolved against the problem
  * collection and the solvers by bench_cli_resolve, with the defaults that depend on --quick.
  *
@@ -25,11 +25,11 @@
 typedef struct bench_cli {
     /* as given, filled through the table; NULL, 0 or -1 where not given (bench_cli_resolve sets
      * the defaults of repeat, realtime_runs and horizon) */
-    char *problems_text;   /* --problems LIST|none */
-    char *solvers_text;    /* --solvers LIST */
-    char *rtols_text;      /* --rtols LIST */
-    char *scaling_text;    /* --scaling LIST|none */
-    char *full_rtols_text; /* --crane-full-rtols LIST */
+    const char *problems_text;   /* --problems LIST|none */
+    const char *solvers_text;    /* --solvers LIST */
+    const char *rtols_text;      /* --rtols LIST */
+    const char *scaling_text;    /* --scaling LIST|none */
+    const char *full_rtols_text; /* --crane-full-rtols LIST */
     const char *out;       /* --out DIR, default results/bench */
     const char *scene_file, *stab_filter, *full_scene;
     int repeat;          /* --repeat K; 0: not given */

@@ -11,7 +11,7 @@
 
 #include "bench_cli.h" /* BENCH_MAXRTOL: the tolerances of a series */
 #include "bench_report.h"
-#include "crane_gnuplot.h"
+#include "pu_gnuplot.h"
 
 #include "bench_version.h" /* BENCH_COMMIT, generated at build time */
 #ifndef BENCH_BUILD_FLAGS
@@ -129,14 +129,14 @@ static void write_csv(FILE *f, const bench_row *rows, int n, bench_case **cases)
     }
 }
 
-/* Runs gnuplot (exe) in folder dir on the commands of script (crane_gnuplot.h: no shell
+/* Runs gnuplot (exe) in folder dir on the commands of script (pu_gnuplot.h: no shell
  * between, its output discarded). 0 if it ended with exit status 0; else -1 and msg says how it
  * ended, with gnuplot's last message. */
 static int run_gnuplot(const char *exe, const char *dir, const char *script, char *msg, size_t msz)
 {
     char last[512];
-    crane_gnuplot_job job = {exe, dir, NULL, script, NULL, NULL};
-    int st = crane_gnuplot_run(&job, last, sizeof last);
+    pu_gnuplot_job job = {exe, dir, NULL, script, NULL, NULL};
+    int st = pu_gnuplot_run(&job, last, sizeof last);
     if (st == -1) {
         snprintf(msg, msz, "%s", last);
         return -1;
@@ -200,7 +200,7 @@ static void plot(const char *dir, const char *gnuplot, int ci, const char *name,
     int rc = run_gnuplot(gnuplot, dir, script, msg, sizeof msg);
     free(script);
     snprintf(path, sizeof path, "%s/%s", dir, png); /* bench_cli has checked that it fits */
-    if (rc == 0 && !crane_png_whole(path)) {
+    if (rc == 0 && !pu_png_whole(path)) {
         snprintf(msg, sizeof msg, "gnuplot ended without writing it whole");
         rc = -1;
     }
@@ -678,7 +678,7 @@ void bench_report_csv(const char *dir, const bench_results *res)
 void bench_report_plots(const char *dir, const bench_results *res)
 {
     char gnuplot[BENCH_PATH_SIZE];
-    int have_gnuplot = res->nc > 0 && crane_gnuplot_find(gnuplot, sizeof gnuplot);
+    int have_gnuplot = res->nc > 0 && pu_gnuplot_find(gnuplot, sizeof gnuplot);
     if (res->nc > 0 && !have_gnuplot)
         fprintf(stderr, "bench: gnuplot not found: no figures (the wp_*.dat files are written)\n");
     for (int c = 0; c < res->nc; c++)

@@ -9,6 +9,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "pu_fs.h"
+
 #ifdef BENCH_HAVE_IDA
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
@@ -110,29 +112,13 @@ int bench_file_open(bench_file *bf, const char *dir, const char *name)
     return 0;
 }
 
-/* write(2) until all is written; 0, or -1 with errno (EIO for a write of nothing). */
-static int write_all(int fd, const char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) {
-            if (w == 0) errno = EIO;
-            return -1;
-        }
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
 int bench_file_flush(bench_file *bf)
 {
     if (!bf->f) return -1;
     /* the stream in memory fails only when memory runs out */
     if (fflush(bf->f) != 0 || ferror(bf->f)) bench_file_fail(bf, ENOMEM);
     if (!bf->err && bf->len > bf->done) {
-        if (write_all(bf->fd, bf->buf + bf->done, bf->len - bf->done) != 0)
+        if (pu_write_all(bf->fd, bf->buf + bf->done, bf->len - bf->done) != 0)
             bench_file_fail(bf, errno);
         bf->done = bf->len;
     }

@@ -1,12 +1,12 @@
 /* Scene files of the rotary crane (see crane_scene.h): the parser, driven by the key table
  * (crane_scene_keys.c): values, overrides, the consistency checks, reading INI text, loading.
  *
- * inih does the INI syntax. It reports no line numbers to the handler (INI_HANDLER_LINENO is a
- * build option of the library, off in Debian's), so the text is fed to ini_parse_stream through
- * a reader of our own that counts lines; inih handles each line as soon as it has read it, so the
- * reader's count is the handler's line. The reader also checks each line before inih sees it
- * (section names, lines without '=', indented continuation lines, over-long lines), so that every
- * message can say what is wrong, and stops the parse at the first error. */
+ * The INI syntax is progutil's line reader (pu_ini.h), which reads a line as inih did (the
+ * parser of the scene files before it) and refuses what inih would have misread (lines without
+ * '=', indented continuation lines, over-long lines, a NUL), with the file's name and the line;
+ * the section names are checked here as they come and each key goes to the handler with its
+ * line, so that every message can say what is wrong and where. The parse stops at the first
+ * error. */
 #include "crane_scene_impl.h"
 
 #include <ctype.h>
@@ -19,41 +19,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <ini.h>
-
-/* A value quoted for a message: at most 60 characters, no line break. */
-static void quote(const char *v, char *buf, size_t size)
-{
-    size_t n = 0, max = size - 4 < 60 ? size - 4 : 60;
-    for (; v[n] && v[n] != '\n' && v[n] != '\r' && n < max; n++)
-        buf[n] = v[n];
-    buf[n] = '\0';
-    if (v[n] && v[n] != '\n' && v[n] != '\r') strcat(buf, "...");
-}
+#include "pu_cli.h"
+#include "pu_fs.h"
+#include "pu_ini.h"
 
 /* ------------------------------------------------------------------ values ---- */
-
-/* A decimal number: strtod alone would also take hexadecimal ("0x4c", "0x1p3"), "inf" and
- * "nan"; the scene files' numbers are decimal (digits, sign, point, exponent) and finite. */
-static int parse_double(const char *v, double *out)
-{
-    while (isspace((unsigned char)*v))
-        v++;
-    if (!*v) return 0;
-    const char *q = v;
-    while (*q && !isspace((unsigned char)*q))
-        if (!strchr("0123456789+-.eE", *q++)) return 0;
-    char *end;
-    errno = 0;
-    double x = strtod(v, &end);
-    while (isspace((unsigned char)*end))
-        end++;
-    if (*end || end == v) return 0;
-    if (!isfinite(x)) return 0;
-    if (errno == ERANGE && fabs(x) > 1) return 0; /* overflow; underflow is harmless */
-    *out = x;
-    return 1;
-}
 
 static void expected_text(const key_def *k, char *buf, size_t size)
 {
@@ -63,22 +33,13 @@ static void expected_text(const key_def *k, char *buf, size_t size)
         snprintf(buf, size, "%s", k->pub.expected);
 }
 
-/* A value written in hexadecimal ("0x4c", also inside a vector), which strtod and strtol with
- * base 0 would take: the message then says that numbers are decimal. */
-static int looks_hex(const char *v)
-{
-    for (const char *p = v; *p; p++)
-        if (*p == '0' && (p[1] == 'x' || p[1] == 'X') && (p == v || !isalnum((unsigned char)p[-1])))
-            return 1;
-    return 0;
-}
-
 static int value_error(bg_error *err, const char *origin, const key_def *k, const char *got)
 {
     char exp[160], q[80];
     expected_text(k, exp, sizeof exp);
-    quote(got, q, sizeof q);
-    int hex = k->pub.type != CRANE_KEY_NAME && k->pub.type != CRANE_KEY_BOOLEAN && looks_hex(got);
+    pu_ini_quote(got, q, sizeof q);
+    int hex =
+        k->pub.type != CRANE_KEY_NAME && k->pub.type != CRANE_KEY_BOOLEAN && pu_ini_looks_hex(got);
     return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene",
                           "%s%skey '%s' in [%s]: expected %s, got '%s'%s", origin ? origin : "",
                           origin ? ": " : "", k->pub.key, k->pub.section, exp, q,
@@ -103,7 +64,7 @@ static int set_value(crane_scene *s, const key_def *k, const char *value, const 
     switch (k->pub.type) {
     case CRANE_KEY_NUMBER: {
         double x;
-        if (!parse_double(value, &x) || !csk_in_range(k->range, x))
+        if (!pu_ini_parse_double(value, &x) || !csk_in_range(k->range, x))
             return value_error(err, origin, k, value);
         *dfield(s, k) = x;
         return BG_OK;
@@ -119,7 +80,7 @@ static int set_value(crane_scene *s, const key_def *k, const char *value, const 
                 return value_error(err, origin, k, value);
             memcpy(part, p, n);
             part[n] = '\0';
-            if (!parse_double(part, &x[i]) || !csk_in_range(k->range, x[i]))
+            if (!pu_ini_parse_double(part, &x[i]) || !csk_in_range(k->range, x[i]))
                 return value_error(err, origin, k, value);
             p = e ? e + 1 : p + n;
         }
@@ -143,11 +104,11 @@ static int set_value(crane_scene *s, const key_def *k, const char *value, const 
     case CRANE_KEY_BOOLEAN: {
         static const char *yes[] = {"true", "yes", "on", "1"}, *no[] = {"false", "no", "off", "0"};
         for (int i = 0; i < 4; i++) {
-            if (ieq(value, yes[i])) {
+            if (pu_ini_ieq(value, yes[i])) {
                 *ifield(s, k) = 1;
                 return BG_OK;
             }
-            if (ieq(value, no[i])) {
+            if (pu_ini_ieq(value, no[i])) {
                 *ifield(s, k) = 0;
                 return BG_OK;
             }
@@ -318,11 +279,10 @@ typedef struct parse_ctx {
     const char *file;
     bg_error *err;
     const char *text;
-    size_t pos, len;
+    size_t len;
     int line; /* number of the line last read */
     int failed;
-    int have_prev_key; /* inih treats an indented line after a key as a continuation */
-    int seen[NKEYS];   /* line that set each key (0: none) */
+    int seen[NKEYS]; /* line that set each key (0: none) */
 } parse_ctx;
 
 #if defined(__GNUC__)
@@ -350,7 +310,7 @@ static int handler(void *user, const char *section, const char *name, const char
     if (!section[0]) {
         int best = -1, bd = 1 << 30;
         for (int i = 0; i < NKEYS; i++) {
-            int d = crane_scene_edit_distance(name, KEYS[i].pub.key);
+            int d = pu_cli_edit_distance(name, KEYS[i].pub.key);
             if (d < bd) bd = d, best = i;
         }
         fail_at(c, "key '%s' before any [section]; did you mean '%s' in [%s]?", name,
@@ -368,7 +328,7 @@ static int handler(void *user, const char *section, const char *name, const char
         char other[200] = "";
         size_t len = 0;
         for (int k = 0; k < NKEYS; k++)
-            if (ieq(KEYS[k].pub.key, name) && len < sizeof other)
+            if (pu_ini_ieq(KEYS[k].pub.key, name) && len < sizeof other)
                 len += (size_t)snprintf(other + len, sizeof other - len, "%s[%s]", len ? ", " : "",
                                         KEYS[k].pub.section);
         if (other[0])
@@ -401,149 +361,56 @@ static int handler(void *user, const char *section, const char *name, const char
 
 /* ------------------------------------------------------------ INI reading ---- */
 
-/* The INI text, line by line (inih and the reader below), into handler (section, key, value)
- * with c->line the line being handled; the section names are checked against the table. A
- * shared INI reader replaces this group: it is all that knows of inih. */
+/* A line with its "\n" and NUL fits in SCENE_LINE_SIZE bytes (198 characters): the size of
+ * inih's line buffer (INI_MAX_LINE), which read the scene files before pu_ini. */
+#define SCENE_LINE_SIZE 200
+/* inih's section buffer (MAX_SECTION): the handler sees at most 49 characters of a header. */
+#define INIH_SECTION_SIZE 50
 
-/* Like inih's find_chars_or_comment: the first of chars, or an inline comment (';' after white
- * space), or the end. */
-static const char *find_chars_or_comment(const char *s, const char *chars)
-{
-    int was_space = 0;
-    while (*s && (!chars || !strchr(chars, *s)) && !(was_space && *s == ';')) {
-        was_space = isspace((unsigned char)*s);
-        s++;
-    }
-    return s;
-}
-
-static void trim_copy(const char *a, const char *b, char *out, size_t size)
-{
-    while (a < b && isspace((unsigned char)*a))
-        a++;
-    while (b > a && isspace((unsigned char)b[-1]))
-        b--;
-    size_t n = (size_t)(b - a) < size - 1 ? (size_t)(b - a) : size - 1;
-    memcpy(out, a, n);
-    out[n] = '\0';
-}
-
-/* Checks one line before inih sees it; 0 on error (the message is set). */
-static int check_line(parse_ctx *c, char *line)
-{
-    char *p = line, q[80];
-    if (c->line == 1 && (unsigned char)p[0] == 0xEF && (unsigned char)p[1] == 0xBB &&
-        (unsigned char)p[2] == 0xBF)
-        p += 3;
-    char *start = p;
-    while (*p && isspace((unsigned char)*p))
-        p++;
-    if (!*p || *p == ';' || *p == '#') return 1; /* blank or comment */
-    quote(p, q, sizeof q);
-    if (c->have_prev_key && p > start) {
-        fail_at(c,
-                "indented line '%s': continuation lines are not supported (remove the "
-                "indentation)",
-                q);
-        return 0;
-    }
-    if (*p == '[') {
-        const char *e = find_chars_or_comment(p + 1, "]");
-        if (*e != ']') {
-            fail_at(c, "section header without ']': '%s'", q);
-            return 0;
-        }
-        char name[128];
-        trim_copy(p + 1, e, name, sizeof name);
-        const char *rest = e + 1;
-        while (*rest && isspace((unsigned char)*rest))
-            rest++;
-        if (*rest && *rest != ';' && *rest != '#') {
-            fail_at(c, "unexpected text after [%s]: '%s'", name, q);
-            return 0;
-        }
-        if (!csk_known_section(name)) {
-            int d;
-            const char *near = csk_nearest_section(name, &d);
-            if (d <= 3 && (size_t)d < strlen(name))
-                fail_at(c, "unknown section [%s]; did you mean [%s]?", name, near);
-            else {
-                char all[400];
-                csk_list_sections(all, sizeof all);
-                fail_at(c, "unknown section [%s]; did you mean [%s]? (sections: %s)", name, near,
-                        all);
-            }
-            return 0;
-        }
-        c->have_prev_key = 0;
-        return 1;
-    }
-    const char *e = find_chars_or_comment(p, "=:");
-    if (*e != '=' && *e != ':') {
-        fail_at(c, "expected 'key = value' or '[section]', got '%s'", q);
-        return 0;
-    }
-    char key[128];
-    trim_copy(p, e, key, sizeof key);
-    if (!key[0]) {
-        fail_at(c, "key missing before '%c': '%s'", *e, q);
-        return 0;
-    }
-    c->have_prev_key = 1;
-    return 1;
-}
-
-/* Lines end with LF, CR LF or a lone CR (old Mac files): the length of the line at p (without
- * its end) and of the line end that follows it (0 at the end of the text). */
-static size_t line_length(const char *p, size_t rest)
-{
-    size_t n = 0;
-    while (n < rest && p[n] != '\n' && p[n] != '\r')
-        n++;
-    return n;
-}
-
-static size_t line_end_length(const char *p, size_t rest)
-{
-    if (rest == 0) return 0;
-    return p[0] == '\r' && rest > 1 && p[1] == '\n' ? 2 : 1;
-}
-
-/* The fgets-style reader for inih: one line of the text per call. */
-static char *reader(char *str, int num, void *stream)
-{
-    parse_ctx *c = stream;
-    if (c->failed || c->pos >= c->len) return NULL;
-    const char *p = c->text + c->pos;
-    size_t rest = c->len - c->pos, n = line_length(p, rest);
-    c->line++;
-    c->pos += n + line_end_length(p + n, rest - n);
-    if (memchr(p, '\0', n)) {
-        fail_at(c, "the line contains a NUL character (not a text file?)");
-        return NULL;
-    }
-    if (n + 2 > (size_t)num) {
-        /* name the key if the line has one */
-        char key[64] = "";
-        const char *e = memchr(p, '=', n);
-        if (e && p[0] != '[' && p[0] != ';' && p[0] != '#') trim_copy(p, e, key, sizeof key);
-        if (key[0])
-            fail_at(c, "line longer than %d characters (key '%s')", num - 2, key);
-        else
-            fail_at(c, "line longer than %d characters", num - 2);
-        return NULL;
-    }
-    memcpy(str, p, n);
-    str[n] = '\n';
-    str[n + 1] = '\0';
-    if (!check_line(c, str)) return NULL;
-    return str;
-}
-
-/* Runs the text of c through inih: 0, the line of a syntax error, or -2 (out of memory). */
+/* The text of c, line by line (pu_ini), into handler (section, key, value) with c->line the line
+ * being handled; the section names are checked against the table as they come. The handler is
+ * given the section as inih gave it: the header's text between the brackets as written (not
+ * trimmed, at most 49 characters), so that a header with spaces inside its brackets ("[ boom ]")
+ * passes the check of its name but its keys are refused, as they always were. Stops at the first
+ * error: 0, or -1 with the message set (c->failed). */
 static int ini_read(parse_ctx *c)
 {
-    return ini_parse_stream(reader, c, handler, c);
+    pu_ini_reader r;
+    pu_ini_init(&r, c->text, c->len, c->file);
+    char buf[SCENE_LINE_SIZE], section[INIH_SECTION_SIZE] = "";
+    for (;;) {
+        pu_ini_line ln;
+        char msg[BG_MESSAGE_SIZE];
+        pu_ini_kind k = pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg);
+        c->line = ln.line;
+        if (k == PU_INI_END) return 0;
+        if (k == PU_INI_ERROR) {
+            c->failed = 1;
+            bg_error_raise(c->err, BG_ERR_ARGUMENT, "crane_scene_parse", "%s", msg);
+            return -1;
+        }
+        if (k == PU_INI_SECTION) {
+            const char *name = ln.name;
+            if (!csk_known_section(name)) {
+                int d;
+                const char *near = csk_nearest_section(name, &d);
+                if (d <= 3 && (size_t)d < strlen(name))
+                    fail_at(c, "unknown section [%s]; did you mean [%s]?", name, near);
+                else {
+                    char all[400];
+                    csk_list_sections(all, sizeof all);
+                    fail_at(c, "unknown section [%s]; did you mean [%s]? (sections: %s)", name,
+                            near, all);
+                }
+                return -1;
+            }
+            size_t n = ln.header_len < sizeof section - 1 ? ln.header_len : sizeof section - 1;
+            memcpy(section, ln.header, n);
+            section[n] = '\0';
+        } else if (k == PU_INI_KEY && !handler(c, section, ln.key, ln.value)) {
+            return -1;
+        }
+    }
 }
 
 /* ------------------------------------------------------------------ loading ---- */
@@ -563,14 +430,7 @@ static int parse_counted(crane_scene *s, const char *text, const char *filename,
     c.err = err;
     c.text = text;
     c.len = strlen(text);
-    int r = ini_read(&c);
-    if (c.failed) return err && err->status != BG_OK ? err->status : BG_ERR_ARGUMENT;
-    if (r == -2)
-        return bg_error_raise(err, BG_ERR_MEMORY, "crane_scene_parse", "%s: out of memory", file);
-    if (r != 0) {
-        c.line = r;
-        return fail_at(&c, "syntax error");
-    }
+    if (ini_read(&c) != 0) return err && err->status != BG_OK ? err->status : BG_ERR_ARGUMENT;
     if (nkeys)
         for (int i = 0; i < NKEYS; i++)
             *nkeys += c.seen[i] > 0;
@@ -622,12 +482,9 @@ static int parse_file_counted(crane_scene *s, FILE *f, const char *filename, int
     size_t z = strlen(buf);
     int r;
     if (z < len) {
-        int line = 1;
-        for (size_t i = 0, e; (i += line_length(buf + i, z - i)) < z; i += e, line++)
-            e = line_end_length(buf + i, z - i);
         r = bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene_parse",
                            "%s:%d: the line contains a NUL character (not a text file?)", file,
-                           line);
+                           pu_ini_line_at(buf, z));
     } else {
         r = parse_counted(s, buf, file, nkeys, err);
     }
@@ -638,19 +495,6 @@ static int parse_file_counted(crane_scene *s, FILE *f, const char *filename, int
 int crane_scene_parse_file(crane_scene *s, FILE *f, const char *filename, bg_error *err)
 {
     return parse_file_counted(s, f, filename, NULL, err);
-}
-
-const char *crane_file_kind(unsigned mode)
-{
-    mode_t m = (mode_t)mode;
-    return S_ISREG(m)    ? "a regular file"
-           : S_ISDIR(m)  ? "a directory"
-           : S_ISFIFO(m) ? "a FIFO (named pipe)"
-           : S_ISCHR(m)  ? "a character device"
-           : S_ISBLK(m)  ? "a block device"
-           : S_ISSOCK(m) ? "a socket"
-           : S_ISLNK(m)  ? "a symbolic link"
-                         : "not a regular file";
 }
 
 int crane_scene_load(crane_scene *s, const char *path, bg_error *err)
@@ -690,7 +534,7 @@ int crane_scene_load_counted(crane_scene *s, const char *path, int *nkeys, bg_er
             return bg_error_raise(err, BG_ERR_IO, "crane_scene_load", "%s: cannot open: %s", path,
                                   strerror(e));
         return bg_error_raise(err, BG_ERR_IO, "crane_scene_load", "%s: %s, not a scene file", path,
-                              crane_file_kind((unsigned)st.st_mode));
+                              pu_fs_kind((unsigned)st.st_mode));
     }
     FILE *f = fdopen(fd, "r");
     if (!f) {

@@ -1,4 +1,4 @@
-/* Scene files of the rotary crane: INI text (parsed with inih) -> crane_scene.
+/* Scene files of the rotary crane: INI text (read with progutil's pu_ini) -> crane_scene.
  *
  * A scene file starts from crane_scene_default() (the paper scene) and changes what it states;
  * every key is optional and may appear at most once. Lines are "key = value", "[section]",
@@ -82,8 +82,6 @@ int crane_scene_load(crane_scene *s, const char *path, bg_error *err);
 /* The same, and *nkeys (may be NULL) = the number of keys the file sets (0: the file is empty or
  * holds only comments and section headers). */
 int crane_scene_load_counted(crane_scene *s, const char *path, int *nkeys, bg_error *err);
-/* "a directory", "a FIFO (named pipe)", "a character device", ... for a stat st_mode. */
-const char *crane_file_kind(unsigned mode);
 /* Apply a scene file's text to s (not reset first); filename is used in messages. */
 int crane_scene_parse_file(crane_scene *s, FILE *f, const char *filename, bg_error *err);
 int crane_scene_parse_string(crane_scene *s, const char *text, const char *filename, bg_error *err);
@@ -127,10 +125,6 @@ typedef struct crane_scene_key {
 int crane_scene_nkeys(void);
 /* Key i (0 .. crane_scene_nkeys()-1), or NULL. */
 const crane_scene_key *crane_scene_key_at(int i);
-
-/* Edit distance (optimal string alignment: insertions, deletions, substitutions, transpositions
- * of neighbours), case-insensitive; used for the suggestions. */
-int crane_scene_edit_distance(const char *a, const char *b);
 
 #ifdef __cplusplus
 }

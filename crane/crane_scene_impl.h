@@ -3,10 +3,10 @@
 #ifndef CRANE_SCENE_IMPL_H
 #define CRANE_SCENE_IMPL_H
 
-#include <ctype.h>
 #include <stddef.h>
 
 #include "crane_scene.h"
+#include "pu_ini.h" /* pu_ini_ieq: names any case */
 
 typedef enum range_kind {
     R_ANY,    /* finite */
@@ -54,17 +54,9 @@ static inline const int *cifield(const crane_scene *s, const key_def *k)
     return (const int *)(const void *)((const char *)s + k->off);
 }
 
-/* Names compared without regard to case. */
-static inline int ieq(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++)
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b)) return 0;
-    return *a == *b;
-}
-
 /* The section of the table named name (any case), or NULL. */
 const char *csk_known_section(const char *name);
-/* The section nearest to name by crane_scene_edit_distance, its distance in *dist. */
+/* The section nearest to name by pu_cli_edit_distance, its distance in *dist. */
 const char *csk_nearest_section(const char *name, int *dist);
 /* Index of the key (any case), or -1. */
 int csk_find_key(const char *section, const char *key);

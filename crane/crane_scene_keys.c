@@ -1,14 +1,15 @@
 /* The scene keys (crane_scene.h): one table holds each key's section, name, type, field
  * (offset), range, default, unit and meaning. From it come the defaults (crane_scene_default),
  * the range checks and the parser's look-ups (crane_scene.c), writing and comparing scenes, and
- * the key list (crane_scene_keys_markdown: crane --list-keys, docs/scene-keys.md). Built without
- * inih. */
+ * the key list (crane_scene_keys_markdown: crane --list-keys, docs/scene-keys.md). Independent of
+ * the INI reader. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "crane_scene_impl.h"
+#include "pu_cli.h"
 
 /* The table's entries by type: section, key, field, range (the text "expected" follows from it),
  * the default, unit, meaning (written beside the key by crane_scene_write) and a note for the
@@ -232,31 +233,6 @@ const crane_scene_key *crane_scene_key_at(int i)
 
 /* ---------------------------------------------------------- names, distance ---- */
 
-int crane_scene_edit_distance(const char *a, const char *b)
-{
-    enum { MAXL = 64 };
-    size_t la = strlen(a), lb = strlen(b);
-    if (la > MAXL) la = MAXL;
-    if (lb > MAXL) lb = MAXL;
-    int d[MAXL + 1][MAXL + 1];
-    for (size_t i = 0; i <= la; i++)
-        d[i][0] = (int)i;
-    for (size_t j = 0; j <= lb; j++)
-        d[0][j] = (int)j;
-    for (size_t i = 1; i <= la; i++)
-        for (size_t j = 1; j <= lb; j++) {
-            int ca = tolower((unsigned char)a[i - 1]), cb = tolower((unsigned char)b[j - 1]);
-            int cost = ca != cb, v = d[i - 1][j - 1] + cost;
-            if (d[i - 1][j] + 1 < v) v = d[i - 1][j] + 1;
-            if (d[i][j - 1] + 1 < v) v = d[i][j - 1] + 1;
-            if (i > 1 && j > 1 && ca == tolower((unsigned char)b[j - 2]) &&
-                tolower((unsigned char)a[i - 2]) == cb && d[i - 2][j - 2] + 1 < v)
-                v = d[i - 2][j - 2] + 1;
-            d[i][j] = v;
-        }
-    return d[la][lb];
-}
-
 /* The section names in table order. */
 static int section_count(const char **names, int max)
 {
@@ -273,7 +249,7 @@ static int section_count(const char **names, int max)
 const char *csk_known_section(const char *name)
 {
     for (int i = 0; i < NKEYS; i++)
-        if (ieq(KEYS[i].pub.section, name)) return KEYS[i].pub.section;
+        if (pu_ini_ieq(KEYS[i].pub.section, name)) return KEYS[i].pub.section;
     return NULL;
 }
 
@@ -282,7 +258,7 @@ const char *csk_nearest_section(const char *name, int *dist)
     const char *names[32];
     int n = section_count(names, 32), best = -1, bd = 1 << 30;
     for (int i = 0; i < n; i++) {
-        int d = crane_scene_edit_distance(name, names[i]);
+        int d = pu_cli_edit_distance(name, names[i]);
         if (d < bd) bd = d, best = i;
     }
     *dist = bd;
@@ -292,7 +268,7 @@ const char *csk_nearest_section(const char *name, int *dist)
 int csk_find_key(const char *section, const char *key)
 {
     for (int i = 0; i < NKEYS; i++)
-        if (ieq(KEYS[i].pub.section, section) && ieq(KEYS[i].pub.key, key)) return i;
+        if (pu_ini_ieq(KEYS[i].pub.section, section) && pu_ini_ieq(KEYS[i].pub.key, key)) return i;
     return -1;
 }
 
@@ -301,8 +277,8 @@ int csk_nearest_key(const char *section, const char *key, int *dist)
 {
     int best = -1, bd = 1 << 30;
     for (int i = 0; i < NKEYS; i++) {
-        if (!ieq(KEYS[i].pub.section, section)) continue;
-        int d = crane_scene_edit_distance(key, KEYS[i].pub.key);
+        if (!pu_ini_ieq(KEYS[i].pub.section, section)) continue;
+        int d = pu_cli_edit_distance(key, KEYS[i].pub.key);
         if (d < bd) bd = d, best = i;
     }
     *dist = bd;
@@ -315,7 +291,7 @@ void csk_list_keys(const char *section, char *buf, size_t size)
     size_t len = 0;
     buf[0] = '\0';
     for (int i = 0; i < NKEYS && len < size; i++)
-        if (ieq(KEYS[i].pub.section, section))
+        if (pu_ini_ieq(KEYS[i].pub.section, section))
             len +=
                 (size_t)snprintf(buf + len, size - len, "%s%s", len ? ", " : "", KEYS[i].pub.key);
 }

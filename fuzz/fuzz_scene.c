@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "crane_scene.h"
+#include "pu_cli.h"
 
 #define FILE_NAME "fuzz.ini"
 
@@ -129,10 +130,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         memcpy(first, text, h);
         first[h] = '\0';
         const char *second = text + h;
-        int d = crane_scene_edit_distance(first, second);
-        int back = crane_scene_edit_distance(second, first);
+        int d = pu_cli_edit_distance(first, second);
+        int back = pu_cli_edit_distance(second, first);
         size_t lmax = len - h < 64 ? len - h : 64;
-        if (d < 0 || d != back || (size_t)d > lmax || crane_scene_edit_distance(second, second))
+        if (d < 0 || d != back || (size_t)d > lmax || pu_cli_edit_distance(second, second))
             fail("edit distance not a distance", NULL);
         free(first);
     }

@@ -119,7 +119,7 @@ void pu_ini_init(pu_ini_reader *r, const char *text, size_t len, const char *fil
 
 /* Like inih's find_chars_or_comment: the first of chars, or an inline comment (';' after white
  * space), or the end. */
-static const char *find_chars_or_comment(const char *s, const char *chars)
+static char *find_chars_or_comment(char *s, const char *chars)
 {
     int was_space = 0;
     while (*s && (!chars || !strchr(chars, *s)) && !(was_space && *s == ';')) {
@@ -141,6 +141,14 @@ static size_t line_end_length(const char *p, size_t rest)
 {
     if (rest == 0) return 0;
     return p[0] == '\r' && rest > 1 && p[1] == '\n' ? 2 : 1;
+}
+
+int pu_ini_line_at(const char *text, size_t pos)
+{
+    int line = 1;
+    for (size_t i = 0, e; (i += line_length(text + i, pos - i)) < pos; i += e, line++)
+        e = line_end_length(text + i, pos - i);
+    return line;
 }
 
 /* Classifies the line in buf (with its "\n"). */
@@ -177,10 +185,12 @@ static pu_ini_kind classify(pu_ini_reader *r, char *buf, pu_ini_line *ln, char *
                         q);
             return PU_INI_ERROR;
         }
+        ln->header = p + 1;
+        ln->header_len = (size_t)(e - (p + 1));
         r->have_prev_key = 0;
         return PU_INI_SECTION;
     }
-    const char *e = find_chars_or_comment(p, "=:");
+    char *e = find_chars_or_comment(p, "=:");
     if (*e != '=' && *e != ':') {
         pu_ini_fail(msg, msize, r->file, r->line, "expected 'key = value' or '[section]', got '%s'",
                     q);
@@ -191,11 +201,16 @@ static pu_ini_kind classify(pu_ini_reader *r, char *buf, pu_ini_line *ln, char *
         pu_ini_fail(msg, msize, r->file, r->line, "key missing before '%c': '%s'", *e, q);
         return PU_INI_ERROR;
     }
-    const char *v = e + 1, *ve = find_chars_or_comment(v, NULL);
+    char *v = e + 1, *ve = find_chars_or_comment(v, NULL), *ke = e;
     while (v < ve && isspace((unsigned char)*v))
         v++;
     while (ve > v && isspace((unsigned char)ve[-1]))
         ve--;
+    while (ke > p && isspace((unsigned char)ke[-1]))
+        ke--;
+    *ke = '\0'; /* at '=' or after the key: before the value */
+    *ve = '\0';
+    ln->key = p;
     ln->value = v;
     ln->value_len = (size_t)(ve - v);
     r->have_prev_key = 1;
@@ -218,6 +233,7 @@ pu_ini_kind pu_ini_next(pu_ini_reader *r, char *buf, size_t size, pu_ini_line *l
         return PU_INI_ERROR;
     }
     if (n + 2 > size) { /* name the key if the line has one */
+        ln->too_long = 1;
         const char *e = memchr(p, '=', n);
         if (e && p[0] != '[' && p[0] != ';' && p[0] != '#')
             pu_ini_trim_copy(p, e, ln->name, sizeof ln->name < 64 ? sizeof ln->name : 64);

@@ -1,7 +1,7 @@
 /* The INI line reader of the programs' text files (scene files, sweep files; libprogutil,
  * prefix pu_): the text split into lines (LF, CR LF or a lone CR), each line classified and
- * checked as inih would read it, so that every message can say what is wrong and where; and
- * the values' numbers (decimal only).
+ * checked and read as inih (the INI parser the programs used before) reads it, so that every
+ * message can say what is wrong and where; and the values' numbers (decimal only).
  *
  * A line is blank or a comment (';' or '#' first), a section header "[name]" (a comment may
  * follow), or "key = value" (or "key : value"; an inline comment is ';' after white space). Per
@@ -38,19 +38,29 @@ typedef enum pu_ini_kind {
 } pu_ini_kind;
 
 typedef struct pu_ini_line {
-    int line;          /* its number */
-    char name[128];    /* the section's name or the key (cut to 127 characters); after a line
-                          that is too long, its key when it has one ("" otherwise) */
-    const char *value; /* KEY: the value in buf, trimmed, before an inline comment */
-    size_t value_len;
+    int line;           /* its number */
+    char name[128];     /* the section's name or the key (cut to 127 characters); after a line
+                           that is too long, its key when it has one ("" otherwise) */
+    const char *key;    /* KEY: the key in buf, trimmed, whole, NUL-terminated there */
+    const char *value;  /* KEY: the value in buf, trimmed, before an inline comment,
+                           NUL-terminated there */
+    size_t value_len;   /* strlen(value) */
+    const char *header; /* SECTION: the text between the brackets as written (not trimmed, not
+                           NUL-terminated), header_len bytes */
+    size_t header_len;
+    int too_long; /* ERROR: the line was longer than buf allows */
 } pu_ini_line;
 
 void pu_ini_init(pu_ini_reader *r, const char *text, size_t len, const char *file);
-/* The next line: copied into buf with "\n" and a NUL after it (buf can be handed to inih as
- * its fgets-style reader's result), classified into ln. A line needs strlen + 2 <= size.
- * PU_INI_ERROR with "FILE:LINE: what" in msg. */
+/* The next line: copied into buf with "\n" and a NUL after it, classified into ln; a key line's
+ * key and value are then cut out in buf (NUL after each, as inih does). A line needs strlen + 2
+ * <= size. PU_INI_ERROR with "FILE:LINE: what" in msg. */
 pu_ini_kind pu_ini_next(pu_ini_reader *r, char *buf, size_t size, pu_ini_line *ln, char *msg,
                         size_t msize);
+
+/* The number of the line (1 = the first, lines as pu_ini_next counts them) that holds byte pos
+ * of text. */
+int pu_ini_line_at(const char *text, size_t pos);
 
 /* "FILE:LINE: " (line <= 0: "FILE: ") and the message into msg. Returns -1. */
 #if defined(__GNUC__)

@@ -11,6 +11,7 @@
 #include "crane_program.h"
 #include "crane_scene.h"
 #include "pu_cli.h"
+#include "pu_fs.h"
 
 /* ------------------------------------------------------------ command line ---- */
 
@@ -243,7 +244,7 @@ int cp_find_scene(const char *arg, char *path, size_t size, char *tried, size_t 
             if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) return 1;
             if (stat(path, &st) == 0 && !odd[0])
                 snprintf(odd, osize, "%s is %s, not a scene file", path,
-                         crane_file_kind((unsigned)st.st_mode));
+                         pu_fs_kind((unsigned)st.st_mode));
             if (tl < tsize) {
                 len = snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", path);
                 tl = len < 0 ? tsize : tl + (size_t)len;

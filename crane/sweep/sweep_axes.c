@@ -97,7 +97,7 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
         const char *q = kvals->value;
         for (int i = 0; i < n; i++) {
             const char *e = strchr(q, sep);
-            spec_trim_copy(q, e ? e : q + strlen(q), a->values[i], SWEEP_VALUE_SIZE);
+            pu_ini_trim_copy(q, e ? e : q + strlen(q), a->values[i], SWEEP_VALUE_SIZE);
             if (!a->values[i][0])
                 return spec_fail_line(c, kvals->line,
                                       "key 'values' in [axis]: value %d of %s is empty (values are "
@@ -132,28 +132,28 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
         a->kind = SWEEP_AXIS_RANGE;
         double from, to = 0;
         long long count = 0;
-        if (!spec_parse_double(kfrom->value, &from))
+        if (!pu_ini_parse_double(kfrom->value, &from))
             return spec_bad_value(c, kfrom, "axis", "a decimal number (the range's first value)");
         if (!kcount)
             return spec_fail_line(c, r->line,
                                   "[axis] %s: a range needs 'count' (the number of values, "
                                   "'to' included)",
                                   s->params[p].name);
-        if (!spec_parse_long(kcount->value, 1, SWEEP_MAX_CASES, &count))
+        if (!pu_ini_parse_llong(kcount->value, 1, SWEEP_MAX_CASES, &count))
             return spec_bad_value(c, kcount, "axis", "an integer in 1..100000");
         if (count > 1 && !kto)
             return spec_fail_line(c, r->line, "[axis] %s: a range of %lld values needs 'to'",
                                   s->params[p].name, count);
-        if (kto && !spec_parse_double(kto->value, &to))
+        if (kto && !pu_ini_parse_double(kto->value, &to))
             return spec_bad_value(c, kto, "axis", "a decimal number (the range's last value)");
         if (!kto) to = from;
         if (count > 1 && to == from)
             return spec_fail_line(c, kto->line,
                                   "key 'to' in [axis]: equal to 'from': %lld equal values", count);
         if (kspace) {
-            if (spec_ieq(kspace->value, "log"))
+            if (pu_ini_ieq(kspace->value, "log"))
                 a->log = 1;
-            else if (!spec_ieq(kspace->value, "linear"))
+            else if (!pu_ini_ieq(kspace->value, "linear"))
                 return spec_bad_value(c, kspace, "axis", "linear or log");
         }
         if (a->log && !(from > 0 && to > 0))
@@ -229,9 +229,9 @@ int spec_finish_lhs(parse_ctx *c, raw_section *r, const crane_scene *base)
     if (!ks)
         return spec_fail_line(c, r->line,
                               "[lhs] without 'samples': give the number of cases to sample");
-    if (!spec_parse_long(ks->value, 1, SWEEP_MAX_CASES, &n))
+    if (!pu_ini_parse_llong(ks->value, 1, SWEEP_MAX_CASES, &n))
         return spec_bad_value(c, ks, "lhs", "an integer in 1..100000");
-    if (kseed && !spec_parse_long(kseed->value, 0, LLONG_MAX, &seed))
+    if (kseed && !pu_ini_parse_llong(kseed->value, 0, LLONG_MAX, &seed))
         return spec_bad_value(c, kseed, "lhs", "an integer >= 0");
     if (s->naxes >= SWEEP_MAX_AXES) return spec_fail_line(c, r->line, "too many axes");
     int ax = s->naxes;
@@ -258,24 +258,24 @@ int spec_finish_lhs(parse_ctx *c, raw_section *r, const crane_scene *base)
         const char *q = kv->value;
         while (np < 3) {
             const char *e = strchr(q, ',');
-            spec_trim_copy(q, e ? e : q + strlen(q), parts[np++], SWEEP_VALUE_SIZE);
+            pu_ini_trim_copy(q, e ? e : q + strlen(q), parts[np++], SWEEP_VALUE_SIZE);
             if (!e) break;
             q = e + 1;
             if (np == 3) np = 4; /* a fourth part */
         }
         double lo, hi;
         char qv[80];
-        spec_quote(kv->value, qv, sizeof qv);
-        if (np < 2 || np > 3 || !spec_parse_double(parts[0], &lo) ||
-            !spec_parse_double(parts[1], &hi) ||
-            (np == 3 && !spec_ieq(parts[2], "log") && !spec_ieq(parts[2], "linear")))
+        pu_ini_quote(kv->value, qv, sizeof qv);
+        if (np < 2 || np > 3 || !pu_ini_parse_double(parts[0], &lo) ||
+            !pu_ini_parse_double(parts[1], &hi) ||
+            (np == 3 && !pu_ini_ieq(parts[2], "log") && !pu_ini_ieq(parts[2], "linear")))
             return spec_fail_line(c, kv->line,
                                   "[lhs] %s: expected 'LO, HI' or 'LO, HI, log' (the interval to "
                                   "sample), got '%s'",
                                   name, qv);
         if (!(hi > lo))
             return spec_fail_line(c, kv->line, "[lhs] %s: expected LO < HI, got '%s'", name, qv);
-        int lg = np == 3 && spec_ieq(parts[2], "log");
+        int lg = np == 3 && pu_ini_ieq(parts[2], "log");
         if (lg && !(lo > 0))
             return spec_fail_line(c, kv->line, "[lhs] %s: log sampling needs LO > 0, got '%s'",
                                   name, qv);

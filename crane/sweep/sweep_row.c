@@ -1,7 +1,6 @@
 /* A case's row of sweep.csv from its folder (sweep_row.h). */
 #include "sweep_row.h"
 
-#include <ctype.h>
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -11,6 +10,7 @@
 #include <sys/wait.h>
 
 #include "crane_scene.h"
+#include "pu_ini.h"
 
 const sweep_quantity sweep_quantities[SWEEP_NQ] = {
     {"omega_err_max", "rad/s", "largest |omega - omega_ref| (platform rate against its reference)",
@@ -29,17 +29,10 @@ const sweep_quantity sweep_quantities[SWEEP_NQ] = {
     {"wall_s", "s", "wall time of the case's crane process", 0, 1},
 };
 
-static int ieq(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++)
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b)) return 0;
-    return *a == *b;
-}
-
 int sweep_quantity_index(const char *name)
 {
     for (int q = 0; q < SWEEP_NQ; q++)
-        if (ieq(name, sweep_quantities[q].name)) return q;
+        if (pu_ini_ieq(name, sweep_quantities[q].name)) return q;
     return -1;
 }
 

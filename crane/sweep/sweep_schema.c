@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 
 #include "crane_scene.h"
+#include "pu_cli.h"
 #include "sweep_row.h"
 #include "sweep_spec_impl.h"
 
@@ -28,7 +29,7 @@ const char *spec_nearest(const char *name, const char *const *cands, int *dist)
     const char *best = "";
     int bd = 1 << 30;
     for (int i = 0; cands[i]; i++) {
-        int d = crane_scene_edit_distance(name, cands[i]);
+        int d = pu_cli_edit_distance(name, cands[i]);
         if (d < bd) bd = d, best = cands[i];
     }
     *dist = bd;
@@ -47,7 +48,7 @@ void spec_join(const char *const *names, const char *pre, const char *post, char
 int spec_section_kind(const char *name)
 {
     for (int k = 0; k < NSEC; k++)
-        if (spec_ieq(name, SEC_NAMES[k])) return k;
+        if (pu_ini_ieq(name, SEC_NAMES[k])) return k;
     return SEC_NONE;
 }
 
@@ -61,14 +62,14 @@ int spec_is_scene_key_name(const char *name)
 raw_kv *spec_get(raw_section *r, const char *key)
 {
     for (int i = 0; i < r->n; i++)
-        if (spec_ieq(r->kv[i].key, key)) return &r->kv[i];
+        if (pu_ini_ieq(r->kv[i].key, key)) return &r->kv[i];
     return NULL;
 }
 
 int spec_bad_value(parse_ctx *c, const raw_kv *kv, const char *sec, const char *expected)
 {
     char q[80];
-    spec_quote(kv->value, q, sizeof q);
+    pu_ini_quote(kv->value, q, sizeof q);
     return spec_fail_line(c, kv->line, "key '%s' in [%s]: expected %s, got '%s'", kv->key, sec,
                           expected, q);
 }
@@ -84,7 +85,7 @@ const crane_scene_key *spec_scene_key(parse_ctx *c, const char *name, int line, 
         snprintf(key, sizeof key, "%s", dot + 1);
         for (int i = 0; i < crane_scene_nkeys(); i++) {
             const crane_scene_key *k = crane_scene_key_at(i);
-            if (spec_ieq(k->section, sec) && spec_ieq(k->key, key)) return k;
+            if (pu_ini_ieq(k->section, sec) && pu_ini_ieq(k->key, key)) return k;
         }
     }
     int best = -1, bd = 1 << 30;
@@ -92,12 +93,12 @@ const crane_scene_key *spec_scene_key(parse_ctx *c, const char *name, int line, 
         const crane_scene_key *k = crane_scene_key_at(i);
         char full[132];
         snprintf(full, sizeof full, "%s.%s", k->section, k->key);
-        int d = crane_scene_edit_distance(name, full);
+        int d = pu_cli_edit_distance(name, full);
         if (d < bd) bd = d, best = i;
     }
     const crane_scene_key *b = crane_scene_key_at(best);
     char q[80];
-    spec_quote(name, q, sizeof q);
+    pu_ini_quote(name, q, sizeof q);
     spec_fail_line(c, line,
                    "%s: unknown scene key '%s'; did you mean '%s.%s'? (scene keys are "
                    "SECTION.KEY as in crane --set, listed in crane/crane_scene.h)",
@@ -180,14 +181,14 @@ static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, 
         snprintf(s->name, sizeof s->name, "%s", tmp.name);
     }
     if (r && (kv = spec_get(r, "time_limit")) != NULL &&
-        (!spec_parse_double(kv->value, &s->time_limit) || s->time_limit < 0))
+        (!pu_ini_parse_double(kv->value, &s->time_limit) || s->time_limit < 0))
         return spec_bad_value(c, kv, "sweep", "a number >= 0 (s; 0: no limit)");
     if (r && (kv = spec_get(r, "case_figures")) != NULL) {
         static const char *yes[] = {"true", "yes", "on", "1"}, *no[] = {"false", "no", "off", "0"};
         int v = -1;
         for (int i = 0; i < 4; i++) {
-            if (spec_ieq(kv->value, yes[i])) v = 1;
-            if (spec_ieq(kv->value, no[i])) v = 0;
+            if (pu_ini_ieq(kv->value, yes[i])) v = 1;
+            if (pu_ini_ieq(kv->value, no[i])) v = 0;
         }
         if (v < 0)
             return spec_bad_value(c, kv, "sweep", "a boolean (true/false, yes/no, on/off, 1/0)");
@@ -199,7 +200,7 @@ static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, 
         for (int i = 1;; i++) {
             const char *e = strchr(p, ',');
             char name[64];
-            spec_trim_copy(p, e ? e : p + strlen(p), name, sizeof name);
+            pu_ini_trim_copy(p, e ? e : p + strlen(p), name, sizeof name);
             int q = sweep_quantity_index(name);
             if (q < 0) {
                 const char *names[SWEEP_NQ + 1];

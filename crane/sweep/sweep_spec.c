@@ -1,11 +1,10 @@
 /* Sweep files (sweep_spec.h): the parser and the public entry points; the parts are listed in
  * sweep_spec_impl.h.
  *
- * inih does the INI syntax, as for the scene files (crane_scene.c): the text is fed to
- * ini_parse_stream through a reader of our own (sweep_ini.c) that counts lines and checks each
- * line (spec_check_line, here) before inih sees it, so that every message has its line; the
- * check also sees the section headers, which is how repeated [axis] sections become separate
- * axes. The handler only records the keys; the values are checked afterwards, section by section
+ * progutil's INI line reader (pu_ini.h) does the INI syntax, as for the scene files
+ * (crane_scene.c): it checks each line and numbers it, so that every message has its line; each
+ * section header opens a raw section of its own, which is how repeated [axis] sections become
+ * separate axes. The keys are only recorded; the values are checked afterwards, section by section
  * (spec_finish, sweep_schema.c), so that the keys of a section may come in any order. Every
  * swept or set value is checked with crane_scene_set, the scene files' own check, and its
  * message is passed on behind "FILE:LINE: key '...' in [...]". */
@@ -19,7 +18,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <ini.h>
+#include "pu_fs.h"
+#include "pu_ini.h"
 
 #include "crane_scene.h"
 #include "sweep_spec_impl.h"
@@ -46,89 +46,52 @@ spec_fail_line(parse_ctx *c, int line, const char *fmt, ...)
     return -1;
 }
 
-/* ------------------------------------------------------------------- lines ---- */
+/* ---------------------------------------------------------------- sections ---- */
 
-int spec_check_line(parse_ctx *c, char *line)
+/* A section header [name] (its line c->line): a known section, once unless [axis]; opens a raw
+ * section. 1, or 0 with the error recorded. */
+static int open_section(parse_ctx *c, const char *name)
 {
-    char *p = line, q[80];
-    if (c->line == 1 && (unsigned char)p[0] == 0xEF && (unsigned char)p[1] == 0xBB &&
-        (unsigned char)p[2] == 0xBF)
-        p += 3;
-    char *start = p;
-    while (*p && isspace((unsigned char)*p))
-        p++;
-    if (!*p || *p == ';' || *p == '#') return 1;
-    spec_quote(p, q, sizeof q);
-    if (c->have_prev_key && p > start)
-        return spec_fail_line(
-                   c, c->line,
-                   "indented line '%s': continuation lines are not supported (remove the "
-                   "indentation)",
-                   q),
+    int kind = spec_section_kind(name);
+    if (kind == SEC_NONE) {
+        int d;
+        char all[128];
+        const char *near = spec_nearest(name, SEC_NAMES, &d);
+        spec_join(SEC_NAMES, "[", "]", all, sizeof all);
+        return spec_fail_line(c, c->line, "unknown section [%s]; did you mean [%s]? (sections: %s)",
+                              name, near, all),
                0;
-    if (*p == '[') {
-        const char *e = spec_find_chars_or_comment(p + 1, "]");
-        if (*e != ']') return spec_fail_line(c, c->line, "section header without ']': '%s'", q), 0;
-        char name[128];
-        spec_trim_copy(p + 1, e, name, sizeof name);
-        const char *rest = e + 1;
-        while (*rest && isspace((unsigned char)*rest))
-            rest++;
-        if (*rest && *rest != ';' && *rest != '#')
-            return spec_fail_line(c, c->line, "unexpected text after [%s]: '%s'", name, q), 0;
-        int kind = spec_section_kind(name);
-        if (kind == SEC_NONE) {
-            int d;
-            char all[128];
-            const char *near = spec_nearest(name, SEC_NAMES, &d);
-            spec_join(SEC_NAMES, "[", "]", all, sizeof all);
-            return spec_fail_line(c, c->line,
-                                  "unknown section [%s]; did you mean [%s]? (sections: %s)", name,
-                                  near, all),
-                   0;
-        }
-        if (kind != SEC_AXIS)
-            for (int i = 0; i < c->nraw; i++)
-                if (c->raw[i].kind == kind)
-                    return spec_fail_line(c, c->line,
-                                          "section [%s] given twice (first on line %d): one is "
-                                          "allowed%s",
-                                          SEC_NAMES[kind], c->raw[i].line,
-                                          kind == SEC_LHS ? " (its keys are sampled together)"
-                                                          : ""),
-                           0;
-        int naxis = 0;
-        for (int i = 0; i < c->nraw; i++)
-            naxis += c->raw[i].kind == SEC_AXIS;
-        if (c->nraw >= NRAW || (kind == SEC_AXIS && naxis >= SWEEP_MAX_AXES - 1))
-            return spec_fail_line(c, c->line, "too many [axis] sections (at most %d)",
-                                  SWEEP_MAX_AXES - 1),
-                   0;
-        raw_section *r = &c->raw[c->nraw];
-        memset(r, 0, sizeof *r);
-        r->kind = kind;
-        r->line = c->line;
-        c->cur = c->nraw++;
-        c->have_prev_key = 0;
-        return 1;
     }
-    const char *e = spec_find_chars_or_comment(p, "=:");
-    if (*e != '=' && *e != ':')
-        return spec_fail_line(c, c->line, "expected 'key = value' or '[section]', got '%s'", q), 0;
-    char key[128];
-    spec_trim_copy(p, e, key, sizeof key);
-    if (!key[0]) return spec_fail_line(c, c->line, "key missing before '%c': '%s'", *e, q), 0;
-    c->have_prev_key = 1;
+    if (kind != SEC_AXIS)
+        for (int i = 0; i < c->nraw; i++)
+            if (c->raw[i].kind == kind)
+                return spec_fail_line(c, c->line,
+                                      "section [%s] given twice (first on line %d): one is "
+                                      "allowed%s",
+                                      SEC_NAMES[kind], c->raw[i].line,
+                                      kind == SEC_LHS ? " (its keys are sampled together)" : ""),
+                       0;
+    int naxis = 0;
+    for (int i = 0; i < c->nraw; i++)
+        naxis += c->raw[i].kind == SEC_AXIS;
+    if (c->nraw >= NRAW || (kind == SEC_AXIS && naxis >= SWEEP_MAX_AXES - 1))
+        return spec_fail_line(c, c->line, "too many [axis] sections (at most %d)",
+                              SWEEP_MAX_AXES - 1),
+               0;
+    raw_section *r = &c->raw[c->nraw];
+    memset(r, 0, sizeof *r);
+    r->kind = kind;
+    r->line = c->line;
+    c->cur = c->nraw++;
     return 1;
 }
 
 /* -------------------------------------------------------------------- keys ---- */
 
-static int handler(void *user, const char *section, const char *name, const char *value)
+/* A key of the file (its line c->line) recorded in the current raw section; 1, or 0 with the
+ * error recorded. */
+static int record_key(parse_ctx *c, const char *name, const char *value)
 {
-    parse_ctx *c = user;
-    if (c->failed) return 0;
-    (void)section; /* the reader's c->cur says which section instance it is */
     if (c->cur < 0) {
         spec_fail_line(
             c, c->line,
@@ -146,7 +109,7 @@ static int handler(void *user, const char *section, const char *name, const char
     if (!scene_key) {
         int found = 0;
         for (int i = 0; known[i] && !found; i++)
-            found = spec_ieq(known[i], name);
+            found = pu_ini_ieq(known[i], name);
         if (!found) {
             int d;
             char all[160];
@@ -174,7 +137,7 @@ static int handler(void *user, const char *section, const char *name, const char
         }
     }
     for (int i = 0; i < r->n; i++)
-        if (spec_ieq(r->kv[i].key, name)) {
+        if (pu_ini_ieq(r->kv[i].key, name)) {
             spec_fail_line(c, c->line, "key '%s' in [%s] given twice (first on line %d)", name, sec,
                            r->kv[i].line);
             return 0;
@@ -195,6 +158,40 @@ static int handler(void *user, const char *section, const char *name, const char
     return 1;
 }
 
+/* ------------------------------------------------------------------- lines ---- */
+
+/* A line with its "\n" and NUL fits in SPEC_LINE_SIZE bytes (198 characters), as in the scene
+ * files (crane_scene.c): the size of inih's line buffer, which read both before pu_ini. */
+#define SPEC_LINE_SIZE 200
+
+/* The text, line by line (pu_ini: each line checked, with its number in c->line), into the raw
+ * sections: a header opens one, a key is recorded in the current one. Stops at the first error:
+ * 0, or -1 with the error recorded. */
+static int read_lines(parse_ctx *c, const char *text)
+{
+    pu_ini_reader r;
+    pu_ini_init(&r, text, strlen(text), c->file);
+    char buf[SPEC_LINE_SIZE];
+    for (;;) {
+        pu_ini_line ln;
+        pu_ini_kind k = pu_ini_next(&r, buf, sizeof buf, &ln, c->err, c->errsize);
+        c->line = ln.line;
+        if (k == PU_INI_END) return 0;
+        if (k == PU_INI_ERROR) {
+            c->failed = 1;
+            if (ln.too_long && pu_ini_ieq(ln.name, "values") && c->errsize) {
+                size_t n = strlen(c->err);
+                snprintf(c->err + n, c->errsize - n,
+                         ": split the values over several [axis] sections or give a range "
+                         "(from, to, count)");
+            }
+            return -1;
+        }
+        if (k == PU_INI_SECTION && !open_section(c, ln.name)) return -1;
+        if (k == PU_INI_KEY && !record_key(c, ln.key, ln.value)) return -1;
+    }
+}
+
 /* ------------------------------------------------------------------ public ---- */
 
 int sweep_spec_parse(sweep_spec *s, const char *text, const char *file,
@@ -210,21 +207,10 @@ int sweep_spec_parse(sweep_spec *s, const char *text, const char *file,
     }
     c->s = s;
     c->file = file;
-    c->text = text;
-    c->len = strlen(text);
     c->cur = -1;
     c->err = err;
     c->errsize = errsize;
-    int r = ini_parse_stream(spec_reader, c, handler, c);
-    int rc = 0;
-    if (c->failed)
-        rc = -1;
-    else if (r == -2)
-        rc = spec_fail_line(c, 0, "out of memory");
-    else if (r != 0)
-        rc = spec_fail_line(c, r, "syntax error");
-    else
-        rc = spec_finish(c, scene_roots);
+    int rc = read_lines(c, text) != 0 ? -1 : spec_finish(c, scene_roots);
     free(c);
     return rc;
 }
@@ -244,7 +230,7 @@ int sweep_spec_load(sweep_spec *s, const char *path, const char *const *scene_ro
         close(fd);
         if (!S_ISREG(st.st_mode))
             snprintf(err, errsize, "%s: %s, not a sweep file", path,
-                     crane_file_kind((unsigned)st.st_mode));
+                     pu_fs_kind((unsigned)st.st_mode));
         else
             snprintf(err, errsize, "%s: cannot open: %s", path, strerror(e));
         return -2;

@@ -1,5 +1,5 @@
-/* Sweep files of crane-sweep: INI text -> the cases of a parameter sweep (README.md, "Parameter
- * sweeps"; the example crane/sweeps/pid-kp-kd.ini).
+/* Sweep files of crane-sweep: INI text -> the cases of a parameter sweep (the manual:
+ * docs/sweeps.md; the example crane/sweeps/pid-kp-kd.ini).
  *
  * The syntax is the scene files' (crane_scene.h): "key = value" lines, "[section]" headers,
  * comments from ';' or '#' at the start of a line or " ;" after a value, LF, CR LF or CR line

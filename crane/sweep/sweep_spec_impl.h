@@ -1,9 +1,10 @@
 /* The sweep file's reading (sweep_spec.h for the format), shared by its parts. Private: not
  * installed.
  *
- *   sweep_ini.c     the INI text: the line reader fed to inih, trimming, quoting, numbers
- *   sweep_spec.c    the parser: each line checked, the keys recorded section by section (the
- *                   raw sections below); sweep_spec_parse, sweep_spec_load, sweep_spec_free
+ *   sweep_spec.c    the parser: the lines read with progutil's INI reader (pu_ini.h, which
+ *                   also trims, quotes and reads the numbers), the keys recorded section by
+ *                   section (the raw sections below); sweep_spec_parse, sweep_spec_load,
+ *                   sweep_spec_free
  *   sweep_schema.c  the schema: the sections and their keys, the scene keys' check, the base
  *                   scene, [sweep] and [set], and the whole file checked (spec_finish)
  *   sweep_axes.c    the axes: value lists, ranges, the Latin-hypercube sample; the cases as
@@ -17,6 +18,7 @@
 #include <stddef.h>
 
 #include "crane_scene.h"
+#include "pu_ini.h"
 #include "sweep_spec.h"
 
 /* ------------------------------------------------------------ the sections ---- */
@@ -45,38 +47,18 @@ typedef struct raw_section {
     raw_kv kv[RAW_MAX];
 } raw_section;
 
-/* The state of one parse: the text and the reader's place in it, the raw sections, the first
- * error (failed: err holds "FILE:LINE: ..."). */
+/* The state of one parse: the line being read, the raw sections, the first error (failed: err
+ * holds "FILE:LINE: ..."). */
 typedef struct parse_ctx {
     sweep_spec *s;
     const char *file;
-    const char *text;
-    size_t pos, len;
-    int line, failed, have_prev_key;
+    int line, failed;
     int cur; /* the raw section being read, -1 before the first */
     int nraw;
     raw_section raw[NRAW];
     char *err;
     size_t errsize;
 } parse_ctx;
-
-/* --------------------------------------------------- sweep_ini.c: the text ---- */
-
-/* Equal apart from case (ASCII). */
-int spec_ieq(const char *a, const char *b);
-/* A value quoted for a message: at most 60 characters. */
-void spec_quote(const char *v, char *buf, size_t size);
-/* [a, b) without the white space around it, cut to size - 1 characters. */
-void spec_trim_copy(const char *a, const char *b, char *out, size_t size);
-/* Like inih's: the first of chars, or an inline comment (';' after white space), or the end. */
-const char *spec_find_chars_or_comment(const char *s, const char *chars);
-/* inih's reader (ini_parse_stream): the next line of c->text (stream) into str with "\n",
- * counted in c->line and checked by spec_check_line; NULL at the end or on an error. */
-char *spec_reader(char *str, int num, void *stream);
-/* A decimal number (as the scene files': no hexadecimal, inf or nan); 1, or 0 if not one. */
-int spec_parse_double(const char *v, double *out);
-/* A decimal integer in lo..hi; 1, or 0 if not one. */
-int spec_parse_long(const char *v, long long lo, long long hi, long long *out);
 
 /* ------------------------------------------------ sweep_spec.c: the parser ---- */
 
@@ -85,9 +67,6 @@ int spec_parse_long(const char *v, long long lo, long long hi, long long *out);
 __attribute__((format(printf, 3, 4)))
 #endif
 int spec_fail_line(parse_ctx *c, int line, const char *fmt, ...);
-/* One line as read: blank or comment, a section header (opens a raw section) or a key; 1, or 0
- * with the error recorded. */
-int spec_check_line(parse_ctx *c, char *line);
 
 /* ---------------------------------------------- sweep_schema.c: the schema ---- */
 

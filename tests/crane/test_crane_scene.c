@@ -12,6 +12,7 @@
 
 #include "crane_model.h"
 #include "crane_scene.h"
+#include "pu_cli.h"
 #include "tap.h"
 
 #include "bad_scenes.h"
@@ -45,11 +46,11 @@ static void test_keys(void)
 
 static void test_distance(void)
 {
-    tap_ok(crane_scene_edit_distance("lenght", "length") == 1, "distance lenght/length = 1");
-    tap_ok(crane_scene_edit_distance("bom", "boom") == 1, "distance bom/boom = 1");
-    tap_ok(crane_scene_edit_distance("kitten", "sitting") == 3, "distance kitten/sitting = 3");
-    tap_ok(crane_scene_edit_distance("", "abc") == 3, "distance to the empty string");
-    tap_ok(crane_scene_edit_distance("I_LUFF", "i_luff") == 0, "distance ignores case");
+    tap_ok(pu_cli_edit_distance("lenght", "length") == 1, "distance lenght/length = 1");
+    tap_ok(pu_cli_edit_distance("bom", "boom") == 1, "distance bom/boom = 1");
+    tap_ok(pu_cli_edit_distance("kitten", "sitting") == 3, "distance kitten/sitting = 3");
+    tap_ok(pu_cli_edit_distance("", "abc") == 3, "distance to the empty string");
+    tap_ok(pu_cli_edit_distance("I_LUFF", "i_luff") == 0, "distance ignores case");
 }
 
 static int parse_text(crane_scene *s, const char *text, bg_error *err)
