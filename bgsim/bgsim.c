@@ -38,7 +38,7 @@
 /* The files a run writes into its folder, removed at the start (with their temporary names). */
 static const char *const RUN_FILES[] = {
     "status.txt", "model.yaml",      "model_stats.txt", "results.csv", "solver_stats.txt",
-    "static.txt", "equilibrium.csv", "modes.csv",       NULL};
+    "static.txt", "equilibrium.csv", "modes.csv",       "model.pvd",   NULL};
 
 /* The file's solver settings with the command line's overrides into r->solver; the number of
  * rows checked. 0, or RN_EXIT_USAGE (said on stderr). */

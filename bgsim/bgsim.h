@@ -13,6 +13,7 @@
 
 #include "bgr_model.h"
 #include "mdl_model.h"
+#include "pu_vtk.h"
 #include "rn_run.h"
 
 #ifndef BGSIM_VERSION
@@ -35,6 +36,8 @@ typedef struct bs_options {
     int static_only, modes; /* --static, --modes [T] */
     double modes_t;
     int quiet;
+    int vtk, has_vtk_step; /* --vtk, --vtk-step DT */
+    double vtk_step;
     int list_types, markdown, list_unknowns;
     const char *describe;
     int argc; /* the command line, for status.txt */
@@ -63,6 +66,10 @@ typedef struct bs_run {
     int have_final;
     double *final_out; /* the last row (t, outputs) */
     int nmodes;        /* --modes: the modes found */
+    pu_vtk *vtk;       /* --vtk: the ParaView series (NULL when off or stopped) */
+    mdl_geom geom;     /* its drawing, reused frame to frame */
+    long vtk_every;    /* a frame every vtk_every output rows */
+    char vtk_error[BG_MESSAGE_SIZE + 64]; /* why the series stopped ("" while it goes on) */
 } bs_run;
 
 #define BS_RUN(rn) ((bs_run *)(rn)->owner)

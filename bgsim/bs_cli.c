@@ -69,6 +69,13 @@ static const pu_cli_option OPTIONS[] = {
      .at = AT(modes_t), .seen = AT(modes), .min = 0, .max = HUGE_VAL,
      .what = "a time >= 0 in s",
      .help = "the modes at time T (default 0: the start) instead of the run: modes.csv"},
+    {.name = "--vtk", .kind = PU_CLI_FLAG, .at = AT(vtk),
+     .help = "ParaView time series model.pvd and vtk/frame_NNNNN.vtp: every body, point mass, "
+             "support, axial member, cylinder and beam chain drawn (docs/bgsim.md)"},
+    {.name = "--vtk-step", .kind = PU_CLI_DOUBLE, .arg = "DT", .at = AT(vtk_step),
+     .seen = AT(has_vtk_step), .min = 0, .min_open = 1, .max = 1e300, .what = "a time > 0 in s",
+     .help = "its frame interval in s (default: every output row; rounded to a whole number of "
+             "output steps; implies --vtk)"},
     {.name = "--quiet", .alias = "-q", .kind = PU_CLI_FLAG, .at = AT(quiet),
      .help = "no progress line and no summary (errors only)"},
     {.name = "--list-types", .kind = PU_CLI_FLAG, .at = AT(list_types),
@@ -94,7 +101,7 @@ static const pu_cli CLI = {
         "interrupted or failed, with the reason), model.yaml (the model as run), model_stats.txt,\n"
         "results.csv (t and the outputs, one row per output time), solver_stats.txt; static.txt\n"
         "(the static start and the trim: start: static, --static); equilibrium.csv (--static);\n"
-        "modes.csv (--modes).\n"
+        "modes.csv (--modes); model.pvd, vtk/ (--vtk).\n"
         "The files of an earlier run in DIR are removed at the start.\n"
         "SIGINT, SIGTERM and SIGHUP stop the run within a step; status.txt says so.\n"
         "exit status: 0 completed, 1 the run failed or a file could not be written, 2 bad\n"
@@ -194,6 +201,10 @@ int bs_parse_args(int argc, char **argv, bs_options *o)
     if (o->markdown) return usage_error("--markdown belongs to --list-types or --describe");
     if (!o->model) return usage_error("no model file given (bgsim MODEL [options])");
     if (o->static_only && o->modes) return usage_error("--static and --modes: one of them");
+    if (o->has_vtk_step) o->vtk = 1;
+    if (o->vtk && (o->static_only || o->modes))
+        return usage_error(o->static_only ? "--vtk belongs to the dynamic run, not to --static"
+                                          : "--vtk belongs to the dynamic run, not to --modes");
     return -1;
 }
 

@@ -249,6 +249,51 @@ static void watch(void *ctx, double t, const double *out)
     r->have_final = 1;
 }
 
+/* --vtk: the model drawn at a row (mdl_geometry) as the series' next frame, every vtk_every rows
+ * and at the last; a frame that cannot be drawn or written stops the series, its reason kept
+ * for status.txt (the run goes on: its results do not depend on the pictures) */
+static int vtk_row(void *ctx, long k, double t, const double *y, const double *yp,
+                   const double *out)
+{
+    (void)yp, (void)out;
+    bs_run *r = ctx;
+    if (!r->vtk || (k % r->vtk_every != 0 && k != r->rn.nout)) return 0;
+    bg_error err = {0};
+    char msg[BG_MESSAGE_SIZE + 64];
+    int bad = mdl_geometry(r->mm, y, &r->geom, &err) != BG_OK;
+    if (bad) snprintf(msg, sizeof msg, "the drawing at t = %g s: %s", t, err.message);
+    if (!bad) {
+        pu_vtk_frame f = {t, mdl_name(r->mm), r->geom.npoints, r->geom.x, r->geom.point_part,
+                          r->geom.nmarks, r->geom.mark_point, r->geom.mark_part, r->geom.nlines,
+                          r->geom.line_start, r->geom.line_conn, r->geom.line_part,
+                          r->geom.nparts, r->geom.part_path};
+        bad = pu_vtk_write(r->vtk, &f, msg, sizeof msg) != 0;
+    }
+    if (bad) {
+        snprintf(r->vtk_error, sizeof r->vtk_error, "%s", msg);
+        fprintf(stderr, "bgsim: ParaView series stopped: %s\n", msg);
+        pu_vtk_close(&r->vtk);
+    }
+    return 0;
+}
+
+/* --vtk: the series opened in the output folder; a frame every vtk_step (whole output steps) */
+static int vtk_open(bs_run *r)
+{
+    if (!r->o->vtk) return 0;
+    double dt = r->solver.output_step, step = r->o->has_vtk_step ? r->o->vtk_step : dt;
+    double every = step / dt;
+    r->vtk_every = every < 1 ? 1 : every > 1e15 ? (long)1e15 : (long)(every + 0.5);
+    char comment[RN_PATH_SIZE + 512], msg[900];
+    snprintf(comment, sizeof comment,
+             "model %s (%s): the motion as a time series, one PolyData file per frame; global "
+             "frame; SI units; see docs/bgsim.md",
+             mdl_name(r->mm), r->model_path);
+    r->vtk = pu_vtk_open(r->rn.outdir, "model.pvd", comment, msg, sizeof msg);
+    if (!r->vtk) return rn_fail_run(&r->rn, "the ParaView series", msg);
+    return 0;
+}
+
 int bs_simulate(bs_run *r)
 {
     int code = 0, tty = isatty(STDERR_FILENO) && !r->o->quiet;
@@ -271,16 +316,23 @@ int bs_simulate(bs_run *r)
     for (int i = 0; i < no; i++)
         names[i + 1] = mdl_output_name(r->mm, i);
     if ((code = rn_csv_open(&r->rn, names, no + 1)) != 0) goto done;
+    if ((code = vtk_open(r)) != 0) goto done;
     rn_loop_spec sp = {.output_step = r->solver.output_step,
                        .t_end = r->solver.t_end,
                        .ncols = no + 1,
                        .outputs = outputs,
                        .watch = watch,
+                       .row = vtk_row,
                        .ctx = r,
                        .progress = tty};
     code = rn_loop(&r->rn, &sp, y, yp);
 done:
     if (rn_loop_end(&r->rn) != 0) code = RN_EXIT_RUN;
+    if (r->vtk && pu_vtk_close(&r->vtk) < 0 && !r->vtk_error[0])
+        snprintf(r->vtk_error, sizeof r->vtk_error, "model.pvd could not be completed");
+    if (r->vtk_error[0] && !strcmp(r->rn.status, "completed"))
+        code = rn_fail_run(&r->rn, "writing the ParaView series", r->vtk_error);
+    mdl_geom_clear(&r->geom);
     if (r->rn.s) {
         rn_stats_info info = {&dopt, dopt.nbreakpoints, bk, r->solver.output_step,
                               r->solver.nominal_scales, NULL};

@@ -184,10 +184,16 @@ int pu_vtk_write(pu_vtk *v, const pu_vtk_frame *fr, char *msg, size_t size)
     for (int i = 0; i < fr->npoints; i++)
         rows[i] = fr->x + 3 * i;
     fprintf(f,
-            "<?xml version=\"1.0\"?>\n<!-- %s at t = %.10g s: global frame; SI units -->\n"
-            "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-            "  <PolyData>\n    <FieldData>\n",
+            "<?xml version=\"1.0\"?>\n<!-- %s at t = %.10g s: global frame; SI units",
             fr->title ? fr->title : "model", fr->t);
+    if (fr->part_name && fr->nparts > 0) {
+        fprintf(f, ";\n     part (point and cell data):");
+        for (int i = 0; i < fr->nparts; i++)
+            fprintf(f, "%s %d %s", i ? "," : "", i, fr->part_name[i] ? fr->part_name[i] : "?");
+    }
+    fprintf(f, " -->\n"
+               "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+               "  <PolyData>\n    <FieldData>\n");
     pu_vtk_field(f, "TimeValue", &fr->t, 1);
     fprintf(f, "    </FieldData>\n");
     fprintf(f,

@@ -51,6 +51,8 @@ typedef struct pu_vtk_frame {
     int nlines;
     const int *line_start; /* line i: line_conn[line_start[i] .. line_start[i + 1]) */
     const int *line_conn, *line_part;
+    int nparts;
+    const char *const *part_name; /* the parts' names, listed in a comment (NULL: none) */
 } pu_vtk_frame;
 /* Writes f as the next frame (point and cell array "part"). 0, or -1 with the reason in msg. */
 int pu_vtk_write(pu_vtk *v, const pu_vtk_frame *f, char *msg, size_t size);

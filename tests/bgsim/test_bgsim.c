@@ -182,6 +182,29 @@ int main(int argc, char **argv)
     tap_ok(same_as_api(dp, dir, why, sizeof why), "results.csv = the C API's run, bit for bit %s",
            why);
 
+    /* --vtk: a frame a second (t = 0 .. 5: 6 frames), the rods drawn: the second hinge at
+     * L1 (sin 60, 0, -cos 60) in the first frame; refused beside --static */
+    snprintf(dir, sizeof dir, "%s/dpvtk", tmp);
+    run(tmp, (const char *[]){dp, "--out", dir, "--vtk-step", "1", "-q", NULL}, "dpvtk", 120, &r);
+    char pvd[1 << 12] = "", frame0[1 << 14] = "";
+    snprintf(path, sizeof path, "%s/model.pvd", dir);
+    slurp(path, pvd, sizeof pvd);
+    snprintf(path, sizeof path, "%s/vtk/frame_00000.vtp", dir);
+    slurp(path, frame0, sizeof frame0);
+    int nsets = 0;
+    for (const char *q = pvd; (q = strstr(q, "<DataSet ")); q++)
+        nsets++;
+    tap_ok(r.exited && r.code == 0 && nsets == 6 && strstr(pvd, "timestep=\"5\"") &&
+               strstr(pvd, "</VTKFile>"),
+           "--vtk-step 1: model.pvd lists 6 frames, t = 0 .. 5 (%d)", nsets);
+    tap_ok(strstr(frame0, "NumberOfPoints=\"7\" NumberOfVerts=\"3\" NumberOfLines=\"4\"") &&
+               strstr(frame0, "0.8660254038 0 -0.5") && strstr(frame0, "1 rod1.body"),
+           "frame 0: the ground and two rods, the second hinge at (0.866, 0, -0.5)");
+    snprintf(dir, sizeof dir, "%s/dpvtkstatic", tmp);
+    run(tmp, (const char *[]){dp, "--out", dir, "--vtk", "--static", NULL}, "dpvtks", 60, &r);
+    tap_ok(r.exited && r.code == 2 && strstr(r.err, "--vtk belongs to the dynamic run"),
+           "--vtk with --static: exit 2");
+
     /* --set moves the start: theta1 = 30 deg puts the upper rod's centre at x = L1/2 sin 30 */
     snprintf(dir, sizeof dir, "%s/dpset", tmp);
     run(tmp, (const char *[]){dp, "--out", dir, "--set", "theta1=30*deg", "--t-end", "0.1", "-q",

@@ -43,7 +43,9 @@ int main(void)
     const double x[] = {0, 0, 0, 1, 0, 0, -1, 0, 0, 3, 0, -2};
     const int point_part[] = {0, 0, 0, 1}, marks[] = {0, 3}, mark_part[] = {0, 1};
     const int start[] = {0, 2, 4}, conn[] = {0, 1, 0, 2}, line_part[] = {0, 0};
-    pu_vtk_frame fr = {0.5, "test", 4, x, point_part, 2, marks, mark_part, 2, start, conn, line_part};
+    const char *const names[] = {"body", "member"};
+    pu_vtk_frame fr = {0.5,   "test", 4,    x,         point_part, 2, marks, mark_part, 2,
+                       start, conn,   line_part, 2, names};
     tap_ok(pu_vtk_write(v, &fr, msg, sizeof msg) == 0, "frame 0 written");
     fr.t = 1.0;
     tap_ok(pu_vtk_write(v, &fr, msg, sizeof msg) == 0, "frame 1 written");
@@ -52,6 +54,8 @@ int main(void)
     char *s = slurp(path);
     tap_ok(s && strstr(s, "NumberOfPoints=\"4\" NumberOfVerts=\"2\" NumberOfLines=\"2\""),
            "frame 1: 4 points, 2 marks, 2 lines");
+    tap_ok(s && strstr(s, "part (point and cell data): 0 body, 1 member -->"),
+           "the parts named in the comment");
     tap_ok(s && strstr(s, " 3 0 -2") && strstr(s, "Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\"> 1 "),
            "its points and its time");
     tap_ok(s && strstr(s, "Name=\"connectivity\" format=\"ascii\">\n          0 1 0 2") &&
