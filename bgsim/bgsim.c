@@ -113,7 +113,8 @@ int main(int argc, char **argv)
         mdl_free(&r.mm);
         return rc;
     }
-    r.rn.name = mdl_name(r.mm);
+    snprintf(r.model_name, sizeof r.model_name, "%s", mdl_name(r.mm));
+    r.rn.name = r.model_name;
     r.rn.path = r.model_path;
     if ((rc = rn_set_outdir(&r.rn, o.out)) != 0) {
         mdl_free(&r.mm);

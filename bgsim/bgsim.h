@@ -61,6 +61,7 @@ typedef struct bs_run {
     mdl_model *mm;
     mdl_solver_settings solver; /* the file's, with the command line's overrides */
     char model_path[RN_PATH_SIZE];
+    char model_name[256]; /* rn.name: a copy (a trim replaces the model) */
     int static_done;  /* the static start ran: */
     mdl_trim_report trim; /* its report */
     int have_final;

@@ -263,6 +263,23 @@ int main(int argc, char **argv)
                file_contains(dir, "static.txt", "trim: none") && !file_exists(dir, "results.csv"),
            "--static: static.txt with the load factor, no results.csv");
 
+    /* a trimmed start replaces the model (mdl_static): L0 found so that the mass rests at
+     * z = -1, L0 = 1 - m g / k; the program's record of the model's name must outlive the
+     * model it came from (the summary and status.txt name it) */
+    char hang_trim[sizeof HANG + 200];
+    snprintf(hang_trim, sizeof hang_trim, "%strim: {adjust: L0, until: z, equals: -1, between: "
+             "[0.5, 1]}\n", HANG);
+    snprintf(path, sizeof path, "%s/hangtrim.yaml", tmp);
+    write_text(path, hang_trim);
+    snprintf(dir, sizeof dir, "%s/hangtrim", tmp);
+    run(tmp, (const char *[]){path, "--static", "--out", dir, NULL}, "hangtrim", 60, &r);
+    z = equilibrium_value(dir, "output,z");
+    tap_ok(r.exited && r.code == 0 && fabs(z + 1) < 1e-6 &&
+               file_contains(dir, "static.txt", "trim_value: L0 = 0.95095") &&
+               file_contains(dir, "status.txt", "\nmodel: hanging-mass (") &&
+               strstr(r.out, "bgsim: model hanging-mass, the static equilibrium"),
+           "trimmed --static: z = %.9g, L0 = 1 - m g / k, the model still named", z);
+
     /* --modes on a mass-spring: sqrt(k/m) / (2 pi) */
     snprintf(path, sizeof path, "%s/ms.yaml", tmp);
     write_text(path, MS);
