@@ -1,12 +1,12 @@
 /* Scene files of the rotary crane (see crane_scene.h): the parser, driven by the key table
  * (crane_scene_keys.c): values, overrides, the consistency checks, reading INI text, loading.
  *
- * The INI syntax is progutil's line reader (pu_ini.h), which reads a line as inih did (the
- * parser of the scene files before it) and refuses what inih would have misread (lines without
- * '=', indented continuation lines, over-long lines, a NUL), with the file's name and the line;
- * the section names are checked here as they come and each key goes to the handler with its
- * line, so that every message can say what is wrong and where. The parse stops at the first
- * error. */
+ * inih does the INI syntax, behind progutil's pu_ini (pu_ini.h): pu_ini feeds the text to
+ * inih's ini_parse_stream line by line, numbers each line and checks it before inih sees it
+ * (lines without '=', indented continuation lines, over-long lines, a NUL), with the file's name
+ * and the line; the section names are checked here as their headers come, and inih gives each
+ * key to the handler with the section it keeps, pu_ini with the line, so that every message can
+ * say what is wrong and where. The parse stops at the first error. */
 #include "crane_scene_impl.h"
 
 #include <ctype.h>
@@ -362,55 +362,54 @@ static int handler(void *user, const char *section, const char *name, const char
 /* ------------------------------------------------------------ INI reading ---- */
 
 /* A line with its "\n" and NUL fits in SCENE_LINE_SIZE bytes (198 characters): the size of
- * inih's line buffer (INI_MAX_LINE), which read the scene files before pu_ini. */
+ * inih's line buffer (INI_MAX_LINE). */
 #define SCENE_LINE_SIZE 200
-/* inih's section buffer (MAX_SECTION): the handler sees at most 49 characters of a header. */
-#define INIH_SECTION_SIZE 50
 
-/* The text of c, line by line (pu_ini), into handler (section, key, value) with c->line the line
- * being handled; the section names are checked against the table as they come. The handler is
- * given the section as inih gave it: the header's text between the brackets as written (not
- * trimmed, at most 49 characters), so that a header with spaces inside its brackets ("[ boom ]")
- * passes the check of its name but its keys are refused, as they always were. Stops at the first
- * error: 0, or -1 with the message set (c->failed). */
+/* A section header (pu_ini has checked its syntax): a section of the table, else the
+ * suggestions. */
+static int section_handler(void *user, const char *name, int line)
+{
+    parse_ctx *c = user;
+    c->line = line;
+    if (csk_known_section(name)) return 1;
+    int d;
+    const char *near = csk_nearest_section(name, &d);
+    if (d <= 3 && (size_t)d < strlen(name))
+        fail_at(c, "unknown section [%s]; did you mean [%s]?", name, near);
+    else {
+        char all[400];
+        csk_list_sections(all, sizeof all);
+        fail_at(c, "unknown section [%s]; did you mean [%s]? (sections: %s)", name, near, all);
+    }
+    return 0;
+}
+
+/* A key line as inih split it, on line line. inih's section is the header's text between the
+ * brackets as written (not trimmed, at most 49 characters), so that a header with spaces inside
+ * its brackets ("[ boom ]") passes the check of its name but its keys are refused. */
+static int key_handler(void *user, const char *section, const char *key, const char *value,
+                       int line)
+{
+    parse_ctx *c = user;
+    c->line = line;
+    return handler(c, section, key, value);
+}
+
+/* The text of c through pu_ini and inih into the handlers, c->line the line being handled. Stops
+ * at the first error: 0, or -1 with the message set (c->failed). */
 static int ini_read(parse_ctx *c)
 {
-    pu_ini_reader r;
-    pu_ini_init(&r, c->text, c->len, c->file);
-    char buf[SCENE_LINE_SIZE], section[INIH_SECTION_SIZE] = "";
-    for (;;) {
-        pu_ini_line ln;
-        char msg[BG_MESSAGE_SIZE];
-        pu_ini_kind k = pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg);
-        c->line = ln.line;
-        if (k == PU_INI_END) return 0;
-        if (k == PU_INI_ERROR) {
-            c->failed = 1;
-            bg_error_raise(c->err, BG_ERR_ARGUMENT, "crane_scene_parse", "%s", msg);
-            return -1;
-        }
-        if (k == PU_INI_SECTION) {
-            const char *name = ln.name;
-            if (!csk_known_section(name)) {
-                int d;
-                const char *near = csk_nearest_section(name, &d);
-                if (d <= 3 && (size_t)d < strlen(name))
-                    fail_at(c, "unknown section [%s]; did you mean [%s]?", name, near);
-                else {
-                    char all[400];
-                    csk_list_sections(all, sizeof all);
-                    fail_at(c, "unknown section [%s]; did you mean [%s]? (sections: %s)", name,
-                            near, all);
-                }
-                return -1;
-            }
-            size_t n = ln.header_len < sizeof section - 1 ? ln.header_len : sizeof section - 1;
-            memcpy(section, ln.header, n);
-            section[n] = '\0';
-        } else if (k == PU_INI_KEY && !handler(c, section, ln.key, ln.value)) {
-            return -1;
-        }
-    }
+    pu_ini_handler h = {section_handler, key_handler, c};
+    pu_ini_result res;
+    char msg[BG_MESSAGE_SIZE];
+    pu_ini_status st =
+        pu_ini_parse(c->text, c->len, c->file, SCENE_LINE_SIZE, &h, &res, msg, sizeof msg);
+    if (st == PU_INI_OK) return 0;
+    c->failed = 1;
+    if (st != PU_INI_STOPPED) /* a handler's message is set already */
+        bg_error_raise(c->err, st == PU_INI_NOMEM ? BG_ERR_MEMORY : BG_ERR_ARGUMENT,
+                       "crane_scene_parse", "%s", msg);
+    return -1;
 }
 
 /* ------------------------------------------------------------------ loading ---- */

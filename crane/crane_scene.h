@@ -1,4 +1,4 @@
-/* Scene files of the rotary crane: INI text (read with progutil's pu_ini) -> crane_scene.
+/* Scene files of the rotary crane: INI text (parsed with inih, behind pu_ini) -> crane_scene.
  *
  * A scene file starts from crane_scene_default() (the paper scene) and changes what it states;
  * every key is optional and may appear at most once. Lines are "key = value", "[section]",

@@ -1,4 +1,4 @@
-/* The INI line reader and the values' numbers (pu_ini.h). */
+/* The INI reading in front of inih and the values' numbers (pu_ini.h). */
 #include "pu_ini.h"
 
 #include <ctype.h>
@@ -8,6 +8,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <ini.h>
 
 int pu_ini_fail(char *msg, size_t size, const char *file, int line, const char *fmt, ...)
 {
@@ -109,26 +111,8 @@ int pu_ini_parse_llong(const char *v, long long lo, long long hi, long long *out
 
 /* ------------------------------------------------------------------ lines ---- */
 
-void pu_ini_init(pu_ini_reader *r, const char *text, size_t len, const char *file)
-{
-    memset(r, 0, sizeof *r);
-    r->text = text;
-    r->len = len;
-    r->file = file ? file : "<string>";
-}
-
-/* Like inih's find_chars_or_comment: the first of chars, or an inline comment (';' after white
- * space), or the end. */
-static char *find_chars_or_comment(char *s, const char *chars)
-{
-    int was_space = 0;
-    while (*s && (!chars || !strchr(chars, *s)) && !(was_space && *s == ';')) {
-        was_space = isspace((unsigned char)*s);
-        s++;
-    }
-    return s;
-}
-
+/* Lines end with LF, CR LF or a lone CR: the length of the line at p (without its end) and of the
+ * line end that follows it (0 at the end of the text). */
 static size_t line_length(const char *p, size_t rest)
 {
     size_t n = 0;
@@ -151,102 +135,172 @@ int pu_ini_line_at(const char *text, size_t pos)
     return line;
 }
 
-/* Classifies the line in buf (with its "\n"). */
-static pu_ini_kind classify(pu_ini_reader *r, char *buf, pu_ini_line *ln, char *msg, size_t msize)
+/* ------------------------------------------------------- in front of inih ---- */
+
+/* One pu_ini_parse: the reader's place in the text and the first refusal or stop. */
+typedef struct reader_state {
+    const char *file, *text;
+    size_t len, pos, line_size;
+    const pu_ini_handler *h;
+    int line;          /* the number of the line last read (1 = the first) */
+    int have_prev_key; /* a key line came since the last header */
+    pu_ini_status status;
+    pu_ini_result *res;
+    char *msg;
+    size_t msize;
+} reader_state;
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static int
+refuse(reader_state *st, const char *fmt, ...)
 {
-    char *p = buf, q[80];
-    if (r->line == 1 && (unsigned char)p[0] == 0xEF && (unsigned char)p[1] == 0xBB &&
-        (unsigned char)p[2] == 0xBF)
-        p += 3;
-    char *start = p;
-    while (*p && isspace((unsigned char)*p))
-        p++;
-    if (!*p || *p == ';' || *p == '#') return PU_INI_BLANK;
-    pu_ini_quote(p, q, sizeof q);
-    if (r->have_prev_key && p > start) {
-        pu_ini_fail(msg, msize, r->file, r->line,
-                    "indented line '%s': continuation lines are not supported (remove the "
-                    "indentation)",
-                    q);
-        return PU_INI_ERROR;
-    }
-    if (*p == '[') {
-        const char *e = find_chars_or_comment(p + 1, "]");
-        if (*e != ']') {
-            pu_ini_fail(msg, msize, r->file, r->line, "section header without ']': '%s'", q);
-            return PU_INI_ERROR;
-        }
-        pu_ini_trim_copy(p + 1, e, ln->name, sizeof ln->name);
-        const char *rest = e + 1;
-        while (*rest && isspace((unsigned char)*rest))
-            rest++;
-        if (*rest && *rest != ';' && *rest != '#') {
-            pu_ini_fail(msg, msize, r->file, r->line, "unexpected text after [%s]: '%s'", ln->name,
-                        q);
-            return PU_INI_ERROR;
-        }
-        ln->header = p + 1;
-        ln->header_len = (size_t)(e - (p + 1));
-        r->have_prev_key = 0;
-        return PU_INI_SECTION;
-    }
-    char *e = find_chars_or_comment(p, "=:");
-    if (*e != '=' && *e != ':') {
-        pu_ini_fail(msg, msize, r->file, r->line, "expected 'key = value' or '[section]', got '%s'",
-                    q);
-        return PU_INI_ERROR;
-    }
-    pu_ini_trim_copy(p, e, ln->name, sizeof ln->name);
-    if (!ln->name[0]) {
-        pu_ini_fail(msg, msize, r->file, r->line, "key missing before '%c': '%s'", *e, q);
-        return PU_INI_ERROR;
-    }
-    char *v = e + 1, *ve = find_chars_or_comment(v, NULL), *ke = e;
-    while (v < ve && isspace((unsigned char)*v))
-        v++;
-    while (ve > v && isspace((unsigned char)ve[-1]))
-        ve--;
-    while (ke > p && isspace((unsigned char)ke[-1]))
-        ke--;
-    *ke = '\0'; /* at '=' or after the key: before the value */
-    *ve = '\0';
-    ln->key = p;
-    ln->value = v;
-    ln->value_len = (size_t)(ve - v);
-    r->have_prev_key = 1;
-    return PU_INI_KEY;
+    char text[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    st->status = PU_INI_REFUSED;
+    st->res->line = st->line;
+    pu_ini_fail(st->msg, st->msize, st->file, st->line, "%s", text);
+    return 0;
 }
 
-pu_ini_kind pu_ini_next(pu_ini_reader *r, char *buf, size_t size, pu_ini_line *ln, char *msg,
-                        size_t msize)
+/* Where an inline comment starts in the text s (a line from its first non-blank character): the
+ * first ';' that follows white space, as inih is built (INI_ALLOW_INLINE_COMMENTS,
+ * INI_INLINE_COMMENT_PREFIXES ";"); the end of s if none. */
+static const char *comment_start(const char *s)
 {
-    memset(ln, 0, sizeof *ln);
-    if (r->pos >= r->len) return PU_INI_END;
-    const char *p = r->text + r->pos;
-    size_t rest = r->len - r->pos, n = line_length(p, rest);
-    r->line++;
-    ln->line = r->line;
-    r->pos += n + line_end_length(p + n, rest - n);
+    size_t i = 0;
+    while (s[i] && !(i > 0 && s[i] == ';' && isspace((unsigned char)s[i - 1])))
+        i++;
+    return s + i;
+}
+
+/* The first character of [a, b) that is one of chars, or NULL. */
+static const char *first_of(const char *a, const char *b, const char *chars)
+{
+    for (; a < b; a++)
+        if (strchr(chars, *a)) return a;
+    return NULL;
+}
+
+/* Checks the line in buf (with its "\n") before inih reads it; a header goes to the section
+ * handler. 1 to hand it on, 0 with st->status set. */
+static int check_line(reader_state *st, const char *buf)
+{
+    const char *p = buf, *start;
+    char q[80];
+    if (st->line == 1 && (unsigned char)p[0] == 0xEF && (unsigned char)p[1] == 0xBB &&
+        (unsigned char)p[2] == 0xBF)
+        p += 3;
+    start = p;
+    while (*p && isspace((unsigned char)*p))
+        p++;
+    if (!*p || *p == ';' || *p == '#') return 1; /* blank or a comment */
+    pu_ini_quote(p, q, sizeof q);
+    if (st->have_prev_key && p > start)
+        return refuse(st,
+                      "indented line '%s': continuation lines are not supported (remove the "
+                      "indentation)",
+                      q);
+    const char *text_end = comment_start(p);
+    if (*p == '[') {
+        const char *close = first_of(p + 1, text_end, "]");
+        if (!close) return refuse(st, "section header without ']': '%s'", q);
+        char name[128];
+        pu_ini_trim_copy(p + 1, close, name, sizeof name);
+        const char *rest = close + 1;
+        while (*rest && isspace((unsigned char)*rest))
+            rest++;
+        if (*rest && *rest != ';' && *rest != '#')
+            return refuse(st, "unexpected text after [%s]: '%s'", name, q);
+        st->have_prev_key = 0;
+        if (st->h->section && !st->h->section(st->h->user, name, st->line)) {
+            st->status = PU_INI_STOPPED;
+            st->res->line = st->line;
+            return 0;
+        }
+        return 1;
+    }
+    const char *sep = first_of(p, text_end, "=:");
+    if (!sep) return refuse(st, "expected 'key = value' or '[section]', got '%s'", q);
+    if (sep == p) return refuse(st, "key missing before '%c': '%s'", *sep, q);
+    st->have_prev_key = 1;
+    return 1;
+}
+
+/* inih's ini_reader: the next line of the text into str (num bytes) with "\n" and NUL, once
+ * checked; NULL at the end of the text or after a refusal or a stop. */
+static char *reader(char *str, int num, void *stream)
+{
+    reader_state *st = stream;
+    if (st->status != PU_INI_OK || st->pos >= st->len) return NULL;
+    const char *p = st->text + st->pos;
+    size_t rest = st->len - st->pos, n = line_length(p, rest);
+    size_t size = num > 0 && (size_t)num < st->line_size ? (size_t)num : st->line_size;
+    st->line++;
+    st->pos += n + line_end_length(p + n, rest - n);
     if (memchr(p, '\0', n)) {
-        pu_ini_fail(msg, msize, r->file, r->line,
-                    "the line contains a NUL character (not a text file?)");
-        return PU_INI_ERROR;
+        refuse(st, "the line contains a NUL character (not a text file?)");
+        return NULL;
     }
     if (n + 2 > size) { /* name the key if the line has one */
-        ln->too_long = 1;
+        pu_ini_result *res = st->res;
+        res->too_long = 1;
         const char *e = memchr(p, '=', n);
         if (e && p[0] != '[' && p[0] != ';' && p[0] != '#')
-            pu_ini_trim_copy(p, e, ln->name, sizeof ln->name < 64 ? sizeof ln->name : 64);
-        if (ln->name[0])
-            pu_ini_fail(msg, msize, r->file, r->line, "line longer than %d characters (key '%s')",
-                        (int)size - 2, ln->name);
+            pu_ini_trim_copy(p, e, res->key, sizeof res->key);
+        if (res->key[0])
+            refuse(st, "line longer than %d characters (key '%s')", (int)size - 2, res->key);
         else
-            pu_ini_fail(msg, msize, r->file, r->line, "line longer than %d characters",
-                        (int)size - 2);
-        return PU_INI_ERROR;
+            refuse(st, "line longer than %d characters", (int)size - 2);
+        return NULL;
     }
-    memcpy(buf, p, n);
-    buf[n] = '\n';
-    buf[n + 1] = '\0';
-    return classify(r, buf, ln, msg, msize);
+    memcpy(str, p, n);
+    str[n] = '\n';
+    str[n + 1] = '\0';
+    return check_line(st, str) ? str : NULL;
+}
+
+/* inih's ini_handler: a key line as inih split it, with the reader's line. */
+static int key_handler(void *user, const char *section, const char *name, const char *value)
+{
+    reader_state *st = user;
+    if (st->status != PU_INI_OK) return 0;
+    if (st->h->key && !st->h->key(st->h->user, section, name, value, st->line)) {
+        st->status = PU_INI_STOPPED;
+        st->res->line = st->line;
+        return 0;
+    }
+    return 1;
+}
+
+pu_ini_status pu_ini_parse(const char *text, size_t len, const char *file, size_t line_size,
+                           const pu_ini_handler *h, pu_ini_result *res, char *msg, size_t msize)
+{
+    pu_ini_result scratch;
+    if (!res) res = &scratch;
+    memset(res, 0, sizeof *res);
+    reader_state st;
+    memset(&st, 0, sizeof st);
+    st.file = file ? file : "<string>";
+    st.text = text;
+    st.len = len;
+    st.line_size = line_size ? line_size : (size_t)-1;
+    st.h = h;
+    st.res = res;
+    st.msg = msg;
+    st.msize = msize;
+    int r = ini_parse_stream(reader, &st, key_handler, &st);
+    if (st.status != PU_INI_OK) return st.status;
+    if (r == 0) return PU_INI_OK;
+    if (r == -2) {
+        pu_ini_fail(msg, msize, st.file, 0, "out of memory");
+        return PU_INI_NOMEM;
+    }
+    res->line = r > 0 ? r : 0;
+    pu_ini_fail(msg, msize, st.file, res->line, "syntax error");
+    return PU_INI_SYNTAX;
 }

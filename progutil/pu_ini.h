@@ -1,14 +1,21 @@
-/* The INI line reader of the programs' text files (scene files, sweep files; libprogutil,
- * prefix pu_): the text split into lines (LF, CR LF or a lone CR), each line classified and
- * checked and read as inih (the INI parser the programs used before) reads it, so that every
- * message can say what is wrong and where; and the values' numbers (decimal only).
+/* The INI reading of the programs' text files (scene files, sweep files; libprogutil, prefix
+ * pu_): inih (libinih-dev, <ini.h>) parses the text, pu_ini stands in front of it and numbers and
+ * checks each line, so that every message can say what is wrong and where; and the values'
+ * numbers (decimal only).
  *
- * A line is blank or a comment (';' or '#' first), a section header "[name]" (a comment may
- * follow), or "key = value" (or "key : value"; an inline comment is ';' after white space). Per
- * line the reader refuses: a NUL character, a line longer than the caller's buffer allows, an
- * indented line after a key (inih would take it as a continuation), a header without ']' or
- * with text after it, a line without '=' or ':', a key missing before it. A UTF-8 byte order
- * mark on line 1 is skipped. The section names and keys themselves are the caller's to check.
+ * pu_ini_parse runs inih's ini_parse_stream with pu_ini's reader: the text is split into lines
+ * (LF, CR LF or a lone CR) and each line is checked before inih gets it. inih splits the lines it
+ * is given into section, key and value (a key line "key = value" or "key : value", an inline
+ * comment ';' after white space, a comment line ';' or '#' first, a UTF-8 byte order mark on
+ * line 1 skipped) and calls the key handler; as inih handles each line as soon as it has read
+ * it, the reader's count is the handler's line.
+ *
+ * Per line the reader refuses: a NUL character, a line longer than the caller's size (and inih's
+ * buffer) allows, an indented line after a key (inih would take it as a continuation), a header
+ * without ']' (before an inline comment) or with text after it, a line without '=' or ':', a key
+ * missing before it. inih calls no handler on a section header (Debian builds it without
+ * INI_CALL_HANDLER_ON_NEW_SECTION): the reader gives each checked header to the section handler
+ * before inih reads it. The section names and keys themselves are the caller's to check.
  *
  * Messages are "FILE:LINE: what" (pu_ini_fail), values' "FILE:LINE: key 'K' in [S]: expected
  * E, got 'V'" (pu_ini_bad_value). No output, no exit, no global state. */
@@ -21,44 +28,43 @@
 extern "C" {
 #endif
 
-typedef struct pu_ini_reader {
-    const char *file; /* for the messages */
-    const char *text; /* the whole text (not necessarily NUL-terminated), len bytes */
-    size_t len, pos;
-    int line;          /* the number of the line last read (1 = the first) */
-    int have_prev_key; /* a key line came since the last header */
-} pu_ini_reader;
+/* The caller's handlers (user is passed to both); each returns nonzero to go on, or 0 to stop
+ * the parse (the caller keeps its own message). */
+typedef struct pu_ini_handler {
+    /* A section header, checked: the name between its brackets, trimmed (cut to 127
+     * characters), on line line. */
+    int (*section)(void *user, const char *name, int line);
+    /* A key line as inih gives it: inih's section (the last header's text between the brackets
+     * as written: not trimmed, at most 49 characters; "" before any header), the key and the
+     * value (trimmed, the value before an inline comment), on line line. */
+    int (*key)(void *user, const char *section, const char *key, const char *value, int line);
+    void *user;
+} pu_ini_handler;
 
-typedef enum pu_ini_kind {
-    PU_INI_ERROR = -1, /* the message is in msg */
-    PU_INI_END = 0,    /* no more lines */
-    PU_INI_BLANK,      /* blank or a comment */
-    PU_INI_SECTION,    /* name: the section's name, trimmed */
-    PU_INI_KEY         /* name: the key, trimmed; value, value_len: its value */
-} pu_ini_kind;
+typedef enum pu_ini_status {
+    PU_INI_OK = 0,
+    PU_INI_REFUSED = -1, /* the reader refused a line: "FILE:LINE: what" in msg */
+    PU_INI_STOPPED = -2, /* a handler returned 0 */
+    PU_INI_SYNTAX = -3,  /* inih's own error on a line the reader let through: "FILE:LINE: syntax
+                            error" in msg */
+    PU_INI_NOMEM = -4    /* inih ran out of memory: "FILE: out of memory" in msg */
+} pu_ini_status;
 
-typedef struct pu_ini_line {
-    int line;           /* its number */
-    char name[128];     /* the section's name or the key (cut to 127 characters); after a line
-                           that is too long, its key when it has one ("" otherwise) */
-    const char *key;    /* KEY: the key in buf, trimmed, whole, NUL-terminated there */
-    const char *value;  /* KEY: the value in buf, trimmed, before an inline comment,
-                           NUL-terminated there */
-    size_t value_len;   /* strlen(value) */
-    const char *header; /* SECTION: the text between the brackets as written (not trimmed, not
-                           NUL-terminated), header_len bytes */
-    size_t header_len;
-    int too_long; /* ERROR: the line was longer than buf allows */
-} pu_ini_line;
+typedef struct pu_ini_result {
+    int line;     /* the line of the refusal, the stop or inih's error (0: none) */
+    int too_long; /* REFUSED: the line was longer than allowed */
+    char key[64]; /* too_long: the line's key when it has one (cut to 63 characters), else "" */
+} pu_ini_result;
 
-void pu_ini_init(pu_ini_reader *r, const char *text, size_t len, const char *file);
-/* The next line: copied into buf with "\n" and a NUL after it, classified into ln; a key line's
- * key and value are then cut out in buf (NUL after each, as inih does). A line needs strlen + 2
- * <= size. PU_INI_ERROR with "FILE:LINE: what" in msg. */
-pu_ini_kind pu_ini_next(pu_ini_reader *r, char *buf, size_t size, pu_ini_line *ln, char *msg,
-                        size_t msize);
+/* Parses len bytes of text (not necessarily NUL-terminated; file for the messages, NULL:
+ * "<string>") with inih, each line checked and numbered by pu_ini first, into h's handlers. A
+ * line needs strlen + 2 <= line_size bytes (its "\n" and NUL; at most inih's buffer,
+ * INI_MAX_LINE; 0: inih's). Stops at the first refusal or handler's 0. res (may be NULL) says
+ * where. */
+pu_ini_status pu_ini_parse(const char *text, size_t len, const char *file, size_t line_size,
+                           const pu_ini_handler *h, pu_ini_result *res, char *msg, size_t msize);
 
-/* The number of the line (1 = the first, lines as pu_ini_next counts them) that holds byte pos
+/* The number of the line (1 = the first, lines as pu_ini_parse counts them) that holds byte pos
  * of text. */
 int pu_ini_line_at(const char *text, size_t pos);
 

@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages the project needs, only those that are missing.
 set -euo pipefail
 pkgs=(build-essential meson ninja-build pkg-config python3 libsuitesparse-dev liblapack-dev
-      libblas-dev libsundials-dev gnuplot-nox
+      libblas-dev libsundials-dev libinih-dev gnuplot-nox
       libarpack2-dev  # the sparse modal analysis (solver/bg_modes.c)
       libyaml-dev  # model files (model/mdl_yaml.c)
       cmake  # the CMake package's version file (meson) and the CMake install check (tools/test.sh)

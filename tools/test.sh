@@ -46,7 +46,7 @@ fi
 
 # install check: the library, its headers (<bgdae/...>), its pkg-config file and its CMake
 # package serve outside programs (tests/install/), the shared library exports exactly what the
-# public headers declare, and the installation holds nothing of the crane
+# public headers declare, and the installation holds nothing of the crane or of inih
 dest=$(mktemp -d)
 if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
   opt() { meson introspect "$B" --buildoptions | python3 -c \
@@ -93,6 +93,8 @@ if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
     extra_fail=$((extra_fail+1))
   fi
   bad=""
+  pc --libs --static bgdae | grep -q inih && bad="$bad pkg-config --static names inih;"
+  ldd "$dest$libdir/libbgdae.so" 2>/dev/null | grep -q inih && bad="$bad libbgdae.so needs inih;"
   for h in mech_util.h mech_ad.h mech_beam_impl.h cmp_internal.h bg_dae_impl.h crane_model.h \
            crane_scene.h; do
     [ -e "$dest$includedir/bgdae/$h" ] && bad="$bad $h installed;"
@@ -100,7 +102,7 @@ if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
   grep -q 'crane_' <<<"$(nm -D --defined-only "$dest$libdir/libbgdae.so")" \
     && bad="$bad libbgdae.so holds crane functions;"
   if [ -z "$bad" ]; then
-    echo "ok - install check: no crane or private header in the installed library"
+    echo "ok - install check: no inih, crane or private header in the installed library"
     extra_pass=$((extra_pass+1))
   else
     echo "not ok - install check:$bad"; extra_fail=$((extra_fail+1))

@@ -1,13 +1,14 @@
 /* Sweep files (sweep_spec.h): the parser and the public entry points; the parts are listed in
  * sweep_spec_impl.h.
  *
- * progutil's INI line reader (pu_ini.h) does the INI syntax, as for the scene files
- * (crane_scene.c): it checks each line and numbers it, so that every message has its line; each
- * section header opens a raw section of its own, which is how repeated [axis] sections become
- * separate axes. The keys are only recorded; the values are checked afterwards, section by section
- * (spec_finish, sweep_schema.c), so that the keys of a section may come in any order. Every
- * swept or set value is checked with crane_scene_set, the scene files' own check, and its
- * message is passed on behind "FILE:LINE: key '...' in [...]". */
+ * inih does the INI syntax behind progutil's pu_ini (pu_ini.h), as for the scene files
+ * (crane_scene.c): pu_ini feeds the text to inih line by line, checks each line and numbers it,
+ * so that every message has its line; pu_ini gives each section header to open_section before
+ * inih reads it, and each header opens a raw section of its own, which is how repeated [axis]
+ * sections become separate axes. inih gives the keys and values. The keys are only recorded; the
+ * values are checked afterwards, section by section (spec_finish, sweep_schema.c), so that the keys
+ * of a section may come in any order. Every swept or set value is checked with crane_scene_set, the
+ * scene files' own check, and its message is passed on behind "FILE:LINE: key '...' in [...]". */
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -161,35 +162,42 @@ static int record_key(parse_ctx *c, const char *name, const char *value)
 /* ------------------------------------------------------------------- lines ---- */
 
 /* A line with its "\n" and NUL fits in SPEC_LINE_SIZE bytes (198 characters), as in the scene
- * files (crane_scene.c): the size of inih's line buffer, which read both before pu_ini. */
+ * files (crane_scene.c): the size of inih's line buffer (INI_MAX_LINE). */
 #define SPEC_LINE_SIZE 200
 
-/* The text, line by line (pu_ini: each line checked, with its number in c->line), into the raw
- * sections: a header opens one, a key is recorded in the current one. Stops at the first error:
- * 0, or -1 with the error recorded. */
+static int on_section(void *user, const char *name, int line)
+{
+    parse_ctx *c = user;
+    c->line = line;
+    return open_section(c, name);
+}
+
+/* inih's section is not needed: c->cur says which section instance a key is in. */
+static int on_key(void *user, const char *section, const char *key, const char *value, int line)
+{
+    parse_ctx *c = user;
+    (void)section;
+    c->line = line;
+    return record_key(c, key, value);
+}
+
+/* The text through pu_ini and inih into the raw sections: a header opens one, a key is recorded
+ * in the current one. Stops at the first error: 0, or -1 with the error recorded. */
 static int read_lines(parse_ctx *c, const char *text)
 {
-    pu_ini_reader r;
-    pu_ini_init(&r, text, strlen(text), c->file);
-    char buf[SPEC_LINE_SIZE];
-    for (;;) {
-        pu_ini_line ln;
-        pu_ini_kind k = pu_ini_next(&r, buf, sizeof buf, &ln, c->err, c->errsize);
-        c->line = ln.line;
-        if (k == PU_INI_END) return 0;
-        if (k == PU_INI_ERROR) {
-            c->failed = 1;
-            if (ln.too_long && pu_ini_ieq(ln.name, "values") && c->errsize) {
-                size_t n = strlen(c->err);
-                snprintf(c->err + n, c->errsize - n,
-                         ": split the values over several [axis] sections or give a range "
-                         "(from, to, count)");
-            }
-            return -1;
-        }
-        if (k == PU_INI_SECTION && !open_section(c, ln.name)) return -1;
-        if (k == PU_INI_KEY && !record_key(c, ln.key, ln.value)) return -1;
+    pu_ini_handler h = {on_section, on_key, c};
+    pu_ini_result res;
+    pu_ini_status st =
+        pu_ini_parse(text, strlen(text), c->file, SPEC_LINE_SIZE, &h, &res, c->err, c->errsize);
+    if (st == PU_INI_OK) return 0;
+    c->failed = 1;
+    if (st == PU_INI_REFUSED && res.too_long && pu_ini_ieq(res.key, "values") && c->errsize) {
+        size_t n = strlen(c->err);
+        snprintf(c->err + n, c->errsize - n,
+                 ": split the values over several [axis] sections or give a range "
+                 "(from, to, count)");
     }
+    return -1;
 }
 
 /* ------------------------------------------------------------------ public ---- */

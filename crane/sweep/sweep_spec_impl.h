@@ -1,8 +1,8 @@
 /* The sweep file's reading (sweep_spec.h for the format), shared by its parts. Private: not
  * installed.
  *
- *   sweep_spec.c    the parser: the lines read with progutil's INI reader (pu_ini.h, which
- *                   also trims, quotes and reads the numbers), the keys recorded section by
+ *   sweep_spec.c    the parser: the lines parsed by inih behind progutil's pu_ini (pu_ini.h,
+ *                   which also trims, quotes and reads the numbers), the keys recorded section by
  *                   section (the raw sections below); sweep_spec_parse, sweep_spec_load,
  *                   sweep_spec_free
  *   sweep_schema.c  the schema: the sections and their keys, the scene keys' check, the base

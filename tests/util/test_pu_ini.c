@@ -1,53 +1,76 @@
-/* pu_ini.h: lines (LF, CR LF, CR), sections, keys and values, the refusals with FILE:LINE, the
- * numbers. */
+/* pu_ini.h: lines (LF, CR LF, CR) numbered and checked in front of inih, the sections and the
+ * keys and values as inih splits them, the refusals with FILE:LINE, the numbers. */
+#include <stdio.h>
 #include <string.h>
 
 #include "pu_ini.h"
 #include "tap.h"
 
-static char buf[64], msg[512];
+static char msg[512];
+
+/* What the handlers saw, one "LINE S name" or "LINE K [section] key=value" a line; stop_at: the
+ * line whose handler says stop (0: none). */
+static char seen[1024];
+static int stop_at;
+
+static int rec_section(void *user, const char *name, int line)
+{
+    (void)user;
+    size_t n = strlen(seen);
+    snprintf(seen + n, sizeof seen - n, "%d S %s\n", line, name);
+    return line != stop_at;
+}
+
+static int rec_key(void *user, const char *section, const char *key, const char *value, int line)
+{
+    (void)user;
+    size_t n = strlen(seen);
+    snprintf(seen + n, sizeof seen - n, "%d K [%s] %s=%s\n", line, section, key, value);
+    return line != stop_at;
+}
+
+static pu_ini_status parse(const char *text, size_t len, size_t line_size, pu_ini_result *res)
+{
+    pu_ini_handler h = {rec_section, rec_key, NULL};
+    seen[0] = msg[0] = '\0';
+    return pu_ini_parse(text, len, "f.ini", line_size, &h, res, msg, sizeof msg);
+}
 
 static void test_lines(void)
 {
     const char *text = "\xEF\xBB\xBF; comment\r\n[solver]  ; note\rrtol = 1e-6 ; inline\n"
-                       "name: paper\n\n# end";
-    pu_ini_reader r;
-    pu_ini_line ln;
-    pu_ini_init(&r, text, strlen(text), "s.ini");
-    tap_ok(pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg) == PU_INI_BLANK && ln.line == 1,
-           "line 1: a comment after the byte order mark");
-    tap_ok(pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg) == PU_INI_SECTION &&
-               !strcmp(ln.name, "solver") && ln.line == 2 && ln.header_len == 6 &&
-               !strncmp(ln.header, "solver", 6),
-           "line 2 (after CR LF): [solver] with a comment");
-    pu_ini_kind k = pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg);
-    tap_ok(k == PU_INI_KEY && !strcmp(ln.name, "rtol") && ln.value_len == 4 &&
-               !strncmp(ln.value, "1e-6", 4) && ln.line == 3,
-           "line 3 (after a lone CR): key and value before the inline comment");
-    tap_ok(!strcmp(ln.key, "rtol") && !strcmp(ln.value, "1e-6"),
-           "key and value NUL-terminated in buf");
-    k = pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg);
-    tap_ok(k == PU_INI_KEY && !strcmp(ln.name, "name") && !strncmp(ln.value, "paper", 5) &&
-               ln.value_len == 5,
-           "key : value");
-    tap_ok(pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg) == PU_INI_BLANK &&
-               pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg) == PU_INI_BLANK &&
-               ln.line == 6 && pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg) == PU_INI_END,
-           "blank, comment without a newline, end");
+                       "name: paper\n[ Boom ]\n\n  E=2e11\n# end";
+    pu_ini_result res;
+    tap_ok(parse(text, strlen(text), 64, &res) == PU_INI_OK && res.line == 0, "parses: '%s'", msg);
+    tap_ok(!strcmp(seen, "2 S solver\n"
+                         "3 K [solver] rtol=1e-6\n"
+                         "4 K [solver] name=paper\n"
+                         "5 S Boom\n"
+                         "7 K [ Boom ] E=2e11\n"),
+           "byte order mark, CR LF, lone CR, inline comments, 'key : value', inih's section as "
+           "written, an indented key after a header:\n%s",
+           seen);
+    stop_at = 4;
+    tap_ok(parse(text, strlen(text), 64, &res) == PU_INI_STOPPED && res.line == 4 && !msg[0] &&
+               !strcmp(seen, "2 S solver\n3 K [solver] rtol=1e-6\n4 K [solver] name=paper\n"),
+           "a handler's 0 stops the parse at its line");
+    stop_at = 5;
+    tap_ok(parse(text, strlen(text), 64, &res) == PU_INI_STOPPED && res.line == 5,
+           "a section handler's 0 too");
+    stop_at = 0;
+    tap_ok(parse("[a]\nk = 1\n[b]\nk = 2", 10, 64, &res) == PU_INI_OK &&
+               !strcmp(seen, "1 S a\n2 K [a] k=1\n"),
+           "len bytes only (not NUL-terminated)");
+    tap_ok(parse("k = v ;c\n[a]\nk =;x\n", 19, 0, &res) == PU_INI_OK &&
+               !strcmp(seen, "1 K [] k=v\n2 S a\n3 K [a] k=;x\n"),
+           "a key before any header; ';' not after white space is text: '%s'", seen);
 }
 
 /* The first error of text, or "" if none. */
 static const char *first_error(const char *text, size_t len)
 {
-    pu_ini_reader r;
-    pu_ini_line ln;
-    pu_ini_init(&r, text, len, "f.ini");
-    msg[0] = '\0';
-    for (;;) {
-        pu_ini_kind k = pu_ini_next(&r, buf, sizeof buf, &ln, msg, sizeof msg);
-        if (k == PU_INI_END) return "";
-        if (k == PU_INI_ERROR) return msg;
-    }
+    pu_ini_result res;
+    return parse(text, len, 64, &res) == PU_INI_REFUSED && res.line > 0 ? msg : "";
 }
 
 static void test_errors(void)
@@ -77,6 +100,16 @@ static void test_errors(void)
            "a NUL character: '%s'", msg);
     tap_ok(!strcmp(first_error("[a]\n\n  ; indented comment\nk = 1\n", 30), ""),
            "an indented comment and blank lines are fine");
+    pu_ini_result res;
+    const char *vals =
+        "[axis]\nvalues = 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17\n";
+    tap_ok(parse(vals, strlen(vals), 64, &res) == PU_INI_REFUSED && res.line == 2 && res.too_long &&
+               !strcmp(res.key, "values"),
+           "a line too long: its line and key in the result");
+    tap_ok(!strcmp(first_error("[a ; ]\n", 7), "f.ini:1: section header without ']': '[a ; ]'") &&
+               !strcmp(first_error("[a]\nk ; = 1\n", 12),
+                       "f.ini:2: expected 'key = value' or '[section]', got 'k ; = 1'"),
+           "a ']' or '=' after an inline comment does not count");
 }
 
 static void test_values(void)
