@@ -68,7 +68,8 @@ static const pu_cli_option OPTIONS[] = {
     {.name = "--modes", .kind = PU_CLI_DOUBLE, .value = PU_CLI_OPTIONAL, .arg = "[T]",
      .at = AT(modes_t), .seen = AT(modes), .min = 0, .max = HUGE_VAL,
      .what = "a time >= 0 in s",
-     .help = "the modes at time T (default 0: the start) instead of the run: modes.csv"},
+     .help = "the modes at time T instead of the run: modes.csv (T = 0, the default: at the static "
+             "equilibrium, with the file's trim; T > 0: at time T of a run from the start)"},
     {.name = "--vtk", .kind = PU_CLI_FLAG, .at = AT(vtk),
      .help = "ParaView time series model.pvd and vtk/frame_NNNNN.vtp: every body, point mass, "
              "support, axial member, cylinder and beam chain drawn (docs/bgsim.md)"},

@@ -155,7 +155,11 @@ static int static_start(bs_run *r)
 int bs_analyse(bs_run *r)
 {
     int rc;
-    if ((r->o->static_only || mdl_start_kind(r->mm) == MDL_START_STATIC) &&
+    /* the modes at T = 0 are those of the static equilibrium, as the crane program's: a given
+     * start leaves the constraint forces at zero, and the linearisation there misses every
+     * stiffness they carry (a pendulum's swing) */
+    if ((r->o->static_only || (r->o->modes && r->o->modes_t == 0) ||
+         mdl_start_kind(r->mm) == MDL_START_STATIC) &&
         (rc = static_start(r)) != 0)
         return rc;
     if (r->o->modes) {

@@ -263,6 +263,37 @@ int main(int argc, char **argv)
                file_contains(dir, "static.txt", "trim: none") && !file_exists(dir, "results.csv"),
            "--static: static.txt with the load factor, no results.csv");
 
+    /* --modes on the hanging double pendulum: the two swings of the linearised Lagrangian
+     * equations, M theta'' + K theta = 0 with M = [m1 L1^2/3 + m2 L1^2, m2 L1 L2/2; m2 L1 L2/2,
+     * m2 L2^2/3], K = diag((m1/2 + m2) g L1, m2 g L2/2) (L1 1, L2 0.7, m1 1, m2 0.5, g 9.81): the
+     * static start comes first, else the rods' tensions are zero and so is the swing's stiffness */
+    {
+        double L1 = 1, L2 = 0.7, m1 = 1, m2 = 0.5, g = 9.81;
+        double M11 = m1 * L1 * L1 / 3 + m2 * L1 * L1, M12 = m2 * L1 * L2 / 2, M22 = m2 * L2 * L2 / 3;
+        double K1 = (m1 / 2 + m2) * g * L1, K2 = m2 * g * L2 / 2;
+        /* det(K - w^2 M) = 0: a w^4 + b w^2 + c = 0 */
+        double a = M11 * M22 - M12 * M12, b = -(K1 * M22 + K2 * M11), c = K1 * K2;
+        double d = sqrt(b * b - 4 * a * c), w1 = sqrt((-b - d) / (2 * a)), w2 = sqrt((-b + d) / (2 * a));
+        double f1 = w1 / (2 * acos(-1.0)), f2 = w2 / (2 * acos(-1.0));
+        snprintf(dir, sizeof dir, "%s/dpmodes", tmp);
+        run(tmp, (const char *[]){dp, "--out", dir, "--modes", "--set", "theta1=0", "--set",
+                                  "theta2=0", "-q", NULL},
+            "dpmodes", 60, &r);
+        snprintf(path, sizeof path, "%s/modes.csv", dir);
+        char mt[1 << 15] = "";
+        slurp(path, mt, sizeof mt);
+        int got1 = 0, got2 = 0;
+        for (const char *q = strchr(mt, '\n'); q && q[1]; q = strchr(q + 1, '\n')) {
+            double f = 0;
+            if (sscanf(q + 1, "%*d,%lf", &f) == 1) {
+                got1 |= fabs(f - f1) < 1e-6 * f1;
+                got2 |= fabs(f - f2) < 1e-6 * f2;
+            }
+        }
+        tap_ok(r.exited && r.code == 0 && got1 && got2,
+               "--modes, hanging double pendulum: %.6f and %.6f Hz (linearised Lagrangian)", f1, f2);
+    }
+
     /* a trimmed start replaces the model (mdl_static): L0 found so that the mass rests at
      * z = -1, L0 = 1 - m g / k; the program's record of the model's name must outlive the
      * model it came from (the summary and status.txt name it) */
