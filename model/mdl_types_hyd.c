@@ -194,17 +194,23 @@ static int volume_build(bgr_model *m, bgr_comp c, const char *name, const mdl_ar
     return r;
 }
 
-/* the state: the initial pressure */
+/* the state: the initial pressure, and its ports' efforts with it (the volume's own equations
+ * e_k = p hold at the start, so that what is bonded to it sees that pressure, not 0) */
 static int volume_place(bgr_model *m, const mdl_instance *in, const mdl_args *a, mdl_locator *loc,
                         bg_error *err)
 {
     (void)loc;
-    int ip = bgr_ref_var(m, (bgr_ref){BGR_STATE, mdl_instance_main(in), 0});
+    int id = mdl_instance_main(in), ip = bgr_ref_var(m, (bgr_ref){BGR_STATE, id, 0});
     double *y = bgr_y0(m);
-    if (ip < 0 || !y)
+    const bgr_element *el = bgr_element_get(m, id);
+    if (ip < 0 || !y || !el)
         return bg_error_raise(err, BG_ERR_STATE, "model",
                               "%s: the volume's pressure is not numbered", mdl_arg_path(a));
     y[ip] = mdl_arg_num(a, "pressure");
+    for (int k = 0; k < el->nports; k++) {
+        int v = bgr_ev(el, m, k, 0);
+        if (v >= 0) y[v] = y[ip];
+    }
     return BG_OK;
 }
 
