@@ -94,6 +94,7 @@
 #include "bench_cli.h"
 #include "bench_crane.h"
 #include "bench_errest.h"
+#include "bench_model.h"
 #include "bench_realtime.h"
 #include "bench_mebdfi.h"
 #include "bench_osc.h"
@@ -408,8 +409,10 @@ int main(int argc, char **argv)
     if (bench_file_open(&rep, b.cli.out, "report.md") != 0) return 1;
     bench_load_average(b.ex.load_start, sizeof b.ex.load_start);
     b.oom = bench_text_open(&b.tail) != 0 || bench_text_open(&b.mid) != 0;
-    if (!b.oom && (b.cli.want_crane || b.cli.realtime_asked) && b.cli.realtime_runs > 0)
+    if (!b.oom && (b.cli.want_crane || b.cli.realtime_asked) && b.cli.realtime_runs > 0) {
         realtime_check(&b);
+        b.failures += bench_model_files(BENCH_MODELS_DIR, b.cli.realtime_runs, b.cli.out, b.tail.f);
+    }
     if (!b.oom) b.oom = work_precision(&b) != 0;
     if (!b.oom)
         write_results(&b, &rep);
