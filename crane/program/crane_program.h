@@ -7,6 +7,9 @@
  *   cp_cli.c     the command line (options' table for pu_cli.h, --set overrides), the scene's
  *                file
  *   cp_plots.c   plots.gp and the figures of Fig. 5, modes.png (gnuplot, pu_gnuplot.h)
+ *   cp_columns.c results.csv read back by column name (the figures, the model file's summary)
+ *   cp_model.c   a model file SCENE: bgsim's run of it (bgsim.h: bs_run_file) with Fig. 5 and
+ *                the crane's summary lines on top
  *   cp_sim.c     the dynamic run (the crane's outputs, watches and viz around rn_loop), --static
  *                and --modes, model_stats.txt and the summary
  *   cp_errest.c  --error-estimate: the companion run (crane_errest.h) and error_estimate.csv */
@@ -88,10 +91,55 @@ typedef struct cp_run {
 /* The crane's run of a runner's hook (rn.owner). */
 #define CP_RUN(rn) ((cp_run *)(rn)->owner)
 
+/* -------------------------------------------------------------- cp_columns.c ---- */
+
+#define CP_MAX_COLS 256
+
+/* The columns of results.csv by name, from its header ("theta [rad]": a scene's; "theta": a
+ * model file's), at most CP_MAX_COLS, each name cut to 63 characters. */
+typedef struct cp_columns {
+    int n;
+    char name[CP_MAX_COLS][64];
+} cp_columns;
+
+/* Reads the header of the file csv. 0, or -1 with errno. */
+int cp_columns_read(const char *csv, cp_columns *cs);
+/* The column named key (followed in the header by the end or a space), -1 if none. */
+int cp_column(const cp_columns *cs, const char *key);
+/* Column i's label: its header name, or without a unit there the crane's output of that name
+ * with its unit (crane_output_names: "theta" -> "theta [rad]"). */
+const char *cp_column_label(const cp_columns *cs, int i);
+
+/* What the crane takes from the rows of results.csv: the first and last row (each a value per
+ * column), the peaks of |tip_defl_1| and |tip_defl_2|, the reach: the largest |tip_x - cx| and
+ * |tip_y - cy| (cx, cy: the slewing axis). Rows are read up to the first that is not whole. */
+typedef struct cp_rows {
+    long rows;
+    double first[CP_MAX_COLS], last[CP_MAX_COLS];
+    double peak[2], reach;
+} cp_rows;
+
+/* 0, or -1 with errno. */
+int cp_rows_scan(const char *csv, const cp_columns *cs, double cx, double cy, cp_rows *s);
+
 /* ---------------------------------------------------------------- cp_plots.c ---- */
 
-/* plots.gp, then the figures with gnuplot (skipped when it is missing); each figure checked.
- * 0, or the failure (RN_EXIT_RUN). A signal stops gnuplot: the figures drawn are removed. */
+/* What Fig. 5 takes besides results.csv's columns. */
+typedef struct cp_fig_info {
+    const char *source;     /* the titles' "(...)": "scene paper", "model file paper.yaml" */
+    double cx, cy;          /* the slewing axis */
+    double radius;          /* fig. 5a's circle: the tip's initial distance from the axis */
+    double reach;           /* largest |tip_x - cx|, |tip_y - cy| of the run */
+    double fallback_radius; /* without radius and reach: the plot's half-width 1.1 * this + 1 */
+} cp_fig_info;
+
+/* plots.gp from results.csv's columns found by name (a figure whose columns are missing is left
+ * out), then the figures with gnuplot (skipped when it is missing); each figure checked. 0, or
+ * the failure (RN_EXIT_RUN, recorded in rn). A signal stops gnuplot: the figures drawn are
+ * removed. */
+int cp_figures(rn_run *rn, const cp_fig_info *fi, int quiet);
+/* cp_figures for a scene's run: the axis at the scene's joint A, the radius from the first
+ * row. */
 int cp_draw_figures(cp_run *r);
 /* modes.png from modes.gp (--modes). 0, or the failure. */
 int cp_draw_modes(cp_run *r);
