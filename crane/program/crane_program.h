@@ -45,8 +45,11 @@ typedef struct cp_set_item {
 
 typedef struct cp_options {
     const char *scene, *out;
-    cp_set_item sets[CP_MAX_SETS];
+    cp_set_item sets[CP_MAX_SETS]; /* --set and --t-end, --rtol, ...: scene keys */
     int nsets;
+    const char *set_raw[CP_MAX_SETS]; /* every --set as given (a model file's PATH=VALUE) */
+    int nset_raw;
+    char set_error[512]; /* the first --set that is no SECTION.KEY=VALUE ("": none) */
     int no_plots, quiet;
     int static_only, modes; /* --static, --modes [T] (crane_static.h) */
     double modes_t;
@@ -67,6 +70,21 @@ int cp_parse_args(int argc, char **argv, cp_options *o);
  * no regular file (its path and what it is). */
 int cp_find_scene(const char *arg, char *path, size_t size, char *tried, size_t tsize, char *odd,
                   size_t osize);
+
+/* ---------------------------------------------------------------- cp_model.c ---- */
+
+/* A SCENE ending in .yaml is a model file (docs/model-format.md); any other is an INI scene. */
+int cp_is_model_file(const char *arg);
+/* Finds the model file arg: as given, then (bare names) in crane/models/ relative to the
+ * current folder, then to the source tree. 1 with its path in path; 0 with the paths tried. */
+int cp_find_model(const char *arg, char *path, size_t size, char *tried, size_t tsize);
+/* Runs the model file o->scene (bgsim.h: bs_run_file) with Fig. 5 and the crane's summary lines
+ * on top; the options of INI scenes only are refused (exit 2). Returns the exit status. */
+int cp_run_model(const cp_options *o, int argc, char **argv);
+
+/* The files a run writes into its folder, from a scene or a model file (crane.c), removed at the
+ * start of either so that nothing of an earlier run of the other stays. NULL-terminated. */
+extern const char *const cp_run_files[];
 
 /* ------------------------------------------------------------------ the run ---- */
 
