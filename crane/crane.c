@@ -14,6 +14,11 @@
  * error_estimate.csv (crane/program/cp_errest.c); a second run that fails leaves the first run's
  * results and status as they are, the estimate marked unavailable.
  *
+ * A SCENE ending in .yaml is a model file (docs/model-format.md): it is run by bgsim's run of a
+ * model file (bgsim.h: bs_run_file, the same code path as bgsim's; its files, statuses and
+ * signals) with the crane's own on top, Fig. 5 and the summary's lines from results.csv's
+ * columns (crane/program/cp_model.c); the options of INI scenes only are refused (exit 2).
+ *
  * Flow: scene file (crane_scene_load) -> command-line overrides -> crane_build -> static
  * equilibrium (crane_static_start, if the scene asks: the static solver, the ties corrected, the
  * start verified, static.txt) -> bgr_dae_problem -> bg_dae (rtol, atol, stop at
