@@ -88,7 +88,7 @@ struct bs_run {
     mdl_geom geom;     /* its drawing, reused frame to frame */
     long vtk_every;    /* a frame every vtk_every output rows */
     char vtk_error[BG_MESSAGE_SIZE + 64]; /* why the series stopped ("" while it goes on) */
-    const bs_extras *extras; /* the program's (NULL: none) */
+    const bs_extras *extras;              /* the program's (NULL: none) */
 };
 
 #define BS_RUN(rn) ((bs_run *)(rn)->owner)

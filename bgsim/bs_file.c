@@ -30,9 +30,10 @@ static int solver_settings(bs_run *r, const bs_options *o)
     if (o->has_atol) r->solver.atol = o->atol;
     if (o->has_output_step) r->solver.output_step = o->output_step;
     if (mdl_solver_override(r->mm, &r->solver) != BG_OK) {
-        fprintf(stderr, "%s: the solver settings are out of range (t_end %g, output_step %g, "
-                        "rtol %g, atol %g)\n", prog, r->solver.t_end, r->solver.output_step,
-                r->solver.rtol, r->solver.atol);
+        fprintf(stderr,
+                "%s: the solver settings are out of range (t_end %g, output_step %g, "
+                "rtol %g, atol %g)\n",
+                prog, r->solver.t_end, r->solver.output_step, r->solver.rtol, r->solver.atol);
         return RN_EXIT_USAGE;
     }
     /* the number of output rows, in floating point before any conversion to an integer */
@@ -83,8 +84,7 @@ static void run_in_folder(bs_run *r, const bs_options *o, const bs_extras *x)
     rn_status_ready(&r->rn, 0);
 }
 
-int bs_run_file(const char *program, const bs_options *o, int argc, char **argv,
-                const bs_extras *x)
+int bs_run_file(const char *program, const bs_options *o, int argc, char **argv, const bs_extras *x)
 {
     bs_run r;
     memset(&r, 0, sizeof r);

@@ -96,8 +96,10 @@ static int solver_option(const cp_set_item *it, bs_options *b)
         double v = strtod(it->value, &end);
         if (end == it->value || *end || strpbrk(it->value, "xX") || errno == ERANGE ||
             !(v > opts[k].min && v <= opts[k].max)) {
-            fprintf(stderr, "crane: option %s needs %s (got '%s')\n(crane --help lists the "
-                            "options)\n", opts[k].name, opts[k].what, it->value);
+            fprintf(stderr,
+                    "crane: option %s needs %s (got '%s')\n(crane --help lists the "
+                    "options)\n",
+                    opts[k].name, opts[k].what, it->value);
             return RN_EXIT_USAGE;
         }
         *(double *)((char *)b + opts[k].at) = v;
@@ -127,10 +129,12 @@ static int bgsim_options(const cp_options *o, bs_options *b)
     for (int i = 0; i < o->nset_raw; i++) {
         const char *v = o->set_raw[i], *eq = strchr(v, '=');
         if (!eq || eq == v || !eq[1] || eq - v >= (long)sizeof b->set_paths[0]) {
-            fprintf(stderr, "crane: --set expects PATH=VALUE for a model file (a parameter or "
-                            "COMPONENT.PARAM, the path shorter than %zu characters), got '%s'\n(crane --help "
-                            "lists the options)\n",
-                    sizeof b->set_paths[0], v);
+            fprintf(
+                stderr,
+                "crane: --set expects PATH=VALUE for a model file (a parameter or "
+                "COMPONENT.PARAM, the path shorter than %zu characters), got '%s'\n(crane --help "
+                "lists the options)\n",
+                sizeof b->set_paths[0], v);
             return RN_EXIT_USAGE;
         }
         snprintf(b->set_paths[i], sizeof b->set_paths[i], "%.*s", (int)(eq - v), v);
@@ -227,8 +231,9 @@ int cp_run_model(const cp_options *o, int argc, char **argv)
     if (rc == 0) {
         const char *base = strrchr(path, '/');
         base = base ? base + 1 : path;
-        /* the default folder: results/<the file's name without .yaml> */
-        snprintf(out, sizeof out, "results/%.*s", (int)(strlen(base) - 5), base);
+        /* the default folder: results/<the file's name without .yaml> (".yaml": "model") */
+        size_t stem = strlen(base) - 5;
+        snprintf(out, sizeof out, "results/%.*s", stem ? (int)stem : 5, stem ? base : "model");
         b->model = path;
         b->out = o->out ? o->out : out;
         x->o = o;
