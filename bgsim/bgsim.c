@@ -13,7 +13,9 @@
  * each output time, a row of t and the declared outputs there, buffered, whole rows only) ->
  * solver_stats.txt, summary, status.txt at the end. --modes [T]: bgr_modes at the start (after
  * the static start when the file asks for it) or at time T of a run: modes.csv. Per step the
- * solver runs the compiled bgr_model's residual and Jacobian only.
+ * solver runs the compiled bgr_model's residual and Jacobian only. This flow is bs_file.c's
+ * (bs_run_file), which the crane program runs as well for a model file SCENE
+ * (docs/crane-program.md); here only the command line.
  *
  * Writes into DIR (default results/<model name>/): status.txt ("running" with the pid, the
  * model, the command line and the start time; at the end completed, interrupted or failed with
@@ -28,48 +30,10 @@
  * written; 2 bad command line or model file (nothing written: the reader's FILE:LINE:COL
  * message on stderr); 128 + signal number when interrupted. */
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "bgsim.h"
-
-/* The files a run writes into its folder, removed at the start (with their temporary names). */
-static const char *const RUN_FILES[] = {
-    "status.txt", "model.yaml",      "model_stats.txt", "results.csv", "solver_stats.txt",
-    "static.txt", "equilibrium.csv", "modes.csv",       "model.pvd",   NULL};
-
-/* The file's solver settings with the command line's overrides into r->solver; the number of
- * rows checked. 0, or RN_EXIT_USAGE (said on stderr). */
-static int solver_settings(bs_run *r, const bs_options *o)
-{
-    r->solver = *mdl_solver(r->mm);
-    if (o->has_t_end) r->solver.t_end = o->t_end;
-    if (o->has_rtol) r->solver.rtol = o->rtol;
-    if (o->has_atol) r->solver.atol = o->atol;
-    if (o->has_output_step) r->solver.output_step = o->output_step;
-    if (mdl_solver_override(r->mm, &r->solver) != BG_OK) {
-        fprintf(stderr, "bgsim: the solver settings are out of range (t_end %g, output_step %g, "
-                        "rtol %g, atol %g)\n", r->solver.t_end, r->solver.output_step,
-                r->solver.rtol, r->solver.atol);
-        return RN_EXIT_USAGE;
-    }
-    /* the number of output rows, in floating point before any conversion to an integer */
-    double nout = ceil(r->solver.t_end / r->solver.output_step - 1e-9);
-    if (!(nout >= 1)) nout = 1;
-    if (!(o->static_only || o->modes) && !(nout + 1 <= (double)o->max_rows)) {
-        fprintf(stderr,
-                "bgsim: t_end = %g s at output_step = %g s makes %.4g output rows, more than the "
-                "limit of %lld: choose a longer --output-step or a shorter --t-end, or allow more "
-                "rows with --max-rows N\n",
-                r->solver.t_end, r->solver.output_step, nout + 1, o->max_rows);
-        return RN_EXIT_USAGE;
-    }
-    r->rn.nout = (long)nout;
-    r->rn.t_end = r->solver.t_end;
-    return 0;
-}
 
 int main(int argc, char **argv)
 {
@@ -85,63 +49,6 @@ int main(int argc, char **argv)
         }
         return rc;
     }
-
-    bs_run r;
-    memset(&r, 0, sizeof r);
-    rn_init(&r.rn, "bgsim", "model");
-    r.rn.owner = &r;
-    r.o = &o;
-    if (strlen(o.model) > RN_OUT_MAX) {
-        fprintf(stderr, "bgsim: the model's path is %zu characters long, more than %d\n",
-                strlen(o.model), RN_OUT_MAX);
-        return RN_EXIT_USAGE;
-    }
-    snprintf(r.model_path, sizeof r.model_path, "%s", o.model);
-    bg_error err = {0};
-    r.mm = mdl_load(o.model, o.sets, o.nsets, &err);
-    if (!r.mm) {
-        fprintf(stderr, "%s\n", err.message);
-        return RN_EXIT_USAGE;
-    }
-    if (o.list_unknowns) {
-        rc = bs_list_unknowns(r.mm, stdout);
-        mdl_free(&r.mm);
-        if (fflush(stdout) != 0 || ferror(stdout)) rc = RN_EXIT_RUN;
-        return rc;
-    }
-    if ((rc = solver_settings(&r, &o)) != 0) {
-        mdl_free(&r.mm);
-        return rc;
-    }
-    snprintf(r.model_name, sizeof r.model_name, "%s", mdl_name(r.mm));
-    r.rn.name = r.model_name;
-    r.rn.path = r.model_path;
-    if ((rc = rn_set_outdir(&r.rn, o.out)) != 0) {
-        mdl_free(&r.mm);
-        return rc;
-    }
-
-    /* status.txt "running" first (it replaces an earlier run's), then the earlier results go */
-    rn_format_command(&r.rn, argc, argv);
-    if ((rc = rn_prepare_folder(&r.rn, RUN_FILES)) != 0) {
-        mdl_free(&r.mm);
-        return rc;
-    }
-    if (!strcmp(r.rn.status, "running") && bs_save_model(&r) == 0)
-        (o.static_only || o.modes ? bs_analyse : bs_simulate)(&r);
-    rn_set_phase(&r.rn, RN_PHASE_OTHER, NULL);
-    rn_arm_finishing(&r.rn);
-    if (!strcmp(r.rn.status, "completed") && rn_signal())
-        snprintf(r.rn.reason, sizeof r.rn.reason, "the run reached its end; %s received afterwards",
-                 rn_signal_name(rn_signal()));
-    if (!o.quiet) bs_summary(&r);
-    if (fflush(stdout) != 0 || ferror(stdout))
-        rn_fail_run(&r.rn, "cannot write the standard output", strerror(errno));
-    rn_write_status(&r.rn, 1);
-    rn_status_ready(&r.rn, 0);
-    dae_free(&r.rn.s);
-    mdl_free(&r.mm);
-    free(r.rn.csv_buf);
-    free(r.final_out);
-    return rn_exit_status(&r.rn, 0);
+    /* the run itself is bs_file.c's, shared with the crane program */
+    return bs_run_file("bgsim", &o, argc, argv, NULL);
 }

@@ -5,7 +5,12 @@
  *   bs_cli.c   the command line (options' table for pu_cli.h), --list-types, --describe,
  *              --list-unknowns
  *   bs_run.c   the dynamic run on rn_loop, --static, --modes, model_stats.txt, model.yaml,
- *              static.txt, equilibrium.csv, modes.csv and the summary */
+ *              static.txt, equilibrium.csv, modes.csv and the summary
+ *   bs_file.c  the run of a model file from its options to its exit status (bs_run_file)
+ *
+ * The three make the static library bgsim_run (bgsim/meson.build), which the crane program
+ * links as well: with a model file SCENE it runs bs_run_file with its extras (the figures of
+ * Fig. 5, summary lines: crane/program/cp_model.c), the same code path as bgsim's. */
 #ifndef BGSIM_H
 #define BGSIM_H
 
@@ -55,7 +60,19 @@ int bs_list_unknowns(mdl_model *mm, FILE *f);
  * '/' as '.'. */
 const char *bs_unknown_name(const mdl_model *mm, int var, char *buf, size_t size);
 
-typedef struct bs_run {
+typedef struct bs_run bs_run;
+
+/* What a program adds to the run of a model file (the crane program: Fig. 5). Every field is
+ * optional. */
+typedef struct bs_extras {
+    const char *const *files; /* more files removed from the folder at the start (NULL-ended) */
+    const char *not_done;     /* appended to the reason when a signal came after the end */
+    int (*finish)(bs_run *r, void *ctx); /* after a run that reached its end with no signal */
+    void (*summary)(const bs_run *r, void *ctx); /* summary lines before the wall time's */
+    void *ctx;
+} bs_extras;
+
+struct bs_run {
     rn_run rn; /* status.txt, results.csv, the folder, the solver (rn_run.h); rn.owner = this */
     const bs_options *o;
     mdl_model *mm;
@@ -71,9 +88,16 @@ typedef struct bs_run {
     mdl_geom geom;     /* its drawing, reused frame to frame */
     long vtk_every;    /* a frame every vtk_every output rows */
     char vtk_error[BG_MESSAGE_SIZE + 64]; /* why the series stopped ("" while it goes on) */
-} bs_run;
+    const bs_extras *extras;              /* the program's (NULL: none) */
+};
 
 #define BS_RUN(rn) ((bs_run *)(rn)->owner)
+
+/* Runs the model file o->model as bgsim does (bgsim.c has the contract): program names the
+ * messages and status.txt ("bgsim", "crane"), argv goes into status.txt, x adds the program's
+ * own (NULL: nothing). Returns the exit status. */
+int bs_run_file(const char *program, const bs_options *o, int argc, char **argv,
+                const bs_extras *x);
 
 /* The run (dynamic, or --static / --modes). 0 or an exit status; r->rn.status says how it
  * ended. */

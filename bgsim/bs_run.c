@@ -275,7 +275,7 @@ static int vtk_row(void *ctx, long k, double t, const double *y, const double *y
     }
     if (bad) {
         snprintf(r->vtk_error, sizeof r->vtk_error, "%s", msg);
-        fprintf(stderr, "bgsim: ParaView series stopped: %s\n", msg);
+        fprintf(stderr, "%s: ParaView series stopped: %s\n", r->rn.program, msg);
         pu_vtk_close(&r->vtk);
     }
     return 0;
@@ -354,13 +354,14 @@ void bs_summary(const bs_run *r)
 {
     const dae_stats *st = r->rn.s ? dae_get_stats(r->rn.s) : NULL;
     if (r->o->modes)
-        printf("bgsim: model %s, the modes at t = %g s: %s (%d modes)\n", r->rn.name,
-               r->o->modes_t, r->rn.status, r->nmodes);
+        printf("%s: model %s, the modes at t = %g s: %s (%d modes)\n", r->rn.program,
+               r->rn.name, r->o->modes_t, r->rn.status, r->nmodes);
     else if (r->o->static_only)
-        printf("bgsim: model %s, the static equilibrium: %s\n", r->rn.name, r->rn.status);
+        printf("%s: model %s, the static equilibrium: %s\n", r->rn.program, r->rn.name,
+               r->rn.status);
     else
-        printf("bgsim: model %s, %s at t = %g s (of %g s), %ld rows\n", r->rn.name,
-               r->rn.status, r->rn.t, r->rn.t_end, r->rn.rows_disk);
+        printf("%s: model %s, %s at t = %g s (of %g s), %ld rows\n", r->rn.program,
+               r->rn.name, r->rn.status, r->rn.t, r->rn.t_end, r->rn.rows_disk);
     if (r->static_done)
         printf("  static start: load factor %.6g, %ld steps, %ld Newton iterations%s\n",
                r->trim.last.lambda, r->trim.last.steps, r->trim.last.newton_iters,
@@ -375,5 +376,6 @@ void bs_summary(const bs_run *r)
     if (st)
         printf("  steps %ld (rejected %ld), Newton iterations %ld, Jacobians %ld\n", st->steps,
                st->rejected_error, st->newton_iters, st->jac_evals);
+    if (r->extras && r->extras->summary) r->extras->summary(r, r->extras->ctx);
     printf("  wall time %.2f s; results in %s/\n", rn_wall_now() - r->rn.wall0, r->rn.outdir);
 }

@@ -14,6 +14,11 @@
  * error_estimate.csv (crane/program/cp_errest.c); a second run that fails leaves the first run's
  * results and status as they are, the estimate marked unavailable.
  *
+ * A SCENE ending in .yaml is a model file (docs/model-format.md): it is run by bgsim's run of a
+ * model file (bgsim.h: bs_run_file, the same code path as bgsim's; its files, statuses and
+ * signals) with the crane's own on top, Fig. 5 and the summary's lines from results.csv's
+ * columns (crane/program/cp_model.c); the options of INI scenes only are refused (exit 2).
+ *
  * Flow: scene file (crane_scene_load) -> command-line overrides -> crane_build -> static
  * equilibrium (crane_static_start, if the scene asks: the static solver, the ties corrected, the
  * start verified, static.txt) -> bgr_dae_problem -> bg_dae (rtol, atol, stop at
@@ -66,18 +71,20 @@ static int print_scene_copy(rn_run *rn, FILE *f, const void *ctx)
     return crane_scene_write(&r->scene, f) == BG_OK ? 0 : -1;
 }
 
-/* The files a run writes into its folder (this program's, crane_vtk.h's and crane_anim.h's),
- * removed at the start (rn_prepare_folder, with their temporary names) so that nothing of an
- * earlier run stays beside the new results; and vtk/frame_*.vtp with the folder vtk/. */
-static const char *const RUN_FILES[] = {"results.csv",     "model_stats.txt",    "solver_stats.txt",
-                                        "scene.ini",       "plots.gp",           "gnuplot.log",
-                                        "fig5a.png",       "fig5b.png",          "fig5c.png",
-                                        "fig5d.png",       "fig5e.png",          "fig5f.png",
-                                        "crane.pvd",       "anim.dat",           "anim_track.dat",
-                                        "anim.gp",         "anim.log",           "crane.gif",
-                                        "crane_frame.png", "status.txt",         "static.txt",
-                                        "equilibrium.csv", "modes.csv",          "modes.gp",
-                                        "modes.png",       "error_estimate.csv", NULL};
+/* The files a run writes into its folder (this program's, crane_vtk.h's and crane_anim.h's;
+ * bgsim's for a model file: model.yaml, model.pvd), removed at the start (rn_prepare_folder,
+ * with their temporary names) so that nothing of an earlier run stays beside the new results;
+ * and vtk/frame_*.vtp with the folder vtk/. */
+const char *const cp_run_files[] = {"results.csv",     "model_stats.txt",    "solver_stats.txt",
+                                    "scene.ini",       "plots.gp",           "gnuplot.log",
+                                    "fig5a.png",       "fig5b.png",          "fig5c.png",
+                                    "fig5d.png",       "fig5e.png",          "fig5f.png",
+                                    "crane.pvd",       "anim.dat",           "anim_track.dat",
+                                    "anim.gp",         "anim.log",           "crane.gif",
+                                    "crane_frame.png", "status.txt",         "static.txt",
+                                    "equilibrium.csv", "modes.csv",          "modes.gp",
+                                    "modes.png",       "error_estimate.csv", "model.yaml",
+                                    "model.pvd",       NULL};
 
 /* vtk/frame_*.vtp of an earlier run, and vtk/ if it then holds nothing else. 0, or the
  * failure. */
@@ -121,6 +128,9 @@ int main(int argc, char **argv)
         }
         return rc;
     }
+
+    /* a model file: bgsim's run of it with the crane's own on top (cp_model.c) */
+    if (o.scene && cp_is_model_file(o.scene)) return cp_run_model(&o, argc, argv);
 
     cp_run r;
     memset(&r, 0, sizeof r);
@@ -189,7 +199,7 @@ int main(int argc, char **argv)
 
     /* status.txt "running" first (it replaces an earlier run's), then the earlier results go */
     rn_format_command(&r.rn, argc, argv);
-    if ((rc = rn_prepare_folder(&r.rn, RUN_FILES)) != 0) return rc;
+    if ((rc = rn_prepare_folder(&r.rn, cp_run_files)) != 0) return rc;
     if (!strcmp(r.rn.status, "running") && remove_old_frames(&r) == 0 &&
         rn_save_file(&r.rn, "scene.ini", print_scene_copy, NULL) == 0)
         (o.static_only || o.modes ? cp_analyse : cp_simulate)(&r);

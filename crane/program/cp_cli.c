@@ -41,20 +41,29 @@ static int take_key(const pu_cli_option *opt, const char *value, void *base, cha
     return add_set(base, sec, dot + 1, value, opt->name, msg, size);
 }
 
-/* --set SECTION.KEY=VALUE */
+/* --set SECTION.KEY=VALUE for a scene; kept as given too, for a model file's --set PATH=VALUE
+ * (cp_model.c). A value that is no SECTION.KEY=VALUE is refused after the parse, unless SCENE is
+ * a model file: the first such message is kept (set_error) and the parse goes on. */
 static int take_set(const pu_cli_option *opt, const char *value, void *base, char *msg,
                     size_t size)
 {
     (void)opt;
-    const char *dot = strchr(value, '.'), *veq = strchr(value, '=');
-    if (!dot || !veq || dot > veq || dot == value || veq == dot + 1) {
-        snprintf(msg, size, "--set expects SECTION.KEY=VALUE, got '%s'", value);
+    cp_options *o = base;
+    if (o->nset_raw >= CP_MAX_SETS) {
+        snprintf(msg, size, "too many overrides (at most %d)", CP_MAX_SETS);
         return -1;
     }
-    if (dot - value >= 64 || veq - dot - 1 >= 64) {
-        snprintf(msg, size,
+    o->set_raw[o->nset_raw++] = value;
+    const char *dot = strchr(value, '.'), *veq = strchr(value, '=');
+    char bad[sizeof o->set_error] = "";
+    if (!dot || !veq || dot > veq || dot == value || veq == dot + 1)
+        snprintf(bad, sizeof bad, "--set expects SECTION.KEY=VALUE, got '%s'", value);
+    else if (dot - value >= 64 || veq - dot - 1 >= 64)
+        snprintf(bad, sizeof bad,
                  "--set %.60s...: the section or key name is longer than 63 characters", value);
-        return -1;
+    if (bad[0]) {
+        if (!o->set_error[0]) snprintf(o->set_error, sizeof o->set_error, "%s", bad);
+        return 0;
     }
     char sec[64], key[64], origin[96];
     snprintf(sec, sizeof sec, "%.*s", (int)(dot - value), value);
@@ -102,7 +111,8 @@ static const pu_cli_option OPTIONS[] = {
      .help = "at most N output rows (default 1000000): t_end / output_step + 1 beyond it is "
              "refused"},
     {.name = "--set", .kind = PU_CLI_CALL, .arg = "SEC.KEY=VALUE", .take = take_set,
-     .help = "set any scene key, e.g. --set hydraulics.enabled=false"},
+     .help = "set any scene key, e.g. --set hydraulics.enabled=false (a model file: --set "
+             "PATH=VALUE, a parameter as bgsim takes it, e.g. --set kp=8)"},
     {.name = "--no-plots", .kind = PU_CLI_FLAG, .at = AT(no_plots),
      .help = "do not draw the figures"},
     {.name = "--static", .kind = PU_CLI_FLAG, .at = AT(static_only),
@@ -144,7 +154,11 @@ static const pu_cli CLI = {
     .intro = "Simulates the hydraulically driven rotary crane (docs/crane.md) described by the\n"
              "scene file SCENE (default " CP_DEFAULT_SCENE
              "; a bare name such as 'rigid-boom' is looked up\n"
-             "in crane/scenes/) and writes the results into DIR.\n",
+             "in crane/scenes/) and writes the results into DIR. A SCENE ending in .yaml is a model\n"
+             "file (docs/model-format.md; a bare name such as 'paper.yaml' is looked up in\n"
+             "crane/models/), run as bgsim runs it, with Fig. 5 on top; the options of INI scenes\n"
+             "only (--elements, --animate, --anim-step, --anim-scale, --error-estimate) are refused\n"
+             "for it.\n",
     .options_title = "options (a value may also be given as --option=VALUE):",
     .epilogue =
         "files in DIR: status.txt (\"running\" with the pid from the start, then completed,\n"
@@ -188,6 +202,10 @@ int cp_parse_args(int argc, char **argv, cp_options *o)
     const pu_cli_option *stop;
     char msg[512];
     int rc = pu_cli_parse(&CLI, argc, argv, o, &stop, msg, sizeof msg);
+    /* a --set that is no SECTION.KEY=VALUE came before whatever stopped the parse: refused
+     * unless the scene is a model file (its --set takes PATH=VALUE) */
+    if (o->set_error[0] && !(o->scene && cp_is_model_file(o->scene)))
+        return usage_error(o->set_error);
     if (rc == PU_CLI_ERROR) return usage_error(msg);
     if (rc == PU_CLI_STOPPED && !strcmp(stop->name, "--help")) {
         char *text = pu_cli_help(&CLI);
