@@ -215,7 +215,7 @@ int main(int argc, char **argv)
         rn_fail_run(&r.rn, "cannot write the standard output", strerror(errno));
     rn_write_status(&r.rn, 1);
     rn_status_ready(&r.rn, 0);
-    crane_errest_free(&r.errest); /* before the model its problem calls */
+    rn_errest_free(&r.errest); /* before the model its problem calls */
     dae_free(&r.rn.s);
     crane_free(&r.c);
     free(r.rn.csv_buf);

@@ -88,7 +88,7 @@ enum { RN_PHASE_OTHER = 0, RN_PHASE_SETUP = 1, RN_PHASE_LOOP = 2 };
 /* The handler for SIGINT, SIGTERM and SIGHUP ("program: SIGTERM received: stopped at once" on
  * stderr when it ends the program), and SIGPIPE ignored. program: at most 31 characters. */
 void rn_signals_install(const char *program);
-/* The first signal received (0: none), and the flag itself (crane_errest_spec.stop,
+/* The first signal received (0: none), and the flag itself (rn_errest_spec.stop,
  * pu_gnuplot_job.stop). */
 int rn_signal(void);
 const volatile sig_atomic_t *rn_signal_flag(void);

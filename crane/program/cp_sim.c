@@ -182,7 +182,7 @@ static int row(void *ctx, long k, double t, const double *y, const double *yp, c
     cp_run *r = ctx;
     if (r->viz) crane_viz_row(r->viz, t, y, yp);
     int rc = cp_errest_row(r, t, out);
-    return k > 0 && rc == CRANE_ERREST_STOPPED ? RN_LOOP_STOP : 0;
+    return k > 0 && rc == RN_ERREST_STOPPED ? RN_LOOP_STOP : 0;
 }
 
 int cp_simulate(cp_run *r)
@@ -220,7 +220,7 @@ int cp_simulate(cp_run *r)
     }
     if ((code = rn_solver_start(&r->rn, &p, &dopt, bgr_y0(m), bgr_yp0(m))) != 0) goto done;
 
-    /* --error-estimate: the companion from the same start (crane_errest.h) */
+    /* --error-estimate: the companion from the same start (rn_errest.h) */
     rn_set_phase(&r->rn, RN_PHASE_SETUP,
                  "starting the run at the tighter tolerances (--error-estimate)");
     cp_errest_open(r, &p, &dopt, bgr_y0(m), bgr_yp0(m));

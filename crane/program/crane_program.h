@@ -9,7 +9,7 @@
  *   cp_plots.c   plots.gp and the figures of Fig. 5, modes.png (gnuplot, pu_gnuplot.h)
  *   cp_sim.c     the dynamic run (the crane's outputs, watches and viz around rn_loop), --static
  *                and --modes, model_stats.txt and the summary
- *   cp_errest.c  --error-estimate: the companion run (crane_errest.h) and error_estimate.csv */
+ *   cp_errest.c  --error-estimate: the companion run (rn_errest.h) and error_estimate.csv */
 #ifndef CRANE_PROGRAM_H
 #define CRANE_PROGRAM_H
 
@@ -17,7 +17,7 @@
 #include <stdio.h>
 #include <sys/types.h>
 
-#include "crane_errest.h"
+#include "rn_errest.h"
 #include "crane_model.h"
 #include "crane_viz.h"
 #include "rn_run.h"
@@ -47,7 +47,7 @@ typedef struct cp_options {
     int no_plots, quiet;
     int static_only, modes; /* --static, --modes [T] (crane_static.h) */
     double modes_t;
-    int errest;            /* --error-estimate [K] (crane_errest.h) */
+    int errest;            /* --error-estimate [K] (rn_errest.h) */
     double errest_factor;  /* K */
     crane_viz_options viz; /* --vtk, --animate (crane_viz.h) */
     long long max_rows;    /* --max-rows */
@@ -80,7 +80,7 @@ typedef struct cp_run {
     int have_final;
     crane_viz *viz; /* --vtk, --animate (crane_viz.h); NULL when off */
     int bad_scene;  /* the static start found scene keys that cannot be met together: exit 2 */
-    crane_errest *errest;                   /* --error-estimate (cp_errest.c); NULL when off */
+    rn_errest *errest;                      /* --error-estimate (cp_errest.c); NULL when off */
     int errest_written;                     /* error_estimate.csv written */
     char errest_note[BG_MESSAGE_SIZE + 64]; /* why the estimate is unavailable */
 } cp_run;
@@ -112,7 +112,7 @@ void cp_summary(cp_run *r);
 void cp_errest_open(cp_run *r, const dae_problem *p, const dae_options *dopt, const double *y0,
                     const double *yp0);
 /* The row at t with the first run's outputs: the companion advanced there and compared.
- * CRANE_ERREST_STOPPED when a signal came first, else 0 (a failure of the companion is kept,
+ * RN_ERREST_STOPPED when a signal came first, else 0 (a failure of the companion is kept,
  * said on stderr once, and the run goes on). */
 int cp_errest_row(cp_run *r, double t, const double *out);
 /* error_estimate.csv (available or not). 0, or RN_EXIT_RUN. */
