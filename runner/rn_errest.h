@@ -13,6 +13,9 @@
  * bench/bench_errest.h measures the ratio of the estimate to the true error on the problem
  * collection and the crane.
  *
+ * Users: the programs' --error-estimate (crane and bgsim, through rn_estimate.c, rn_run.h) and
+ * the bench (bench/bench_errest.c).
+ *
  * The companion shares the problem: its residual, Jacobian and user data are called from the
  * companion's solver between the first run's steps, never at the same time, and must not keep a
  * state between calls (a bond-graph model does not). The first run's outputs at each time are
