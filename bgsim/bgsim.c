@@ -2,7 +2,8 @@
  * results; the crane program's machinery (runner/rn_run.h) for any model (docs/bgsim.md).
  *
  *   bgsim MODEL [--out DIR] [--set PATH=VALUE]... [--t-end T] [--rtol R] [--atol A]
- *         [--output-step DT] [--max-rows N] [--static] [--modes [T]] [--quiet]
+ *         [--output-step DT] [--max-rows N] [--static] [--modes [T]] [--error-estimate [K]]
+ *         [--vtk] [--vtk-step DT] [--quiet]
  *         [--list-types [--markdown]] [--describe TYPE] [--list-unknowns] [--help] [--version]
  *
  * Flow: the model file (mdl_load with the --set replacements: read, checked, built, compiled,
@@ -11,16 +12,19 @@
  * file's trim (start: static, or --static: static.txt, equilibrium.csv) -> mdl_dae_problem,
  * mdl_dae_options -> consistent initial values -> the runner's loop (rn_loop: dae_step up to
  * each output time, a row of t and the declared outputs there, buffered, whole rows only) ->
- * solver_stats.txt, summary, status.txt at the end. --modes [T]: bgr_modes at the start (after
+ * solver_stats.txt, summary, status.txt at the end. --error-estimate [K]: a companion run at
+ * rtol / K, atol / K in lockstep over the rows (the runner's, rn_estimate.c): error_estimate.csv
+ * and its lines in status.txt, solver_stats.txt and the summary; a companion that fails makes
+ * the estimate "unavailable", never the run fail. --modes [T]: bgr_modes at the start (after
  * the static start when the file asks for it) or at time T of a run: modes.csv. Per step the
  * solver runs the compiled bgr_model's residual and Jacobian only.
  *
  * Writes into DIR (default results/<model name>/): status.txt ("running" with the pid, the
  * model, the command line and the start time; at the end completed, interrupted or failed with
  * the reason), model.yaml (the model as run), model_stats.txt, results.csv, solver_stats.txt;
- * static.txt, equilibrium.csv, modes.csv as asked. The files of an earlier run in DIR are
- * removed first; a DIR whose status.txt names a bgsim still running is refused. Every write is
- * checked; status.txt and the small files are replaced atomically.
+ * static.txt, equilibrium.csv, modes.csv, error_estimate.csv as asked. The files of an earlier
+ * run in DIR are removed first; a DIR whose status.txt names a bgsim still running is refused.
+ * Every write is checked; status.txt and the small files are replaced atomically.
  * Signals: SIGINT, SIGTERM and SIGHUP stop the integration between two solver steps (the rows
  * written stay, status.txt says when); during set-up and on a second signal the program writes
  * status.txt and ends at once.
@@ -38,7 +42,8 @@
 /* The files a run writes into its folder, removed at the start (with their temporary names). */
 static const char *const RUN_FILES[] = {
     "status.txt", "model.yaml",      "model_stats.txt", "results.csv", "solver_stats.txt",
-    "static.txt", "equilibrium.csv", "modes.csv",       "model.pvd",   NULL};
+    "static.txt", "equilibrium.csv", "modes.csv",       "model.pvd",   "error_estimate.csv",
+    NULL};
 
 /* The file's solver settings with the command line's overrides into r->solver; the number of
  * rows checked. 0, or RN_EXIT_USAGE (said on stderr). */
@@ -90,6 +95,8 @@ int main(int argc, char **argv)
     memset(&r, 0, sizeof r);
     rn_init(&r.rn, "bgsim", "model");
     r.rn.owner = &r;
+    r.rn.est.on = o.errest; /* --error-estimate: the runner's (rn_estimate.c) */
+    r.rn.est.factor = o.errest_factor;
     r.o = &o;
     if (strlen(o.model) > RN_OUT_MAX) {
         fprintf(stderr, "bgsim: the model's path is %zu characters long, more than %d\n",
@@ -139,9 +146,11 @@ int main(int argc, char **argv)
         rn_fail_run(&r.rn, "cannot write the standard output", strerror(errno));
     rn_write_status(&r.rn, 1);
     rn_status_ready(&r.rn, 0);
+    rn_estimate_free(&r.rn); /* before the model its problem calls */
     dae_free(&r.rn.s);
     mdl_free(&r.mm);
     free(r.rn.csv_buf);
     free(r.final_out);
+    free(r.names);
     return rn_exit_status(&r.rn, 0);
 }
