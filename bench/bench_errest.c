@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "crane_errest.h"
+#include "rn_errest.h"
 #include "crane_model.h"
 
 /* the outputs of the crane's scd (as bench_crane.c scores the crane) */
@@ -54,9 +54,9 @@ static void crane_out(void *ctx, double t, const double *y, const double *yp, do
 
 /* A run of the case at rtol over the times tk[0..nt-1], its outputs (fn, or y itself with fn
  * NULL: nout = n) at each into out1[k * nout ...]; with K > 0 the companion at rtol / K beside it
- * (*pe, crane_errest.h). 0, or the run's failure (msg). */
+ * (*pe, rn_errest.h). 0, or the run's failure (msg). */
 static int run_over(const bench_case *bc, double rtol, double K, const double *tk, int nt,
-                    crane_errest_out_fn fn, void *ctx, int nout, double *out1, crane_errest **pe,
+                    rn_errest_out_fn fn, void *ctx, int nout, double *out1, rn_errest **pe,
                     long *steps, char *msg, size_t msz)
 {
     int n = bc->n, rc = 0;
@@ -80,8 +80,8 @@ static int run_over(const bench_case *bc, double rtol, double K, const double *t
         goto end;
     }
     if (K > 0) {
-        crane_errest_spec sp = {&bc->dp, &o, K, bc->t0, bc->ys, bc->yps, 0, nout, fn, ctx, NULL};
-        *pe = crane_errest_create(&sp, &err);
+        rn_errest_spec sp = {&bc->dp, &o, K, bc->t0, bc->ys, bc->yps, 0, nout, fn, ctx, NULL};
+        *pe = rn_errest_create(&sp, &err);
         if (!*pe) {
             snprintf(msg, msz, "%s", err.message);
             rc = err.status;
@@ -107,7 +107,7 @@ static int run_over(const bench_case *bc, double rtol, double K, const double *t
             fn(ctx, tk[k], y, yp, o1);
         else
             memcpy(o1, y, (size_t)n * sizeof *o1);
-        if (pe && *pe) crane_errest_add(*pe, tk[k], o1); /* its failure: crane_errest_status */
+        if (pe && *pe) rn_errest_add(*pe, tk[k], o1); /* its failure: rn_errest_status */
     }
     *steps = dae_get_stats(s)->steps;
 end:
@@ -153,15 +153,15 @@ static int check_problem(const bench_case *bc, const bench_errest_config *cfg, d
         snprintf(r->component, sizeof r->component, "max");
         r->est = r->truth = r->ratio = NAN;
         r->scale = 1;
-        crane_errest *e = NULL;
+        rn_errest *e = NULL;
         int rc = run_over(bc, r->rtol, K, &bc->tend, 1, NULL, NULL, n, y1, &e, &r->steps, r->msg,
                           sizeof r->msg);
-        const dae_stats *cs = crane_errest_stats(e);
+        const dae_stats *cs = rn_errest_stats(e);
         r->steps_tight = cs ? cs->steps : 0;
         if (rc != 0) {
             fails++;
-        } else if (crane_errest_status(e) < 0) {
-            snprintf(r->msg, sizeof r->msg, "%s", crane_errest_message(e));
+        } else if (rn_errest_status(e) < 0) {
+            snprintf(r->msg, sizeof r->msg, "%s", rn_errest_message(e));
         } else {
             double est = 0, truth = 0;
             int worst = -1, used = 0;
@@ -169,7 +169,7 @@ static int check_problem(const bench_case *bc, const bench_errest_config *cfg, d
                 if ((scored && !scored[i]) || bc->dp.kind[i] == DAE_ALG2 || bc->yref[i] == 0)
                     continue;
                 double a = fabs(bc->yref[i]), d2 = fabs(y1[i] - bc->yref[i]);
-                const crane_errest_col *c = crane_errest_column(e, i);
+                const rn_errest_col *c = rn_errest_column(e, i);
                 used++;
                 if (!(c->max_err / a <= est)) est = c->max_err / a;
                 if (!(d2 / a <= truth)) truth = d2 / a, worst = i;
@@ -182,7 +182,7 @@ static int check_problem(const bench_case *bc, const bench_errest_config *cfg, d
                 snprintf(r->component, sizeof r->component, "max (true at %s)",
                          bc->dp.names ? bc->dp.names[worst] : "?");
         }
-        crane_errest_free(&e);
+        rn_errest_free(&e);
     }
     free(y1);
     return fails;
@@ -236,17 +236,17 @@ static int check_crane(const bench_case *bc, const bench_errest_config *cfg, dou
         snprintf(head->component, sizeof head->component, "max relative (scd outputs)");
         head->est = head->truth = head->ratio = NAN;
         head->scale = 1;
-        crane_errest *e = NULL;
+        rn_errest *e = NULL;
         int rc = run_over(bc, rtol, K, tk, nt, crane_out, bc->ext, CRANE_NOUT, o1, &e, &head->steps,
                           head->msg, sizeof head->msg);
-        const dae_stats *cs = crane_errest_stats(e);
+        const dae_stats *cs = rn_errest_stats(e);
         head->steps_tight = cs ? cs->steps : 0;
-        if (rc != 0 || crane_errest_status(e) < 0) {
+        if (rc != 0 || rn_errest_status(e) < 0) {
             if (rc != 0)
                 fails++;
             else
-                snprintf(head->msg, sizeof head->msg, "%s", crane_errest_message(e));
-            crane_errest_free(&e);
+                snprintf(head->msg, sizeof head->msg, "%s", rn_errest_message(e));
+            rn_errest_free(&e);
             continue;
         }
         for (int j = 0; j < CRANE_NOUT; j++) {
@@ -259,7 +259,7 @@ static int check_crane(const bench_case *bc, const bench_errest_config *cfg, dou
         double est = 0, tru = 0;
         for (int i = 0; i < NSCORED; i++) {
             int j = crane_output_index(SCORED[i]);
-            const crane_errest_col *c = crane_errest_column(e, j);
+            const rn_errest_col *c = rn_errest_column(e, j);
             if (j < 0 || !(scale[j] > 0) || isnan(c->max_err) || isnan(truth[j])) continue;
             est = fmax(est, c->max_err / scale[j]);
             tru = fmax(tru, truth[j] / scale[j]);
@@ -269,7 +269,7 @@ static int check_crane(const bench_case *bc, const bench_errest_config *cfg, dou
         head->ratio = ratio_of(est, tru);
         /* every column: absolute errors */
         for (int j = 1; j < CRANE_NOUT; j++) {
-            const crane_errest_col *c = crane_errest_column(e, j);
+            const rn_errest_col *c = rn_errest_column(e, j);
             if (isnan(c->max_err) || isnan(truth[j])) continue;
             er_row *r = &rows[(*nrows)++];
             *r = *head;
@@ -280,7 +280,7 @@ static int check_crane(const bench_case *bc, const bench_errest_config *cfg, dou
             r->ratio = ratio_of(r->est, r->truth);
             r->scale = scale[j];
         }
-        crane_errest_free(&e);
+        rn_errest_free(&e);
     }
     free(tk);
     free(ref);
@@ -298,7 +298,7 @@ static const char *flag(const er_row *r)
 int bench_errest(const char *dir, FILE *rep, bench_case **cases, int nc,
                  const bench_errest_config *cfg)
 {
-    double K = cfg->factor > 0 ? cfg->factor : CRANE_ERREST_FACTOR, ref_steps = 0;
+    double K = cfg->factor > 0 ? cfg->factor : RN_ERREST_FACTOR, ref_steps = 0;
     size_t cap = (size_t)(nc + 1) * (size_t)(cfg->nr + 1) * (CRANE_NOUT + 1);
     er_row *rows = calloc(cap, sizeof *rows);
     if (!rows) {
@@ -338,7 +338,7 @@ int bench_errest(const char *dir, FILE *rep, bench_case **cases, int nc,
     fprintf(rep, "\n## Error estimate against the true error\n\n");
     fprintf(rep,
             "`crane --error-estimate` estimates a run's error by a second run at rtol / %g and "
-            "atol / %g (crane/crane_errest.h). Here the same estimate (ours, bgdae-klu, from each "
+            "atol / %g (runner/rn_errest.h). Here the same estimate (ours, bgdae-klu, from each "
             "case's consistent start) against the true error: for the collection at tend over "
             "the components of scd (relative to |yref|), for the crane over its outputs every "
             "%g s (relative to each column's largest value; reference: ours at rtol %g, %.0f "

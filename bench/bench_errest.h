@@ -1,4 +1,4 @@
-/* The error estimate of crane --error-estimate (crane/crane_errest.h: a companion run at rtol / K
+/* The error estimate of crane --error-estimate (runner/rn_errest.h: a companion run at rtol / K
  * and atol / K, K = 100, compared with the run at every output time) against the true error, on
  * the problems of the collection and on the crane (bench --error-estimate; bench --quick runs a
  * small version).
@@ -29,7 +29,7 @@
 typedef struct bench_errest_config {
     const double *rtols; /* the tolerances, nr of them */
     int nr;
-    double factor;         /* K (0: CRANE_ERREST_FACTOR, 100) */
+    double factor;         /* K (0: RN_ERREST_FACTOR, 100) */
     double crane_rtol_ref; /* the crane's reference tolerance (0: 1e-11) */
     double crane_step;     /* the crane's output times: every crane_step s (0: 0.01) */
 } bench_errest_config;

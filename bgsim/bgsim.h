@@ -4,8 +4,9 @@
  *
  *   bs_cli.c   the command line (options' table for pu_cli.h), --list-types, --describe,
  *              --list-unknowns
- *   bs_run.c   the dynamic run on rn_loop, --static, --modes, model_stats.txt, model.yaml,
- *              static.txt, equilibrium.csv, modes.csv and the summary
+ *   bs_run.c   the dynamic run on rn_loop (with --error-estimate the runner's companion run,
+ *              rn_estimate.c), --static, --modes, model_stats.txt, model.yaml, static.txt,
+ *              equilibrium.csv, modes.csv and the summary
  *   bs_file.c  the run of a model file from its options to its exit status (bs_run_file)
  *
  * The three make the static library bgsim_run (bgsim/meson.build), which the crane program
@@ -40,6 +41,8 @@ typedef struct bs_options {
     long long max_rows;
     int static_only, modes; /* --static, --modes [T] */
     double modes_t;
+    int errest;           /* --error-estimate [K] (rn_run.h: rn_estimate) */
+    double errest_factor; /* K */
     int quiet;
     int vtk, has_vtk_step; /* --vtk, --vtk-step DT */
     double vtk_step;
@@ -82,7 +85,8 @@ struct bs_run {
     int static_done;  /* the static start ran: */
     mdl_trim_report trim; /* its report */
     int have_final;
-    double *final_out; /* the last row (t, outputs) */
+    double *final_out;  /* the last row (t, outputs) */
+    const char **names; /* results.csv's columns (t, outputs; kept for the estimate's summary) */
     int nmodes;        /* --modes: the modes found */
     pu_vtk *vtk;       /* --vtk: the ParaView series (NULL when off or stopped) */
     mdl_geom geom;     /* its drawing, reused frame to frame */

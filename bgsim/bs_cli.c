@@ -70,6 +70,12 @@ static const pu_cli_option OPTIONS[] = {
      .what = "a time >= 0 in s",
      .help = "the modes at time T instead of the run: modes.csv (T = 0, the default: at the static "
              "equilibrium, with the file's trim; T > 0: at time T of a run from the start)"},
+    {.name = "--error-estimate", .kind = PU_CLI_DOUBLE, .value = PU_CLI_OPTIONAL, .arg = "[K]",
+     .at = AT(errest_factor), .seen = AT(errest), .min = 1, .min_open = 1,
+     .max = RN_ERREST_MAX_FACTOR, .what = "a factor K with 1 < K <= 1e12",
+     .help = "a second run at rtol / K and atol / K (default K = 100) beside the first over the "
+             "same output times: error_estimate.csv, per output column the largest difference, "
+             "an estimate of the first run's error"},
     {.name = "--vtk", .kind = PU_CLI_FLAG, .at = AT(vtk),
      .help = "ParaView time series model.pvd and vtk/frame_NNNNN.vtp: every body, point mass, "
              "support, axial member, cylinder and beam chain drawn (docs/bgsim.md)"},
@@ -102,7 +108,7 @@ static const pu_cli CLI = {
         "interrupted or failed, with the reason), model.yaml (the model as run), model_stats.txt,\n"
         "results.csv (t and the outputs, one row per output time), solver_stats.txt; static.txt\n"
         "(the static start and the trim: start: static, --static); equilibrium.csv (--static);\n"
-        "modes.csv (--modes); model.pvd, vtk/ (--vtk).\n"
+        "modes.csv (--modes); model.pvd, vtk/ (--vtk); error_estimate.csv (--error-estimate).\n"
         "The files of an earlier run in DIR are removed at the start.\n"
         "SIGINT, SIGTERM and SIGHUP stop the run within a step; status.txt says so.\n"
         "exit status: 0 completed, 1 the run failed or a file could not be written, 2 bad\n"
@@ -175,6 +181,7 @@ int bs_parse_args(int argc, char **argv, bs_options *o)
 {
     memset(o, 0, sizeof *o);
     o->max_rows = BS_DEFAULT_MAX_ROWS;
+    o->errest_factor = RN_ERREST_FACTOR; /* --error-estimate without K */
     o->argc = argc;
     o->argv = argv;
     const pu_cli_option *stop;
@@ -202,6 +209,11 @@ int bs_parse_args(int argc, char **argv, bs_options *o)
     if (o->markdown) return usage_error("--markdown belongs to --list-types or --describe");
     if (!o->model) return usage_error("no model file given (bgsim MODEL [options])");
     if (o->static_only && o->modes) return usage_error("--static and --modes: one of them");
+    if (o->errest && (o->static_only || o->modes)) { /* as the crane refuses it */
+        snprintf(msg, sizeof msg, "option --error-estimate belongs to the dynamic run, not to %s",
+                 o->static_only ? "--static" : "--modes");
+        return usage_error(msg);
+    }
     if (o->has_vtk_step) o->vtk = 1;
     if (o->vtk && (o->static_only || o->modes))
         return usage_error(o->static_only ? "--vtk belongs to the dynamic run, not to --static"

@@ -16,7 +16,8 @@
 /* The files a run writes into its folder, removed at the start (with their temporary names). */
 static const char *const RUN_FILES[] = {
     "status.txt", "model.yaml",      "model_stats.txt", "results.csv", "solver_stats.txt",
-    "static.txt", "equilibrium.csv", "modes.csv",       "model.pvd",   NULL};
+    "static.txt", "equilibrium.csv", "modes.csv",       "model.pvd",   "error_estimate.csv",
+    NULL};
 #define BS_MAX_RUN_FILES 64
 
 /* The file's solver settings with the command line's overrides into r->solver; the number of
@@ -90,6 +91,8 @@ int bs_run_file(const char *program, const bs_options *o, int argc, char **argv,
     memset(&r, 0, sizeof r);
     rn_init(&r.rn, program, "model");
     r.rn.owner = &r;
+    r.rn.est.on = o->errest; /* --error-estimate: the runner's (rn_estimate.c) */
+    r.rn.est.factor = o->errest_factor;
     r.o = o;
     r.extras = x;
     if (strlen(o->model) > RN_OUT_MAX) {

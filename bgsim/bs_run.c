@@ -1,5 +1,6 @@
 /* bgsim's runs (bgsim.h): the dynamic run on the runner's loop (rn_run.h) with the model's
- * outputs (mdl_outputs of the compiled bgr_model: nothing per step depends on the file), the
+ * outputs (mdl_outputs of the compiled bgr_model: nothing per step depends on the file) and
+ * with --error-estimate the runner's companion run on the same outputs (rn_estimate.c), the
  * static start with the file's trim, the modes; the files model.yaml, model_stats.txt,
  * static.txt, equilibrium.csv, modes.csv, solver_stats.txt; the summary. */
 #include <math.h>
@@ -245,6 +246,17 @@ static int outputs(void *ctx, double t, const double *y, const double *yp, doubl
     return 0;
 }
 
+/* The companion's outputs (--error-estimate): the loop's, NAN where they cannot be computed
+ * (the column then has no values). */
+static void estimate_outputs(void *ctx, double t, const double *y, const double *yp, double *out)
+{
+    bs_run *r = ctx;
+    char msg[BG_MESSAGE_SIZE + 64];
+    if (outputs(ctx, t, y, yp, out, msg, sizeof msg) != 0)
+        for (int i = 0; i < mdl_noutputs(r->mm); i++)
+            out[i + 1] = NAN;
+}
+
 static void watch(void *ctx, double t, const double *out)
 {
     bs_run *r = ctx;
@@ -307,7 +319,7 @@ int bs_simulate(bs_run *r)
     dae_problem p;
     dae_options dopt;
     double *bk = NULL, *y = malloc((size_t)n * sizeof *y), *yp = malloc((size_t)n * sizeof *yp);
-    const char **names = malloc(((size_t)no + 1) * sizeof *names);
+    const char **names = r->names = malloc(((size_t)no + 1) * sizeof *names);
     r->final_out = malloc(((size_t)no + 1) * sizeof *r->final_out);
     if (!y || !yp || !names || !r->final_out || mdl_dae_options(r->mm, &dopt, &bk) != BG_OK ||
         mdl_dae_problem(r->mm, &p) != BG_OK) {
@@ -315,10 +327,14 @@ int bs_simulate(bs_run *r)
         goto done;
     }
     if ((code = rn_solver_start(&r->rn, &p, &dopt, bgr_y0(m), bgr_yp0(m))) != 0) goto done;
-    rn_set_phase(&r->rn, RN_PHASE_OTHER, NULL);
     names[0] = "t";
     for (int i = 0; i < no; i++)
         names[i + 1] = mdl_output_name(r->mm, i);
+    /* --error-estimate: the companion from the same start, on the same outputs */
+    rn_estimate_spec es = {&p, &dopt, bgr_y0(m), bgr_yp0(m), names, no + 1, estimate_outputs, r,
+                           NULL};
+    rn_estimate_open(&r->rn, &es);
+    rn_set_phase(&r->rn, RN_PHASE_OTHER, NULL);
     if ((code = rn_csv_open(&r->rn, names, no + 1)) != 0) goto done;
     if ((code = vtk_open(r)) != 0) goto done;
     rn_loop_spec sp = {.output_step = r->solver.output_step,
@@ -346,7 +362,6 @@ done:
     free(bk);
     free(y);
     free(yp);
-    free(names);
     return code;
 }
 
@@ -376,6 +391,7 @@ void bs_summary(const bs_run *r)
     if (st)
         printf("  steps %ld (rejected %ld), Newton iterations %ld, Jacobians %ld\n", st->steps,
                st->rejected_error, st->newton_iters, st->jac_evals);
+    rn_estimate_summary(&r->rn);
     if (r->extras && r->extras->summary) r->extras->summary(r, r->extras->ctx);
     printf("  wall time %.2f s; results in %s/\n", rn_wall_now() - r->rn.wall0, r->rn.outdir);
 }

@@ -136,7 +136,8 @@ int main(int argc, char **argv)
     memset(&r, 0, sizeof r);
     rn_init(&r.rn, "crane", "scene");
     r.rn.owner = &r;
-    r.rn.status_lines = cp_errest_status_lines;
+    r.rn.est.on = o.errest; /* --error-estimate: the runner's (rn_estimate.c, cp_errest.c) */
+    r.rn.est.factor = o.errest_factor;
     r.o = &o;
 
     char tried[2048], odd[RN_PATH_SIZE + 128];
@@ -225,7 +226,7 @@ int main(int argc, char **argv)
         rn_fail_run(&r.rn, "cannot write the standard output", strerror(errno));
     rn_write_status(&r.rn, 1);
     rn_status_ready(&r.rn, 0);
-    crane_errest_free(&r.errest); /* before the model its problem calls */
+    rn_estimate_free(&r.rn); /* before the model its problem calls */
     dae_free(&r.rn.s);
     crane_free(&r.c);
     free(r.rn.csv_buf);

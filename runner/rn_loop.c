@@ -61,6 +61,7 @@ int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp)
     dae_dense(r->s, 0.0, y, yp);
     if ((code = row(r, sp, 0.0, y, yp, out)) != 0 || (code = rn_csv_flush(r)) != 0) goto done;
     if (sp->row) sp->row(sp->ctx, 0, 0.0, y, yp, out);
+    rn_estimate_row(r, 0, 0.0, out);
 
     /* Output times k dt (k < nout) and t_end. The solver steps one step at a time up to each
      * (dae_step), with a look at the signal flag between two steps, so that a signal stops the run
@@ -95,7 +96,9 @@ int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp)
         if (tret > r->t) r->t = tret;
         if ((code = row(r, sp, tret, y, yp, out)) != 0) goto done;
         /* a companion run stopped by a signal on its way: the row is written, the run ends */
-        if (sp->row && sp->row(sp->ctx, k, tret, y, yp, out) == RN_LOOP_STOP && k < nout) {
+        int stop = sp->row && sp->row(sp->ctx, k, tret, y, yp, out) == RN_LOOP_STOP;
+        if (rn_estimate_row(r, k, tret, out) == RN_LOOP_STOP) stop = 1;
+        if (stop && k < nout) {
             k++;
             goto stopped;
         }
@@ -140,6 +143,7 @@ int rn_loop_end(rn_run *r)
     if (rn_csv_close(r) != 0) code = RN_EXIT_RUN; /* the last rows, then what a signal leaves */
     rn_set_phase(r, RN_PHASE_OTHER, NULL);
     rn_arm_finishing(r);
+    if (r->csv_size > 0 && rn_estimate_write(r) != 0) code = RN_EXIT_RUN;
     return code;
 }
 
@@ -167,6 +171,7 @@ int rn_print_solver_stats(rn_run *r, FILE *f, const void *info)
         fprintf(f, " %g", c->bk[i]);
     fprintf(f, "%s\n", c->nbk ? "" : " none");
     fprintf(f, "t_reached: %.9g s\nrows: %ld\nwall_time: %.3f s\n", r->t, r->rows_disk, wall);
+    rn_estimate_stats_lines(r, f);
     if (c->extra) c->extra(r, f);
     fprintf(f, "%s\n\n# CSV\n%s,wall_s\n%s,%.3f\n", line, head, row, wall);
     return 0;

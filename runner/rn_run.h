@@ -12,6 +12,9 @@
  *   rn_loop.c    the solver started (consistent initial values), the run loop over the output
  *                times (a signal stops it between two steps), the progress line,
  *                solver_stats.txt, modes.csv
+ *   rn_estimate.c  --error-estimate [K]: the companion run (rn_errest.c, rn_errest.h) beside
+ *                the run, error_estimate.csv, its lines in status.txt and solver_stats.txt, the
+ *                summary's line
  *
  * Unlike libprogutil this is a program's part, not a general library: it says failures on
  * stderr ("PROGRAM: what: why"), and its signal handler writes status.txt and ends the program
@@ -32,6 +35,7 @@
 #include "bg_api.h"
 #include "bg_dae.h"
 #include "bg_modes.h"
+#include "rn_errest.h"
 
 /* paths: the output folder's name is at most RN_OUT_MAX characters, so that its files' names
  * fit */
@@ -41,8 +45,21 @@
 enum { RN_EXIT_OK = 0, RN_EXIT_RUN = 1, RN_EXIT_USAGE = 2 };
 
 typedef struct rn_run rn_run;
-/* Lines a program adds to status.txt or solver_stats.txt (the crane's error estimate). */
+/* Lines a program adds to status.txt or solver_stats.txt. */
 typedef void (*rn_lines_fn)(const rn_run *r, FILE *f);
+
+/* --error-estimate [K] of a run (rn_estimate.c): on and factor set by the program after rn_init
+ * (before the run, so that status.txt says "unavailable" when the run fails before the
+ * companion starts); the rest by rn_estimate_open. */
+typedef struct rn_estimate {
+    int on;                   /* asked for */
+    double factor;            /* K, in (1, RN_ERREST_MAX_FACTOR] */
+    const char *const *names; /* the row's columns (names[0]: t, never compared) */
+    int ncols;
+    int (*ranked)(const char *name); /* NULL, or 0 for a column the summary passes over */
+    rn_errest *e;                    /* the companion; NULL when off or not started */
+    char note[BG_MESSAGE_SIZE + 64]; /* why the estimate is unavailable */
+} rn_estimate;
 
 struct rn_run {
     /* set by the program before rn_prepare_folder */
@@ -73,6 +90,7 @@ struct rn_run {
     const char *status;       /* "running", "completed", "interrupted", "failed" */
     int sig;                  /* the signal that interrupted the run */
     char reason[2 * BG_MESSAGE_SIZE + 512];
+    rn_estimate est; /* --error-estimate (rn_estimate.c) */
 };
 
 /* Clears r and sets what every run starts with (status "running", the wall clock, no files). */
@@ -88,7 +106,7 @@ enum { RN_PHASE_OTHER = 0, RN_PHASE_SETUP = 1, RN_PHASE_LOOP = 2 };
 /* The handler for SIGINT, SIGTERM and SIGHUP ("program: SIGTERM received: stopped at once" on
  * stderr when it ends the program), and SIGPIPE ignored. program: at most 31 characters. */
 void rn_signals_install(const char *program);
-/* The first signal received (0: none), and the flag itself (crane_errest_spec.stop,
+/* The first signal received (0: none), and the flag itself (rn_errest_spec.stop,
  * pu_gnuplot_job.stop). */
 int rn_signal(void);
 const volatile sig_atomic_t *rn_signal_flag(void);
@@ -189,16 +207,19 @@ typedef struct rn_loop_spec {
 
 /* The t = 0 row and the loop over the output times: r->s steps one step at a time up to each
  * (dae_step) with a look at the signal flag between two steps, the row interpolated in the last
- * step (the values dae_solve_to alone would give). results.csv must be open. Sets r->status
- * (completed, interrupted with the reason, failed). 0, 128 + N, or RN_EXIT_RUN. y, yp: n values
- * each, the state of the last row. */
+ * step (the values dae_solve_to alone would give); after each row written the program's row
+ * hook, then the error estimate's companion to the same time (rn_estimate_row: a signal that
+ * stops it on its way ends the run interrupted after the row). results.csv must be open. Sets
+ * r->status (completed, interrupted with the reason, failed). 0, 128 + N, or RN_EXIT_RUN. y, yp: n
+ * values each, the state of the last row. */
 int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp);
 /* After the loop (or a failure before it): results.csv written whole and closed, the handler's
- * status.txt for what follows. 0, or RN_EXIT_RUN. */
+ * status.txt for what follows, and with --error-estimate error_estimate.csv (when results.csv
+ * has been opened). 0, or RN_EXIT_RUN. */
 int rn_loop_end(rn_run *r);
 
-/* solver_stats.txt's text: the settings, how far the run got, dae_stats_line and the CSV
- * block. */
+/* solver_stats.txt's text: the settings, how far the run got, the error estimate's lines,
+ * dae_stats_line and the CSV block. */
 typedef struct rn_stats_info {
     const dae_options *dopt;
     int nbk;
@@ -215,5 +236,41 @@ int rn_print_solver_stats(rn_run *r, FILE *f, const void *info);
 typedef const char *(*rn_part_fn)(const dae_modes *M, int k, char *buf, size_t size);
 int rn_modes_write(const dae_modes *M, rn_part_fn part, FILE *f);
 const char *rn_mode_part_top(const dae_modes *M, int k, char *buf, size_t size);
+
+/* ------------------------------------------------------------- rn_estimate.c ---- */
+
+/* --error-estimate [K]: a companion run of the same problem at rtol / K, atol / K (rn_errest.h:
+ * reintegration at a reduced tolerance), in lockstep with the run over its rows; per output
+ * column the largest difference estimates the run's error. What the program gives it: */
+typedef struct rn_estimate_spec {
+    const dae_problem *p; /* the run's problem and options */
+    const dae_options *o;
+    const double *y0, *yp0;   /* its start at t = 0, before the consistent values */
+    const char *const *names; /* the row's ncols columns, names[0] t's (kept, not copied:
+                                 valid until the summary) */
+    int ncols;
+    rn_errest_out_fn out; /* the row's values at a state into out[0 .. ncols - 1] (out[0]
+                             t's place), as the run's outputs give them */
+    void *ctx;
+    int (*ranked)(const char *name); /* NULL: every column may be the summary's largest */
+} rn_estimate_spec;
+
+/* With r->est.on: the companion started from the run's start (RN_PHASE_SETUP "starting the run
+ * at the tighter tolerances"; the program sets the next phase). A companion that cannot start
+ * makes the estimate unavailable (said on stderr), never the run fail. */
+void rn_estimate_open(rn_run *r, const rn_estimate_spec *sp);
+/* Row k at t with the run's values out: the companion advanced there and compared (rn_loop
+ * calls it). RN_LOOP_STOP when a signal came first (k > 0), else 0 (a failure of the companion
+ * is kept, said on stderr once, and the run goes on). */
+int rn_estimate_row(rn_run *r, long k, double t, const double *out);
+/* error_estimate.csv (available or not; rn_loop_end writes it). 0, or RN_EXIT_RUN. */
+int rn_estimate_write(rn_run *r);
+/* The estimate's lines of status.txt and of solver_stats.txt (their writers add them), and the
+ * summary's line on stdout; nothing when it was not asked for. */
+void rn_estimate_status_lines(const rn_run *r, FILE *f);
+void rn_estimate_stats_lines(const rn_run *r, FILE *f);
+void rn_estimate_summary(const rn_run *r);
+/* The companion freed (before the problem it calls). */
+void rn_estimate_free(rn_run *r);
 
 #endif

@@ -108,6 +108,7 @@ static char *status_text(const rn_run *r, const char *status, const char *reason
     fprintf(f, "t_reached: %.9g s\nt_end: %.9g s\nrows: %ld\n", r->t, r->t_end, r->rows_disk);
     if (r->rows_disk > 0) fprintf(f, "t_last_row: %.9g s\n", r->t_disk);
     fprintf(f, "steps: %ld\n", st ? st->steps : 0L);
+    rn_estimate_status_lines(r, f);
     if (r->status_lines) r->status_lines(r, f);
     if (final) {
         char now[64];

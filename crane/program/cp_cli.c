@@ -125,7 +125,7 @@ static const pu_cli_option OPTIONS[] = {
              "modes.gp, modes.png (frequency against damping)"},
     {.name = "--error-estimate", .kind = PU_CLI_DOUBLE, .value = PU_CLI_OPTIONAL, .arg = "[K]",
      .at = AT(errest_factor), .seen = AT(errest), .min = 1, .min_open = 1,
-     .max = CRANE_ERREST_MAX_FACTOR, .what = "a factor K with 1 < K <= 1e12",
+     .max = RN_ERREST_MAX_FACTOR, .what = "a factor K with 1 < K <= 1e12",
      .help = "a second run at rtol / K and atol / K (default K = 100) beside the first over the "
              "same output times: error_estimate.csv, per output column the largest difference, "
              "an estimate of the first run's error"},
@@ -196,7 +196,7 @@ int cp_parse_args(int argc, char **argv, cp_options *o)
 {
     memset(o, 0, sizeof *o);
     o->max_rows = CP_DEFAULT_MAX_ROWS;
-    o->errest_factor = CRANE_ERREST_FACTOR; /* --error-estimate without K */
+    o->errest_factor = RN_ERREST_FACTOR; /* --error-estimate without K */
     o->argc = argc;
     o->argv = argv;
     const pu_cli_option *stop;

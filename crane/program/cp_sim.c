@@ -41,7 +41,7 @@ void cp_summary(cp_run *r)
     if (st)
         printf("  steps %ld (rejected %ld), Newton iterations %ld, Jacobians %ld\n", st->steps,
                st->rejected_error, st->newton_iters, st->jac_evals);
-    cp_errest_summary(r);
+    rn_estimate_summary(&r->rn);
     printf("  wall time %.2f s; results in %s/\n", rn_wall_now() - r->rn.wall0, r->rn.outdir);
 }
 
@@ -175,14 +175,13 @@ static void watch(void *ctx, double t, const double *out)
     r->have_final = 1;
 }
 
-/* The viz's frame and the companion to the same time (a signal on its way: stopped, the row is
- * written). */
+/* The viz's frame (the loop then advances the error estimate's companion to the same time). */
 static int row(void *ctx, long k, double t, const double *y, const double *yp, const double *out)
 {
+    (void)k, (void)out;
     cp_run *r = ctx;
     if (r->viz) crane_viz_row(r->viz, t, y, yp);
-    int rc = cp_errest_row(r, t, out);
-    return k > 0 && rc == CRANE_ERREST_STOPPED ? RN_LOOP_STOP : 0;
+    return 0;
 }
 
 int cp_simulate(cp_run *r)
@@ -220,9 +219,7 @@ int cp_simulate(cp_run *r)
     }
     if ((code = rn_solver_start(&r->rn, &p, &dopt, bgr_y0(m), bgr_yp0(m))) != 0) goto done;
 
-    /* --error-estimate: the companion from the same start (crane_errest.h) */
-    rn_set_phase(&r->rn, RN_PHASE_SETUP,
-                 "starting the run at the tighter tolerances (--error-estimate)");
+    /* --error-estimate: the companion from the same start (rn_estimate_open) */
     cp_errest_open(r, &p, &dopt, bgr_y0(m), bgr_yp0(m));
     rn_set_phase(&r->rn, RN_PHASE_OTHER, NULL);
     r->col_d1 = col_any("tip_defl_1", "defl_luff");
@@ -243,15 +240,14 @@ int cp_simulate(cp_run *r)
     code = rn_loop(&r->rn, &sp, y, yp);
 
 done:
-    if (rn_loop_end(&r->rn) != 0) code = RN_EXIT_RUN;
-    if (r->rn.csv_size > 0 && cp_errest_write(r) != 0) code = RN_EXIT_RUN;
+    if (rn_loop_end(&r->rn) != 0) code = RN_EXIT_RUN; /* with error_estimate.csv */
     /* the animation is rendered only for a run that reached t_end with no signal pending */
     if (crane_viz_close(&r->viz, !strcmp(r->rn.status, "completed") && !rn_signal()) != 0 &&
         !strcmp(r->rn.status, "completed"))
         code = rn_fail_run(&r->rn, "writing the ParaView series or the animation", "see above");
     if (r->rn.s) {
         rn_stats_info info = {&dopt, dopt.nbreakpoints, bk, r->scene.output_step,
-                              r->scene.nominal_scales, cp_errest_stats_lines};
+                              r->scene.nominal_scales, NULL};
         if (rn_save_file(&r->rn, "solver_stats.txt", rn_print_solver_stats, &info) != 0)
             code = RN_EXIT_RUN;
     }

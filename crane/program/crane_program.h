@@ -12,7 +12,8 @@
  *                the crane's summary lines on top
  *   cp_sim.c     the dynamic run (the crane's outputs, watches and viz around rn_loop), --static
  *                and --modes, model_stats.txt and the summary
- *   cp_errest.c  --error-estimate: the companion run (crane_errest.h) and error_estimate.csv */
+ *   cp_errest.c  --error-estimate: the crane's part of the runner's estimate (rn_estimate.c):
+ *                the companion's outputs, the columns the summary ranks */
 #ifndef CRANE_PROGRAM_H
 #define CRANE_PROGRAM_H
 
@@ -20,7 +21,6 @@
 #include <stdio.h>
 #include <sys/types.h>
 
-#include "crane_errest.h"
 #include "crane_model.h"
 #include "crane_viz.h"
 #include "rn_run.h"
@@ -53,7 +53,7 @@ typedef struct cp_options {
     int no_plots, quiet;
     int static_only, modes; /* --static, --modes [T] (crane_static.h) */
     double modes_t;
-    int errest;            /* --error-estimate [K] (crane_errest.h) */
+    int errest;            /* --error-estimate [K] (rn_run.h: rn_estimate) */
     double errest_factor;  /* K */
     crane_viz_options viz; /* --vtk, --animate (crane_viz.h) */
     long long max_rows;    /* --max-rows */
@@ -101,9 +101,6 @@ typedef struct cp_run {
     int have_final;
     crane_viz *viz; /* --vtk, --animate (crane_viz.h); NULL when off */
     int bad_scene;  /* the static start found scene keys that cannot be met together: exit 2 */
-    crane_errest *errest;                   /* --error-estimate (cp_errest.c); NULL when off */
-    int errest_written;                     /* error_estimate.csv written */
-    char errest_note[BG_MESSAGE_SIZE + 64]; /* why the estimate is unavailable */
 } cp_run;
 
 /* The crane's run of a runner's hook (rn.owner). */
@@ -172,21 +169,13 @@ void cp_summary(cp_run *r);
 
 /* --------------------------------------------------------------- cp_errest.c ---- */
 
-/* Starts the companion run of --error-estimate from the first run's start (p and dopt: its
- * problem and options, y0, yp0: the start before the consistent values). A companion that
- * cannot start makes the estimate unavailable (said on stderr), never the run fail. */
+/* With --error-estimate (r->rn.est.on): the runner's companion run (rn_estimate_open) started
+ * from the first run's start with the crane's outputs (p and dopt: its problem and options, y0,
+ * yp0: the start before the consistent values). A companion that cannot start makes the
+ * estimate unavailable (said on stderr), never the run fail. The runner does the rest: the
+ * rows compared (rn_loop), error_estimate.csv, the lines of status.txt and solver_stats.txt,
+ * the summary's line (rn_estimate_summary). */
 void cp_errest_open(cp_run *r, const dae_problem *p, const dae_options *dopt, const double *y0,
                     const double *yp0);
-/* The row at t with the first run's outputs: the companion advanced there and compared.
- * CRANE_ERREST_STOPPED when a signal came first, else 0 (a failure of the companion is kept,
- * said on stderr once, and the run goes on). */
-int cp_errest_row(cp_run *r, double t, const double *out);
-/* error_estimate.csv (available or not). 0, or RN_EXIT_RUN. */
-int cp_errest_write(cp_run *r);
-/* The estimate's lines of status.txt and solver_stats.txt (rn_run's hooks: rn is the crane's
- * run's), and of the summary. */
-void cp_errest_status_lines(const rn_run *rn, FILE *f);
-void cp_errest_stats_lines(const rn_run *rn, FILE *f);
-void cp_errest_summary(const cp_run *r);
 
 #endif

@@ -1,8 +1,10 @@
 /* bgsim end to end (TAP): the double pendulum's results.csv against the same run through the C
  * API, bad model files (exit 2, the reader's FILE:LINE:COL, nothing written), --set, --static
  * on a hanging mass against its closed-form rest position, --modes on a mass-spring against
- * sqrt(k/m)/(2 pi), SIGTERM during a long run (interrupted, exit 143, whole rows), --list-types
- * against the type table, --describe. The program is started as the crane program's tests start
+ * sqrt(k/m)/(2 pi), --error-estimate on the mass-spring against its exact solution (the
+ * estimate within a factor 3 of the true error; unavailable; refused beside --static and
+ * --modes), SIGTERM during a long run (interrupted, exit 143, whole rows), --list-types against
+ * the type table, --describe. The program is started as the crane program's tests start
  * theirs (tests/crane/crane_spawn.h).
  *
  *   test_bgsim BGSIM EXAMPLES_MODELS_DIR */
@@ -148,6 +150,54 @@ static const char MS[] = "format: bgsim 1\n"
                          "initial: {spring.q: 0.01}\n"
                          "outputs:\n"
                          "  q: spring.q\n";
+
+/* The largest |q - q0 cos(w t)| over the rows of results.csv (t,q): the run's true error
+ * against the exact solution. NAN if the file cannot be read or has no row. */
+static double true_error(const char *dir, double q0, double w, long *rows)
+{
+    char p[4200], line[256];
+    snprintf(p, sizeof p, "%s/results.csv", dir);
+    FILE *f = fopen(p, "r");
+    double e = NAN, t, q;
+    *rows = 0;
+    if (!f) return NAN;
+    if (fgets(line, sizeof line, f) && !strcmp(line, "t,q\n"))
+        while (fgets(line, sizeof line, f) && sscanf(line, "%lf,%lf", &t, &q) == 2) {
+            double d = fabs(q - q0 * cos(w * t));
+            if (isnan(e) || d > e) e = d;
+            (*rows)++;
+        }
+    fclose(f);
+    return e;
+}
+
+/* error_estimate.csv with one column: its header, then "name,max_abs_error,t_at_max,
+ * max_abs_value,max_rel_error,t_covered,estimate" with the numbers in v[0..4] (NAN where empty)
+ * and the estimate's word in word. 1 when well formed: the header, 7 fields, nothing after. */
+static int estimate_file(const char *dir, const char *name, double v[5], char *word, size_t wsize)
+{
+    char p[4200], text[4096];
+    snprintf(p, sizeof p, "%s/error_estimate.csv", dir);
+    text[0] = '\0';
+    slurp(p, text, sizeof text);
+    static const char head[] =
+        "column,max_abs_error,t_at_max [s],max_abs_value,max_rel_error,t_covered [s],estimate\n";
+    size_t l = strlen(name);
+    if (strncmp(text, head, sizeof head - 1)) return 0;
+    char *line = text + sizeof head - 1, *end = strchr(line, '\n');
+    if (!end || end[1] || strncmp(line, name, l) || line[l] != ',') return 0;
+    *end = '\0';
+    char *q = line + l + 1;
+    for (int i = 0; i < 5; i++) {
+        size_t n = strcspn(q, ",");
+        if (!q[n]) return 0;
+        v[i] = n ? strtod(q, NULL) : NAN;
+        q += n + 1;
+    }
+    if (strchr(q, ',') || !*q) return 0;
+    snprintf(word, wsize, "%s", q);
+    return 1;
+}
 
 int main(int argc, char **argv)
 {
@@ -323,6 +373,74 @@ int main(int argc, char **argv)
     double fw = sqrt(800.0 / 2.0) / (2 * 3.14159265358979323846);
     tap_ok(r.exited && r.code == 0 && fabs(f - fw) < 1e-8 * fw && strstr(text, ",elastic,mass,"),
            "--modes mass-spring: %.10g Hz (sqrt(k/m)/(2 pi) = %.10g)", f, fw);
+
+    /* --error-estimate against an independent truth: the mass-spring released from rest,
+     * q(t) = q0 cos(w t) with w = sqrt(k/m) = 20 rad/s, over 2 s (201 rows, 6.4 periods) at
+     * rtol 1e-6: the estimate (the largest |q(rtol) - q(rtol / 100)| over the rows) within a
+     * factor 3 of the true error (the largest |q - q0 cos(w t)| over the rows of results.csv) */
+    {
+        double q0 = 0.01, w = sqrt(800.0 / 2.0), v[5] = {NAN, NAN, NAN, NAN, NAN};
+        char word[64] = "";
+        long nrows = 0;
+        snprintf(path, sizeof path, "%s/msexact.yaml", tmp);
+        write_text(path, MS);
+        snprintf(dir, sizeof dir, "%s/msest", tmp);
+        run(tmp, (const char *[]){path, "--out", dir, "--t-end", "2", "--output-step", "0.01",
+                                  "--rtol", "1e-6", "--atol", "1e-9", "--error-estimate", NULL},
+            "msest", 60, &r);
+        double truth = true_error(dir, q0, w, &nrows);
+        int formed = estimate_file(dir, "q", v, word, sizeof word);
+        double ratio = v[0] / truth;
+        tap_ok(r.exited && r.code == 0 && nrows == 201 && truth > 0 && ratio >= 1.0 / 3 &&
+                   ratio <= 3,
+               "--error-estimate, mass-spring: estimate %.4g, true error %.4g (ratio %.3f, "
+               "within a factor 3)",
+               v[0], truth, ratio);
+        tap_ok(formed && !strcmp(word, "available") && v[1] >= 0 && v[1] <= 2 &&
+                   fabs(v[2] - q0) < 1e-6 * q0 && fabs(v[3] - v[0] / v[2]) <= 1e-5 * v[3] &&
+                   v[4] == 2,
+               "error_estimate.csv well formed: q's error, its time %g, max |q| %g, the ratio, "
+               "covered to t = %g, available",
+               v[1], v[2], v[4]);
+        tap_ok(file_contains(dir, "status.txt", "\nerror_estimate: available over 201 rows up to "
+                                                "t = 2 s\n") &&
+                   file_contains(dir, "solver_stats.txt",
+                                 "\nerror_estimate: a second run at rtol / 100 and atol / 100 "
+                                 "(rtol 1e-08, atol 1e-11)") &&
+                   file_contains(dir, "solver_stats.txt", "\nerror_estimate_run: steps=") &&
+                   file_contains(dir, "solver_stats.txt", "\nerror_estimate_largest: q: ") &&
+                   strstr(r.out, "  error estimate (available, against rtol 1e-08): largest "
+                                 "relative error"),
+               "--error-estimate: the lines of status.txt, solver_stats.txt and the summary");
+
+        /* K = 1e12 puts the companion's tolerances below round-off: unavailable with the
+         * reason, the run itself completed */
+        snprintf(dir, sizeof dir, "%s/msestbad", tmp);
+        run(tmp, (const char *[]){path, "--out", dir, "--t-end", "0.5", "--rtol", "1e-6",
+                                  "--error-estimate", "1e12", "-q", NULL},
+            "msestbad", 60, &r);
+        formed = estimate_file(dir, "q", v, word, sizeof word);
+        tap_ok(r.exited && r.code == 0 && first_line_is(dir, "status.txt", "status: completed") &&
+                   formed && !strcmp(word, "unavailable") && isnan(v[0]) &&
+                   file_contains(dir, "status.txt", "\nerror_estimate: unavailable: the run at "
+                                                    "the tighter tolerances: ") &&
+                   strstr(r.err, "the error estimate is unavailable: "),
+               "--error-estimate 1e12: unavailable with the reason, the run completed (exit %d)",
+               r.code);
+
+        snprintf(dir, sizeof dir, "%s/msestst", tmp);
+        run(tmp, (const char *[]){path, "--error-estimate", "--static", "--out", dir, NULL},
+            "msestst", 30, &r);
+        tap_ok(r.exited && r.code == 2 &&
+                   strstr(r.err, "option --error-estimate belongs to the dynamic run, not to "
+                                 "--static") &&
+                   !file_exists(tmp, "msestst"),
+               "--error-estimate --static: exit 2 (%d), nothing written", r.code);
+        run(tmp, (const char *[]){path, "--modes", "--error-estimate", "50", NULL}, "msestmd", 30,
+            &r);
+        tap_ok(r.exited && r.code == 2 && strstr(r.err, "not to --modes"),
+               "--modes --error-estimate 50: exit 2 (%d)", r.code);
+    }
 
     /* SIGTERM during a long run: interrupted, exit 143, whole rows */
     snprintf(dir, sizeof dir, "%s/long", tmp);

@@ -1,4 +1,4 @@
-/* The error estimate by a companion run at tighter tolerances (crane/crane_errest.h) and
+/* The error estimate by a companion run at tighter tolerances (runner/rn_errest.h) and
  * crane --error-estimate:
  *   - on a problem with a closed-form solution (an undamped oscillator, a stiff first-order lag
  *     driven by sin t, an algebraic unknown), over 101 output times at rtol = atol 1e-4, 1e-6,
@@ -12,7 +12,7 @@
  *     interrupted, exit 128 + 2, the estimate over the rows written; bad command lines.
  *
  * Usage: test_crane_errest [CRANE_EXECUTABLE SCENES_DIR] (without them, the library part only). */
-#include "crane_errest.h"
+#include "rn_errest.h"
 #include "crane_spawn.h"
 #include "tap.h"
 
@@ -41,8 +41,8 @@ static void exact(double t, double *y)
 
 /* The run at tol with the companion (factor K) over t = 0, 0.1, ..., 10; true largest error
  * per column into truth[4]. The companion, or NULL. */
-static crane_errest *run_with_estimate(double tol, double K, const volatile sig_atomic_t *stop,
-                                       double *truth, int *rc_out)
+static rn_errest *run_with_estimate(double tol, double K, const volatile sig_atomic_t *stop,
+                                    double *truth, int *rc_out)
 {
     dae_problem p = {0};
     p.n = 4;
@@ -56,8 +56,8 @@ static crane_errest *run_with_estimate(double tol, double K, const volatile sig_
     exact(0, y0);
     bg_error err = {0};
     dae_solver *s = dae_create(&p, &o, &err);
-    crane_errest_spec sp = {&p, &o, K, 0, y0, yp0, 1, 4, NULL, NULL, stop};
-    crane_errest *e = crane_errest_create(&sp, &err);
+    rn_errest_spec sp = {&p, &o, K, 0, y0, yp0, 1, 4, NULL, NULL, stop};
+    rn_errest *e = rn_errest_create(&sp, &err);
     int rc = s && e ? dae_init(s, 0, y0, yp0) : -1;
     if (rc == 0) rc = dae_consistent_init(s);
     for (int j = 0; j < 4; j++)
@@ -69,8 +69,8 @@ static crane_errest *run_with_estimate(double tol, double K, const volatile sig_
         exact(tk, ex);
         for (int j = 0; j < 4; j++)
             truth[j] = fmax(truth[j], fabs(y[j] - ex[j]));
-        rc = crane_errest_add(e, tk, y);
-        if (rc == CRANE_ERREST_STOPPED) break;
+        rc = rn_errest_add(e, tk, y);
+        if (rc == RN_ERREST_STOPPED) break;
         if (rc < 0) rc = 0; /* the companion's failure: kept in e */
     }
     *rc_out = rc;
@@ -84,16 +84,16 @@ static void test_analytic(void)
     for (int q = 0; q < 3; q++) {
         double tol = q == 0 ? 1e-4 : (q == 1 ? 1e-6 : 1e-8), truth[4];
         int rc;
-        crane_errest *e = run_with_estimate(tol, 0, NULL, truth, &rc);
+        rn_errest *e = run_with_estimate(tol, 0, NULL, truth, &rc);
         double rtol2, atol2, K;
-        crane_errest_tolerances(e, &rtol2, &atol2, &K);
-        tap_ok(e && rc >= 0 && crane_errest_status(e) == BG_OK && crane_errest_count(e) == NT &&
-                   crane_errest_last(e) == TEND && K == 100 && rtol2 == tol / 100 &&
+        rn_errest_tolerances(e, &rtol2, &atol2, &K);
+        tap_ok(e && rc >= 0 && rn_errest_status(e) == BG_OK && rn_errest_count(e) == NT &&
+                   rn_errest_last(e) == TEND && K == 100 && rtol2 == tol / 100 &&
                    atol2 == tol / 100,
                "tol %g: the companion at rtol = atol = %g covered all %d times to t = %g", tol,
-               rtol2, (int)crane_errest_count(e), crane_errest_last(e));
+               rtol2, (int)rn_errest_count(e), rn_errest_last(e));
         for (int j = 0; j < 4 && e; j++) {
-            const crane_errest_col *c = crane_errest_column(e, j);
+            const rn_errest_col *c = rn_errest_column(e, j);
             double ratio = c->max_err / truth[j];
             tap_ok(ratio >= 0.1 && ratio <= 10,
                    "tol %g, %s: estimate %.3g of the true largest error %.3g (ratio %.3g, within "
@@ -103,15 +103,14 @@ static void test_analytic(void)
         if (e) {
             /* the largest |y1|, |y2| of the run: 1 (cos t, sin t) within the run's errors and,
              * for y2, the output times' distance from pi/2 + k pi */
-            const crane_errest_col *c0 = crane_errest_column(e, 0), *c1 = crane_errest_column(e, 1);
+            const rn_errest_col *c0 = rn_errest_column(e, 0), *c1 = rn_errest_column(e, 1);
             tap_ok(fabs(c0->max_abs - 1) < 10 * truth[0] + 1e-12 &&
                        fabs(c1->max_abs - 1) < 1e-4 + 10 * truth[1] && c0->t_at >= 0 &&
-                       c0->t_at <= TEND && !crane_errest_column(e, 4) &&
-                       !crane_errest_column(e, -1),
+                       c0->t_at <= TEND && !rn_errest_column(e, 4) && !rn_errest_column(e, -1),
                    "tol %g: the columns' largest values (|y1| %.6g, |y2| %.6g) and times", tol,
                    c0->max_abs, c1->max_abs);
         }
-        crane_errest_free(&e);
+        rn_errest_free(&e);
     }
 }
 
@@ -120,21 +119,21 @@ static void test_failures(void)
     double truth[4];
     int rc;
     /* rtol 1e-6 / 1e12: tolerances below round-off, the companion fails, the run goes on */
-    crane_errest *e = run_with_estimate(1e-6, 1e12, NULL, truth, &rc);
-    tap_ok(e && rc >= 0 && crane_errest_status(e) < 0 && crane_errest_count(e) == 1 &&
-               crane_errest_last(e) == 0 && strstr(crane_errest_message(e), "round-off") &&
-               crane_errest_add(e, 11, truth) == crane_errest_status(e),
+    rn_errest *e = run_with_estimate(1e-6, 1e12, NULL, truth, &rc);
+    tap_ok(e && rc >= 0 && rn_errest_status(e) < 0 && rn_errest_count(e) == 1 &&
+               rn_errest_last(e) == 0 && strstr(rn_errest_message(e), "round-off") &&
+               rn_errest_add(e, 11, truth) == rn_errest_status(e),
            "a companion at tolerances below round-off: failed at its first step (%s: %.160s), "
            "compared at t = 0 only, the first run unharmed",
-           bg_status_name(crane_errest_status(e)), crane_errest_message(e));
-    crane_errest_free(&e);
+           bg_status_name(rn_errest_status(e)), rn_errest_message(e));
+    rn_errest_free(&e);
     /* a stop flag already set: the companion does not step */
     volatile sig_atomic_t stop = 1;
     e = run_with_estimate(1e-6, 0, &stop, truth, &rc);
-    tap_ok(e && rc == CRANE_ERREST_STOPPED && crane_errest_count(e) == 1 &&
-               crane_errest_last(e) == 0 && crane_errest_status(e) == BG_OK,
-           "a stop flag: the time 0 compared, then CRANE_ERREST_STOPPED before the first step");
-    crane_errest_free(&e);
+    tap_ok(e && rc == RN_ERREST_STOPPED && rn_errest_count(e) == 1 && rn_errest_last(e) == 0 &&
+               rn_errest_status(e) == BG_OK,
+           "a stop flag: the time 0 compared, then RN_ERREST_STOPPED before the first step");
+    rn_errest_free(&e);
     /* bad arguments */
     dae_problem p = {0};
     p.n = 4;
@@ -143,14 +142,14 @@ static void test_failures(void)
     dae_options_default(&o);
     double y0[4] = {1, 0, 0, 0};
     bg_error err = {0};
-    crane_errest_spec sp = {&p, &o, 0.5, 0, y0, NULL, 0, 4, NULL, NULL, NULL};
-    e = crane_errest_create(&sp, &err);
+    rn_errest_spec sp = {&p, &o, 0.5, 0, y0, NULL, 0, 4, NULL, NULL, NULL};
+    e = rn_errest_create(&sp, &err);
     tap_ok(!e && err.status == BG_ERR_ARGUMENT && strstr(err.message, "(1, 1e+12]"),
            "a factor of 0.5 is refused (%s)", err.message);
     sp.factor = 0;
     sp.p = NULL;
-    e = crane_errest_create(&sp, &err);
-    tap_ok(!e && err.status == BG_ERR_ARGUMENT && crane_errest_add(NULL, 0, y0) == BG_ERR_ARGUMENT,
+    e = rn_errest_create(&sp, &err);
+    tap_ok(!e && err.status == BG_ERR_ARGUMENT && rn_errest_add(NULL, 0, y0) == BG_ERR_ARGUMENT,
            "no problem is refused, a NULL estimate too");
 }
 
@@ -351,7 +350,7 @@ int main(int argc, char **argv)
     test_analytic();
     test_failures();
     if (argc >= 3) {
-        if (spawn_setup(argc, argv, "crane_errest") != 0) return 1;
+        if (spawn_setup(argc, argv, "rn_errest") != 0) return 1;
         test_program();
     } else {
         tap_diag("no crane program given: its tests skipped");

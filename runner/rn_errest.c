@@ -1,48 +1,48 @@
-/* The error estimate by a companion run at tighter tolerances (crane_errest.h). */
-#include "crane_errest.h"
+/* The error estimate by a companion run at tighter tolerances (rn_errest.h). */
+#include "rn_errest.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-struct crane_errest {
+struct rn_errest {
     dae_solver *s;
     int n, nout;
-    crane_errest_out_fn out;
+    rn_errest_out_fn out;
     void *ctx;
     const volatile sig_atomic_t *stop;
     double rtol, atol, factor;
     double *y, *yp, *out2, *atolv;
-    crane_errest_col *col;
+    rn_errest_col *col;
     long count;
     double last;
     int status;
     char message[BG_MESSAGE_SIZE + 64];
 };
 
-static int fail(crane_errest *e, int status, const char *what, const char *msg)
+static int fail(rn_errest *e, int status, const char *what, const char *msg)
 {
     e->status = status;
     snprintf(e->message, sizeof e->message, "%s: %.*s", what, BG_MESSAGE_SIZE, msg);
     return status;
 }
 
-crane_errest *crane_errest_create(const crane_errest_spec *sp, bg_error *err)
+rn_errest *rn_errest_create(const rn_errest_spec *sp, bg_error *err)
 {
     if (!sp || !sp->p || !sp->o || !sp->y0 || sp->p->n < 1 || (sp->out && sp->nout < 1)) {
-        bg_error_raise(err, BG_ERR_ARGUMENT, "crane_errest_create",
+        bg_error_raise(err, BG_ERR_ARGUMENT, "rn_errest_create",
                        "a problem, its options, a start and nout >= 1 outputs are needed");
         return NULL;
     }
-    double K = sp->factor == 0 ? CRANE_ERREST_FACTOR : sp->factor;
-    if (!(K > 1 && K <= CRANE_ERREST_MAX_FACTOR)) {
-        bg_error_raise(err, BG_ERR_ARGUMENT, "crane_errest_create",
+    double K = sp->factor == 0 ? RN_ERREST_FACTOR : sp->factor;
+    if (!(K > 1 && K <= RN_ERREST_MAX_FACTOR)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, "rn_errest_create",
                        "the factor of the tolerances is %g: it must lie in (1, %g]", K,
-                       CRANE_ERREST_MAX_FACTOR);
+                       RN_ERREST_MAX_FACTOR);
         return NULL;
     }
-    crane_errest *e = calloc(1, sizeof *e);
+    rn_errest *e = calloc(1, sizeof *e);
     int n = sp->p->n, nout = sp->out ? sp->nout : n;
     if (e) {
         e->y = malloc(2 * (size_t)n * sizeof *e->y);
@@ -51,8 +51,8 @@ crane_errest *crane_errest_create(const crane_errest_spec *sp, bg_error *err)
         e->atolv = sp->o->atol_vec ? malloc((size_t)n * sizeof *e->atolv) : NULL;
     }
     if (!e || !e->y || !e->out2 || !e->col || (sp->o->atol_vec && !e->atolv)) {
-        crane_errest_free(&e);
-        bg_error_raise(err, BG_ERR_MEMORY, "crane_errest_create", "out of memory");
+        rn_errest_free(&e);
+        bg_error_raise(err, BG_ERR_MEMORY, "rn_errest_create", "out of memory");
         return NULL;
     }
     e->yp = e->y + n;
@@ -64,7 +64,7 @@ crane_errest *crane_errest_create(const crane_errest_spec *sp, bg_error *err)
     e->factor = K;
     e->last = NAN;
     for (int j = 0; j < nout; j++)
-        e->col[j] = (crane_errest_col){NAN, NAN, 0};
+        e->col[j] = (rn_errest_col){NAN, NAN, 0};
     dae_options o = *sp->o;
     o.rtol /= K;
     o.atol /= K;
@@ -91,7 +91,7 @@ crane_errest *crane_errest_create(const crane_errest_spec *sp, bg_error *err)
     return e;
 }
 
-void crane_errest_free(crane_errest **e)
+void rn_errest_free(rn_errest **e)
 {
     if (!e || !*e) return;
     dae_free(&(*e)->s);
@@ -107,7 +107,7 @@ void crane_errest_free(crane_errest **e)
  * (dae_solve_to without a step). Where t falls in the round-off gap just behind a restart at a
  * jump (the last step starts after t by at most 1e-9 |t|), the values where that step starts,
  * as the crane program takes them for its rows. */
-static int state_at(crane_errest *e, double t, double *tret)
+static int state_at(rn_errest *e, double t, double *tret)
 {
     if (dae_get_stats(e->s)->steps == 0) { /* the start itself */
         *tret = t;
@@ -125,13 +125,13 @@ static int state_at(crane_errest *e, double t, double *tret)
     return rc < 0 ? rc : BG_OK;
 }
 
-int crane_errest_add(crane_errest *e, double t, const double *out1)
+int rn_errest_add(rn_errest *e, double t, const double *out1)
 {
     if (!e || !out1 || !(t >= e->last || isnan(e->last))) return BG_ERR_ARGUMENT;
     if (e->status < 0) return e->status;
     double tret = t;
     while (dae_current_time(e->s) < t) {
-        if (e->stop && *e->stop) return CRANE_ERREST_STOPPED;
+        if (e->stop && *e->stop) return RN_ERREST_STOPPED;
         int rc = dae_step(e->s, t, &tret, e->y, e->yp);
         if (rc < 0) {
             char msg[BG_MESSAGE_SIZE + 64];
@@ -148,7 +148,7 @@ int crane_errest_add(crane_errest *e, double t, const double *out1)
     else
         memcpy(e->out2, e->y, (size_t)e->n * sizeof *e->out2);
     for (int j = 0; j < e->nout; j++) {
-        crane_errest_col *c = &e->col[j];
+        rn_errest_col *c = &e->col[j];
         double a = out1[j], b = e->out2[j];
         if (isfinite(a) && fabs(a) > c->max_abs) c->max_abs = fabs(a);
         if (!isfinite(a) || !isfinite(b)) continue;
@@ -163,39 +163,39 @@ int crane_errest_add(crane_errest *e, double t, const double *out1)
     return BG_OK;
 }
 
-int crane_errest_status(const crane_errest *e)
+int rn_errest_status(const rn_errest *e)
 {
     return e ? e->status : BG_ERR_ARGUMENT;
 }
 
-const char *crane_errest_message(const crane_errest *e)
+const char *rn_errest_message(const rn_errest *e)
 {
     return e ? e->message : "";
 }
 
-long crane_errest_count(const crane_errest *e)
+long rn_errest_count(const rn_errest *e)
 {
     return e ? e->count : 0;
 }
 
-double crane_errest_last(const crane_errest *e)
+double rn_errest_last(const rn_errest *e)
 {
     return e ? e->last : NAN;
 }
 
-const crane_errest_col *crane_errest_column(const crane_errest *e, int j)
+const rn_errest_col *rn_errest_column(const rn_errest *e, int j)
 {
     return e && j >= 0 && j < e->nout ? &e->col[j] : NULL;
 }
 
-void crane_errest_tolerances(const crane_errest *e, double *rtol, double *atol, double *factor)
+void rn_errest_tolerances(const rn_errest *e, double *rtol, double *atol, double *factor)
 {
     if (rtol) *rtol = e ? e->rtol : NAN;
     if (atol) *atol = e ? e->atol : NAN;
     if (factor) *factor = e ? e->factor : NAN;
 }
 
-const dae_stats *crane_errest_stats(const crane_errest *e)
+const dae_stats *rn_errest_stats(const rn_errest *e)
 {
     return e ? dae_get_stats(e->s) : NULL;
 }
