@@ -158,7 +158,8 @@ static const pu_cli CLI = {
         "a key with a list of values, a range, or a Latin-hypercube sample; the summary "
         "quantities)\n"
         "and gathers one row per case into sweep.csv, with a picture per quantity for 1-D and 2-D\n"
-        "sweeps. The format: crane/sweep/sweep_spec.h and docs/sweeps.md.\n",
+        "sweeps. A sweep file naming a model file ([sweep] model = FILE) sweeps its parameters,\n"
+        "each case a run of bgsim. The format: crane/sweep/sweep_spec.h and docs/sweeps.md.\n",
     .options_title = "options (a value may also be given as --option=VALUE):",
     .epilogue =
         "files in DIR: status.txt (running, then completed, interrupted or failed), sweep.ini "
