@@ -242,6 +242,11 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
         }
     }
     s->params[p].log = a->log;
+    if (s->is_model) /* a model's value is an expression: drawn as a number if each is one */
+        for (int i = 0; i < a->npoints; i++) {
+            double x;
+            if (!pu_ini_parse_double(a->values[i], &x)) s->params[p].type = CRANE_KEY_NAME;
+        }
     s->naxes++;
     return 0;
 }
