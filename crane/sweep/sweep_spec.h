@@ -26,8 +26,10 @@
  *                                          the table of sweep_row.h (default: all but
  *                                          theta_err_end, p_min, rope_force_max, wall_s)
  *             case_figures  boolean        each case draws the crane's figures (default false)
- *   [set]     SECTION.KEY = VALUE          a scene key for every case (as crane --set)
- *   [axis]    key           SECTION.KEY    the swept scene key (repeat [axis] for more axes)
+ *   [set]     SECTION.KEY = VALUE          a scene key for every case (as crane --set; a model
+ *                                          sweep's PARAM or PATH.PARAM = VALUE, as bgsim --set)
+ *   [axis]    key           SECTION.KEY    the swept scene key (repeat [axis] for more axes; a
+ *                                          model sweep's PARAM or PATH.PARAM)
  *             values        list           the values: "0.5, 1, 2" (vectors: "0,0,1 | 0,0,2")
  *             from, to      numbers        or a range: count values from .. to (to included)
  *             count         1..100000
