@@ -1,7 +1,11 @@
 /* crane-sweep: many crane runs at once, a parameter sweep, locally or under MPI.
  *
  *   crane-sweep SWEEP.ini [--out DIR] [--jobs N] [--resume] [--time-limit S] [--crane PATH]
- *               [--engine auto|local|mpi] [--no-plots] [--list] [--quiet] [--help] [--version]
+ *               [--bgsim PATH] [--engine auto|local|mpi] [--no-plots] [--list] [--quiet]
+ *               [--help] [--version]
+ *
+ * A sweep of a model file ([sweep] model = FILE) runs bgsim instead of the crane, each case with
+ * --set PATH=VALUE per swept and fixed parameter (sweep_model.c).
  *
  * The sweep file (sweep_spec.h) names a base scene, fixed scene keys and the axes: a key with a
  * list of values, a range with a count, or a Latin-hypercube sample of several keys with a seed;
@@ -56,6 +60,18 @@
 
 enum { EXIT_OK = 0, EXIT_RUN = 1, EXIT_USAGE = 2 };
 
+/* the programs at their build paths (meson), NULL when not known */
+#ifdef CRANE_SWEEP_BUILD_CRANE
+#define SWEEP_BUILD_CRANE CRANE_SWEEP_BUILD_CRANE
+#else
+#define SWEEP_BUILD_CRANE NULL
+#endif
+#ifdef CRANE_SWEEP_BUILD_BGSIM
+#define SWEEP_BUILD_BGSIM CRANE_SWEEP_BUILD_BGSIM
+#else
+#define SWEEP_BUILD_BGSIM NULL
+#endif
+
 volatile sig_atomic_t sweep_signal = 0, sweep_signal_count = 0;
 
 static void on_signal(int sig)
@@ -73,7 +89,7 @@ static const char *signal_name(int sig)
 }
 
 typedef struct options {
-    const char *sweep, *out, *crane, *engine;
+    const char *sweep, *out, *crane, *bgsim, *engine;
     int jobs, resume, no_plots, list, quiet;
     double time_limit; /* < 0: the sweep file's */
     int argc;
@@ -119,6 +135,9 @@ static const pu_cli_option OPTIONS[] = {
              "SIGTERM, 5 s later SIGKILL, and is recorded as timeout"},
     {.name = "--crane", .kind = PU_CLI_STRING, .arg = "PATH", .at = AT(crane),
      .help = "the crane program (default: next to crane-sweep, then the build's)"},
+    {.name = "--bgsim", .kind = PU_CLI_STRING, .arg = "PATH", .at = AT(bgsim),
+     .help = "bgsim, for a sweep of a model file (default: next to crane-sweep, then the "
+             "build's)"},
     {.name = "--engine", .kind = PU_CLI_CHOICE, .arg = "E", .at = AT(engine),
      .choices = "auto|local|mpi", .what = "auto, local or mpi",
      .help = "auto (default: MPI when started by mpirun or srun), local or mpi"},
@@ -139,7 +158,8 @@ static const pu_cli CLI = {
         "a key with a list of values, a range, or a Latin-hypercube sample; the summary "
         "quantities)\n"
         "and gathers one row per case into sweep.csv, with a picture per quantity for 1-D and 2-D\n"
-        "sweeps. The format: crane/sweep/sweep_spec.h and docs/sweeps.md.\n",
+        "sweeps. A sweep file naming a model file ([sweep] model = FILE) sweeps its parameters,\n"
+        "each case a run of bgsim. The format: crane/sweep/sweep_spec.h and docs/sweeps.md.\n",
     .options_title = "options (a value may also be given as --option=VALUE):",
     .epilogue =
         "files in DIR: status.txt (running, then completed, interrupted or failed), sweep.ini "
@@ -246,14 +266,16 @@ static int executable(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode) && access(path, X_OK) == 0;
 }
 
-/* The crane program: --crane, next to this program, the build's. */
-static int find_crane(const options *o, char *out, size_t size, char *tried, size_t tsize)
+/* The program a case runs (name: crane or bgsim): given (--crane, --bgsim), next to this
+ * program, the build's (build, NULL if unknown). */
+static int find_program(const char *name, const char *given, const char *build, char *out,
+                        size_t size, char *tried, size_t tsize)
 {
     tried[0] = '\0';
-    if (o->crane) {
-        snprintf(tried, tsize, "%s", o->crane);
-        if (!executable(o->crane)) return 0;
-        if (!realpath(o->crane, out)) snprintf(out, size, "%s", o->crane);
+    if (given) {
+        snprintf(tried, tsize, "%s", given);
+        if (!executable(given)) return 0;
+        if (!realpath(given, out)) snprintf(out, size, "%s", given);
         return 1;
     }
     char self[SWEEP_PATH_SIZE];
@@ -262,7 +284,7 @@ static int find_crane(const options *o, char *out, size_t size, char *tried, siz
         self[n] = '\0';
         char *slash = strrchr(self, '/');
         if (slash) {
-            snprintf(slash + 1, sizeof self - (size_t)(slash + 1 - self), "crane");
+            snprintf(slash + 1, sizeof self - (size_t)(slash + 1 - self), "%s", name);
             snprintf(tried, tsize, "%s", self);
             if (executable(self)) {
                 snprintf(out, size, "%s", self);
@@ -270,14 +292,14 @@ static int find_crane(const options *o, char *out, size_t size, char *tried, siz
             }
         }
     }
-#ifdef CRANE_SWEEP_BUILD_CRANE
-    size_t tl = strlen(tried);
-    snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", CRANE_SWEEP_BUILD_CRANE);
-    if (executable(CRANE_SWEEP_BUILD_CRANE)) {
-        snprintf(out, size, "%s", CRANE_SWEEP_BUILD_CRANE);
-        return 1;
+    if (build) {
+        size_t tl = strlen(tried);
+        snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", build);
+        if (executable(build)) {
+            snprintf(out, size, "%s", build);
+            return 1;
+        }
     }
-#endif
     return 0;
 }
 
@@ -375,7 +397,8 @@ static int folder_in_use(const char *dir, char *msg, size_t size)
 
 static void print_cases(const sweep_spec *s)
 {
-    printf("# sweep %s: %ld cases of the scene %s\ncase", s->name, s->ncases, s->scene_path);
+    printf("# sweep %s: %ld cases of the %s %s\ncase", s->name, s->ncases,
+           s->is_model ? "model" : "scene", s->scene_path);
     for (int p = 0; p < s->nparams; p++)
         printf(",%s", s->params[p].name);
     printf("\n");
@@ -389,7 +412,8 @@ static void print_cases(const sweep_spec *s)
     }
 }
 
-/* --resume: the case's folder holds a completed run of this case's scene. */
+/* --resume: the case's folder holds a completed run of this case's scene (a model sweep's: of
+ * the same command, and the model file as read then, model.yaml's text, starts as it does now). */
 static int case_done(const sweep_run *r, long c)
 {
     char dir[SWEEP_DIR_SIZE], path[SWEEP_DIR_SIZE + 32], status[64], err[1024];
@@ -397,6 +421,7 @@ static int case_done(const sweep_run *r, long c)
     snprintf(path, sizeof path, "%s/status.txt", dir);
     if (!sweep_read_field(path, "status", status, sizeof status) || strcmp(status, "completed"))
         return 0;
+    if (r->spec->is_model) return sweep_model_case_done(r, c, dir);
     crane_scene want, have;
     if (sweep_case_scene(r->spec, c, &want, err, sizeof err) != 0) return 0;
     snprintf(path, sizeof path, "%s/scene.ini", dir);
@@ -485,7 +510,7 @@ static int prepare(sweep_state *st)
             char dir[SWEEP_DIR_SIZE];
             sweep_case_dir(r, c, dir, sizeof dir);
             sweep_row row;
-            sweep_row_read(&row, c, dir, NULL);
+            sweep_row_read(s, &row, c, dir, NULL);
             int q = r->quiet;
             r->quiet = 1;
             sweep_record(r, &row, 0);
@@ -665,12 +690,15 @@ int main(int argc, char **argv)
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     run.jobs = o.jobs ? o.jobs : size > 1 ? 1 : ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
     char tried[SWEEP_PATH_SIZE * 2];
-    if (!find_crane(&o, run.crane, sizeof run.crane, tried, sizeof tried)) {
+    const char *prog = sweep_program(&spec);
+    if (!find_program(prog, spec.is_model ? o.bgsim : o.crane,
+                      spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
+                      sizeof run.crane, tried, sizeof tried)) {
         if (g_print)
             fprintf(stderr,
-                    "crane-sweep: the crane program was not found (tried %s); give it "
-                    "with --crane PATH\n",
-                    tried[0] ? tried : "nothing");
+                    "crane-sweep: the %s program was not found (tried %s); give it "
+                    "with --%s PATH\n",
+                    prog, tried[0] ? tried : "nothing", prog);
         sweep_spec_free(&spec);
         return FINISH(EXIT_USAGE);
     }

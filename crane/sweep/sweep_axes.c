@@ -3,7 +3,8 @@
  * Latin-hypercube sample, and the cases as the product of the axes.
  *
  * Every generated value is kept as the text the crane gets (--set) and sweep.csv shows, and is
- * checked against its key's range when generated. Case k's point on each axis is k written in
+ * checked against its key's range when generated (a model sweep's: by loading the model with it,
+ * sweep_model.c; its keys are parameters' paths, taken as numbers). Case k's point on each axis is k written in
  * the mixed radix of the axes' lengths, the last axis varying fastest. */
 #include <limits.h>
 #include <math.h>
@@ -17,28 +18,69 @@
 
 /* ---------------------------------------------------------- the swept keys ---- */
 
-static int add_param(parse_ctx *c, const crane_scene_key *k, int axis, int line)
+/* A swept key: a scene key (k), or a model's parameter (k NULL, section "", key its path). */
+typedef struct swept_key {
+    const crane_scene_key *k;
+    char section[64], key[64];
+    int type;             /* crane_key_type (a model's: a number) */
+    const char *expected; /* what its values are */
+} swept_key;
+
+/* The key called name ([axis] key, an [lhs] line): 0 with *out, or -1 with the error recorded. */
+static int lookup_key(parse_ctx *c, const char *name, int line, const char *where, swept_key *out)
+{
+    memset(out, 0, sizeof *out);
+    if (c->s->is_model) {
+        if (spec_model_path(c, name, line, where)) return -1;
+        snprintf(out->key, sizeof out->key, "%s", name);
+        out->type = CRANE_KEY_NUMBER;
+        out->expected = "an expression";
+        return 0;
+    }
+    const crane_scene_key *k = spec_scene_key(c, name, line, where);
+    if (!k) return -1;
+    out->k = k;
+    snprintf(out->section, sizeof out->section, "%s", k->section);
+    snprintf(out->key, sizeof out->key, "%s", k->key);
+    out->type = (int)k->type;
+    out->expected = k->expected;
+    return 0;
+}
+
+/* A value of key k: the scene files' check, or the model loaded with it. */
+static int check_value(parse_ctx *c, const crane_scene *base, const swept_key *k,
+                       const char *value, int line, const char *what)
+{
+    if (!k->k) return spec_check_model_value(c, k->key, value, line, what);
+    return spec_check_scene_value(c, base, k->k, value, line, what);
+}
+
+static int add_param(parse_ctx *c, const swept_key *k, int axis, int line)
 {
     sweep_spec *s = c->s;
     for (int i = 0; i < s->nparams; i++)
         if (!strcmp(s->params[i].section, k->section) && !strcmp(s->params[i].key, k->key))
             return spec_fail_line(c, line,
-                                  "%s.%s is swept twice (also on line %d): a key belongs to "
+                                  "%s%s%s is swept twice (also on line %d): a key belongs to "
                                   "one axis",
-                                  k->section, k->key, s->params[i].line);
+                                  k->section, k->section[0] ? "." : "", k->key,
+                                  s->params[i].line);
     for (int i = 0; i < s->nsets; i++)
         if (!strcmp(s->sets[i].section, k->section) && !strcmp(s->sets[i].key, k->key))
             return spec_fail_line(c, line,
-                                  "%s.%s is swept here and set in [set] (line %d): remove one",
-                                  k->section, k->key, s->sets[i].line);
+                                  "%s%s%s is swept here and set in [set] (line %d): remove one",
+                                  k->section, k->section[0] ? "." : "", k->key, s->sets[i].line);
     if (s->nparams >= SWEEP_MAX_PARAMS)
         return spec_fail_line(c, line, "too many swept keys (at most %d)", SWEEP_MAX_PARAMS);
     sweep_param *p = &s->params[s->nparams];
     memset(p, 0, sizeof *p);
     snprintf(p->section, sizeof p->section, "%s", k->section);
     snprintf(p->key, sizeof p->key, "%s", k->key);
-    snprintf(p->name, sizeof p->name, "%s.%s", k->section, k->key);
-    p->type = (int)k->type;
+    if (k->section[0])
+        snprintf(p->name, sizeof p->name, "%s.%s", k->section, k->key);
+    else
+        snprintf(p->name, sizeof p->name, "%s", k->key);
+    p->type = k->type;
     p->axis = axis;
     p->line = line;
     return s->nparams++;
@@ -68,8 +110,8 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
         return spec_fail_line(c, r->line,
                               "[axis] without 'key': name the swept scene key, e.g. "
                               "'key = controller.kp'");
-    const crane_scene_key *k = spec_scene_key(c, kkey->value, kkey->line, "key 'key' in [axis]");
-    if (!k) return -1;
+    swept_key key, *k = &key;
+    if (lookup_key(c, kkey->value, kkey->line, "key 'key' in [axis]", k)) return -1;
     int ax = s->naxes;
     sweep_axis *a = &s->axes[ax];
     memset(a, 0, sizeof *a);
@@ -113,7 +155,7 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
                         s->params[p].name, a->values[i], j + 1);
             snprintf(what, sizeof what, "key 'values' in [axis]: value %d of %s", i + 1,
                      s->params[p].name);
-            if (spec_check_scene_value(c, base, k, a->values[i], kvals->line, what)) return -1;
+            if (check_value(c, base, k, a->values[i], kvals->line, what)) return -1;
             q = e ? e + 1 : q + strlen(q);
         }
         a->npoints = n;
@@ -196,10 +238,15 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
             raw_kv *at = i == a->npoints - 1 && kto ? kto : kfrom;
             snprintf(what, sizeof what, "key '%s' in [axis]: value %d of the range of %s", at->key,
                      i + 1, s->params[p].name);
-            if (spec_check_scene_value(c, base, k, a->values[i], at->line, what)) return -1;
+            if (check_value(c, base, k, a->values[i], at->line, what)) return -1;
         }
     }
     s->params[p].log = a->log;
+    if (s->is_model) /* a model's value is an expression: drawn as a number if each is one */
+        for (int i = 0; i < a->npoints; i++) {
+            double x;
+            if (!pu_ini_parse_double(a->values[i], &x)) s->params[p].type = CRANE_KEY_NAME;
+        }
     s->naxes++;
     return 0;
 }
@@ -242,11 +289,25 @@ int spec_finish_lhs(parse_ctx *c, raw_section *r, const crane_scene *base)
     a->npoints = (int)n;
     for (int i = 0; i < r->n; i++) {
         raw_kv *kv = &r->kv[i];
-        if (!spec_is_scene_key_name(kv->key)) continue;
-        const crane_scene_key *k = spec_scene_key(c, kv->key, kv->line, "[lhs]");
-        if (!k) return -1;
-        char name[132];
-        snprintf(name, sizeof name, "%s.%s", k->section, k->key);
+        int own = 0;
+        for (int j = 0; LHS_KEYS[j]; j++)
+            own |= pu_ini_ieq(kv->key, LHS_KEYS[j]);
+        if (own) continue;
+        if (!s->is_model && !spec_is_scene_key_name(kv->key)) { /* as the parser said before */
+            int d;
+            char all[160];
+            const char *near = spec_nearest(kv->key, LHS_KEYS, &d);
+            spec_join(LHS_KEYS, "", "", all, sizeof all);
+            return spec_fail_line(
+                c, kv->line,
+                "unknown key '%s' in [lhs]; did you mean '%s'? (keys of [lhs]: %s, and "
+                "the sampled scene keys as SECTION.KEY = LO, HI)",
+                kv->key, near, all);
+        }
+        swept_key key, *k = &key;
+        if (lookup_key(c, kv->key, kv->line, "[lhs]", k)) return -1;
+        char name[160];
+        snprintf(name, sizeof name, "%.63s%s%.63s", k->section, k->section[0] ? "." : "", k->key);
         if (!numeric_type(k->type))
             return spec_fail_line(c, kv->line,
                                   "[lhs] %s is %s: only number and integer keys can be "
@@ -281,9 +342,9 @@ int spec_finish_lhs(parse_ctx *c, raw_section *r, const crane_scene *base)
                                   name, qv);
         char what[300];
         snprintf(what, sizeof what, "[lhs] %s: LO", name);
-        if (spec_check_scene_value(c, base, k, parts[0], kv->line, what)) return -1;
+        if (check_value(c, base, k, parts[0], kv->line, what)) return -1;
         snprintf(what, sizeof what, "[lhs] %s: HI", name);
-        if (spec_check_scene_value(c, base, k, parts[1], kv->line, what)) return -1;
+        if (check_value(c, base, k, parts[1], kv->line, what)) return -1;
         int p = add_param(c, k, ax, kv->line);
         if (p < 0) return -1;
         s->params[p].lo = lo;
@@ -381,11 +442,11 @@ int sweep_case_scene(const sweep_spec *s, long c, crane_scene *scene, char *err,
 int sweep_case_set_args(const sweep_spec *s, long c, char (*out)[SWEEP_SET_ARG_SIZE])
 {
     int n = 0;
-    for (int i = 0; i < s->nsets; i++)
-        snprintf(out[n++], SWEEP_SET_ARG_SIZE, "%s.%s=%s", s->sets[i].section, s->sets[i].key,
-                 s->sets[i].value);
+    for (int i = 0; i < s->nsets; i++) /* a model's: section "" */
+        snprintf(out[n++], SWEEP_SET_ARG_SIZE, "%s%s%s=%s", s->sets[i].section,
+                 s->sets[i].section[0] ? "." : "", s->sets[i].key, s->sets[i].value);
     for (int p = 0; p < s->nparams; p++)
-        snprintf(out[n++], SWEEP_SET_ARG_SIZE, "%s.%s=%s", s->params[p].section, s->params[p].key,
-                 sweep_case_value(s, c, p));
+        snprintf(out[n++], SWEEP_SET_ARG_SIZE, "%s%s%s=%s", s->params[p].section,
+                 s->params[p].section[0] ? "." : "", s->params[p].key, sweep_case_value(s, c, p));
     return n;
 }

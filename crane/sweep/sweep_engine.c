@@ -38,7 +38,8 @@ static void write_case_txt(const sweep_run *r, long index, const char *dir, cons
     const sweep_spec *s = r->spec;
     char now[64];
     local_time(now, sizeof now);
-    fprintf(f, "# crane-sweep case (the sweep's record; the crane's own is status.txt)\n");
+    fprintf(f, "# crane-sweep case (the sweep's record; the %s's own is status.txt)\n",
+            sweep_program(s));
     fprintf(f, "case: %ld\nsweep: %s\n", index, s->path);
     for (int p = 0; p < s->nparams; p++)
         fprintf(f, "%s: %s\n", s->params[p].name, sweep_case_value(s, index, p));
@@ -85,6 +86,92 @@ static void format_command(char *const *argv, char *buf, size_t size)
     }
 }
 
+/* The command line of case index in folder dir: argv (NULL-terminated) pointing into sets and
+ * t_end, and into command as text. */
+typedef struct case_command {
+    char sets[SWEEP_MAX_SETS][SWEEP_SET_ARG_SIZE];
+    char t_end[64];
+    char *argv[2 * SWEEP_MAX_SETS + 16];
+    char command[8192];
+} case_command;
+
+static void case_command_make(const sweep_run *r, long index, char *dir, case_command *cc)
+{
+    const sweep_spec *s = r->spec;
+    int nsets = sweep_case_set_args(s, index, cc->sets);
+    char **argv = cc->argv;
+    int a = 0;
+    argv[a++] = (char *)r->crane;
+    argv[a++] = (char *)s->scene_path;
+    argv[a++] = "--out";
+    argv[a++] = dir;
+    if (s->is_model) { /* bgsim MODEL --out DIR --quiet [--t-end T] --set PATH=VALUE ... */
+        argv[a++] = "--quiet";
+        if (s->t_end > 0) {
+            snprintf(cc->t_end, sizeof cc->t_end, "%.17g", s->t_end);
+            argv[a++] = "--t-end";
+            argv[a++] = cc->t_end;
+        }
+    } else if (!s->case_figures) {
+        argv[a++] = "--no-plots";
+    }
+    for (int i = 0; i < nsets; i++) {
+        argv[a++] = "--set";
+        argv[a++] = cc->sets[i];
+    }
+    argv[a] = NULL;
+    format_command(argv, cc->command, sizeof cc->command);
+}
+
+/* The whole file at path (NUL-terminated, free() it), or NULL. */
+static char *read_text(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *buf = NULL;
+    size_t cap = 0, n = 0, k;
+    char chunk[8192];
+    while ((k = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (n + k + 1 > cap) {
+            cap = 2 * (n + k + 1);
+            char *nb = realloc(buf, cap);
+            if (!nb) {
+                free(buf);
+                fclose(f);
+                return NULL;
+            }
+            buf = nb;
+        }
+        memcpy(buf + n, chunk, k);
+        n += k;
+    }
+    fclose(f);
+    if (!buf) buf = calloc(1, 1);
+    if (buf) buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+int sweep_model_case_done(const sweep_run *r, long index, const char *dir)
+{
+    static case_command cc; /* large: not on the stack */
+    char d[SWEEP_DIR_SIZE], path[SWEEP_DIR_SIZE + 32], cmd[8192];
+    snprintf(d, sizeof d, "%s", dir);
+    case_command_make(r, index, d, &cc);
+    snprintf(path, sizeof path, "%s/case.txt", dir);
+    if (!sweep_read_field(path, "command", cmd, sizeof cmd) || strcmp(cmd, cc.command)) return 0;
+    snprintf(path, sizeof path, "%s/results.csv", dir);
+    struct stat sb;
+    if (stat(path, &sb) != 0) return 0;
+    size_t nm = 0, nr = 0;
+    snprintf(path, sizeof path, "%s/model.yaml", dir);
+    char *model = read_text(r->spec->scene_path, &nm), *run = read_text(path, &nr);
+    int same = model && run && nr >= nm && !memcmp(model, run, nm);
+    free(model);
+    free(run);
+    return same;
+}
+
 int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
 {
     const sweep_spec *s = r->spec;
@@ -97,34 +184,27 @@ int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
         p->out.errno_start = errno ? errno : EIO;
         return -1;
     }
-    /* the crane writes its status.txt first thing; an older one must not stand for this run */
+    /* the program writes its status.txt first thing; an older one must not stand for this run */
     for (int i = 0; i < 2; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, i ? "case.txt" : "status.txt");
         unlink(path);
     }
-    char sets[SWEEP_MAX_SETS][SWEEP_SET_ARG_SIZE];
-    int nsets = sweep_case_set_args(s, index, sets);
-    char *argv[2 * SWEEP_MAX_SETS + 16];
-    int a = 0;
-    argv[a++] = r->crane;
-    argv[a++] = (char *)s->scene_path;
-    argv[a++] = "--out";
-    argv[a++] = dir;
-    if (!s->case_figures) argv[a++] = "--no-plots";
-    for (int i = 0; i < nsets; i++) {
-        argv[a++] = "--set";
-        argv[a++] = sets[i];
+    case_command *cc = malloc(sizeof *cc);
+    if (!cc) {
+        p->out.errno_start = ENOMEM;
+        return -1;
     }
-    argv[a] = NULL;
-    char command[8192];
-    format_command(argv, command, sizeof command);
-    write_case_txt(r, index, dir, command, NULL);
-    return sweep_proc_start(p, index, r->crane, argv, dir, r->time_limit);
+    case_command_make(r, index, dir, cc);
+    write_case_txt(r, index, dir, cc->command, NULL);
+    int rc =
+        sweep_proc_start(p, index, r->crane, cc->argv, dir, sweep_log_name(s), r->time_limit);
+    free(cc);
+    return rc;
 }
 
 void sweep_case_finish(sweep_run *r, const sweep_proc *p, sweep_row *row)
 {
-    sweep_row_read(row, p->index, p->dir, &p->out);
+    sweep_row_read(r->spec, row, p->index, p->dir, &p->out);
     write_case_txt(r, p->index, p->dir, NULL, row);
 }
 

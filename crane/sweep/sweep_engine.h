@@ -29,7 +29,7 @@ extern volatile sig_atomic_t sweep_signal, sweep_signal_count;
 typedef struct sweep_run {
     const sweep_spec *spec;
     char outdir[SWEEP_PATH_SIZE]; /* absolute */
-    char crane[SWEEP_PATH_SIZE];  /* the crane program */
+    char crane[SWEEP_PATH_SIZE];  /* the program: crane, or bgsim for a model sweep */
     double time_limit;            /* s per case, 0: none */
     int jobs, quiet;
     int rank, size; /* MPI rank and size (0, 1 locally) */
@@ -51,6 +51,9 @@ void sweep_case_dir(const sweep_run *r, long index, char *buf, size_t size);
  * "running" written) and starts its crane process in p. 0, or -1 when it could not be started
  * (p->out says why; the case is over). */
 int sweep_case_start(sweep_run *r, sweep_proc *p, long index);
+/* --resume of a model sweep: the completed case in dir ran the command it would run now (case.txt)
+ * on the model file as it is now (model.yaml starts with its text) and has its results.csv. */
+int sweep_model_case_done(const sweep_run *r, long index, const char *dir);
 /* The row of the case whose process p has ended; case.txt final. */
 void sweep_case_finish(sweep_run *r, const sweep_proc *p, sweep_row *row);
 /* Keeps the row (rank 0) and appends it to sweep.csv; prints a line unless quiet. */

@@ -78,7 +78,7 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
     }
     /* plot.dat: case, status, the coordinates, the keys' values (the index for keys that are
      * not numbers), the quantities (NaN: none); a line plot's rows sorted by the key's value */
-    char path[SWEEP_PATH_SIZE + 32];
+    char path[SWEEP_PATH_SIZE + 256];
     char *dat = NULL, *gp = NULL;
     size_t dlen = 0, glen = 0;
     FILE *f = open_memstream(&dat, &dlen);
@@ -93,7 +93,7 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
     for (int p = 0; p < s->nparams; p++)
         fprintf(f, " %s", s->params[p].name);
     for (int i = 0; i < s->nreport; i++)
-        fprintf(f, " %s", sweep_quantities[s->report[i]].name);
+        fprintf(f, " %s", sweep_report_name(s, i));
     fprintf(f, "\n");
     sort_item *order = malloc((size_t)s->ncases * sizeof *order);
     if (!order) {
@@ -126,7 +126,7 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
                 fprintf(f, " %d", coord[s->params[p].axis]);
         }
         for (int i = 0; i < s->nreport; i++) {
-            double x = row->q[s->report[i]];
+            double x = sweep_report_value(s, row, i);
             if (isfinite(x)) {
                 fprintf(f, " %.10g", x);
                 if (has) has[i] = 1;
@@ -164,22 +164,23 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
     fprintf(f, "# Pictures of the sweep %s from plot.dat; run in this folder: gnuplot plots.gp\n",
             name);
     fprintf(f, "set terminal png size 900,650 noenhanced\n");
-    char names[SWEEP_MAX_REPORT][80];
+    char names[SWEEP_MAX_REPORT][180];
     int nnames = 0, skipped = 0;
     for (int i = 0; i < s->nreport; i++) {
-        const sweep_quantity *q = &sweep_quantities[s->report[i]];
+        const char *qname = sweep_report_name(s, i), *qunit = sweep_report_unit(s, i),
+                   *qstem = sweep_report_stem(s, i);
         if (!has[i]) { /* no case has it (e.g. pressures without hydraulics) */
             skipped++;
             continue;
         }
-        char label[160], title[400];
-        snprintf(label, sizeof label, "%s%s%s%s", q->name, q->unit[0] ? " [" : "", q->unit,
-                 q->unit[0] ? "]" : "");
+        char label[200], title[500];
+        snprintf(label, sizeof label, "%s%s%s%s", qname, qunit[0] ? " [" : "", qunit,
+                 qunit[0] ? "]" : "");
         snprintf(title, sizeof title, "%s, sweep %s%s", label, name,
                  incomplete ? " (cases without a value: see sweep.csv)" : "");
-        snprintf(names[nnames++], sizeof names[0], "plot_%s.png", q->name);
+        snprintf(names[nnames++], sizeof names[0], "plot_%s.png", qstem);
         int col = cq + i;
-        fprintf(f, "\nreset\nset output 'plot_%s.png'\nset title '%s'\n", q->name, title);
+        fprintf(f, "\nreset\nset output 'plot_%s.png'\nset title '%s'\n", qstem, title);
         if (kind == LINE) {
             const sweep_param *p = &s->params[0];
             fprintf(f, "set grid\nset xlabel '%s'\nset ylabel '%s'\n", p->name, label);
@@ -231,7 +232,7 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
         return 0;
     }
     for (int i = 0; i < nnames; i++) { /* no picture of an earlier sweep stands for this one */
-        snprintf(path, sizeof path, "%s/%s", outdir, names[i]);
+        snprintf(path, sizeof path, "%s/%.179s", outdir, names[i]);
         unlink(path);
     }
     /* gnuplot plots.gp in the output folder (pu_gnuplot.h: started as the cases are, by
@@ -242,7 +243,7 @@ int sweep_plot(const sweep_spec *s, const sweep_row *rows, const char *outdir, i
     char missing[512] = "", first[256] = "";
     size_t ml = 0;
     for (int i = 0; i < nnames; i++) {
-        snprintf(path, sizeof path, "%s/%s", outdir, names[i]);
+        snprintf(path, sizeof path, "%s/%.179s", outdir, names[i]);
         if (pu_png_whole(path))
             (*nfig)++;
         else if (ml < sizeof missing)

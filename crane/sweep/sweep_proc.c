@@ -24,7 +24,7 @@ double sweep_now(void)
 }
 
 int sweep_proc_start(sweep_proc *p, long index, const char *exe, char *const argv[],
-                     const char *dir, double time_limit)
+                     const char *dir, const char *log_name, double time_limit)
 {
     memset(p, 0, sizeof *p);
     p->index = index;
@@ -32,7 +32,7 @@ int sweep_proc_start(sweep_proc *p, long index, const char *exe, char *const arg
     p->out.time_limit = time_limit;
     snprintf(p->dir, sizeof p->dir, "%s", dir);
     char log[sizeof p->dir + 16];
-    snprintf(log, sizeof log, "%s/crane.log", dir);
+    snprintf(log, sizeof log, "%s/%s", dir, log_name);
     posix_spawn_file_actions_t fa;
     posix_spawnattr_t at;
     int e = posix_spawn_file_actions_init(&fa);

@@ -25,10 +25,10 @@ typedef struct sweep_proc {
 double sweep_now(void); /* monotonic clock, s */
 
 /* Starts exe with argv (argv[0] first, NULL last) for case index in folder dir (which exists),
- * its output into dir/crane.log. 0, or -1 with p->out.started = 0 and p->out.errno_start (p is
- * then free: the case is over). */
+ * its output into dir/log (crane.log, bgsim.log). 0, or -1 with p->out.started = 0 and
+ * p->out.errno_start (p is then free: the case is over). */
 int sweep_proc_start(sweep_proc *p, long index, const char *exe, char *const argv[],
-                     const char *dir, double time_limit);
+                     const char *dir, const char *log, double time_limit);
 /* Checks the process: its time limit, whether it ended. 1 when it has ended (p->out filled, p
  * free again), 0 while it runs. */
 int sweep_proc_poll(sweep_proc *p);

@@ -29,6 +29,30 @@ const sweep_quantity sweep_quantities[SWEEP_NQ] = {
     {"wall_s", "s", "wall time of the case's crane process", 0, 1},
 };
 
+const char *sweep_report_name(const sweep_spec *s, int i)
+{
+    int q = s->report[i];
+    return q < SWEEP_NQ ? sweep_quantities[q].name : s->mq[q - SWEEP_NQ].name;
+}
+
+const char *sweep_report_unit(const sweep_spec *s, int i)
+{
+    int q = s->report[i];
+    return q < SWEEP_NQ ? sweep_quantities[q].unit : "";
+}
+
+const char *sweep_report_stem(const sweep_spec *s, int i)
+{
+    int q = s->report[i];
+    return q < SWEEP_NQ ? sweep_quantities[q].name : s->mq[q - SWEEP_NQ].stem;
+}
+
+double sweep_report_value(const sweep_spec *s, const sweep_row *row, int i)
+{
+    int q = s->report[i];
+    return q < SWEEP_NQ ? row->q[q] : row->mq[q - SWEEP_NQ];
+}
+
 int sweep_quantity_index(const char *name)
 {
     for (int q = 0; q < SWEEP_NQ; q++)
@@ -297,6 +321,8 @@ static void row_init(sweep_row *row, long index)
     row->t_reached = NAN;
     for (int q = 0; q < SWEEP_NQ; q++)
         row->q[q] = NAN;
+    for (int q = 0; q < SWEEP_MAX_REPORT; q++)
+        row->mq[q] = NAN;
 }
 
 void sweep_row_not_run(sweep_row *row, long index, const char *why)
@@ -306,13 +332,24 @@ void sweep_row_not_run(sweep_row *row, long index, const char *why)
     set_message(row, "%s", why);
 }
 
-void sweep_row_read(sweep_row *row, long index, const char *dir, const sweep_outcome *o)
+/* The figures of a completed case's results.csv: the crane's quantities or the model's. */
+static void read_figures(const sweep_spec *s, const char *dir, sweep_row *row)
 {
+    if (s->is_model)
+        sweep_model_results(s, dir, row->mq);
+    else
+        read_results(dir, row->q);
+}
+
+void sweep_row_read(const sweep_spec *s, sweep_row *row, long index, const char *dir,
+                    const sweep_outcome *o)
+{
+    const char *prog = sweep_program(s);
     row_init(row, index);
     char status_path[SWEEP_DIR_SIZE + 32], log_path[SWEEP_DIR_SIZE + 32],
         stats_path[SWEEP_DIR_SIZE + 32], case_path[SWEEP_DIR_SIZE + 32];
     snprintf(status_path, sizeof status_path, "%s/status.txt", dir);
-    snprintf(log_path, sizeof log_path, "%s/crane.log", dir);
+    snprintf(log_path, sizeof log_path, "%s/%s", dir, sweep_log_name(s));
     snprintf(stats_path, sizeof stats_path, "%s/solver_stats.txt", dir);
     snprintf(case_path, sizeof case_path, "%s/case.txt", dir);
     char cstatus[64] = "", reason[1024] = "", logline[1024] = "";
@@ -329,23 +366,27 @@ void sweep_row_read(sweep_row *row, long index, const char *dir, const sweep_out
         row->q[SQ_STEPS] = solver_steps(stats_path);
         row->q[SQ_CPU_S] = field_number(case_path, "cpu_s");
         row->q[SQ_WALL_S] = field_number(case_path, "wall_s");
-        read_results(dir, row->q);
+        read_figures(s, dir, row);
         return;
     }
     row->q[SQ_CPU_S] = o->cpu_s;
     row->q[SQ_WALL_S] = o->wall_s;
     if (!o->started) {
         row->status = SWEEP_FAILED;
-        set_message(row, "the crane program could not be started: %s", strerror(o->errno_start));
+        set_message(row, "the %s program could not be started: %s", prog,
+                    strerror(o->errno_start));
         return;
     }
     int ws = o->wait_status, code = -1, sig = 0;
     if (WIFEXITED(ws)) code = WEXITSTATUS(ws);
     if (WIFSIGNALED(ws)) sig = WTERMSIG(ws);
     row->exit_code = code >= 0 ? code : 128 + sig;
-    if (code == 2) { /* refused: the crane wrote nothing (the folder's files are not its) */
+    if (code == 2) { /* refused: the program wrote nothing (the folder's files are not its) */
         row->status = SWEEP_INVALID;
-        set_message(row, "%s", logline[0] ? logline : "the crane refused the case (exit status 2)");
+        if (logline[0])
+            set_message(row, "%s", logline);
+        else
+            set_message(row, "the %s refused the case (exit status 2)", prog);
         return;
     }
     row->t_reached = tr;
@@ -371,14 +412,14 @@ void sweep_row_read(sweep_row *row, long index, const char *dir, const sweep_out
     }
     if (sig) {
         row->status = SWEEP_CRASHED;
-        set_message(row, "the crane was ended by %s (signal %d)%s%s", sig_name(sig), sig,
+        set_message(row, "the %s was ended by %s (signal %d)%s%s", prog, sig_name(sig), sig,
                     !strcmp(cstatus, "running") ? "; status.txt still says running" : "",
                     isfinite(tr) ? at : "");
         return;
     }
     if (code == 0 && !strcmp(cstatus, "completed")) {
         row->status = SWEEP_COMPLETED;
-        read_results(dir, row->q);
+        read_figures(s, dir, row);
         return;
     }
     if (code > 128 && code < 128 + 65) {
@@ -388,13 +429,13 @@ void sweep_row_read(sweep_row *row, long index, const char *dir, const sweep_out
     }
     if (code == 126 || code == 127) {
         row->status = SWEEP_FAILED;
-        set_message(row, "the crane program could not be run (exit status %d)%s%s", code,
+        set_message(row, "the %s program could not be run (exit status %d)%s%s", prog, code,
                     logline[0] ? ": " : "", logline);
         return;
     }
     if (!strcmp(cstatus, "running") || !cstatus[0]) {
         row->status = SWEEP_CRASHED;
-        set_message(row, "the crane ended with exit status %d %s%s%s", code,
+        set_message(row, "the %s ended with exit status %d %s%s%s", prog, code,
                     cstatus[0] ? "and status.txt still saying running" : "without a status.txt",
                     logline[0] ? ": " : "", logline);
         return;
@@ -453,7 +494,7 @@ int sweep_csv_header(const sweep_spec *s, char *buf, size_t size)
         put(buf, size, &len, ",%s", s->params[p].name);
     put(buf, size, &len, ",status,message,t_reached");
     for (int i = 0; i < s->nreport; i++)
-        put(buf, size, &len, ",%s", sweep_quantities[s->report[i]].name);
+        put(buf, size, &len, ",%s", sweep_report_name(s, i));
     put(buf, size, &len, "\n");
     return len < size ? (int)len : -1;
 }
@@ -474,7 +515,7 @@ int sweep_csv_row(const sweep_spec *s, const sweep_row *row, char *buf, size_t s
         put(buf, size, &len, ",");
     for (int i = 0; i < s->nreport; i++) {
         int q = s->report[i];
-        double x = row->q[q];
+        double x = sweep_report_value(s, row, i);
         if (!isfinite(x))
             put(buf, size, &len, ",");
         else if (q == SQ_STEPS)

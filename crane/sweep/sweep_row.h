@@ -66,6 +66,7 @@ typedef struct sweep_row {
     int exit_code;                    /* the crane's exit status, 128 + N for signal N, -1 none */
     double t_reached;                 /* s (NaN: unknown) */
     double q[SWEEP_NQ];               /* NaN: not available */
+    double mq[SWEEP_MAX_REPORT];      /* a model sweep's FUNC(COLUMN) quantities (spec->mq) */
     char message[SWEEP_MESSAGE_SIZE]; /* one line */
 } sweep_row;
 
@@ -81,9 +82,19 @@ typedef struct sweep_outcome {
     double cpu_s, wall_s;
 } sweep_outcome;
 
-/* The row of case index whose files are in dir, after the process ended as o (o NULL: a case
- * found completed by --resume: cpu_s and wall_s from case.txt). */
-void sweep_row_read(sweep_row *row, long index, const char *dir, const sweep_outcome *o);
+/* The reported quantity report[i] of a sweep: its name (sweep.csv's header), unit, the stem of
+ * its picture's file (plot_<stem>.png) and its value in a row. */
+const char *sweep_report_name(const sweep_spec *s, int i);
+const char *sweep_report_unit(const sweep_spec *s, int i);
+const char *sweep_report_stem(const sweep_spec *s, int i);
+double sweep_report_value(const sweep_spec *s, const sweep_row *row, int i);
+
+/* The row of case index of sweep s whose files are in dir, after the process ended as o (o
+ * NULL: a case found completed by --resume: cpu_s and wall_s from case.txt). */
+void sweep_row_read(const sweep_spec *s, sweep_row *row, long index, const char *dir,
+                    const sweep_outcome *o);
+/* A model sweep's quantities (s->mq) from results.csv in dir (sweep_model.c); NaN: none. */
+void sweep_model_results(const sweep_spec *s, const char *dir, double *mq);
 /* A row for a case that did not run. */
 void sweep_row_not_run(sweep_row *row, long index, const char *why);
 

@@ -4,7 +4,8 @@
  *
  * Every value is checked where its section is finished, against the scene files' own check for
  * scene keys (crane_scene_set on a scratch copy of the base scene, [set] applied), so that a
- * message names the sweep file's line; the axes are finished in sweep_axes.c. */
+ * message names the sweep file's line; the axes are finished in sweep_axes.c. A model sweep
+ * ([sweep] model) has its base, [set] and quantities checked in sweep_model.c. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include <ctype.h>
 #include <stdio.h>
@@ -20,7 +21,9 @@
 /* ------------------------------------------------------------ the sections ---- */
 
 const char *const SEC_NAMES[NSEC + 1] = {"sweep", "set", "axis", "lhs", NULL};
-const char *const SWEEP_KEYS[] = {"name", "scene", "time_limit", "report", "case_figures", NULL};
+const char *const SWEEP_KEYS[] = {"name",         "scene", "time_limit", "report",
+                                  "case_figures", "model", "quantities", "t_end",
+                                  NULL};
 const char *const AXIS_KEYS[] = {"key", "values", "from", "to", "count", "spacing", NULL};
 const char *const LHS_KEYS[] = {"samples", "seed", NULL}; /* and SECTION.KEY */
 
@@ -167,10 +170,69 @@ static int resolve_scene(const char *arg, const char *dir, const char *const *ro
 
 /* ------------------------------------------------------- [sweep] and [set] ---- */
 
+/* The keys of one kind of sweep given in the other: refused, naming the other's key. */
+static int foreign_keys(parse_ctx *c, raw_section *r, int model)
+{
+    static const char *const crane_only[] = {"scene", "report", "case_figures", NULL},
+                             *const model_only[] = {"quantities", "t_end", NULL};
+    const char *const *keys = model ? crane_only : model_only;
+    for (int i = 0; r && keys[i]; i++) {
+        raw_kv *kv = spec_get(r, keys[i]);
+        if (!kv) continue;
+        if (model)
+            return spec_fail_line(c, kv->line,
+                                  "key '%s' in [sweep]: a sweep of a model file (key 'model') "
+                                  "has no %s%s",
+                                  kv->key, kv->key,
+                                  strcmp(kv->key, "report")
+                                      ? " (bgsim runs a model file; the crane a scene)"
+                                      : ": name its quantities with 'quantities = max(COLUMN), "
+                                        "...'");
+        return spec_fail_line(c, kv->line,
+                              "key '%s' in [sweep]: only a sweep of a model file (key 'model') "
+                              "has %s%s",
+                              kv->key, kv->key,
+                              strcmp(kv->key, "t_end")
+                                  ? "; a scene's sweep names its quantities with 'report'"
+                                  : "; a scene's sweep sets solver.t_end in [set]");
+    }
+    return 0;
+}
+
+/* The base scene ([sweep] scene kv, default paper) resolved and loaded into base. */
+static int base_scene(parse_ctx *c, raw_kv *kv, const char *dir, const char *const *roots,
+                      crane_scene *base)
+{
+    sweep_spec *s = c->s;
+    char tried[2048];
+    snprintf(s->scene_arg, sizeof s->scene_arg, "%s", kv ? kv->value : "paper");
+    if (!s->scene_arg[0]) return spec_bad_value(c, kv, "sweep", "a scene file or a scene's name");
+    if (!resolve_scene(s->scene_arg, dir, roots, s->scene_path, sizeof s->scene_path, tried,
+                       sizeof tried))
+        return spec_fail_line(c, kv ? kv->line : 0, "%s '%s': scene file not found (tried %s)",
+                              kv ? "key 'scene' in [sweep]" : "the base scene (default)",
+                              s->scene_arg, tried);
+    bg_error e = {0};
+    int nkeys = 0;
+    if (crane_scene_load_counted(base, s->scene_path, &nkeys, &e) != BG_OK)
+        return spec_fail_line(c, kv ? kv->line : 0, "key 'scene' in [sweep]: the base scene: %s",
+                              e.message);
+    return 0;
+}
+
 static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, crane_scene *base)
 {
     sweep_spec *s = c->s;
     raw_kv *kv;
+    raw_kv *kmodel = r ? spec_get(r, "model") : NULL;
+    if (foreign_keys(c, r, kmodel != NULL)) return -1;
+    char dir[SWEEP_PATH_SIZE]; /* the sweep file's folder */
+    snprintf(dir, sizeof dir, "%s", c->file);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
     if (r && (kv = spec_get(r, "name")) != NULL) {
         crane_scene tmp;
         crane_scene_default(&tmp);
@@ -194,8 +256,14 @@ static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, 
             return spec_bad_value(c, kv, "sweep", "a boolean (true/false, yes/no, on/off, 1/0)");
         s->case_figures = v;
     }
+    if (r && (kv = spec_get(r, "t_end")) != NULL &&
+        (!pu_ini_parse_double(kv->value, &s->t_end) || !(s->t_end > 0)))
+        return spec_bad_value(c, kv, "sweep", "a number > 0 (s; bgsim --t-end)");
     s->nreport = 0;
-    if (r && (kv = spec_get(r, "report")) != NULL) {
+    if (kmodel) { /* the model file, its quantities */
+        if (spec_model_base(c, kmodel, dir) || spec_model_quantities(c, spec_get(r, "quantities")))
+            return -1;
+    } else if (r && (kv = spec_get(r, "report")) != NULL) {
         const char *p = kv->value;
         for (int i = 1;; i++) {
             const char *e = strchr(p, ',');
@@ -229,27 +297,7 @@ static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, 
         for (int q = 0; q < SWEEP_NQ; q++)
             if (sweep_quantities[q].is_default) s->report[s->nreport++] = q;
     }
-    /* the base scene */
-    kv = r ? spec_get(r, "scene") : NULL;
-    snprintf(s->scene_arg, sizeof s->scene_arg, "%s", kv ? kv->value : "paper");
-    char dir[SWEEP_PATH_SIZE], tried[2048];
-    snprintf(dir, sizeof dir, "%s", c->file);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(dir, sizeof dir, ".");
-    if (!s->scene_arg[0]) return spec_bad_value(c, kv, "sweep", "a scene file or a scene's name");
-    if (!resolve_scene(s->scene_arg, dir, roots, s->scene_path, sizeof s->scene_path, tried,
-                       sizeof tried))
-        return spec_fail_line(c, kv ? kv->line : 0, "%s '%s': scene file not found (tried %s)",
-                              kv ? "key 'scene' in [sweep]" : "the base scene (default)",
-                              s->scene_arg, tried);
-    bg_error e = {0};
-    int nkeys = 0;
-    if (crane_scene_load_counted(base, s->scene_path, &nkeys, &e) != BG_OK)
-        return spec_fail_line(c, kv ? kv->line : 0, "key 'scene' in [sweep]: the base scene: %s",
-                              e.message);
+    if (!kmodel && base_scene(c, r ? spec_get(r, "scene") : NULL, dir, roots, base)) return -1;
     if (!s->name[0]) { /* the sweep file's name without .ini */
         const char *b = strrchr(c->file, '/');
         b = b ? b + 1 : c->file;
@@ -269,6 +317,7 @@ static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, 
 static int finish_set(parse_ctx *c, raw_section *r, crane_scene *base)
 {
     sweep_spec *s = c->s;
+    if (s->is_model) return spec_model_set(c, r);
     for (int i = 0; i < r->n; i++) {
         raw_kv *kv = &r->kv[i];
         const crane_scene_key *k = spec_scene_key(c, kv->key, kv->line, "[set]");
@@ -296,7 +345,8 @@ static int finish_set(parse_ctx *c, raw_section *r, crane_scene *base)
 int spec_finish(parse_ctx *c, const char *const *roots)
 {
     sweep_spec *s = c->s;
-    crane_scene base;
+    static const crane_scene zero;
+    crane_scene base = zero; /* a model sweep has none */
     raw_section *sw = NULL, *set = NULL;
     for (int i = 0; i < c->nraw; i++) {
         if (c->raw[i].kind == SEC_SWEEP) sw = &c->raw[i];
@@ -314,9 +364,9 @@ int spec_finish(parse_ctx *c, const char *const *roots)
                               "an [lhs] sample");
     if (s->nsets + s->nparams > SWEEP_MAX_SETS)
         return spec_fail_line(c, 0,
-                              "[set] and the swept keys are %d keys, more than the crane's %d "
+                              "[set] and the swept keys are %d keys, more than the %s's %d "
                               "(--set)",
-                              s->nsets + s->nparams, SWEEP_MAX_SETS);
+                              s->nsets + s->nparams, sweep_program(s), SWEEP_MAX_SETS);
     double n = 1;
     for (int a = 0; a < s->naxes; a++)
         n *= s->axes[a].npoints;
@@ -327,7 +377,7 @@ int spec_finish(parse_ctx *c, const char *const *roots)
     /* every sampled value against its key's range (the interval's ends were checked) */
     for (int a = 0; a < s->naxes; a++) {
         sweep_axis *ax = &s->axes[a];
-        if (ax->kind != SWEEP_AXIS_LHS) continue;
+        if (ax->kind != SWEEP_AXIS_LHS || s->is_model) continue; /* a model's: the ends */
         for (int i = 0; i < ax->npoints; i++)
             for (int j = 0; j < ax->nparams; j++) {
                 sweep_param *pp = &s->params[ax->param[j]];

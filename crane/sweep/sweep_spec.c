@@ -103,10 +103,10 @@ static int record_key(parse_ctx *c, const char *name, const char *value)
     }
     raw_section *r = &c->raw[c->cur];
     const char *sec = SEC_NAMES[r->kind];
-    const char *const *known = r->kind == SEC_SWEEP  ? SWEEP_KEYS
-                               : r->kind == SEC_AXIS ? AXIS_KEYS
-                                                     : LHS_KEYS;
-    int scene_key = r->kind == SEC_SET || (r->kind == SEC_LHS && spec_is_scene_key_name(name));
+    const char *const *known = r->kind == SEC_SWEEP ? SWEEP_KEYS : AXIS_KEYS;
+    /* [lhs]: every key is recorded; spec_finish_lhs tells its own from the sampled ones (a
+     * model sweep's parameters need not be SECTION.KEY) */
+    int scene_key = r->kind == SEC_SET || r->kind == SEC_LHS;
     if (!scene_key) {
         int found = 0;
         for (int i = 0; known[i] && !found; i++)
@@ -116,13 +116,7 @@ static int record_key(parse_ctx *c, const char *name, const char *value)
             char all[160];
             const char *near = spec_nearest(name, known, &d);
             spec_join(known, "", "", all, sizeof all);
-            if (r->kind == SEC_LHS)
-                spec_fail_line(
-                    c, c->line,
-                    "unknown key '%s' in [lhs]; did you mean '%s'? (keys of [lhs]: %s, and "
-                    "the sampled scene keys as SECTION.KEY = LO, HI)",
-                    name, near, all);
-            else if (r->kind == SEC_AXIS && spec_is_scene_key_name(name))
+            if (r->kind == SEC_AXIS && spec_is_scene_key_name(name))
                 spec_fail_line(c, c->line,
                                "unknown key '%s' in [axis]: an axis names its scene key with "
                                "'key = %s' and its values with 'values' or 'from', 'to', 'count'",
@@ -219,6 +213,7 @@ int sweep_spec_parse(sweep_spec *s, const char *text, const char *file,
     c->err = err;
     c->errsize = errsize;
     int rc = read_lines(c, text) != 0 ? -1 : spec_finish(c, scene_roots);
+    free(c->outputs);
     free(c);
     return rc;
 }

@@ -10,14 +10,26 @@
  *                                          file's name without .ini)
  *             scene         text           the base scene: a file (relative to the sweep file's
  *                                          folder) or a name in crane/scenes/ (default paper)
+ *             model         text           or a model file (relative to the sweep file's folder):
+ *                                          the cases are bgsim runs (sweep_model.c: the keys are
+ *                                          the model's parameters PARAM or PATH.PARAM as bgsim
+ *                                          --set takes them, the values expressions)
+ *             quantities    list           a model sweep's summary quantities: FUNC(COLUMN) or
+ *                                          FUNC(abs(COLUMN)) of results.csv's columns, FUNC one of
+ *                                          max, min, end, mean, rms, maxabs; and steps, cpu_s,
+ *                                          wall_s (default: end(C) of every output, steps, cpu_s)
+ *             t_end         number > 0     a model sweep's end time (bgsim --t-end; default the
+ *                                          model file's)
  *             time_limit    number >= 0    s of wall time per case (0: none; default 0); a case
  *                                          still running then gets SIGTERM, 5 s later SIGKILL
  *             report        names          the summary quantities of sweep.csv, in order, from
  *                                          the table of sweep_row.h (default: all but
  *                                          theta_err_end, p_min, rope_force_max, wall_s)
  *             case_figures  boolean        each case draws the crane's figures (default false)
- *   [set]     SECTION.KEY = VALUE          a scene key for every case (as crane --set)
- *   [axis]    key           SECTION.KEY    the swept scene key (repeat [axis] for more axes)
+ *   [set]     SECTION.KEY = VALUE          a scene key for every case (as crane --set; a model
+ *                                          sweep's PARAM or PATH.PARAM = VALUE, as bgsim --set)
+ *   [axis]    key           SECTION.KEY    the swept scene key (repeat [axis] for more axes; a
+ *                                          model sweep's PARAM or PATH.PARAM)
  *             values        list           the values: "0.5, 1, 2" (vectors: "0,0,1 | 0,0,2")
  *             from, to      numbers        or a range: count values from .. to (to included)
  *             count         1..100000
@@ -81,15 +93,34 @@ typedef struct sweep_axis {
 } sweep_axis;
 
 typedef struct sweep_set {
-    char section[64], key[64], value[SWEEP_VALUE_SIZE];
+    char section[64], key[64], value[SWEEP_VALUE_SIZE]; /* a model's: section "", key PATH */
     int line;
 } sweep_set;
+
+/* A model sweep's summary quantity FUNC(COLUMN) of results.csv (sweep_model.c). */
+typedef enum sweep_mfunc {
+    SWEEP_MF_MAX,
+    SWEEP_MF_MIN,
+    SWEEP_MF_END,
+    SWEEP_MF_MEAN,
+    SWEEP_MF_RMS,
+    SWEEP_MF_MAXABS
+} sweep_mfunc;
+typedef struct sweep_mquantity {
+    int func;        /* sweep_mfunc */
+    int absval;      /* FUNC(abs(COLUMN)) */
+    char column[64]; /* an output of the model, or t */
+    char name[160];  /* "max(abs(z))": sweep.csv's header */
+    char stem[160];  /* "max_abs_z": the picture's file plot_<stem>.png */
+} sweep_mquantity;
 
 typedef struct sweep_spec {
     char path[SWEEP_PATH_SIZE];       /* the sweep file as given */
     char name[64];                    /* [sweep] name */
-    char scene_arg[SWEEP_PATH_SIZE];  /* [sweep] scene as written */
+    int is_model;                     /* [sweep] model: the cases are bgsim runs */
+    char scene_arg[SWEEP_PATH_SIZE];  /* [sweep] scene (or model) as written */
     char scene_path[SWEEP_PATH_SIZE]; /* resolved, absolute */
+    double t_end;                     /* a model sweep's --t-end (0: the file's) */
     double time_limit;                /* s, 0: none */
     int case_figures;
     int nsets;
@@ -99,7 +130,9 @@ typedef struct sweep_spec {
     int naxes;
     sweep_axis axes[SWEEP_MAX_AXES];
     int nreport;
-    int report[SWEEP_MAX_REPORT]; /* quantity indices (sweep_row.h) */
+    int report[SWEEP_MAX_REPORT]; /* quantity indices (sweep_row.h); SWEEP_NQ + i: mq[i] */
+    int nmq;
+    sweep_mquantity mq[SWEEP_MAX_REPORT]; /* a model sweep's FUNC(COLUMN) quantities */
     int lhs_samples;
     unsigned long long seed;
     long ncases;
@@ -126,9 +159,13 @@ const char *sweep_case_value(const sweep_spec *s, long c, int p);
 /* The scene of case c: the base scene, [set], the case's values (0, or -1 with err: the scene
  * is inconsistent or the base scene cannot be read). */
 int sweep_case_scene(const sweep_spec *s, long c, crane_scene *scene, char *err, size_t errsize);
-/* "SECTION.KEY=VALUE" for the crane's --set: [set] first, then the case's values; returns the
- * count (<= SWEEP_MAX_SETS), each item of size SWEEP_VALUE_SIZE + 140. */
+/* "SECTION.KEY=VALUE" for the crane's --set ("PATH=VALUE" for bgsim's): [set] first, then the
+ * case's values; returns the count (<= SWEEP_MAX_SETS), each item of size SWEEP_VALUE_SIZE + 140. */
 #define SWEEP_SET_ARG_SIZE (SWEEP_VALUE_SIZE + 140)
 int sweep_case_set_args(const sweep_spec *s, long c, char (*out)[SWEEP_SET_ARG_SIZE]);
+
+/* The program a case runs ("crane" or "bgsim") and its log in the case's folder. */
+const char *sweep_program(const sweep_spec *s);
+const char *sweep_log_name(const sweep_spec *s);
 
 #endif

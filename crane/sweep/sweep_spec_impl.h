@@ -9,6 +9,8 @@
  *                   scene, [sweep] and [set], and the whole file checked (spec_finish)
  *   sweep_axes.c    the axes: value lists, ranges, the Latin-hypercube sample; the cases as
  *                   their product (sweep_case_*)
+ *   sweep_model.c   a model sweep ([sweep] model): the model file, its parameters' values checked
+ *                   by loading the model with them, the quantities FUNC(COLUMN)
  *
  * The parser only records; the schema checks afterwards, so that a section's keys may come in
  * any order. Every check fails through spec_fail_line, which keeps the first message only. */
@@ -58,6 +60,8 @@ typedef struct parse_ctx {
     raw_section raw[NRAW];
     char *err;
     size_t errsize;
+    char (*outputs)[64]; /* a model sweep: t and the model's outputs (results.csv's columns) */
+    int noutputs;
 } parse_ctx;
 
 /* ------------------------------------------------ sweep_spec.c: the parser ---- */
@@ -99,5 +103,23 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base);
 /* The [lhs] section -> the last axis: its keys sampled together (the interval's ends checked
  * against base; the samples are checked by spec_finish). */
 int spec_finish_lhs(parse_ctx *c, raw_section *r, const crane_scene *base);
+
+/* ------------------------------------------ sweep_model.c: a model sweep ---- */
+
+/* [sweep] model = FILE: the file (relative to dir, the sweep file's folder) loaded, its outputs
+ * kept in c->outputs; s->is_model set. 0, or -1 with the error recorded. */
+int spec_model_base(parse_ctx *c, const raw_kv *kv, const char *dir);
+/* [set] of a model sweep: PATH = VALUE lines, each checked by loading the model with it and the
+ * lines before it. */
+int spec_model_set(parse_ctx *c, raw_section *r);
+/* name is a parameter's path as bgsim --set takes it (the characters; whether the model has it
+ * is the load's check). 0, or -1 with the error recorded ("WHERE: ..."). */
+int spec_model_path(parse_ctx *c, const char *name, int line, const char *where);
+/* value for the parameter at path, checked by loading the model with [set] and it; what leads
+ * the message. 0, or -1 with the error recorded. */
+int spec_check_model_value(parse_ctx *c, const char *path, const char *value, int line,
+                           const char *what);
+/* [sweep] quantities (kv NULL: the default) of a model sweep into s->report and s->mq. */
+int spec_model_quantities(parse_ctx *c, const raw_kv *kv);
 
 #endif
