@@ -13,8 +13,8 @@
  *     against crane_outputs, column by column (tip_defl_1 and alpha_err aside, see
  *     docs/crane.md "The crane as a model file");
  *   - a run over the scene's 20 s with each model's own solver options (the file's by
- *     mdl_dae_options, the C crane's by crane_solver_setup): the step counts within the spread
- *     that rounding alone gives (see main; two diagnostic runs measure it), and for the
+ *     mdl_dae_options, the C crane's by crane_solver_setup): the step counts within 1 % (see
+ *     main: what rounding alone does to them, two diagnostic runs measure it), and for the
  *     file's run the acceptance figures of test_crane_paper.c (mean tip radius within
  *     0.5 %, theta(12 s) within 0.05 rad of 5 rad, |omega - omega_r| <= 0.05 rad/s throughout
  *     and |omega| <= 2 % of the plateau rate from 13 s on, the line pressures in 0 .. 35 MPa).
@@ -375,14 +375,16 @@ static void compare(const char *label, const char *scene, const char *file, doub
 
 int main(void)
 {
-    /* The step counts of a 20 s run depend on the rounding of its solves, not on the model
-     * alone: the C crane from its own start moved by 2 ulp took 1 % more steps (paper) and 11 %
-     * more (paper-undamped, the solver's hard case: no damping, a fast drive); the file's model
-     * from the C crane's very start (the unknowns numbered in the file's order) 4 % fewer and
-     * 20 % more (docs/crane.md, "The crane as a model file"). A bound of 1 % would test the
-     * rounding; the bounds are those spreads with a margin: 5 % and 25 %. */
-    compare("paper", CRANE_SCENES_DIR "/paper.ini", CRANE_MODELS_DIR "/paper.yaml", 0.05);
+    /* The step counts within 1 % of the C crane's (the target of the issue "Models as files";
+     * measured +0.10 % and -0.50 %). They depend on the rounding of the solves as well as on the
+     * model: the C crane from its own start moved by 2 ulp takes 1.0 % more steps (paper) and
+     * 11 % more (paper-undamped, the solver's hard case: no damping, a fast drive), and the
+     * file's model from the C crane's very start (only the unknowns' order differs) 2.3 % and
+     * 9.5 % more; this test prints those two diagnostic runs. So a change of the library's
+     * arithmetic may move the counts past 1 % without any difference between the two models:
+     * judge a failure by those runs (docs/crane.md, "The crane as a model file"). */
+    compare("paper", CRANE_SCENES_DIR "/paper.ini", CRANE_MODELS_DIR "/paper.yaml", 0.01);
     compare("paper-undamped", CRANE_SCENES_DIR "/paper-undamped.ini",
-            CRANE_MODELS_DIR "/paper-undamped.yaml", 0.25);
+            CRANE_MODELS_DIR "/paper-undamped.yaml", 0.01);
     return tap_done();
 }
