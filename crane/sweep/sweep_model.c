@@ -331,20 +331,7 @@ void sweep_model_results(const sweep_spec *s, const char *dir, double *mq)
         mx[i] = -INFINITY, mn[i] = INFINITY, last[i] = prev[i] = NAN, i1[i] = i2[i] = 0,
         bad[i] = col[i] < 0;
     while (v && tcol >= 0 && getline(&line, &cap, f) > 0) {
-        char *p = line;
-        int k = 0;
-        for (; k < ncols; k++) {
-            char *end;
-            v[k] = strtod(p, &end);
-            if (end == p) v[k] = NAN;
-            p = strchr(end, ',');
-            if (!p) {
-                k++;
-                break;
-            }
-            p++;
-        }
-        if (k < ncols) continue; /* not a whole row */
+        if (sweep_parse_row(line, v, ncols) < ncols) continue; /* not a whole row */
         double t = v[tcol];
         if (rows == 0) t0 = t;
         for (int i = 0; i < s->nmq; i++) {

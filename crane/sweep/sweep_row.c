@@ -218,6 +218,21 @@ static void upd_min(double *m, double x)
     if (isfinite(x) && (!isfinite(*m) || x < *m)) *m = x;
 }
 
+int sweep_parse_row(const char *line, double *v, int ncols)
+{
+    const char *p = line;
+    int k = 0;
+    for (; k < ncols; k++) {
+        char *end;
+        v[k] = strtod(p, &end);
+        if (end == p) v[k] = NAN;
+        p = strchr(end, ',');
+        if (!p) return k + 1;
+        p++;
+    }
+    return k;
+}
+
 /* The figures of results.csv (columns found by their names in the header). */
 static void read_results(const char *dir, double *q)
 {
@@ -250,20 +265,7 @@ static void read_results(const char *dir, double *q)
         last[i] = NAN;
     double omax = NAN, d1 = NAN, d2 = NAN, ph = NAN, pl = NAN, pmin = NAN, rope = NAN;
     while (v && getline(&line, &cap, f) > 0) {
-        char *p = line;
-        int k = 0;
-        for (; k < ncols; k++) {
-            char *end;
-            v[k] = strtod(p, &end);
-            if (end == p) v[k] = NAN;
-            p = strchr(end, ',');
-            if (!p) {
-                k++;
-                break;
-            }
-            p++;
-        }
-        if (k < ncols) continue; /* not a whole row */
+        if (sweep_parse_row(line, v, ncols) < ncols) continue; /* not a whole row */
         rows++;
 #define V(c) (col[c] >= 0 ? v[col[c]] : NAN)
         for (int i = 0; i < NCOL; i++)

@@ -106,5 +106,8 @@ int sweep_csv_row(const sweep_spec *s, const sweep_row *row, char *buf, size_t s
 
 /* The first line of the file's "key: value" line for key (e.g. "status"), or "" (0). */
 int sweep_read_field(const char *path, const char *key, char *value, size_t size);
+/* The numbers of a results.csv line into v (ncols of them; a field that is not a number: NaN):
+ * how many fields the line has, up to ncols (fewer: not a whole row). */
+int sweep_parse_row(const char *line, double *v, int ncols);
 
 #endif
