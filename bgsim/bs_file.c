@@ -134,9 +134,11 @@ int bs_run_file(const char *program, const bs_options *o, int argc, char **argv,
         return rc;
     }
     run_in_folder(&r, o, x);
+    rn_estimate_free(&r.rn); /* before the model its problem calls */
     dae_free(&r.rn.s);
     mdl_free(&r.mm);
     free(r.rn.csv_buf);
     free(r.final_out);
+    free(r.names);
     return rn_exit_status(&r.rn, 0);
 }
