@@ -321,6 +321,7 @@ int daei_ic_eval_all(dae_solver *s, double t, const double *y, const double *yp)
     int r = daei_ic_res(s, t, y, yp, s->res);
     if (r != 0) return daei_ic_cb_fail(s, r, "residual");
     r = daei_eval_jac(s, t, y, yp, s->res);
+    if (r != 0 && s->reg_failed) return daei_ic_cb_fail(s, r, "regimes callback");
     if (r != 0) {
         char tb[96], eb[192], nb[32];
         daei_when(s, t, tb, sizeof tb);
