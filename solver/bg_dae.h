@@ -83,7 +83,12 @@ typedef int (*dae_cons_fn)(void *user, double t, const double *y, double *g, sp_
 /* Event functions g(t, y, y') (nroots values): their sign changes are located. */
 typedef int (*dae_root_fn)(void *user, double t, const double *y, const double *yp, double *g);
 /* Regimes of the problem's switching characteristics at (t, y): nregimes small integers into r
- * (dae_problem.regimes). 0, or < 0 (fatal: the integration stops with DAE_CALLBACK_FAIL). */
+ * (dae_problem.regimes). Returns 0 on success; any other value is fatal: the integration (or
+ * dae_consistent_init) stops with DAE_CALLBACK_FAIL and a message that names the regimes
+ * callback and the value it returned. A value > 0 is not a request for a smaller step, as it is
+ * from the residual: the callback is asked about states the residual has accepted or is about
+ * to be evaluated at (the predictor, a converged iterate, the point of a Jacobian), and a
+ * classification of the state that fails there fails at a smaller step too. */
 typedef int (*dae_regime_fn)(void *user, double t, const double *y, int *r);
 
 typedef struct dae_problem {

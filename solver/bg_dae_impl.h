@@ -81,6 +81,7 @@ struct dae_solver {
     int *reg_jac;       /* regimes at the last Jacobian evaluation (p.nregimes) */
     int *reg_now;       /* and at the point being checked */
     int reg_valid;      /* reg_jac holds them */
+    int reg_failed;     /* the regimes callback failed last (daei_call_regimes) */
     double cjj;         /* cj at the last Jacobian evaluation (cjf without newton_dgmax) */
     int need_refactor;  /* the matrix again from the saved Jacobian at this cj (newton_dgmax) */
     int jac_current;    /* Jacobian evaluated at this step's predictor */
@@ -201,7 +202,13 @@ int daei_first_nonfinite(const double *v, int n);
 int daei_largest_weighted(const dae_solver *s, const double *v, const double *w);
 /* Residual with timing, counting and NaN detection: 0, > 0 recoverable, < 0 fatal. */
 int daei_call_res(dae_solver *s, double t, const double *y, const double *yp, double *F, int fd);
-/* Jy, Jyp at (t, y, yp); F = F(t, y, yp) is needed by the finite-difference path. */
+/* The problem's regimes at (t, y) into r (dae_problem.regimes): 0, or a fatal status (< 0) with
+ * s->note naming the regimes callback and s->reg_failed set. The callback's 0 is success and
+ * any other value is fatal (bg_dae.h, dae_regime_fn): its own status if < 0, BG_ERR_CALLBACK
+ * for one > 0. */
+int daei_call_regimes(dae_solver *s, double t, const double *y, int *r);
+/* Jy, Jyp at (t, y, yp); F = F(t, y, yp) is needed by the finite-difference path. Then the
+ * regimes the Jacobian belongs to (daei_call_regimes). */
 int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, const double *F);
 void daei_sync_stats(dae_solver *s);
 /* The time t as messages give it, relative to s->tn: "t = 0", "t = 0 (just after)" (one

@@ -132,3 +132,27 @@ const char *bg_eq_label(const dae_problem *p, int i, char *buf, size_t size)
     snprintf(buf, size, "equation %d", i);
     return buf;
 }
+
+int bg_check_nominal(const dae_problem *p, const char *where, bg_error *err)
+{
+    for (int i = 0; p->nominal && i < p->n; i++)
+        if (!(p->nominal[i] > 0 && isfinite(p->nominal[i]))) {
+            char nb[32];
+            return bg_error_raise(err, BG_ERR_ARGUMENT, where,
+                                  "the nominal magnitude of %s is %g: it must be finite and > 0",
+                                  bg_var_label(p, i, nb, sizeof nb), p->nominal[i]);
+        }
+    return BG_OK;
+}
+
+int bg_check_state(const dae_problem *p, const double *v, const char *what, int status,
+                   const char *where, bg_error *err)
+{
+    for (int i = 0; i < p->n; i++)
+        if (!isfinite(v[i])) {
+            char nb[32];
+            return bg_error_raise(err, status, where, "the %s of %s is %g: it must be finite",
+                                  what, bg_var_label(p, i, nb, sizeof nb), v[i]);
+        }
+    return BG_OK;
+}

@@ -34,4 +34,15 @@ int bg_jaceval_eval(bg_jaceval *J, double t, const double *y, const double *yp, 
 const char *bg_var_label(const dae_problem *p, int i, char *buf, size_t size);
 const char *bg_eq_label(const dae_problem *p, int i, char *buf, size_t size);
 
+/* The checks of a problem's data shared by the integrator (dae_create), the static solver and
+ * the modal analysis, so that the three refuse the same values with the same words.
+ * bg_check_nominal: every nominal magnitude (dae_problem.nominal, NULL: none) finite and > 0
+ * (they scale the absolute tolerances and the amplitudes: 0, a negative value or NaN gives
+ * weights that are not norms). bg_check_state: the n values of v (what: "starting value",
+ * "value", "derivative") finite. BG_OK, or status with a message from where that names the
+ * unknown (p->names, else y[i]) and the value. */
+int bg_check_nominal(const dae_problem *p, const char *where, bg_error *err);
+int bg_check_state(const dae_problem *p, const double *v, const char *what, int status,
+                   const char *where, bg_error *err);
+
 #endif

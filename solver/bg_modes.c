@@ -623,6 +623,46 @@ done:
 
 /* ------------------------------------------------------------------- entry ---- */
 
+/* The message of an option out of range: its name, its value and the range it must be in. */
+static int out_of_range(bg_error *err, const char *field, double value, const char *range)
+{
+    return bg_error_raise(err, BG_ERR_ARGUMENT, "dae_modes_compute",
+                          "modes options out of range: %s = %g, it must be %s", field, value,
+                          range);
+}
+
+/* Every check of dae_modes_compute's options and data, in one place: each option against its
+ * range (one test per field; the message names the field, its value and the range), then t,
+ * the problem's nominal magnitudes and the state (bg_check_nominal, bg_check_state: the
+ * integrator's rules and words; a NaN there would reach the factorization as a matrix entry).
+ * The ranges are those the methods need: a method of dae_modes_method, counts >= 1 (ncv 0: the
+ * default), tolerances >= 0 (NaN refused), a finite shift. BG_OK or the status. */
+static int check_args(const dae_problem *p, const dae_modes_options *o, double t,
+                      const double *y, const double *yp, bg_error *err)
+{
+    const char *w = "dae_modes_compute";
+    if (o->method < DAE_MODES_AUTO || o->method > DAE_MODES_SPARSE)
+        return out_of_range(err, "method", o->method,
+                            "a dae_modes_method: 0 (AUTO), 1 (DENSE) or 2 (SPARSE)");
+    if (o->dense_max < 1) return out_of_range(err, "dense_max", o->dense_max, ">= 1");
+    if (!isfinite(o->sigma)) return out_of_range(err, "sigma", o->sigma, "finite");
+    if (o->nev < 1) return out_of_range(err, "nev", o->nev, ">= 1");
+    if (o->ncv < 0) return out_of_range(err, "ncv", o->ncv, ">= 0 (0: the default)");
+    if (!(o->tol >= 0)) return out_of_range(err, "tol", o->tol, ">= 0");
+    if (o->maxiter < 1) return out_of_range(err, "maxiter", o->maxiter, ">= 1");
+    if (!(o->zero_tol >= 0)) return out_of_range(err, "zero_tol", o->zero_tol, ">= 0");
+    if (!(o->inf_tol >= 0)) return out_of_range(err, "inf_tol", o->inf_tol, ">= 0");
+    if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
+        return out_of_range(err, "linsol", (double)o->linsol,
+                            "a linear solver: 0 (LS_KLU) or 1 (LS_DENSE)");
+    if (!isfinite(t)) return bg_error_raise(err, BG_ERR_ARGUMENT, w, "t is not finite");
+    if (p->n < 1) return BG_OK; /* bg_jaceval_init refuses it */
+    int st = bg_check_nominal(p, w, err);
+    if (st == BG_OK) st = bg_check_state(p, y, "value", BG_ERR_NONFINITE, w, err);
+    if (st == BG_OK && yp) st = bg_check_state(p, yp, "derivative", BG_ERR_NONFINITE, w, err);
+    return st;
+}
+
 int dae_modes_compute(const dae_problem *p, double t, const double *y, const double *yp,
                       const dae_modes_options *opt, dae_modes **out, bg_error *err)
 {
@@ -636,17 +676,14 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     dae_modes_options od;
     if (!opt) dae_modes_options_default(&od);
     const dae_modes_options *o = opt ? opt : &od;
-    if (o->method < DAE_MODES_AUTO || o->method > DAE_MODES_SPARSE || o->dense_max < 1 ||
-        !isfinite(o->sigma) || o->nev < 1 || o->ncv < 0 || !(o->tol >= 0) || o->maxiter < 1 ||
-        !(o->zero_tol >= 0) || !(o->inf_tol >= 0) || (o->linsol != LS_KLU && o->linsol != LS_DENSE))
-        return bg_error_raise(err, BG_ERR_ARGUMENT, where, "modes options out of range");
-    if (!isfinite(t)) return bg_error_raise(err, BG_ERR_ARGUMENT, where, "t is not finite");
+    int st = check_args(p, o, t, y, yp, err);
+    if (st != BG_OK) return st;
     mctx c;
     memset(&c, 0, sizeof c);
     c.p = p;
     c.o = o;
     c.err = err;
-    int st = bg_jaceval_init(&c.J, p, err);
+    st = bg_jaceval_init(&c.J, p, err);
     if (st != BG_OK) return st;
     int n = p->n;
     dae_modes *M = calloc(1, sizeof *M);

@@ -37,7 +37,8 @@
  * summed by component path (the unknown's name cut after `depth` segments: rig/beam,
  * rig/hydraulics), and the leading unknowns (dae_modes_describe).
  *
- * Methods. Dense (up to options.dense_max differential unknowns): every eigenvalue of C by
+ * Methods. Dense (by default up to options.dense_max = 1200 differential unknowns, then
+ * sparse: DAE_MODES_AUTO): every eigenvalue of C by
  * LAPACK dgeevx with left and right eigenvectors, all three kinds. Sparse (larger models, or on
  * request): the nev modes of a window by ARPACK (dnaupd/dneupd, implicitly restarted Arnoldi)
  * on the operator X A - sigma (X A)^2, applied with the sparse LU of B + sigma A (KLU): two
@@ -57,7 +58,10 @@
  * itself has no such limit, and the refined damping ratios of undamped modes come out at the
  * rounding level). The sparse method finds elastic modes only.
  *
- * Errors: BG_ERR_ARGUMENT (NULL problem, state or result, options out of range), BG_ERR_PATTERN,
+ * Errors: BG_ERR_ARGUMENT (NULL problem, state or result; an option out of range: the message
+ * names the field, its value and its range; a nominal magnitude that is not finite and > 0: the
+ * message names the unknown and the value), BG_ERR_NONFINITE (a value of y or yp not finite: the
+ * message names the unknown), BG_ERR_PATTERN,
  * BG_ERR_MEMORY, BG_ERR_CALLBACK (the Jacobian failed), BG_ERR_SINGULAR (B + sigma A singular
  * for several shifts: the message names the unknown), BG_ERR_LIBRARY (LAPACK or ARPACK failed,
  * or the library was built without ARPACK and the sparse method is needed), DAE_CONV_FAIL
@@ -84,14 +88,18 @@ typedef enum dae_mode_kind {
 BG_API const char *dae_mode_kind_name(int kind);
 
 typedef enum dae_modes_method {
-    DAE_MODES_AUTO = 0, /* dense up to dense_max differential unknowns, else sparse */
+    DAE_MODES_AUTO = 0, /* dense up to options.dense_max differential unknowns (every mode,
+                           all three kinds), else sparse (the nev elastic modes of the window:
+                           the lowest 20 by default): the number of modes returned changes at
+                           that size, and dae_modes_info tells which method was used */
     DAE_MODES_DENSE = 1,
     DAE_MODES_SPARSE = 2
 } dae_modes_method;
 
 typedef struct dae_modes_options {
     int method;            /* dae_modes_method, default DAE_MODES_AUTO */
-    int dense_max;         /* default 2500 */
+    int dense_max;         /* the largest number of differential unknowns DAE_MODES_AUTO
+                              solves densely (see there), default 1200 (>= 1) */
     double sigma;          /* shift (1/time unit). Dense: any real that is not an eigenvalue,
                               default 0: 1 (raised by 1.618 if B + sigma A is singular). Sparse:
                               > 0 the frequency (rad per time unit) the window is centred on, 0

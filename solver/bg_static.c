@@ -257,7 +257,11 @@ static void ctx_free(st_ctx *c)
     free(c->w);
 }
 
-static int check_options(const dae_static_options *o, int n, bg_error *err)
+/* Every check of dae_static_solve's options and problem data, in one place: the options, then
+ * the problem's nominal magnitudes and the starting state (bg_check_nominal, bg_check_state:
+ * the integrator's rules and words). BG_OK or the status, with a message naming the value. */
+static int check_options(const dae_problem *p, const dae_static_options *o, const double *y,
+                         bg_error *err)
 {
     const char *w = "dae_static_solve";
     if (!(o->rtol >= 0 && o->rtol < 1) || !(o->atol >= 0 && isfinite(o->atol)) ||
@@ -279,10 +283,12 @@ static int check_options(const dae_static_options *o, int n, bg_error *err)
                               o->h_max);
     if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
         return bg_error_raise(err, BG_ERR_ARGUMENT, w, "unknown linear solver %d", (int)o->linsol);
-    for (int i = 0; o->yp_steady && i < n; i++)
-        if (!isfinite(o->yp_steady[i]))
-            return bg_error_raise(err, BG_ERR_ARGUMENT, w, "yp_steady[%d] is not finite", i);
-    return BG_OK;
+    int st = o->yp_steady ? bg_check_state(p, o->yp_steady, "steady rate (yp_steady)",
+                                           BG_ERR_ARGUMENT, w, err)
+                          : BG_OK;
+    if (st == BG_OK) st = bg_check_nominal(p, w, err);
+    if (st == BG_OK) st = bg_check_state(p, y, "starting value", BG_ERR_NONFINITE, w, err);
+    return st;
 }
 
 int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double t, double *y,
@@ -306,13 +312,9 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
     dae_static_options od;
     if (!opt) dae_static_options_default(&od);
     const dae_static_options *o = opt ? opt : &od;
-    int st = check_options(o, p->n, err);
+    int st = check_options(p, o, y, err);
     if (st) return r->status = st;
     const int n = p->n;
-    for (int i = 0; i < n; i++)
-        if (!isfinite(y[i]))
-            return r->status = bg_error_raise(err, BG_ERR_NONFINITE, where,
-                                              "the starting value of unknown %d is not finite", i);
 
     st_ctx c;
     memset(&c, 0, sizeof c);

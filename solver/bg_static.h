@@ -56,7 +56,9 @@
  * to the tolerance of its unknowns).
  *
  * Errors: BG_ERR_ARGUMENT (a NULL problem, y or result, n < 1, no residual, options out of
- * range: the message names them), BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton
+ * range, a nominal magnitude that is not finite and > 0 (dae_create's rule): the message names
+ * them, the unknown by dae_problem.names), BG_ERR_NONFINITE (a starting value of y not finite:
+ * the message names the unknown), BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton
  * matrix is singular: the message names the unknown of the singular column, which nothing
  * determines at rest even with the pseudo-time term: a mechanism or a free rigid motion under
  * a load), BG_ERR_CALLBACK (the residual or Jacobian returned < 0), DAE_CONV_FAIL (the

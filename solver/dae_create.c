@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "bg_dae_impl.h"
+#include "bg_jaceval.h"
 
 int dae_options_default(dae_options *o)
 {
@@ -267,6 +268,8 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
                        p->jac_y_pattern ? "given" : "NULL", p->jac_yp_pattern ? "given" : "NULL");
         return NULL;
     }
+    /* nominal magnitudes scale atol, unless atol_vec is given (the one rule: bg_jaceval.c) */
+    if (!o->atol_vec && bg_check_nominal(p, w, err) != BG_OK) return NULL;
     dae_solver *s = calloc(1, sizeof *s);
     if (!s) goto nomem;
     s->n = n;
@@ -284,15 +287,6 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         if (p->kind && (s->kind[i] < DAE_DIFF || s->kind[i] > DAE_ALG2)) {
             bg_error_raise(err, BG_ERR_ARGUMENT, w, "kind[%d] = %d is not a dae_var_kind", i,
                            s->kind[i]);
-            dae_free(&s);
-            return NULL;
-        }
-        if (p->nominal && !o->atol_vec && !(p->nominal[i] > 0 && isfinite(p->nominal[i]))) {
-            char nb[32];
-            bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                           "the nominal magnitude of %s is %g: it must be finite and > 0",
-                           p->names && p->names[i] ? p->names[i] : (snprintf(nb, sizeof nb, "y[%d]", i), nb),
-                           p->nominal[i]);
             dae_free(&s);
             return NULL;
         }

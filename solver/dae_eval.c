@@ -177,6 +177,7 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
     double t0 = daei_clock(s);
     int r;
     s->st.jac_evals++;
+    s->reg_failed = 0;
     if (s->p.jac) {
         r = s->p.jac(s->p.user, t, y, yp, s->Jy, s->Jyp);
     } else {
@@ -214,12 +215,27 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
     }
     if (r == 0 && s->p.nregimes > 0) { /* the regimes this Jacobian belongs to (dae_nls.c) */
         s->reg_valid = 0;
-        r = s->p.regimes(s->p.user, t, y, s->reg_jac);
-        if (r < 0)
-            daei_note(s, "the regime function returned the fatal status %d at t = %.17g", r, t);
+        r = daei_call_regimes(s, t, y, s->reg_jac);
         s->reg_valid = r == 0;
     }
     return r;
+}
+
+int daei_call_regimes(dae_solver *s, double t, const double *y, int *reg)
+{
+    s->reg_failed = 0;
+    int r = s->p.regimes(s->p.user, t, y, reg);
+    if (r == 0) return 0;
+    /* > 0 is fatal too: the regimes are a classification of a state the residual accepts (the
+     * predictor, a converged iterate, the point of a Jacobian), which a smaller step cannot
+     * make succeed */
+    s->reg_failed = 1;
+    char tb[96];
+    daei_note(s,
+              "the regimes callback (dae_problem.regimes) returned %d at %s (0 is success, "
+              "any other status is fatal%s)",
+              r, daei_when(s, t, tb, sizeof tb), r > 0 ? ": reported as BG_ERR_CALLBACK" : "");
+    return r < 0 ? r : BG_ERR_CALLBACK;
 }
 
 /* ------------------------------------------------------------- statistics ---- */

@@ -321,6 +321,7 @@ int daei_ic_eval_all(dae_solver *s, double t, const double *y, const double *yp)
     int r = daei_ic_res(s, t, y, yp, s->res);
     if (r != 0) return daei_ic_cb_fail(s, r, "residual");
     r = daei_eval_jac(s, t, y, yp, s->res);
+    if (r != 0 && s->reg_failed) return daei_ic_cb_fail(s, r, "regimes callback");
     if (r != 0) {
         char tb[96], eb[192], nb[32];
         daei_when(s, t, tb, sizeof tb);
@@ -587,12 +588,14 @@ int daei_consistent_init(dae_solver *s)
 
     /* time scale of the differences in t: |t|, or at t = 0 the span of the run (stop time or
      * first breakpoint) when known, so that short time scales (a 1e-7 s circuit) are not
-     * differenced across a whole period */
+     * differenced across a whole period; a span below IC_TSCALE_MIN is no time scale
+     * (dae_ic_impl.h): then 1, as when the span is not known */
     double tscale = fabs(s->tn);
     if (tscale == 0) {
         tscale = 1.0;
         if (s->o.has_t_stop && s->o.t_stop != s->tn) tscale = fabs(s->o.t_stop - s->tn);
         if (s->nbkpt > 0 && s->bkpt[0] > s->tn) tscale = fmin(tscale, s->bkpt[0] - s->tn);
+        if (tscale < IC_TSCALE_MIN) tscale = 1.0;
     }
     ic_outcome o;
     r = daei_ic_stage_b(s, te, side, tscale, y, yp, &o);

@@ -16,6 +16,20 @@
  * values are consistent to a millionth of the tolerance, and values given consistent stay as
  * they are. */
 #define IC_NEGLIGIBLE 1e-6
+/* The shortest span of the run (dae_ic.c) taken as the time scale of the differences in t:
+ * sqrt(eps) = 1.5e-8 time units; a shorter one counts as not known (scale 1). At t = 0 the
+ * scale is the span of the run (t_stop, the first breakpoint), so that a fast circuit's inputs
+ * are not differenced across a period; but the differences start at T_FIRST of the scale and
+ * the index-2 rates take second differences from there, whose round-off grows as eps |F| / h^2:
+ * from a span of 1e-300 every point underflowed and failed (a crane run with --t-end 1e-300),
+ * and from sqrt(eps) itself a pendulum's dlam/dt came out at a third of its value. The bound
+ * is the forward-difference step h = sqrt(eps) max(|t|, typ t) of Dennis and Schnabel
+ * (Numerical Methods for Unconstrained Optimization and Nonlinear Equations, Prentice-Hall
+ * 1983, sec. 5.4) with the time unit as typ t (the sqrt(unit roundoff) of IDA's
+ * difference-quotient increments): a span below it is not a scale the differences can use,
+ * and the scale 1 with hidden_t's shrinking steps (dae_ic_newton.c) finds the smooth step as
+ * for a run of unknown length. Runs of 1.5e-8 time units and longer keep their own scale. */
+#define IC_TSCALE_MIN 1.4901161193847656e-08 /* sqrt(DBL_EPSILON) = 2^-26 */
 
 /* Scratch vectors of s->ic_w, n values each. */
 enum {

@@ -178,7 +178,13 @@ static int extrapolate(dae_solver *s, const ic_diff *dd, double te, const double
     for (int lev = 0; lev < dd->nlev && active > 0; lev++, h /= 2) {
         r = diff_point(s, dd, te, h, y, yp, F0, &have2, est);
         if (r < 0) return daei_ic_cb_fail(s, r, "residual (differences)");
-        if (r > 0 || daei_first_nonfinite(est, s->n) >= 0) {
+        int bad = r > 0 ? -1 : daei_first_nonfinite(est, s->n);
+        if (bad >= 0) { /* the residual worked (else its failure is in s->note) */
+            char eb[192];
+            daei_note(s, "the difference of %.160s at the step %.3g is %g",
+                      daei_ename(s, bad, eb, sizeof eb), h, est[bad]);
+        }
+        if (r > 0 || bad >= 0) {
             for (int k = 0; k < nr; k++)
                 if (run[k] > 0) run[k] = 0;
             continue;

@@ -59,11 +59,8 @@ enum { SU_OK = 0, SU_RECOVER = 1, SU_SINGULAR = 2, SU_LSFAIL = 3 };
  * changed (or no Jacobian yet), < 0 the callback's fatal status. */
 static int regimes_changed(dae_solver *s, double t, const double *y)
 {
-    int r = s->p.regimes(s->p.user, t, y, s->reg_now);
-    if (r < 0) {
-        daei_note(s, "the regime function returned the fatal status %d at t = %.17g", r, t);
-        return r;
-    }
+    int r = daei_call_regimes(s, t, y, s->reg_now);
+    if (r < 0) return r;
     return !s->reg_valid ||
            memcmp(s->reg_now, s->reg_jac, (size_t)s->p.nregimes * sizeof *s->reg_now) != 0;
 }

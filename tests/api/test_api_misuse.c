@@ -1182,7 +1182,7 @@ static void test_static_modes(void)
            "dlambda", "dae_static_solve(dlambda 2)");
     double bad[2] = {NAN, 0};
     expect(dae_static_solve(&p, NULL, 0, bad, yp, &r, &err), BG_ERR_NONFINITE, err.message,
-           "unknown 0", "dae_static_solve(y NaN)");
+           "starting value of plant.x", "dae_static_solve(y NaN)");
     dae_modes *M = NULL;
     expect(dae_modes_compute(NULL, 0, y, NULL, NULL, &M, &err), BG_ERR_ARGUMENT, err.message,
            "problem", "dae_modes_compute(NULL problem)");

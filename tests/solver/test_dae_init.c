@@ -470,6 +470,64 @@ static void test_message_times(void)
     sp_csc_free(&jyp);
 }
 
+/* ------------------------------------------------------ a tiny stop time ---- */
+
+/* The pendulum of examples/residual_only.c (length 1, velocity level, a residual alone). */
+static int rpend_res(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user, (void)t;
+    F[0] = yp[0] - y[2];
+    F[1] = yp[1] - y[3];
+    F[2] = yp[2] + y[4] * y[0];
+    F[3] = yp[3] + y[4] * y[1] + PG;
+    F[4] = y[0] * y[2] + y[1] * y[3];
+    return 0;
+}
+
+/* Consistent values of rpend at t = 0 with t_stop: the status, y and y' into y, yp. */
+static int rpend_init(double t_stop, double *y, double *yp, char *msg, size_t size)
+{
+    dae_problem p = {0};
+    p.n = 5;
+    p.res = rpend_res;
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = o.atol = 1e-8;
+    o.has_t_stop = 1;
+    o.t_stop = t_stop;
+    bg_error err = {0};
+    dae_solver *s = dae_create(&p, &o, &err);
+    const double th = 0.5, om = 1.0;
+    double y0[5] = {sin(th), -cos(th), om * cos(th), om * sin(th), 0};
+    int r = s ? dae_init(s, 0.0, y0, NULL) : err.status;
+    if (r == 0) r = dae_consistent_init(s);
+    if (r >= 0) dae_get_consistent(s, y, yp);
+    snprintf(msg, size, "%s", s ? dae_get_error(s)->message : err.message);
+    dae_free(&s);
+    return r;
+}
+
+/* A run to t_stop = 1e-300 (the crane program's --t-end 1e-300) initialises as one to 1: the
+ * differences in t keep a time scale of sqrt(eps) time units at least (IC_TSCALE_MIN; before,
+ * they were taken from 1e-300 and every point failed: "the residual failed at every point of
+ * the differences ... at t = 0: " with nothing after the colon). */
+static void test_tiny_t_stop(void)
+{
+    double y1[5], yp1[5], y2[5], yp2[5];
+    char m1[BG_MESSAGE_SIZE], m2[BG_MESSAGE_SIZE];
+    int r1 = rpend_init(1e-300, y1, yp1, m1, sizeof m1), r2 = rpend_init(1.0, y2, yp2, m2, sizeof m2);
+    const double lam = 1.0 + PG * cos(0.5), dlam = -3 * PG * sin(0.5); /* om^2 - g y; -3 g v */
+    double dmax = 0;
+    for (int i = 0; i < 5; i++)
+        dmax = fmax(dmax, fmax(fabs(y1[i] - y2[i]), fabs(yp1[i] - yp2[i]) / (1 + fabs(yp2[i]))));
+    tap_ok(r1 == BG_OK && r2 == BG_OK && fabs(y1[4] - lam) <= 1e-6 * lam &&
+               fabs(yp1[4] - dlam) <= 1e-6 * fabs(dlam) && dmax <= 1e-8,
+           "t_stop = 1e-300: consistent values as with t_stop = 1 (status %d, %d; lam %.10g, "
+           "exact %.10g; lam' %.10g, exact %.10g; largest difference %.3g) %s",
+           r1, r2, r1 >= 0 ? y1[4] : NAN, lam, r1 >= 0 ? yp1[4] : NAN, dlam,
+           r1 >= 0 ? dmax : NAN, r1 < 0 ? m1 : "");
+}
+
 int main(void)
 {
     test_pendulum_fd();
@@ -480,5 +538,6 @@ int main(void)
     test_crank_multipliers_zero();
     test_jump_at_t0();
     test_message_times();
+    test_tiny_t_stop();
     return tap_done();
 }

@@ -375,6 +375,55 @@ static int run_ramp(int regimes, int fail, int reduce, dae_stats *st)
     return r;
 }
 
+/* A regimes callback that returns *(int *)user (r = 0), and the ramp's analytic Jacobian
+ * (dF/dy = 0, dF/dy' = 1). */
+static int regime_status(void *user, double t, const double *y, int *r)
+{
+    (void)t, (void)y;
+    r[0] = 0;
+    return *(const int *)user;
+}
+
+static int jac_ramp(void *user, double t, const double *y, const double *yp, sp_csc *Jy,
+                    sp_csc *Jyp)
+{
+    (void)user, (void)t, (void)y, (void)yp;
+    for (int k = 0; k < Jy->nnz; k++)
+        Jy->val[k] = 0;
+    Jyp->val[0] = 1;
+    return 0;
+}
+
+/* y' = 1 with a regimes callback returning status: consistent initialisation (init) or the
+ * integration to t = 1, with an analytic Jacobian or differences. The status; the message
+ * into msg. */
+static int run_regime_status(int status, int with_jac, int init, char *msg, size_t size)
+{
+    dae_problem p = {0};
+    p.n = 1;
+    p.res = res_ramp;
+    p.user = &status;
+    p.nregimes = 1;
+    p.regimes = regime_status;
+    const double one = 1;
+    sp_csc *jy = sp_csc_from_dense(1, 1, &one, 0.0), *jyp = sp_csc_from_dense(1, 1, &one, 0.0);
+    if (with_jac) {
+        p.jac = jac_ramp;
+        p.jac_y_pattern = jy;
+        p.jac_yp_pattern = jyp;
+    }
+    bg_error e = {0};
+    dae_solver *s = dae_create(&p, NULL, &e);
+    double y0 = 0, yp0 = 1, t, y;
+    int r = s ? dae_init(s, 0, &y0, &yp0) : -100;
+    if (r == 0) r = init ? dae_consistent_init(s) : dae_solve_to(s, 1, &t, &y, NULL);
+    snprintf(msg, size, "%s", s ? dae_get_error(s)->message : e.message);
+    dae_free(&s);
+    sp_csc_free(&jy);
+    sp_csc_free(&jyp);
+    return r;
+}
+
 int main(void)
 {
     /* nominal magnitudes = the matching atol vector, to the bit */
@@ -493,6 +542,22 @@ int main(void)
         tap_ok(!sq && eq.status == BG_ERR_ARGUMENT && strstr(eq.message, "nregimes"),
                "nregimes without a regime function refused: %s", eq.message);
         dae_free(&sq);
+    }
+    /* what a regimes callback may return: 0 success, anything else fatal (bg_dae.h), with the
+     * regimes callback named, in consistent initialisation and in the integration, with an
+     * analytic Jacobian or differences (before: -1 was "the Jacobian function" or "the
+     * residual function failed in the finite differences", +1 DAE_INIT_FAIL with no reason) */
+    for (int k = 0; k < 8; k++) {
+        int status = k & 1 ? 1 : -1, with_jac = (k >> 1) & 1, init = !((k >> 2) & 1);
+        char msg[BG_MESSAGE_SIZE], want[64];
+        int r = run_regime_status(status, with_jac, init, msg, sizeof msg);
+        snprintf(want, sizeof want, "regimes callback (dae_problem.regimes) returned %d", status);
+        tap_ok(r == DAE_CALLBACK_FAIL && strstr(msg, want) && !strstr(msg, "Jacobian function") &&
+                   !strstr(msg, "residual function"),
+               "a regimes callback returning %d stops %s (%s Jacobian) with DAE_CALLBACK_FAIL "
+               "naming it: status %d, %s",
+               status, init ? "dae_consistent_init" : "the integration",
+               with_jac ? "analytic" : "difference", r, msg);
     }
     return tap_done();
 }

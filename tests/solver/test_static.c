@@ -491,6 +491,113 @@ static void test_misuse(void)
     dae_modes_free(NULL);
 }
 
+/* ---- a hardening spring: y = (x, v), m v' = 1 - x - x^2/2 - c v; at rest x = sqrt(3) - 1 ---- */
+static int hard_res(void *u, double t, const double *y, const double *yp, double *F)
+{
+    (void)u, (void)t;
+    F[0] = yp[0] - y[1];
+    F[1] = yp[1] + 0.5 * y[1] + y[0] + 0.5 * y[0] * y[0] - 1.0;
+    return 0;
+}
+
+static const char *const hard_names[2] = {"spring/x", "spring/v"};
+
+/* The checks of the problem's data (bg_check_nominal, bg_check_state) and of the modes
+ * options: refused with the name of the unknown or field and the value, where a nominal of -1
+ * used to give a wrong rest (x = 0.7396 for 0.7321, BG_OK) and NaN states reached the
+ * factorization ("matrix entry (1,0) is nan"). */
+static void test_checks(void)
+{
+    dae_problem p = {.n = 2, .res = hard_res, .names = hard_names};
+    const double want = sqrt(3.0) - 1.0;
+    double y[2] = {0, 0};
+    bg_error err = {0};
+    const double good[2] = {1, 1};
+    p.nominal = good;
+    int st = dae_static_solve(&p, NULL, 0, y, NULL, NULL, &err);
+    tap_ok(st == BG_OK && fabs(y[0] - want) < 1e-9,
+           "static: the hardening spring rests at x = %.10g (exact sqrt(3) - 1 = %.10g), status %d",
+           y[0], want, st);
+    /* nominal magnitudes that are not finite and > 0: named, by name or by index */
+    const double badnom[3][2] = {{-1, 1}, {1, 0}, {NAN, 1}};
+    const char *who[3] = {"spring/x", "spring/v", "spring/x"}, *val[3] = {"is -1", "is 0", "is nan"};
+    for (int k = 0; k < 3; k++) {
+        p.nominal = badnom[k];
+        y[0] = y[1] = 0;
+        st = dae_static_solve(&p, NULL, 0, y, NULL, NULL, &err);
+        tap_ok(st == BG_ERR_ARGUMENT && strstr(err.message, who[k]) &&
+                   strstr(err.message, val[k]) && strstr(err.message, "nominal") && y[0] == 0,
+               "static: nominal (%g, %g) refused: %s", badnom[k][0], badnom[k][1], err.message);
+        dae_modes *M = NULL;
+        st = dae_modes_compute(&p, 0, y, NULL, NULL, &M, &err);
+        tap_ok(st == BG_ERR_ARGUMENT && !M && strstr(err.message, who[k]) &&
+                   strstr(err.message, val[k]) && strstr(err.message, "nominal"),
+               "modes: nominal (%g, %g) refused: %s", badnom[k][0], badnom[k][1], err.message);
+        dae_modes_free(&M);
+    }
+    p.names = NULL;
+    p.nominal = badnom[0];
+    st = dae_static_solve(&p, NULL, 0, y, NULL, NULL, &err);
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(err.message, "y[0]") && strstr(err.message, "is -1"),
+           "static: without names the unknown is named by its index: %s", err.message);
+    p.names = hard_names;
+    p.nominal = good;
+    /* a state that is not finite, named */
+    double ybad[2] = {0, NAN}, ypbad[2] = {INFINITY, 0};
+    st = dae_static_solve(&p, NULL, 0, ybad, NULL, NULL, &err);
+    tap_ok(st == BG_ERR_NONFINITE && strstr(err.message, "starting value of spring/v") &&
+               strstr(err.message, "nan"),
+           "static: a NaN start named by the problem's name: %s", err.message);
+    dae_modes *M = NULL;
+    st = dae_modes_compute(&p, 0, ybad, NULL, NULL, &M, &err);
+    tap_ok(st == BG_ERR_NONFINITE && !M && strstr(err.message, "value of spring/v") &&
+               strstr(err.message, "nan"),
+           "modes: a NaN state named: %s", err.message);
+    st = dae_modes_compute(&p, 0, y, ypbad, NULL, &M, &err);
+    tap_ok(st == BG_ERR_NONFINITE && !M && strstr(err.message, "derivative of spring/x") &&
+               strstr(err.message, "inf"),
+           "modes: an infinite derivative named: %s", err.message);
+    /* every modes option out of range: the field, its value and the range */
+    struct {
+        const char *field, *text;
+    } cases[10] = {{"method", "method = 3, it must be a dae_modes_method"},
+                   {"dense_max", "dense_max = 0, it must be >= 1"},
+                   {"sigma", "sigma = nan, it must be finite"},
+                   {"nev", "nev = 0, it must be >= 1"},
+                   {"ncv", "ncv = -1, it must be >= 0"},
+                   {"tol", "tol = -1, it must be >= 0"},
+                   {"maxiter", "maxiter = 0, it must be >= 1"},
+                   {"zero_tol", "zero_tol = nan, it must be >= 0"},
+                   {"inf_tol", "inf_tol = -1, it must be >= 0"},
+                   {"linsol", "linsol = 7, it must be a linear solver"}};
+    for (int k = 0; k < 10; k++) {
+        dae_modes_options o;
+        dae_modes_options_default(&o);
+        switch (k) {
+        case 0: o.method = 3; break;
+        case 1: o.dense_max = 0; break;
+        case 2: o.sigma = NAN; break;
+        case 3: o.nev = 0; break;
+        case 4: o.ncv = -1; break;
+        case 5: o.tol = -1; break;
+        case 6: o.maxiter = 0; break;
+        case 7: o.zero_tol = NAN; break;
+        case 8: o.inf_tol = -1; break;
+        default: o.linsol = (ls_kind)7; break;
+        }
+        st = dae_modes_compute(&p, 0, y, NULL, &o, &M, &err);
+        tap_ok(st == BG_ERR_ARGUMENT && !M && strstr(err.message, cases[k].text),
+               "modes: options.%s out of range named with its value and range: %s",
+               cases[k].field, err.message);
+        dae_modes_free(&M);
+    }
+    /* the default of dense_max is the one the header states */
+    dae_modes_options od;
+    dae_modes_options_default(&od);
+    tap_ok(od.dense_max == 1200 && od.method == DAE_MODES_AUTO,
+           "modes: dense_max defaults to 1200 (bg_modes.h), got %d", od.dense_max);
+}
+
 int main(void)
 {
     test_mass_spring(1);
@@ -502,5 +609,6 @@ int main(void)
     test_limit_point();
     test_chain();
     test_misuse();
+    test_checks();
     return tap_done();
 }
