@@ -157,7 +157,7 @@ static const pu_cli CLI = {
              "in crane/scenes/) and writes the results into DIR. A SCENE ending in .yaml is a model\n"
              "file (docs/model-format.md; a bare name such as 'paper.yaml' is looked up in\n"
              "crane/models/), run as bgsim runs it, with Fig. 5 on top; the options of INI scenes\n"
-             "only (--elements, --animate, --anim-step, --anim-scale, --error-estimate) are refused\n"
+             "only (--elements, --animate, --anim-step, --anim-scale) are refused\n"
              "for it.\n",
     .options_title = "options (a value may also be given as --option=VALUE):",
     .epilogue =

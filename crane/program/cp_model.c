@@ -7,7 +7,7 @@
  * The command line maps onto bgsim's: --out, --t-end, --rtol, --atol, --output-step, --max-rows,
  * --static, --modes, --quiet, --vtk, --vtk-step as bgsim takes them, --set PATH=VALUE a model
  * parameter (mdl_set); --no-plots is the crane's. The options of INI scenes only (--elements,
- * --animate, --anim-step, --anim-scale, --error-estimate) are refused with exit 2. The default
+ * --animate, --anim-step, --anim-scale) are refused with exit 2. The default
  * output folder is results/<the file's name without .yaml>/ (paper.yaml: results/paper/, as the
  * scene paper's). */
 #include <errno.h>
@@ -66,7 +66,6 @@ static const char *ini_only_option(const cp_options *o)
     for (int i = 0; i < o->nsets; i++)
         if (!strcmp(o->sets[i].origin, "--elements")) return "--elements";
     if (o->viz.animate) return "--animate (--anim-step, --anim-scale)";
-    if (o->errest) return "--error-estimate";
     return NULL;
 }
 
@@ -121,6 +120,8 @@ static int bgsim_options(const cp_options *o, bs_options *b)
     b->vtk = o->viz.vtk;
     b->has_vtk_step = o->viz.vtk_step > 0;
     b->vtk_step = o->viz.vtk_step;
+    b->errest = o->errest; /* --error-estimate [K]: the runner's, as bgsim's */
+    b->errest_factor = o->errest_factor;
     b->argc = o->argc;
     b->argv = o->argv;
     for (int i = 0; i < o->nsets; i++)

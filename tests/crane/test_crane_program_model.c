@@ -168,6 +168,22 @@ static void test_figures(const char *model, int gnuplot)
     tap_ok(all, "fig5a.png .. fig5f.png exist and are PNGs");
 }
 
+/* --error-estimate [K] with a model file: the runner's companion over the file's outputs */
+static void test_error_estimate(const char *model)
+{
+    char out[4200];
+    snprintf(out, sizeof out, "%s/errest", tmp);
+    result r;
+    run(NULL, (const char *[]){model, "--t-end", "0.2", "--error-estimate", "--no-plots",
+                               "--quiet", "--out", out, NULL},
+        "errest", 300, &r);
+    tap_ok(r.exited && r.code == 0 && file_contains(out, "error_estimate.csv", "\ntheta,") &&
+               file_contains(out, "error_estimate.csv", ",available") &&
+               file_contains(out, "status.txt", "\nerror_estimate: available"),
+           "crane paper.yaml --error-estimate: error_estimate.csv over the file's outputs (%d: %.200s)",
+           r.code, r.err);
+}
+
 static void test_ini_only_options(const char *model)
 {
     static const struct {
@@ -175,7 +191,6 @@ static void test_ini_only_options(const char *model)
     } bad[] = {
         {{"--elements", "4", NULL}, "--elements"},
         {{"--animate", NULL}, "--animate"},
-        {{"--error-estimate", NULL}, "--error-estimate"},
         {{"--rtol", "abc", NULL}, "got 'abc'"},
         {{"--set", "=3", NULL}, "PATH=VALUE"},
         {{"--set", "no_such_parameter=1", NULL}, "no_such_parameter"},
@@ -248,6 +263,7 @@ int main(int argc, char **argv)
     test_ini_only_options(model);
     test_same_as_bgsim(model);
     test_figures(model, gnuplot);
+    test_error_estimate(model);
     test_bare_names();
 
     int rc = tap_done();
