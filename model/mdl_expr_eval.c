@@ -42,10 +42,13 @@ static int ev_path(const evaluator *c, int id, char *buf)
     buf[0] = '\0';
     for (int s = n->a; s >= 0; s = x->segs[s].next) {
         const seg *g = &x->segs[s];
-        int w = snprintf(buf + len, MDL_EXPR_NAME_MAX - len, "%s%.*s", s == n->a ? "" : ".", g->len,
-                         x->text + g->start);
-        if ((cut = w < 0 || (size_t)w >= MDL_EXPR_NAME_MAX - len)) break;
-        len += (size_t)w;
+        /* the segment copied, not printed: this runs once per name at every evaluation */
+        size_t w = (s == n->a ? 0 : 1) + (size_t)g->len;
+        if ((cut = w >= MDL_EXPR_NAME_MAX - len)) break;
+        if (s != n->a) buf[len++] = '.';
+        memcpy(buf + len, x->text + g->start, (size_t)g->len);
+        len += (size_t)g->len;
+        buf[len] = '\0';
         if (g->index < 0) continue;
         double v;
         if (ev(c, g->index, &v) < 0) return -1;
@@ -57,9 +60,9 @@ static int ev_path(const evaluator *c, int id, char *buf)
                                 buf, v != floor(v) ? "not an integer" : "out of range", v);
             return -1;
         }
-        w = snprintf(buf + len, MDL_EXPR_NAME_MAX - len, "[%d]", (int)v);
-        if ((cut = w < 0 || (size_t)w >= MDL_EXPR_NAME_MAX - len)) break;
-        len += (size_t)w;
+        int wi = snprintf(buf + len, MDL_EXPR_NAME_MAX - len, "[%d]", (int)v);
+        if ((cut = wi < 0 || (size_t)wi >= MDL_EXPR_NAME_MAX - len)) break;
+        len += (size_t)wi;
     }
     if (cut) {
         mdl_expri_set_error(c->e, n->start, "name too long (more than %d characters)",

@@ -19,6 +19,7 @@ void mdl_free(mdl_model **pmm)
     for (int i = 0; i < mm->nonames; i++)
         free(mm->onames[i].name);
     free(mm->onames);
+    free(mm->ohash);
     free(mm->bonds);
     free(mm->leaves);
     free(mm->subs);

@@ -100,6 +100,8 @@ struct mdl_model {
     int nouts;
     mdl_oname *onames;
     int nonames, caponames;
+    int *ohash; /* the names by hash (open addressing, index + 1; 0 empty), nohash slots */
+    int nohash;
     mdl_bond *bonds;
     int nbonds, capbonds;
     mdl_inode **leaves;

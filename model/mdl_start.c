@@ -229,6 +229,8 @@ int mdl_read_initial(mdl_model *mm)
 
 /* ---- outputs ---- */
 
+static int hash_names(mdl_model *mm);
+
 typedef struct names_ctx {
     mdl_model *mm;
     const mdl_y_node *at;
@@ -308,7 +310,7 @@ int mdl_read_outputs(mdl_model *mm)
         mdl_expr_names(x, add_name, &c);
         if (c.failed) return c.failed;
     }
-    return BG_OK;
+    return hash_names(mm);
 }
 
 typedef struct out_ctx {
@@ -317,15 +319,45 @@ typedef struct out_ctx {
     const double *y;
 } out_ctx;
 
+/* FNV-1a: the outputs' names are looked up at every row, by hash rather than one by one */
+static unsigned name_hash(const char *s)
+{
+    unsigned h = 2166136261u;
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * 16777619u;
+    return h;
+}
+
+/* the hash of the names read (a power of two, at least twice their number) */
+static int hash_names(mdl_model *mm)
+{
+    int size = 16;
+    while (size < 2 * mm->nonames)
+        size *= 2;
+    mm->ohash = calloc((size_t)size, sizeof *mm->ohash);
+    if (!mm->ohash) return BG_ERR_MEMORY;
+    mm->nohash = size;
+    for (int i = 0; i < mm->nonames; i++) {
+        unsigned k = name_hash(mm->onames[i].name) & (unsigned)(size - 1);
+        while (mm->ohash[k])
+            k = (k + 1) & (unsigned)(size - 1);
+        mm->ohash[k] = i + 1;
+    }
+    return BG_OK;
+}
+
 static int out_lookup(void *user, const char *name, double *value, char *msg, size_t msz)
 {
     out_ctx *c = user;
-    for (int i = 0; i < c->mm->nonames; i++) {
-        const mdl_oname *o = &c->mm->onames[i];
-        if (strcmp(o->name, name)) continue;
-        *value = o->is_t ? c->t : o->var >= 0 ? c->y[o->var] : o->value;
-        return 0;
-    }
+    const mdl_model *mm = c->mm;
+    if (mm->nohash > 0)
+        for (unsigned k = name_hash(name) & (unsigned)(mm->nohash - 1); mm->ohash[k];
+             k = (k + 1) & (unsigned)(mm->nohash - 1)) {
+            const mdl_oname *o = &mm->onames[mm->ohash[k] - 1];
+            if (strcmp(o->name, name)) continue;
+            *value = o->is_t ? c->t : o->var >= 0 ? c->y[o->var] : o->value;
+            return 0;
+        }
     snprintf(msg, msz, "unknown name '%s'", name);
     return -1;
 }
