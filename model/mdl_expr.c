@@ -64,11 +64,11 @@ const char *mdl_expri_snippet(const char *text, int start, int end, char *buf, s
     return buf;
 }
 
-/* Levenshtein distance of a and b (both at most 32 characters are compared). */
-static int edit_distance(const char *a, const char *b)
+int mdl_expr_edit_distance(const char *a, const char *b, int limit)
 {
-    int la = (int)strnlen(a, 32), lb = (int)strnlen(b, 32);
-    int row[33];
+    if (limit > 64) limit = 64;
+    int la = (int)strnlen(a, (size_t)limit), lb = (int)strnlen(b, (size_t)limit);
+    int row[65];
     for (int j = 0; j <= lb; j++)
         row[j] = j;
     for (int i = 1; i <= la; i++) {
@@ -375,7 +375,7 @@ static int parse_primary(parser *p)
         /* a suggestion within 1 edit of a short name, 2 of a longer one */
         int best = -1, bd = strlen(name) <= 4 ? 2 : 3;
         for (int k = 0; k < F_COUNT; k++) {
-            int d = edit_distance(name, funcs[k].name);
+            int d = mdl_expr_edit_distance(name, funcs[k].name, 32);
             if (d < bd) {
                 bd = d;
                 best = k;

@@ -80,6 +80,10 @@ int mdl_expr_is_constant(const mdl_expr *x);
 int mdl_expr_subst(const char *path_text, mdl_expr_lookup fn, void *user, char *out, size_t osz,
                    mdl_expr_error *e);
 
+/* Levenshtein distance of the first limit (<= 64) characters of a and b: the nearest names of
+ * the messages (the reader's and the expressions'). */
+int mdl_expr_edit_distance(const char *a, const char *b, int limit);
+
 /* 1 when name is a function or a constant of the language (a user parameter may not be called
  * so), else 0. */
 int mdl_expr_is_reserved(const char *name);

@@ -25,24 +25,11 @@ int mdl_fail(mdl_model *mm, const mdl_y_node *at, const char *where, const char 
     return BG_ERR_ARGUMENT;
 }
 
-/* Levenshtein distance, capped: enough to tell a near name */
+/* Levenshtein distance, capped: names longer than 63 characters are never near */
 static int distance(const char *a, const char *b)
 {
-    int la = (int)strlen(a), lb = (int)strlen(b);
-    if (la > 63 || lb > 63) return 99;
-    int d[64][64];
-    for (int i = 0; i <= la; i++)
-        d[i][0] = i;
-    for (int j = 0; j <= lb; j++)
-        d[0][j] = j;
-    for (int i = 1; i <= la; i++)
-        for (int j = 1; j <= lb; j++) {
-            int c = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-            if (d[i - 1][j] + 1 < c) c = d[i - 1][j] + 1;
-            if (d[i][j - 1] + 1 < c) c = d[i][j - 1] + 1;
-            d[i][j] = c;
-        }
-    return d[la][lb];
+    if (strlen(a) > 63 || strlen(b) > 63) return 99;
+    return mdl_expr_edit_distance(a, b, 63);
 }
 
 const char *mdl_nearest(const char *name, const char *const *cand, int n)
