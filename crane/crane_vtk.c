@@ -46,11 +46,6 @@ crane_vtk *crane_vtk_open(const char *dir, const char *scene_name, char *msg, si
     return v;
 }
 
-#define ints pu_vtk_ints
-#define reals pu_vtk_reals
-#define field pu_vtk_field
-#define cells pu_vtk_cells
-
 /* ------------------------------------------------------------ frames ---- */
 
 static int point(frame *fr, const double *x, int part, int node, double mass)
@@ -136,31 +131,31 @@ static int write_vtp(FILE *f, const crane_geom *g, const frame *fr)
             "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
             "  <PolyData>\n    <FieldData>\n",
             g->t);
-    field(f, "TimeValue", &g->t, 1);
-    field(f, "theta", &g->theta, 1);
-    field(f, "omega", &g->omega, 1);
-    if (g->rope) field(f, "rope_tension", &g->rope_tension, 1);
-    if (g->nties) field(f, "tie_tension", g->tie_tension, g->nties);
-    if (isfinite(g->pump_x)) field(f, "pump_x", &g->pump_x, 1);
-    if (isfinite(g->p_high)) field(f, "p_high", &g->p_high, 1);
-    if (isfinite(g->p_low)) field(f, "p_low", &g->p_low, 1);
+    pu_vtk_field(f, "TimeValue", &g->t, 1);
+    pu_vtk_field(f, "theta", &g->theta, 1);
+    pu_vtk_field(f, "omega", &g->omega, 1);
+    if (g->rope) pu_vtk_field(f, "rope_tension", &g->rope_tension, 1);
+    if (g->nties) pu_vtk_field(f, "tie_tension", g->tie_tension, g->nties);
+    if (isfinite(g->pump_x)) pu_vtk_field(f, "pump_x", &g->pump_x, 1);
+    if (isfinite(g->p_high)) pu_vtk_field(f, "p_high", &g->p_high, 1);
+    if (isfinite(g->p_low)) pu_vtk_field(f, "p_low", &g->p_low, 1);
     fprintf(f, "    </FieldData>\n");
     fprintf(f,
             "    <Piece NumberOfPoints=\"%d\" NumberOfVerts=\"%d\" NumberOfLines=\"%d\" "
             "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
             fr->np, fr->nv, fr->nl);
     fprintf(f, "      <PointData Scalars=\"part\" Vectors=\"deflection\">\n");
-    ints(f, "part", fr->part, fr->np);
-    ints(f, "node", fr->node, fr->np);
+    pu_vtk_ints(f, "part", fr->part, fr->np);
+    pu_vtk_ints(f, "node", fr->node, fr->np);
     for (int i = 0; i < nb; i++)
         rows[i] = fr->mass + i;
-    reals(f, "mass", rows, nb, 1);
+    pu_vtk_reals(f, "mass", rows, nb, 1);
     /* boom data: rows of the boom's points, NULL elsewhere */
 #define BOOM_ARRAY(name, expr, ncomp)                                                              \
     do {                                                                                           \
         for (int i = 0; i < nb; i++)                                                               \
             rows[i] = fr->node[i] >= 0 ? (expr) : NULL;                                            \
-        reals(f, name, rows, nb, ncomp);                                                           \
+        pu_vtk_reals(f, name, rows, nb, ncomp);                                                    \
     } while (0)
     BOOM_ARRAY("deflection", g->defl[fr->node[i]], 3);
     for (int i = 0; i < nb; i++)
@@ -183,15 +178,15 @@ static int write_vtp(FILE *f, const crane_geom *g, const frame *fr)
         cpart[i] = fr->vpart[i], ctens[i] = 0;
     for (int i = 0; i < fr->nl; i++)
         cpart[fr->nv + i] = fr->lpart[i], ctens[fr->nv + i] = fr->ltension[i];
-    ints(f, "part", cpart, fr->nv + fr->nl);
+    pu_vtk_ints(f, "part", cpart, fr->nv + fr->nl);
     for (int i = 0; i < fr->nv + fr->nl; i++)
         rows[i] = ctens + i;
-    reals(f, "tension", rows, fr->nv + fr->nl, 1);
+    pu_vtk_reals(f, "tension", rows, fr->nv + fr->nl, 1);
     fprintf(f, "      </CellData>\n      <Points>\n");
-    reals(f, NULL, fr->x, fr->np, 3);
+    pu_vtk_reals(f, NULL, fr->x, fr->np, 3);
     fprintf(f, "      </Points>\n");
-    cells(f, "Verts", fr->vconn, fr->voff, fr->nv);
-    cells(f, "Lines", fr->lconn, fr->loff, fr->nl);
+    pu_vtk_cells(f, "Verts", fr->vconn, fr->voff, fr->nv);
+    pu_vtk_cells(f, "Lines", fr->lconn, fr->loff, fr->nl);
     fprintf(f, "    </Piece>\n  </PolyData>\n</VTKFile>\n");
     return ferror(f) ? -1 : 0;
 }
