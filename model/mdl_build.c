@@ -9,6 +9,7 @@
 #include "mdl_priv.h"
 
 static int build_leaf(mdl_model *mm, mdl_inode *leaf);
+static int join_ready(mdl_model *mm);
 
 static const char *kind_word(mdl_kind k)
 {
@@ -343,7 +344,8 @@ static int build_leaf(mdl_model *mm, mdl_inode *leaf)
     if (r != BG_OK)
         return mdl_fail(mm, leaf->key, leaf->dotpath, "%s", e.message[0] ? e.message : bg_status_message(r));
     leaf->state = 2;
-    return add_leaf(mm, leaf);
+    r = add_leaf(mm, leaf);
+    return r == BG_OK ? join_ready(mm) : r;
 }
 
 static int build_tree(mdl_model *mm, mdl_inode *n)
@@ -446,6 +448,61 @@ static int one_bond(mdl_model *mm, mdl_inode *scope, const mdl_y_node *b, const 
     return BG_OK;
 }
 
+/* A bond read: recorded with the elements its paths name, joined by join_ready in the file's
+ * order, each as soon as its elements and the bonds before it are in the graph. So the bonds'
+ * unknowns are numbered in the file's order, with the inner bonds of an element that has them
+ * (a beam chain) where that element is built, as a program creating the parts and bonds one by
+ * one numbers them: the same model written in the same order gets the same numbering, and with
+ * it the same Jacobian structure, ordering and rounding. */
+static int pend_bond(mdl_model *mm, mdl_inode *scope, const mdl_y_node *b, const char *from,
+                     const char *to, const mdl_y_node *name_node)
+{
+    if (mm->npend == mm->cappend) {
+        int nc = mm->cappend ? 2 * mm->cappend : 32;
+        mdl_pending_bond *p = realloc(mm->pend, (size_t)nc * sizeof *p);
+        if (!p) return BG_ERR_MEMORY;
+        mm->pend = p;
+        mm->cappend = nc;
+    }
+    mdl_pending_bond *q = &mm->pend[mm->npend];
+    *q = (mdl_pending_bond){scope, {NULL, NULL}, b, name_node, strdup(from), strdup(to), 0};
+    if (!q->from || !q->to) {
+        free(q->from), free(q->to);
+        return BG_ERR_MEMORY;
+    }
+    mm->npend++;
+    for (int s = 0; s < 2; s++) {
+        const char *rest;
+        mdl_inode *l = NULL;
+        int r = mdl_resolve(mm, scope, s ? to : from, b, "bonds", &l, &rest);
+        if (r != BG_OK) return r;
+        q->leaf[s] = l && l->type && rest ? l : NULL;
+    }
+    return BG_OK;
+}
+
+/* the bonds read, in the file's order, up to the first whose elements are not both built; at
+ * the end (all) every bond left, including those whose paths name no element's port: one_bond
+ * says why */
+static int join_bonds(mdl_model *mm, int all)
+{
+    for (int i = 0; i < mm->npend; i++) {
+        mdl_pending_bond *q = &mm->pend[i];
+        if (q->done) continue;
+        if (!all && !(q->leaf[0] && q->leaf[1] && q->leaf[0]->state == 2 && q->leaf[1]->state == 2))
+            break; /* the bonds after it wait for it: the file's order is kept */
+        q->done = 1;
+        int r = one_bond(mm, q->scope, q->at, q->from, q->to, q->name);
+        if (r != BG_OK) return r;
+    }
+    return BG_OK;
+}
+
+static int join_ready(mdl_model *mm)
+{
+    return join_bonds(mm, 0);
+}
+
 /* "a.p -> b.q" or {from: a.p, to: b.q, name: ..., for: {k: [i, j]}} */
 static int bond_entry(mdl_model *mm, mdl_inode *scope, const mdl_y_node *b)
 {
@@ -461,7 +518,7 @@ static int bond_entry(mdl_model *mm, mdl_inode *scope, const mdl_y_node *b)
         char pf[512], pt[512];
         int r = mdl_eval_path(mm, &scope->scope, &fn, "bonds", pf, sizeof pf);
         if (r == BG_OK) r = mdl_eval_path(mm, &scope->scope, &tn, "bonds", pt, sizeof pt);
-        return r == BG_OK ? one_bond(mm, scope, b, pf, pt, NULL) : r;
+        return r == BG_OK ? pend_bond(mm, scope, b, pf, pt, NULL) : r;
     }
     if (b->kind != MDL_Y_MAPPING)
         return mdl_fail(mm, b, "bonds", "expected 'from.port -> to.port' or {from: ..., to: ...}");
@@ -485,7 +542,7 @@ static int bond_entry(mdl_model *mm, mdl_inode *scope, const mdl_y_node *b)
         r = mdl_eval_path(mm, &loop, mdl_y_get(b, "from"), "bonds.from", pf, sizeof pf);
         if (r == BG_OK) r = mdl_eval_path(mm, &loop, mdl_y_get(b, "to"), "bonds.to", pt, sizeof pt);
         mdl_scope_clear(&loop);
-        if (r == BG_OK) r = one_bond(mm, scope, b, pf, pt, var ? NULL : mdl_y_get(b, "name"));
+        if (r == BG_OK) r = pend_bond(mm, scope, b, pf, pt, var ? NULL : mdl_y_get(b, "name"));
         if (r != BG_OK) return r;
     }
     return BG_OK;
@@ -510,8 +567,9 @@ static int bonds_of(mdl_model *mm, mdl_inode *n)
 
 int mdl_build_all(mdl_model *mm)
 {
-    int r = build_tree(mm, &mm->top);
-    if (r == BG_OK) r = bonds_of(mm, &mm->top);
+    int r = bonds_of(mm, &mm->top);
+    if (r == BG_OK) r = build_tree(mm, &mm->top);
+    if (r == BG_OK) r = join_bonds(mm, 1);
     if (r != BG_OK) return r;
     for (int i = 0; i < mm->nsets; i++)
         if (!mm->set_used[i])

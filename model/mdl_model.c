@@ -21,6 +21,9 @@ void mdl_free(mdl_model **pmm)
     free(mm->onames);
     free(mm->ohash);
     free(mm->bonds);
+    for (int i = 0; i < mm->npend; i++)
+        free(mm->pend[i].from), free(mm->pend[i].to);
+    free(mm->pend);
     free(mm->leaves);
     free(mm->subs);
     for (int i = 0; i < mm->nsets; i++) {

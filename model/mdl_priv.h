@@ -68,6 +68,14 @@ typedef struct mdl_bond {
     const mdl_y_node *at;
 } mdl_bond;
 
+/* a bond read from the file, joined once both its elements are built (mdl_build.c) */
+typedef struct mdl_pending_bond {
+    mdl_inode *scope, *leaf[2]; /* leaf: the elements its paths name (NULL: an error later) */
+    const mdl_y_node *at, *name;
+    char *from, *to;
+    int done;
+} mdl_pending_bond;
+
 typedef struct mdl_oname {
     char *name;
     int var;      /* >= 0: an unknown */
@@ -104,6 +112,8 @@ struct mdl_model {
     int nohash;
     mdl_bond *bonds;
     int nbonds, capbonds;
+    mdl_pending_bond *pend;
+    int npend, cappend;
     mdl_inode **leaves;
     int nleaves, capleaves;
     long ninstances;
