@@ -436,6 +436,8 @@ static int build_valves(build_ctx *b, bgr_comp hy, int vh, int vl)
     TRY(cl = hyd_relief_valve(m, hy, "check_low", 1e5, 5e5, qmax, 1e4), "check valve");
     TRY(th = hyd_tank(m, hy, "charge_high", s->charge_pressure), "charge");
     TRY(tl = hyd_tank(m, hy, "charge_low", s->charge_pressure), "charge");
+    c->tanks[c->ntanks++] = th;
+    c->tanks[c->ntanks++] = tl;
     const bond1 vb[] = {{"b_rhl_in", vh, 2, rhl, 0}, {"b_rhl_out", rhl, 1, vl, 3},
                         {"b_rlh_in", vl, 4, rlh, 0}, {"b_rlh_out", rlh, 1, vh, 3},
                         {"b_chh_in", th, 0, ch, 0},  {"b_chh_out", ch, 1, vh, 4},
@@ -484,6 +486,8 @@ static int build_hydraulics(build_ctx *b, bgr_port drive)
     TRY(hyd_motor_set_nominal(m, motor, p_nom, w_motor), "motor scales");
     TRY(rot_inertia_set_nominal(m, inertia, w_motor), "motor inertia scales");
     TRY(tank = hyd_tank(m, hy, "charge_pump", s->charge_pressure), "charge");
+    c->prime = prime;
+    c->tanks[c->ntanks++] = tank;
     TRY(charge = hyd_leakage(m, hy, "charge_valve", 1e-9), "charge valve");
     c->vol_h = vh;
     c->vol_l = vl;
@@ -630,6 +634,17 @@ static int set_initial(crane *c)
         c->v_pl = bgr_ref_var(m, (bgr_ref){BGR_STATE, c->vol_l, 0});
         if (c->motor_acc >= 0) c->v_alpha = bgr_ref_var(m, (bgr_ref){BGR_OWN, c->motor_acc, 0});
         y0[c->v_ph] = y0[c->v_pl] = s->charge_pressure;
+        /* the bonds at what their volumes and sources hold at the start (the lines' and the
+         * tanks' pressure at every port, the prime mover's speed), as the model files' reader
+         * starts them (model/mdl_types_hyd.c): the static start then begins consistent there */
+        const int vols[2] = {c->vol_h, c->vol_l};
+        for (int j = 0; j < 2 + c->ntanks; j++) {
+            const bgr_element *el = bgr_element_get(m, j < 2 ? vols[j] : c->tanks[j - 2]);
+            for (int k = 0; el && k < el->nports; k++)
+                if (bgr_ev(el, m, k, 0) >= 0) y0[bgr_ev(el, m, k, 0)] = s->charge_pressure;
+        }
+        const bgr_element *pm = bgr_element_get(m, c->prime);
+        if (pm && bgr_fv(pm, m, 0, 0) >= 0) y0[bgr_fv(pm, m, 0, 0)] = s->pump_speed;
     }
     return 0; /* c->tip0: the undeformed tip until crane_settle puts the static one there */
 }

@@ -25,6 +25,7 @@ struct crane {
     int drive_bond;                              /* into the slewing joint's drive port */
     double tie_L0;                               /* unstretched tie length */
     int ref_value, ref_rate, ref_int, pid, pump, vol_h, vol_l, motor_acc;
+    int prime, tanks[3], ntanks; /* the drive's sources: the prime mover, the charge tanks */
     double tip0[3], e2[3], e3[3]; /* undeformed tip, boom's transverse directions (theta = 0) */
     double tip_r[3];              /* rigid boom: tip in its body frame */
     double boom_cs[3];            /* rigid boom: its mass centre from the boom's middle */

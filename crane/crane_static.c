@@ -1,4 +1,5 @@
 /* The crane's static start and checks, equilibrium.csv, and its modes (crane_static.h). */
+#include "bg_trim.h"
 #include "crane_static.h"
 
 #include <math.h>
@@ -55,18 +56,6 @@ static double tip_radius_at(const crane *c, const double *y, double *tip, double
     const crane_scene *s = crane_get_scene(c);
     crane_tip_foot(c, y, tip, foot);
     return hypot(tip[0] - s->joint_A[0], tip[1] - s->joint_A[1]);
-}
-
-/* d L0 / d r of the first tie for a rigid rotation of the boom about the hinge's y axis. */
-static double tie_sensitivity(const crane_scene *s, const double *tip)
-{
-    double g[3] = {s->gantry_top[0], s->gantry_top[1], s->gantry_top[2]};
-    if (s->tie_spread > 0) g[1] -= s->tie_spread;
-    double u[3] = {tip[0] - g[0], tip[1] - g[1], tip[2] - g[2]};
-    double L = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    double dx = tip[0] - s->boom_foot[0], dz = tip[2] - s->boom_foot[2];
-    /* rotation dphi about the hinge's y axis: d tip = dphi (dz, 0, -dx), d r = dphi dz */
-    return (u[0] * dz - u[2] * dx) / (L * dz);
 }
 
 /* ------------------------------------------------------------ static start ---- */
@@ -128,6 +117,47 @@ static void say(crane_start_report *rep, const char *fmt, double a, double b, do
         snprintf(rep->message + l, sizeof rep->message - l, fmt, a, b, c2);
 }
 
+/* One static solve of the crane built with tie length L0 (0: geometric) and the PID's
+ * integral at I0; the crane built is kept (the last one is the start). */
+typedef struct start_ctx {
+    const crane_scene *sc;
+    const dae_static_options *o;
+    crane_start_report *rep;
+    crane *cur;
+    double I0;
+    int vI, vth;       /* the integral's and the platform angle's unknowns (-1: none) */
+    int static_status; /* the last solve's */
+} start_ctx;
+
+static int solve_at(start_ctx *x, double L0, bg_error *serr)
+{
+    crane_free(&x->cur);
+    bg_error berr = {0};
+    x->cur = crane_build_ties(x->sc, L0, &berr);
+    if (!x->cur) {
+        *serr = berr;
+        return x->static_status = berr.status < 0 ? berr.status : BG_ERR_ARGUMENT;
+    }
+    bgr_model *mc = crane_model(x->cur);
+    x->vI = bgr_find_var(mc, "crane/hydraulics/pid/integral");
+    x->vth = bgr_find_var(mc, "crane/platform_sensor/angle");
+    if (x->vI >= 0) bgr_y0(mc)[x->vI] = x->I0;
+    bg_error_clear(serr);
+    x->rep->solves++;
+    return x->static_status = bgr_static(mc, x->o, 0.0, &x->rep->solve, serr);
+}
+
+/* the trim's condition: the tip's radius at the equilibrium minus the scene's */
+static int trial(void *ctx, double L0, double *f, bg_error *serr)
+{
+    start_ctx *x = ctx;
+    int st = solve_at(x, L0, serr);
+    if (st != BG_OK) return st;
+    double tip[3], foot[3];
+    *f = tip_radius_at(x->cur, bgr_y0(crane_model(x->cur)), tip, foot) - x->sc->boom_tip_radius;
+    return BG_OK;
+}
+
 int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
 {
     crane_start_report rl;
@@ -145,42 +175,42 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
     dae_static_options o;
     dae_static_options_default(&o);
     o.max_steps = 150; /* a crane that can stand needs 3 to 10; a failure is known by then */
-    double L0 = rep->tie_L0, Lp = NAN, rp = NAN;
-    crane *cur = NULL;
+    start_ctx sx = {&sc, &o, rep, NULL, 0.0, -1, -1, BG_OK};
     bg_error serr = {0};
     int st = BG_OK, tie_fail = 0;
     /* The drive holds the platform through the PID's integral, whose state and the platform's
      * angle keep their sum (both integrate the same rate): at rest the integral supplies the
      * leakage flow, so a start from zero would leave the platform a fraction of a microradian
-     * off theta = 0. The integral starts instead from the holding value of the last solve
-     * (a bumpless start), and the platform rests at theta = 0. */
-    double I0 = 0;
+     * off theta = 0. The integral starts instead from the holding value: solves at the
+     * geometric tie length, each restarting the integral from the last one's value (a bumpless
+     * start), until the platform rests at theta = 0 (crane/models/paper.yaml states the value
+     * found, pid_integral0). */
+    const double Lg = rep->tie_L0;
     for (int it = 0; it < 12; it++) {
-        crane_free(&cur);
-        cur = crane_build_ties(&sc, sc.ties ? L0 : 0.0, err);
-        if (!cur) return err && err->status < 0 ? err->status : BG_ERR_ARGUMENT;
-        bgr_model *mc = crane_model(cur);
-        int vI = bgr_find_var(mc, "crane/hydraulics/pid/integral");
-        int vth = bgr_find_var(mc, "crane/platform_sensor/angle");
-        if (vI >= 0) bgr_y0(mc)[vI] = I0;
-        bg_error_clear(&serr);
-        st = bgr_static(mc, &o, 0.0, &rep->solve, &serr);
-        rep->solves++;
-        rep->tie_L0 = L0;
-        if (st != BG_OK) break;
-        double tip[3], foot[3], r = tip_radius_at(cur, bgr_y0(mc), tip, foot);
-        int held = vI < 0 || vth < 0 || fabs(bgr_y0(mc)[vth]) <= 1e-12;
-        if (vI >= 0) I0 = bgr_y0(mc)[vI];
-        if ((!sc.ties || fabs(r - R) <= 1e-9 * fmax(R, 1.0)) && held) break;
-        if (!sc.ties || fabs(r - R) <= 1e-9 * fmax(R, 1.0)) continue; /* the integral only */
-        double dLdr = isfinite(rp) && r != rp ? (L0 - Lp) / (r - rp) : tie_sensitivity(&sc, tip);
-        double Ln = L0 + dLdr * (R - r);
-        if (!(Ln > 0) || !isfinite(Ln) || !(tip[2] > foot[2])) {
-            tie_fail = 1;
+        double I_in = sx.I0;
+        st = solve_at(&sx, sc.ties ? Lg : 0.0, &serr);
+        if (st != BG_OK || sx.vI < 0 || sx.vth < 0) break;
+        const double *yc = bgr_y0(crane_model(sx.cur));
+        if (fabs(yc[sx.vth]) <= 1e-12) {
+            sx.I0 = I_in;
             break;
         }
-        Lp = L0, rp = r, L0 = Ln;
+        sx.I0 = yc[sx.vI];
     }
+    /* The ties' unstretched length until the tip stands at the radius: the trim of the model
+     * files (bg_trim.h: the secant from the geometric length, then Illinois on a bracket of
+     * 0.1 % below it), each trial a static solve of the crane built with that length, the
+     * integral held at its value */
+    if (st == BG_OK && sc.ties) {
+        dae_trim_options to = {Lg, (1 - 1e-3) * Lg, Lg, 1e-9 * fmax(R, 1.0)};
+        dae_trim_result tres;
+        int tr = dae_trim_solve(trial, &sx, &to, &tres, &serr);
+        if (tr != BG_OK && sx.static_status == BG_OK) tie_fail = 1; /* the radius not met */
+        st = sx.static_status;
+        rep->tie_L0 = tres.p;
+    }
+    rep->pid_integral0 = sx.I0;
+    crane *cur = sx.cur;
     if (st != BG_OK && st != DAE_CONV_FAIL && st != DAE_TOO_MUCH_WORK && st != BG_ERR_SINGULAR) {
         crane_free(&cur);
         return bg_error_raise(err, st, "crane_static_start", "static equilibrium: %s",
@@ -309,13 +339,15 @@ int crane_start_print(const crane_start_report *r, FILE *f)
 {
     const char *ok[2] = {"FAILED", "ok"};
     fprintf(f, "static start: %s\n", r->ok ? "verified" : "FAILED");
-    fprintf(f, "  static solves (one per tie length)  %d in %.3f s\n", r->solves, r->seconds);
+    fprintf(f, "  static solves                       %d in %.3f s (the integral's, then the "
+               "trim's)\n", r->solves, r->seconds);
     fprintf(f, "  last solve: load factor %.6g, %ld steps (%ld rejected), %ld Newton iterations, "
                "scaled residual %.3g\n",
             r->solve.lambda, r->solve.steps, r->solve.rejected, r->solve.newton_iters,
             r->solve.residual);
     fprintf(f, "  ties' unstretched length            %.9g m (geometric %.9g m)\n", r->tie_L0,
             r->tie_L0_geometric);
+    fprintf(f, "  PID's holding integral              %.17g rad\n", r->pid_integral0);
     fprintf(f, "checks:\n");
     fprintf(f, "  %-6s the static solve reached the full load and rest\n", ok[r->ok_solve]);
     fprintf(f, "  %-6s tip at the scene's radius: %.9g m, wanted %.9g m within %.3g m\n",

@@ -4,17 +4,19 @@
  *
  * Static start (crane_static_start). The dynamic model itself is brought to rest at t = 0: the
  * static solver's continuation from the crane as assembled (boom straight at the scene's luffing
- * angle, ties and rope unstretched, lines at the charge pressure) ramps gravity in (the Newton
- * homotopy, bg_static.h); the hydraulic drive holds the platform (the motor at rest, the PID's
- * integral supplying the leakage flow: it starts at that holding value, found by the solve
- * before, so that the platform rests at theta = 0 rather than a fraction of a microradian off),
- * the velocity-level joints stay closed. The ties stretch
- * and the boom bends under the load, so the ties' unstretched length is corrected (secant
- * iteration, first step by the rigid rotation about the hinge) until the tip is at the scene's
- * radius to 1e-9 of it; each correction is one more static solve (a few milliseconds with 16
- * boom elements, 0.4 s with 512). The model is rebuilt with the corrected ties and the
- * equilibrium becomes its initial values.
- *
+ * angle, ties and rope unstretched, lines and their ports at the charge pressure) ramps gravity
+ * in (the Newton homotopy, bg_static.h); the hydraulic drive holds the platform (the motor at
+ * rest, the PID's integral supplying the leakage flow), the velocity-level joints stay closed.
+ * First the integral's holding value: solves with the ties at their geometric length, each
+ * starting the integral from the last one's value, until the platform rests within 1e-12 rad of
+ * theta = 0 (two solves; the value is reported, pid_integral0). Then, the integral held there,
+ * the ties' unstretched length is trimmed until the tip is at the scene's radius to 1e-9 of it,
+ * by the trim of the model files (solver/bg_trim.h: the secant from the geometric length, then
+ * Illinois on a bracket 0.1 % below it), each trial a static solve of the crane built with that
+ * length (a few milliseconds with 16 boom elements, 0.4 s with 512); the last one built is the
+ * start. crane/models/paper.yaml states the same procedure in the format (its trim, its
+ * pid_integral0), and the two starts agree to the last bit (tests/crane/test_crane_model_file).
+
  * Checks, with their tolerances (crane_start_report; crane --static writes them to static.txt):
  *   - the static solve reached the full load (load factor 1) and a state at rest;
  *   - the tip at the scene's radius: |r - tip_radius| <= 1e-6 max(tip_radius, 1 m);
@@ -46,9 +48,10 @@ extern "C" {
 
 typedef struct crane_start_report {
     dae_static_result solve; /* the last static solve */
-    int solves;              /* static solves (one per tie length) */
+    int solves;              /* static solves (the integral's, then one per tie length) */
     double seconds;          /* wall time of the static start */
     double tie_L0_geometric, tie_L0; /* the ties' unstretched length, geometric and corrected */
+    double pid_integral0;            /* the PID's integral that holds the platform at rest */
     /* the checks */
     double radius, radius_want, radius_tol; /* tip's distance to the slewing axis (m) */
     double tip_z, foot_z;                   /* heights of tip and foot (m) */

@@ -2,23 +2,18 @@
  *
  * Without `trim:` the static start is bgr_static on the model as built. With it, a model
  * parameter p is adjusted until an output o at the static equilibrium equals a value v:
- * f(p) = o(equilibrium of the model built with p) - v = 0 on the bracket [a, b] the file gives.
- * The model is built again for every trial value (a parameter may change what is built).
- * First the secant method from the parameter's own value (and a step of 1e-4 of the bracket
- * from it): a file states a value near the answer, and static solves near the answer are cheap
- * (they start close to rest). When a secant step leaves the bracket or 12 steps do not meet the
- * tolerance, the bracket itself is used: the Illinois variant of regula falsi (M. Dowell and
- * P. Jarratt, BIT 11 (1971) 168), the secant through the bracket's ends with the value at an
- * end that stays twice halved, which keeps the bracket and converges superlinearly. It stops
- * when |f| is within the tolerance (default: the solver's rtol times max(1, |v|)) or the
- * bracket is narrower than 1e-12 of its width. A bracket whose ends give f of one sign is
- * refused with both values, the parameter, the output and the value named: the condition
- * cannot be met there. */
+ * f(p) = o(equilibrium of the model built with p) - v = 0 on the bracket [a, b] the file gives,
+ * by dae_trim_solve (bg_trim.h: the secant from the parameter's own value, then Illinois on the
+ * bracket). The model is built again for every trial value (a parameter may change what is
+ * built); the last one built is the answer's. The tolerance defaults to the solver's rtol times
+ * max(1, |v|). A bracket whose ends give f of one sign is refused with both values, the
+ * parameter, the output and the value named: the condition cannot be met there. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "bg_trim.h"
 #include "bgr_analysis.h"
 #include "mdl_priv.h"
 
@@ -64,6 +59,29 @@ static mdl_model *rebuild(const mdl_model *mm, const char *param, double value, 
     return nm;
 }
 
+/* what a trial of the trim needs, and the model its last trial built */
+typedef struct trial_ctx {
+    const mdl_model *mm;
+    const char *param;
+    int col;
+    double want;
+    const dae_static_options *o;
+    mdl_model *last;
+    mdl_trim_report *rep;
+} trial_ctx;
+
+static int trial(void *ctx, double p, double *f, bg_error *err)
+{
+    trial_ctx *c = ctx;
+    mdl_free(&c->last);
+    if (!(c->last = rebuild(c->mm, c->param, p, err))) return BG_ERR_ARGUMENT;
+    double v = NAN;
+    int r = equilibrium(c->last, c->o, c->col, &v, &c->rep->last, err);
+    c->rep->solves++;
+    *f = v - c->want;
+    return r;
+}
+
 int mdl_static(mdl_model **pmm, const dae_static_options *o, mdl_trim_report *rep, bg_error *err)
 {
     if (!pmm || !*pmm) return BG_ERR_ARGUMENT;
@@ -78,113 +96,35 @@ int mdl_static(mdl_model **pmm, const dae_static_options *o, mdl_trim_report *re
     }
     /* the trim's keys were checked by mdl_read_trim at load */
     const char *param = mdl_y_get(tr, "adjust")->text, *outname = mdl_y_get(tr, "until")->text;
-    int col = output_col(mm, outname);
-    double a = mm->trim_lo, b = mm->trim_hi, want = mm->trim_value, tol = mm->trim_tol;
     snprintf(rep->parameter, sizeof rep->parameter, "%s", param);
     snprintf(rep->output, sizeof rep->output, "%s", outname);
-    rep->target = want;
-    /* the secant from the file's own value */
-    double p0 = (a + b) / 2, f0, f1, v;
-    if (mdl_parameter(mm, param, &v) == BG_OK && v > a && v < b) p0 = v;
-    double h = 1e-4 * (b - a), p1 = p0 + h <= b ? p0 + h : p0 - h;
-    mdl_model *m0 = rebuild(mm, param, p0, err), *m1 = NULL;
-    if (!m0) return BG_ERR_ARGUMENT;
-    int r = equilibrium(m0, o, col, &v, &rep->last, err);
-    rep->solves++;
-    f0 = v - want;
-    if (r == BG_OK && fabs(f0) <= tol) {
-        m1 = m0, p1 = p0, f1 = f0;
-    } else if (r == BG_OK) {
-        for (int it = 0; it < 12; it++) {
-            mdl_free(&m1);
-            if (!(m1 = rebuild(mm, param, p1, err))) break;
-            r = equilibrium(m1, o, col, &v, &rep->last, err);
-            rep->solves++;
-            f1 = v - want;
-            if (r != BG_OK || fabs(f1) <= tol) break;
-            double p2 = p1 - f1 * (p1 - p0) / (f1 - f0);
-            if (!(p2 >= a && p2 <= b) || f1 == f0) break; /* out of the bracket: use it */
-            mdl_free(&m0);
-            m0 = m1, m1 = NULL;
-            p0 = p1, f0 = f1, p1 = p2;
-        }
-    }
-    if (m1 && r == BG_OK && fabs(f1) <= tol) {
-        if (m0 != m1) mdl_free(&m0);
-        rep->trimmed = 1;
-        rep->value = p1;
-        rep->achieved = f1 + want;
+    rep->target = mm->trim_value;
+    trial_ctx c = {mm, param, output_col(mm, outname), mm->trim_value, o, NULL, rep};
+    dae_trim_options to = {NAN, mm->trim_lo, mm->trim_hi, mm->trim_tol};
+    double v;
+    if (mdl_parameter(mm, param, &v) == BG_OK) to.p0 = v;
+    dae_trim_result res;
+    int r = dae_trim_solve(trial, &c, &to, &res, err);
+    rep->trimmed = 1;
+    rep->value = res.p;
+    rep->achieved = res.f + c.want;
+    if (r == BG_OK) {
         mdl_free(pmm);
-        *pmm = m1;
+        *pmm = c.last;
         return BG_OK;
     }
-    if (m0 != m1) mdl_free(&m0);
-    mdl_free(&m1);
-    bg_error_clear(err);
-
-    double fa, fb, va, vb;
-    mdl_model *ma = rebuild(mm, param, a, err);
-    if (!ma) return BG_ERR_ARGUMENT;
-    r = equilibrium(ma, o, col, &va, &rep->last, err);
-    rep->solves++;
-    mdl_free(&ma);
-    if (r != BG_OK) return r;
-    mdl_model *mb = rebuild(mm, param, b, err);
-    if (!mb) return BG_ERR_ARGUMENT;
-    r = equilibrium(mb, o, col, &vb, &rep->last, err);
-    rep->solves++;
-    if (r != BG_OK) {
-        mdl_free(&mb);
-        return r;
-    }
-    fa = va - want;
-    fb = vb - want;
-    if (fa * fb > 0) {
-        mdl_free(&mb);
+    mdl_free(&c.last);
+    if (r != DAE_CONV_FAIL) return r;
+    if (res.f_lo * res.f_hi > 0)
         return bg_error_raise(err, DAE_CONV_FAIL, "mdl_static",
                               "trim: %s goes from %.9g to %.9g as %s goes from %.9g to %.9g; %.9g "
                               "is not between them: the condition %s = %.9g cannot be met in that "
-                              "bracket (trim.between)", outname, va, vb, param, a, b, want, outname, want);
-    }
-    mdl_model *best = mb;
-    double pbest = b, fbest = fb;
-    for (int it = 0; it < 60 && fabs(fbest) > tol && fabs(b - a) > 1e-12 * fabs(mm->trim_hi - mm->trim_lo);
-         it++) {
-        double p = b - fb * (b - a) / (fb - fa);
-        mdl_model *mp = rebuild(mm, param, p, err);
-        if (!mp) {
-            mdl_free(&best);
-            return BG_ERR_ARGUMENT;
-        }
-        r = equilibrium(mp, o, col, &v, &rep->last, err);
-        rep->solves++;
-        if (r != BG_OK) {
-            mdl_free(&mp);
-            mdl_free(&best);
-            return r;
-        }
-        double fp = v - want;
-        if (fp * fb < 0) /* the root between p and b: the old b becomes the kept end */
-            a = b, fa = fb;
-        else /* the kept end a stays again: its value halved (Illinois) */
-            fa /= 2;
-        b = p, fb = fp;
-        mdl_free(&best);
-        best = mp, pbest = p, fbest = fp;
-    }
-    rep->trimmed = 1;
-    rep->value = pbest;
-    rep->achieved = fbest + want;
-    if (fabs(fbest) > tol) {
-        mdl_free(&best);
-        return bg_error_raise(err, DAE_CONV_FAIL, "mdl_static",
-                              "trim: %s = %.9g is not reached within %.3g by adjusting %s (last "
-                              "%.12g gives %.12g after %d static solves)", outname, want, tol, param,
-                              pbest, fbest + want, rep->solves);
-    }
-    mdl_free(pmm);
-    *pmm = best;
-    return BG_OK;
+                              "bracket (trim.between)", outname, res.f_lo + c.want,
+                              res.f_hi + c.want, param, to.lo, to.hi, c.want, outname, c.want);
+    return bg_error_raise(err, DAE_CONV_FAIL, "mdl_static",
+                          "trim: %s = %.9g is not reached within %.3g by adjusting %s (last "
+                          "%.12g gives %.12g after %d static solves)", outname, c.want, to.tol,
+                          param, res.p, res.f + c.want, rep->solves);
 }
 
 int mdl_read_trim(mdl_model *mm)

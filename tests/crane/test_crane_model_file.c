@@ -6,8 +6,9 @@
  *     the parts and bonds in crane_build's order, and the reader numbers the bonds in the
  *     file's order) with the same nominal magnitude;
  *   - the static start: the ties' unstretched length found by the file's `trim:` against the
- *     C crane's (crane_static_start), the tip's radius, and the largest difference of the two
- *     start states (unknowns matched by name, in units of their nominal magnitudes);
+ *     C crane's (crane_static_start: the same trim, bg_trim.h), the tip's radius, the PID's
+ *     holding integral the file states against the one the C crane finds, and the two start
+ *     states to the last bit;
  *   - the outputs: the file's expressions evaluated at the C crane's state (mapped by name)
  *     against crane_outputs, column by column (tip_defl_1 and alpha_err aside, see
  *     docs/crane.md "The crane as a model file");
@@ -15,8 +16,8 @@
  *     the C crane's run exactly (steps, Newton iterations, Jacobians, rejections): the same DAE
  *     to the last bit;
  *   - a run over the scene's 20 s with each model's own solver options (the file's by
- *     mdl_dae_options, the C crane's by crane_solver_setup): the step counts within 1 % (see
- *     main: what rounding alone does to them, a diagnostic run measures it), and for the
+ *     mdl_dae_options, the C crane's by crane_solver_setup): the same steps, Newton iterations
+ *     and Jacobians (the issue's target was within 1 %; see main), and for the
  *     file's run the acceptance figures of test_crane_paper.c (mean tip radius within
  *     0.5 %, theta(12 s) within 0.05 rad of 5 rad, |omega - omega_r| <= 0.05 rad/s throughout
  *     and |omega| <= 2 % of the plateau rate from 13 s on, the line pressures in 0 .. 35 MPa).
@@ -169,8 +170,7 @@ static int file_var(const bgr_model *cm, const bgr_model *fm, int i)
     return j;
 }
 
-/* step_tol: the largest relative difference of the step counts (see main) */
-static void compare(const char *label, const char *scene, const char *file, double step_tol)
+static void compare(const char *label, const char *scene, const char *file)
 {
     bg_error e = {0};
     crane_scene sc;
@@ -249,10 +249,12 @@ static void compare(const char *label, const char *scene, const char *file, doub
            "(%d not)", label, unmatched);
     tap_ok(map && !moved, "%s: and at the same index (%d elsewhere)", label, moved);
     tap_ok(!nominal_diff, "%s: with the same nominal magnitude (%d differ)", label, nominal_diff);
-    tap_diag("%s: the PID's integral at the start %.17g (the file's pid_integral0)", label,
-             yc[bgr_find_var(cm, "crane/hydraulics/pid/integral")]);
-    tap_ok(dmax <= 1e-5, "%s: the start states agree within %.3g nominal magnitudes (worst: %s)",
-           label, dmax, worst >= 0 ? bgr_var_name(cm, worst) : "-");
+    double I0f = NAN;
+    mdl_parameter(mm, "pid_integral0", &I0f);
+    tap_ok(I0f == rep.pid_integral0, "%s: the PID's integral that holds the platform %.17g (the "
+           "file's pid_integral0 %.17g)", label, rep.pid_integral0, I0f);
+    tap_ok(dmax == 0, "%s: the start states agree to the last bit (largest difference %.3g "
+           "nominal magnitudes, at %s)", label, dmax, worst >= 0 ? bgr_var_name(cm, worst) : "-");
 
     /* ---- the runs, each with its own options ---- */
     dae_problem pc, pf;
@@ -283,10 +285,11 @@ static void compare(const char *label, const char *scene, const char *file, doub
     run(&pc, &oc, bgr_y0(cm), bgr_yp0(cm), sample_c, c, &sc, &Fc);
     if (cols_ok) run(&pf, &of, bgr_y0(fm), bgr_yp0(fm), sample_file, &fc, &sc, &Ff);
     tap_ok(Fc.ok && cols_ok && Ff.ok, "%s: both runs reach %g s", label, sc.t_end);
-    tap_ok(labs(Ff.st.steps - Fc.st.steps) <= step_tol * (double)Fc.st.steps,
-           "%s: steps %ld, within %g %% of the C crane's %ld (%+.2f %%)", label, Ff.st.steps,
-           100 * step_tol, Fc.st.steps,
-           100.0 * (double)(Ff.st.steps - Fc.st.steps) / (double)Fc.st.steps);
+    tap_ok(Ff.st.steps == Fc.st.steps && Ff.st.newton_iters == Fc.st.newton_iters &&
+               Ff.st.jac_evals == Fc.st.jac_evals,
+           "%s: the C crane's run: %ld steps, %ld Newton iterations, %ld Jacobians (C crane %ld, "
+           "%ld, %ld)", label, Ff.st.steps, Ff.st.newton_iters, Ff.st.jac_evals, Fc.st.steps,
+           Fc.st.newton_iters, Fc.st.jac_evals);
     /* the acceptance figures of test_crane_paper.c for the file's run */
     const double R = sc.boom_tip_radius, wr = sc.ref_rate;
     tap_ok(fabs(Ff.mean_r - R) <= 0.005 * R, "%s: mean tip radius %.4f m (C crane %.4f m)", label,
@@ -385,17 +388,15 @@ static void compare(const char *label, const char *scene, const char *file, doub
 
 int main(void)
 {
-    /* The step counts within 1 % of the C crane's (the target of the issue "Models as files";
-     * measured +0.10 % and -0.50 %). From the same start the two models run alike to the last
-     * bit (checked above); from their own starts they differ only by where the static starts'
-     * trims stop, and the counts depend on the rounding of the solves: the C crane from its
-     * own start moved by 2 ulp takes 1.0 % more steps (paper) and 11 % more (paper-undamped,
-     * the solver's hard case: no damping, a fast drive); this test prints that diagnostic run.
-     * So a change of the library's arithmetic may move the counts past 1 % without any
-     * difference between the two models: judge a failure by it (docs/crane.md, "The crane as a
-     * model file"). */
-    compare("paper", CRANE_SCENES_DIR "/paper.ini", CRANE_MODELS_DIR "/paper.yaml", 0.01);
+    /* The issue "Models as files" asked for the step counts within 1 % of the C crane's. They
+     * depend on the rounding of the solves as well as on the model: the C crane from its own
+     * start moved by 2 ulp takes 0.7 % fewer steps (paper) and 6 % fewer (paper-undamped, the
+     * solver's hard case: no damping, a fast drive); this test prints that diagnostic run. So
+     * the file and the C crane share their static start's procedure (bg_trim.h, the integral's
+     * holding value) and build the same model in the same order: the runs are the same to the
+     * last bit, and the test asks for that (docs/crane.md, "The crane as a model file"). */
+    compare("paper", CRANE_SCENES_DIR "/paper.ini", CRANE_MODELS_DIR "/paper.yaml");
     compare("paper-undamped", CRANE_SCENES_DIR "/paper-undamped.ini",
-            CRANE_MODELS_DIR "/paper-undamped.yaml", 0.01);
+            CRANE_MODELS_DIR "/paper-undamped.yaml");
     return tap_done();
 }
