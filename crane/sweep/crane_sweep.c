@@ -74,8 +74,18 @@ enum { EXIT_OK = 0, EXIT_RUN = 1, EXIT_USAGE = 2 };
 
 volatile sig_atomic_t sweep_signal = 0, sweep_signal_count = 0;
 
+/* 1 until the sweep writes its first file: till then (reading and expanding the sweep file,
+ * --list) a signal ends the program at once, by the signal, as if it had no handler: nothing is
+ * written that would need a final status, and no loop has to look for it. */
+static volatile sig_atomic_t g_end_on_signal = 1;
+
 static void on_signal(int sig)
 {
+    if (g_end_on_signal) { /* async-signal-safe: signal and raise */
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
     if (!sweep_signal) sweep_signal = sig;
     if (sweep_signal_count < 100) sweep_signal_count++;
 }
@@ -260,21 +270,43 @@ static int under_launcher(long *rank, long *size)
     return found;
 }
 
-static int executable(const char *path)
+/* path is a program that can be run: 1; 0 with why not in why ("not found", "is a directory, not
+ * a program", "not executable (no execute permission)", the error of stat). */
+static int executable(const char *path, char *why, size_t size)
 {
     struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && access(path, X_OK) == 0;
+    if (stat(path, &st) != 0) {
+        snprintf(why, size, "%s", errno == ENOENT ? "not found" : strerror(errno));
+        return 0;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(why, size, "is %s, not a program", pu_fs_kind((unsigned)st.st_mode));
+        return 0;
+    }
+    if (access(path, X_OK) != 0) {
+        snprintf(why, size, "not executable (%s)",
+                 errno == EACCES ? "no execute permission" : strerror(errno));
+        return 0;
+    }
+    return 1;
 }
 
 /* The program a case runs (name: crane or bgsim): given (--crane, --bgsim), next to this
- * program, the build's (build, NULL if unknown). */
+ * program, the build's (build, NULL if unknown). 1 found; 0 not found (tried: where it was
+ * looked for); -1 the given one is there but cannot be run (tried: "PATH: why"). */
 static int find_program(const char *name, const char *given, const char *build, char *out,
                         size_t size, char *tried, size_t tsize)
 {
     tried[0] = '\0';
+    char why[256];
     if (given) {
-        snprintf(tried, tsize, "%s", given);
-        if (!executable(given)) return 0;
+        if (!executable(given, why, sizeof why)) {
+            if (strcmp(why, "not found")) /* there, but not a program: said as such */
+                snprintf(tried, tsize, "%s: %s", given, why);
+            else
+                snprintf(tried, tsize, "%s", given);
+            return strcmp(why, "not found") ? -1 : 0;
+        }
         if (!realpath(given, out)) snprintf(out, size, "%s", given);
         return 1;
     }
@@ -286,7 +318,7 @@ static int find_program(const char *name, const char *given, const char *build, 
         if (slash) {
             snprintf(slash + 1, sizeof self - (size_t)(slash + 1 - self), "%s", name);
             snprintf(tried, tsize, "%s", self);
-            if (executable(self)) {
+            if (executable(self, why, sizeof why)) {
                 snprintf(out, size, "%s", self);
                 return 1;
             }
@@ -295,7 +327,7 @@ static int find_program(const char *name, const char *given, const char *build, 
     if (build) {
         size_t tl = strlen(tried);
         snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", build);
-        if (executable(build)) {
+        if (executable(build, why, sizeof why)) {
             snprintf(out, size, "%s", build);
             return 1;
         }
@@ -330,6 +362,45 @@ static void format_command(sweep_state *st, int argc, char **argv)
     if (n >= size) snprintf(b + size, 8, " ...");
 }
 
+/* The file at path replaced by data (pu_write_atomic). On a full disk (ENOSPC, EDQUOT) the
+ * atomic copy, whose temporary pu_write_atomic removes, needs room the disk lacks: the file is
+ * then rewritten in place, its old blocks freed first (O_TRUNC), and if that falls short too it is
+ * cut back to its last whole line (no partial line left). 0, or -1 with errno. */
+static int write_file(const char *path, const char *data, size_t len)
+{
+    if (pu_write_atomic(path, data, len) == 0) return 0;
+    int e = errno;
+    if (e != ENOSPC && e != EDQUOT) return -1;
+    int fd = open(path, O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) {
+        errno = e;
+        return -1;
+    }
+    size_t done = 0;
+    while (done < len) {
+        ssize_t w = write(fd, data + done, len - done);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) break;
+        done += (size_t)w;
+    }
+    if (done < len) {
+        size_t whole = done;
+        while (whole > 0 && data[whole - 1] != '\n')
+            whole--;
+        if (ftruncate(fd, (off_t)whole) != 0) {
+        }
+    }
+    if (close(fd) != 0 && done == len) done = 0;
+    if (done < len) {
+        errno = e;
+        return -1;
+    }
+    if (g_print)
+        fprintf(stderr, "crane-sweep: %s: %s: rewritten in place (not atomically)\n", path,
+                strerror(e));
+    return 0;
+}
+
 static int write_status(sweep_state *st, int final)
 {
     char *buf = NULL;
@@ -360,7 +431,7 @@ static int write_status(sweep_state *st, int final)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/status.txt", r->outdir);
-    int rc = pu_write_atomic(path, buf, len);
+    int rc = write_file(path, buf, len);
     int e = errno;
     free(buf);
     if (rc) fprintf(stderr, "crane-sweep: cannot write %s: %s\n", path, strerror(e));
@@ -454,7 +525,7 @@ static int write_final_csv(sweep_run *r, char *msg, size_t size)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/sweep.csv", r->outdir);
-    int rc = pu_write_atomic(path, buf, len);
+    int rc = write_file(path, buf, len);
     if (rc) snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
     free(buf);
     return rc;
@@ -691,10 +762,14 @@ int main(int argc, char **argv)
     run.jobs = o.jobs ? o.jobs : size > 1 ? 1 : ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
     char tried[SWEEP_PATH_SIZE * 2];
     const char *prog = sweep_program(&spec);
-    if (!find_program(prog, spec.is_model ? o.bgsim : o.crane,
-                      spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
-                      sizeof run.crane, tried, sizeof tried)) {
-        if (g_print)
+    int found = find_program(prog, spec.is_model ? o.bgsim : o.crane,
+                             spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
+                             sizeof run.crane, tried, sizeof tried);
+    if (found != 1) {
+        if (g_print && found < 0)
+            fprintf(stderr, "crane-sweep: --%s %s; give the %s program with --%s PATH\n", prog,
+                    tried, prog, prog);
+        else if (g_print)
             fprintf(stderr,
                     "crane-sweep: the %s program was not found (tried %s); give it "
                     "with --%s PATH\n",
@@ -730,6 +805,7 @@ int main(int argc, char **argv)
         snprintf(st.engine, sizeof st.engine, "local, %d job%s", run.jobs, run.jobs > 1 ? "s" : "");
 
     int code = EXIT_OK;
+    g_end_on_signal = 0; /* from here a signal stops the sweep in order (sweep_engine.h) */
     if (rank == 0) {
         run.rows = calloc((size_t)spec.ncases, sizeof *run.rows);
         run.have = calloc((size_t)spec.ncases, 1);

@@ -54,7 +54,7 @@ int sweep_proc_start(sweep_proc *p, long index, const char *exe, char *const arg
     sigaddset(&deflt, SIGPIPE);
     if (!e) e = posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     if (!e)
-        e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log, O_WRONLY | O_CREAT | O_TRUNC,
+        e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW,
                                              0644);
     if (!e) e = posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
     if (!e) e = posix_spawnattr_setsigmask(&at, &none);

@@ -80,6 +80,8 @@ typedef struct sweep_outcome {
     int stopped_by;    /* the sweep passed this signal on (0: none) */
     double time_limit; /* s */
     double cpu_s, wall_s;
+    long busy_pid; /* not started: a crane of an earlier sweep (this pid) still runs in the folder */
+    char why[384]; /* not started: why, when more than errno_start says (the folder's state) */
 } sweep_outcome;
 
 /* The reported quantity report[i] of a sweep: its name (sweep.csv's header), unit, the stem of
@@ -103,6 +105,14 @@ void sweep_row_not_run(sweep_row *row, long index, const char *why);
  * too small. */
 int sweep_csv_header(const sweep_spec *s, char *buf, size_t size);
 int sweep_csv_row(const sweep_spec *s, const sweep_row *row, char *buf, size_t size);
+
+/* A file the sweep reads (status.txt, the log, results.csv, ...) opened for reading if it is a
+ * regular file (not a device, FIFO or folder: /dev/zero never ends) of at most max bytes (0: any
+ * size), without blocking; its size then in *size (the readers stop there: a file that grows
+ * while read ends where it was). NULL with errno (EISDIR, EINVAL: not a regular file; EFBIG). */
+#include <stdio.h>
+FILE *sweep_open_regular(const char *path, long long max, long long *size);
+#define SWEEP_TEXT_MAX (1LL << 20) /* status.txt, case.txt, solver_stats.txt: 1 MB at most */
 
 /* The first line of the file's "key: value" line for key (e.g. "status"), or "" (0). */
 int sweep_read_field(const char *path, const char *key, char *value, size_t size);
