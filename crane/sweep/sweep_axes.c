@@ -174,7 +174,18 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
             pu_ini_trim_copy(q, e ? e : q + strlen(q), a->values[i], SWEEP_VALUE_SIZE);
             q = e ? e + 1 : q + strlen(q);
         }
-        int rj = 0, ri = spec_first_repeat((const char(*)[SWEEP_VALUE_SIZE])a->values, n, &rj);
+        /* a number's value, not its text, repeats: "1" and "1.0" (a list is short: a copy) */
+        char(*canon)[SWEEP_VALUE_SIZE] = calloc((size_t)n, sizeof *canon);
+        if (!canon) return spec_fail_line(c, kvals->line, "out of memory");
+        for (int i = 0; i < n; i++) {
+            double x;
+            if (numeric_type(k->type) && pu_ini_parse_double(a->values[i], &x))
+                snprintf(canon[i], SWEEP_VALUE_SIZE, "%.17g", x == 0 ? 0.0 : x); /* -0 = 0 */
+            else
+                memcpy(canon[i], a->values[i], SWEEP_VALUE_SIZE);
+        }
+        int rj = 0, ri = spec_first_repeat((const char(*)[SWEEP_VALUE_SIZE])canon, n, &rj);
+        free(canon);
         if (ri == -2) return spec_fail_line(c, kvals->line, "out of memory");
         for (int i = 0; i < n; i++) {
             if (!a->values[i][0])
@@ -186,8 +197,9 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
                                                  : "");
             if (i == ri)
                 return spec_fail_line(
-                    c, kvals->line, "key 'values' in [axis]: value %d of %s ('%s') repeats value %d",
-                    i + 1, s->params[p].name, a->values[i], rj + 1);
+                    c, kvals->line,
+                    "key 'values' in [axis]: value %d of %s ('%s') repeats value %d ('%s')", i + 1,
+                    s->params[p].name, a->values[i], rj + 1, a->values[rj]);
             snprintf(what, sizeof what, "key 'values' in [axis]: value %d of %s", i + 1,
                      s->params[p].name);
             if (check_value(c, base, k, a->values[i], kvals->line, what)) return -1;
@@ -244,12 +256,16 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
         if (!xs) return spec_fail_line(c, kcount->line, "out of memory");
         for (int i = 0; i < a->npoints; i++) { /* the texts, then the checks in order */
             double f = count > 1 ? (double)i / (double)(count - 1) : 0, x;
+            /* the ends' difference or ratio may overflow (-1e308 .. 1e308, 1e-300 .. 1e300):
+             * then the weighted mean of the ends (of their logarithms), which stays finite */
             if (i == a->npoints - 1 && count > 1)
                 x = to;
             else if (a->log)
-                x = from * pow(to / from, f);
+                x = isfinite(to / from) && to / from > 0
+                        ? from * pow(to / from, f)
+                        : exp((1 - f) * log(from) + f * log(to));
             else
-                x = from + f * (to - from);
+                x = isfinite(to - from) ? from + f * (to - from) : (1 - f) * from + f * to;
             xs[i] = x;
             if (k->type == CRANE_KEY_INTEGER)
                 snprintf(a->values[i], SWEEP_VALUE_SIZE, "%.0f", fabs(x) < 1e15 ? round(x) : 0.0);

@@ -288,6 +288,12 @@ static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, 
             char name[64];
             pu_ini_trim_copy(p, e ? e : p + strlen(p), name, sizeof name);
             int q = sweep_quantity_index(name);
+            if (!name[0])
+                return spec_fail_line(c, kv->line,
+                                      "key 'report' in [sweep]: quantity %d is empty (expected "
+                                      "the names of summary quantities separated by ',', e.g. "
+                                      "'theta_end, steps')",
+                                      i);
             if (q < 0) {
                 const char *names[SWEEP_NQ + 1];
                 for (int j = 0; j < SWEEP_NQ; j++)
