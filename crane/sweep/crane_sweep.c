@@ -22,7 +22,8 @@
  * interrupted or failed, replaced atomically.
  *
  * --resume keeps the cases whose folder holds a completed status.txt and whose scene.ini is the
- * case's scene (the same base scene, [set] and values), and runs the rest.
+ * case's scene (the same base scene, [set] and values), and runs the rest; a case folder in
+ * which a crane of an earlier sweep still runs is left to it (a not_run row, sweep_engine.h).
  *
  * Exit status: 0 every case completed; 1 the sweep ran but a case did not complete (see
  * sweep.csv), or a file of the sweep could not be written; 2 bad command line or sweep file
@@ -270,71 +271,6 @@ static int under_launcher(long *rank, long *size)
     return found;
 }
 
-/* path is a program that can be run: 1; 0 with why not in why ("not found", "is a directory, not
- * a program", "not executable (no execute permission)", the error of stat). */
-static int executable(const char *path, char *why, size_t size)
-{
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        snprintf(why, size, "%s", errno == ENOENT ? "not found" : strerror(errno));
-        return 0;
-    }
-    if (!S_ISREG(st.st_mode)) {
-        snprintf(why, size, "is %s, not a program", pu_fs_kind((unsigned)st.st_mode));
-        return 0;
-    }
-    if (access(path, X_OK) != 0) {
-        snprintf(why, size, "not executable (%s)",
-                 errno == EACCES ? "no execute permission" : strerror(errno));
-        return 0;
-    }
-    return 1;
-}
-
-/* The program a case runs (name: crane or bgsim): given (--crane, --bgsim), next to this
- * program, the build's (build, NULL if unknown). 1 found; 0 not found (tried: where it was
- * looked for); -1 the given one is there but cannot be run (tried: "PATH: why"). */
-static int find_program(const char *name, const char *given, const char *build, char *out,
-                        size_t size, char *tried, size_t tsize)
-{
-    tried[0] = '\0';
-    char why[256];
-    if (given) {
-        if (!executable(given, why, sizeof why)) {
-            if (strcmp(why, "not found")) /* there, but not a program: said as such */
-                snprintf(tried, tsize, "%s: %s", given, why);
-            else
-                snprintf(tried, tsize, "%s", given);
-            return strcmp(why, "not found") ? -1 : 0;
-        }
-        if (!realpath(given, out)) snprintf(out, size, "%s", given);
-        return 1;
-    }
-    char self[SWEEP_PATH_SIZE];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n > 0) {
-        self[n] = '\0';
-        char *slash = strrchr(self, '/');
-        if (slash) {
-            snprintf(slash + 1, sizeof self - (size_t)(slash + 1 - self), "%s", name);
-            snprintf(tried, tsize, "%s", self);
-            if (executable(self, why, sizeof why)) {
-                snprintf(out, size, "%s", self);
-                return 1;
-            }
-        }
-    }
-    if (build) {
-        size_t tl = strlen(tried);
-        snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", build);
-        if (executable(build, why, sizeof why)) {
-            snprintf(out, size, "%s", build);
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* ----------------------------------------------------------- status.txt ---- */
 
 typedef struct sweep_state {
@@ -360,45 +296,6 @@ static void format_command(sweep_state *st, int argc, char **argv)
         n += (size_t)k;
     }
     if (n >= size) snprintf(b + size, 8, " ...");
-}
-
-/* The file at path replaced by data (pu_write_atomic). On a full disk (ENOSPC, EDQUOT) the
- * atomic copy, whose temporary pu_write_atomic removes, needs room the disk lacks: the file is
- * then rewritten in place, its old blocks freed first (O_TRUNC), and if that falls short too it is
- * cut back to its last whole line (no partial line left). 0, or -1 with errno. */
-static int write_file(const char *path, const char *data, size_t len)
-{
-    if (pu_write_atomic(path, data, len) == 0) return 0;
-    int e = errno;
-    if (e != ENOSPC && e != EDQUOT) return -1;
-    int fd = open(path, O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
-    if (fd < 0) {
-        errno = e;
-        return -1;
-    }
-    size_t done = 0;
-    while (done < len) {
-        ssize_t w = write(fd, data + done, len - done);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) break;
-        done += (size_t)w;
-    }
-    if (done < len) {
-        size_t whole = done;
-        while (whole > 0 && data[whole - 1] != '\n')
-            whole--;
-        if (ftruncate(fd, (off_t)whole) != 0) {
-        }
-    }
-    if (close(fd) != 0 && done == len) done = 0;
-    if (done < len) {
-        errno = e;
-        return -1;
-    }
-    if (g_print)
-        fprintf(stderr, "crane-sweep: %s: %s: rewritten in place (not atomically)\n", path,
-                strerror(e));
-    return 0;
 }
 
 static int write_status(sweep_state *st, int final)
@@ -431,7 +328,7 @@ static int write_status(sweep_state *st, int final)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/status.txt", r->outdir);
-    int rc = write_file(path, buf, len);
+    int rc = sweep_write_file(path, buf, len);
     int e = errno;
     free(buf);
     if (rc) fprintf(stderr, "crane-sweep: cannot write %s: %s\n", path, strerror(e));
@@ -525,7 +422,7 @@ static int write_final_csv(sweep_run *r, char *msg, size_t size)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/sweep.csv", r->outdir);
-    int rc = write_file(path, buf, len);
+    int rc = sweep_write_file(path, buf, len);
     if (rc) snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
     free(buf);
     return rc;
@@ -762,7 +659,7 @@ int main(int argc, char **argv)
     run.jobs = o.jobs ? o.jobs : size > 1 ? 1 : ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
     char tried[SWEEP_PATH_SIZE * 2];
     const char *prog = sweep_program(&spec);
-    int found = find_program(prog, spec.is_model ? o.bgsim : o.crane,
+    int found = sweep_find_program(prog, spec.is_model ? o.bgsim : o.crane,
                              spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
                              sizeof run.crane, tried, sizeof tried);
     if (found != 1) {

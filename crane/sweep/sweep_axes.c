@@ -86,6 +86,20 @@ static int add_param(parse_ctx *c, const swept_key *k, int axis, int line)
     return s->nparams++;
 }
 
+/* The axes before this one with npoints more: at most SWEEP_MAX_CASES cases, checked before the
+ * values are made and checked one by one (16 axes of 100000 values would take that long only to
+ * be refused). 0, or -1 with the error recorded at line. */
+static int within_cases(parse_ctx *c, long long npoints, int line)
+{
+    double n = (double)npoints;
+    for (int a = 0; a < c->s->naxes; a++)
+        n *= c->s->axes[a].npoints;
+    if (n > SWEEP_MAX_CASES)
+        return spec_fail_line(c, line, "the axes make %.0f cases, more than %ld", n,
+                              SWEEP_MAX_CASES);
+    return 0;
+}
+
 /* -------------------------------------------------------- lists and ranges ---- */
 
 /* A generated value's text, 12 significant digits (a range's 0.30000000000000004 is written
@@ -166,6 +180,7 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
         int n = 1;
         for (const char *q = kvals->value; *q; q++)
             n += *q == sep;
+        if (within_cases(c, n, kvals->line)) return -1;
         a->values = calloc((size_t)n, sizeof *a->values);
         if (!a->values) return spec_fail_line(c, kvals->line, "out of memory");
         const char *q = kvals->value;
@@ -249,6 +264,7 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
                                   "key 'spacing' in [axis]: log spacing needs 'from' and 'to' > 0 "
                                   "(got %g and %g)",
                                   from, to);
+        if (within_cases(c, count, kcount->line)) return -1;
         a->npoints = (int)count;
         a->values = calloc((size_t)count, sizeof *a->values);
         if (!a->values) return spec_fail_line(c, kcount->line, "out of memory");

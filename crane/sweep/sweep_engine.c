@@ -337,3 +337,37 @@ void sweep_engine_local(sweep_run *r)
     }
     free(slots);
 }
+
+int sweep_write_file(const char *path, const char *data, size_t len)
+{
+    if (pu_write_atomic(path, data, len) == 0) return 0;
+    int e = errno;
+    if (e != ENOSPC && e != EDQUOT) return -1;
+    int fd = open(path, O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) {
+        errno = e;
+        return -1;
+    }
+    size_t done = 0;
+    while (done < len) {
+        ssize_t w = write(fd, data + done, len - done);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) break;
+        done += (size_t)w;
+    }
+    if (done < len) {
+        size_t whole = done;
+        while (whole > 0 && data[whole - 1] != '\n')
+            whole--;
+        if (ftruncate(fd, (off_t)whole) != 0) {
+        }
+    }
+    if (close(fd) != 0 && done == len) done = 0;
+    if (done < len) {
+        errno = e;
+        return -1;
+    }
+    fprintf(stderr, "crane-sweep: %s: %s: rewritten in place (not atomically)\n", path,
+            strerror(e));
+    return 0;
+}

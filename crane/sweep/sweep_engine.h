@@ -16,6 +16,7 @@
 #define SWEEP_ENGINE_H
 
 #include <signal.h>
+#include <stddef.h>
 
 #include "sweep_proc.h"
 #include "sweep_row.h"
@@ -63,6 +64,12 @@ int sweep_model_case_done(const sweep_run *r, long index, const char *dir);
 void sweep_case_finish(sweep_run *r, const sweep_proc *p, sweep_row *row);
 /* Keeps the row (rank 0) and appends it to sweep.csv; prints a line unless quiet. */
 void sweep_record(sweep_run *r, const sweep_row *row, int from_rank);
+
+/* The file at path replaced by data (pu_write_atomic). On a full disk (ENOSPC, EDQUOT) the
+ * atomic copy, whose temporary pu_write_atomic removes, needs room the disk lacks: the file is
+ * then rewritten in place, its old blocks freed first (O_TRUNC), and if that falls short too it is
+ * cut back to its last whole line (no partial line left). 0, or -1 with errno. */
+int sweep_write_file(const char *path, const char *data, size_t len);
 
 /* The local engine: every case of the queue. */
 void sweep_engine_local(sweep_run *r);

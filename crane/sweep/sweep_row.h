@@ -4,14 +4,18 @@
  * Statuses of a case (the column status):
  *   completed    the crane reached t_end (exit 0, status.txt completed)
  *   failed       the crane ended the run with a failure (exit 1: the model, the solver or a
- *                write; the message is status.txt's reason), or could not be started
+ *                write; the message is status.txt's reason), or could not be started (the
+ *                case's folder is a file, ...); a case whose crane ended without a final
+ *                status.txt on a full disk ("the disk is full") or by SIGXFSZ (the file size
+ *                limit)
  *   invalid      the crane refused the case's scene (exit 2: e.g. an inconsistent scene made by
  *                the case's values; the message is the crane's)
  *   timeout      stopped at the sweep's per-case time limit (SIGTERM, SIGKILL 5 s later)
  *   crashed      ended by a signal it did not handle (SIGSEGV, SIGKILL from outside, ...) or
  *                ended without a final status.txt
  *   interrupted  stopped by a signal: to the sweep (which passes it on) or to the crane alone
- *   not_run      the sweep was stopped before the case started
+ *   not_run      the sweep was stopped before the case started, or the case's folder is in
+ *                use by a crane of an earlier sweep still running there (sweep_case_busy)
  * The figures read from results.csv are given for completed cases only (a partial run's peaks
  * would be read as the case's); steps, cpu_s, wall_s and t_reached for every case that ran. */
 #ifndef SWEEP_ROW_H
