@@ -474,6 +474,7 @@ static int prepare(sweep_state *st)
     }
     long kept = 0;
     for (long c = 0; c < s->ncases; c++) {
+        if (sweep_signal) break; /* the cases not looked at: not_run rows (conclude) */
         if (st->o->resume && case_done(r, c)) {
             char dir[SWEEP_DIR_SIZE];
             sweep_case_dir(r, c, dir, sizeof dir);
