@@ -12,7 +12,9 @@
   crashed, and status.txt is final; a file size limit (RLIMIT_FSIZE) is named as such;
 - messages: --crane naming a folder or a file without execute bit, a case folder that is a
   file, a symbolic link loop as the sweep file, its scene or its model;
-- the sweep file's numbers at their limits: a range whose ends' difference or ratio overflows.
+- the sweep file's numbers at their limits: a range whose ends' difference or ratio overflows;
+  NaN, Inf, 1e999, negative, non-integer and too large counts, seeds and intervals, too many
+  cases, a FIFO or a 2 MB file as the sweep file, bad --time-limit, --jobs and --out.
 
     test_crane_sweep_faults.py CRANE_SWEEP CRANE SOURCE_ROOT
 """
@@ -298,6 +300,54 @@ for text, want in [("from = -1e308\nto = 1e308\ncount = 3\n", ["-1e+308", "0", "
 rc, so, se = run([write("rep.ini", "[sweep]\nreport =\n[axis]\nkey = controller.kp\nvalues = 1\n"),
                   "--list"])
 ok(rc == 2 and "quantity 1 is empty" in se, "an empty report: 'quantity 1 is empty'", se)
+
+# the sweep file's numbers and the command line's, refused with the key and the value (these
+# were right before; kept here so that they stay so)
+AX = "[axis]\nkey = controller.kp\n"
+LIMITS = [
+    ("[sweep]\ntime_limit = nan\n" + AX + "values = 1\n", 2, "got 'nan'"),
+    ("[sweep]\ntime_limit = inf\n" + AX + "values = 1\n", 2, "got 'inf'"),
+    (AX + "values = 1, nan\n", 3, "got 'nan'"),
+    (AX + "values = inf\n", 3, "got 'inf'"),
+    (AX + "values = 1e999\n", 3, "got '1e999'"),
+    (AX + "from = nan\nto = 1\ncount = 2\n", 3, "key 'from' in [axis]"),
+    (AX + "from = 0\nto = inf\ncount = 2\n", 4, "key 'to' in [axis]"),
+    (AX + "from = 1\nto = 2\ncount = -3\n", 5, "expected an integer in 1..100000, got '-3'"),
+    (AX + "from = 1\nto = 2\ncount = 1e3\n", 5, "got '1e3'"),
+    (AX + "from = 1\nto = 2\ncount = 100001\n", 5, "got '100001'"),
+    ("[axis]\nkey = boom.elements\nfrom = -1e300\nto = 1e300\ncount = 3\n", 3,
+     "expected an integer in 0..512"),
+    ("[axis]\nkey = platform.joint_A\nvalues = 0,0,0 | 0,0,nan\n", 3, "three finite numbers"),
+    ("[lhs]\nsamples = 3\nseed = -1\ncontroller.kp = 1, 2\n", 3, "key 'seed' in [lhs]"),
+    ("[lhs]\nsamples = 3\ncontroller.kp = nan, 2\n", 3, "got 'nan, 2'"),
+    ("[lhs]\nsamples = 3\ncontroller.kp = 0, inf\n", 3, "got '0, inf'"),
+    (AX + "from = 1\nto = 2\ncount = 1000\n[axis]\nkey = controller.kd\nfrom = 1\nto = 2\n"
+     "count = 1000\n", 10, "the axes make 1000000 cases, more than 100000"),
+    ("[sweep]\nreport = steps, steps\n" + AX + "values = 1\n", 2, "'steps' named twice"),
+    ("[sweep]\ncase_figures = maybe\n" + AX + "values = 1\n", 2, "expected a boolean"),
+]
+for i, (text, line, frag) in enumerate(LIMITS):
+    path = write("lim%02d.ini" % i, text)
+    rc, so, se = run([path, "--list"])
+    ok(rc == 2 and se.startswith("%s:%d:" % (path, line)) and frag in se,
+       "sweep file %s: line %d, %s" % (text.replace("\n", " ").strip()[:60], line, frag), se)
+fifo = os.path.join(tmp, "fifo.ini")
+os.mkfifo(fifo)
+rc, so, se = run([fifo, "--list"], timeout=20)
+ok(rc == 2 and "a FIFO (named pipe), not a sweep file" in se, "a FIFO as the sweep file: "
+   "refused without blocking", se)
+with open(os.path.join(tmp, "big-file.ini"), "w") as f:
+    f.write(";" * (1 << 21))
+rc, so, se = run([os.path.join(tmp, "big-file.ini"), "--list"])
+ok(rc == 2 and "larger than 1 MB" in se, "a sweep file of 2 MB: refused", se)
+for args, frag in [(["--time-limit", "nan"], "--time-limit needs"),
+                   (["--time-limit", "inf"], "--time-limit needs"),
+                   (["--jobs", "1e3"], "--jobs needs"), (["--jobs", "-1"], "--jobs needs"),
+                   (["--out", sw], "is a regular file, not a folder"),
+                   (["--out", "/dev/full"], "is a character device, not a folder")]:
+    rc, so, se = run([sw] + args)
+    ok(rc in (1, 2) and frag in se, "command line %s: %s" % (" ".join(args[:1] + [
+        os.path.basename(args[1])]), frag), "rc=%s %s" % (rc, se))
 
 shutil.rmtree(tmp, ignore_errors=True)
 print("1..%d" % count)
