@@ -22,6 +22,7 @@
 #define SWEEP_ROW_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "sweep_spec.h"
 
@@ -114,7 +115,6 @@ int sweep_csv_row(const sweep_spec *s, const sweep_row *row, char *buf, size_t s
  * regular file (not a device, FIFO or folder: /dev/zero never ends) of at most max bytes (0: any
  * size), without blocking; its size then in *size (the readers stop there: a file that grows
  * while read ends where it was). NULL with errno (EISDIR, EINVAL: not a regular file; EFBIG). */
-#include <stdio.h>
 FILE *sweep_open_regular(const char *path, long long max, long long *size);
 #define SWEEP_TEXT_MAX (1LL << 20) /* status.txt, case.txt, solver_stats.txt: 1 MB at most */
 
