@@ -39,7 +39,8 @@ static void check_case(const sweep_spec *s, long c)
     int coord[SWEEP_MAX_AXES];
     sweep_case_coords(s, c, coord);
     for (int a = 0; a < s->naxes; a++)
-        if (coord[a] < 0 || coord[a] >= s->axes[a].npoints) fail("a case's point off its axis", NULL);
+        if (coord[a] < 0 || coord[a] >= s->axes[a].npoints)
+            fail("a case's point off its axis", NULL);
     static char sets[SWEEP_MAX_SETS][SWEEP_SET_ARG_SIZE];
     int n = sweep_case_set_args(s, c, sets);
     if (n < 0 || n > SWEEP_MAX_SETS) fail("too many --set arguments", NULL);

@@ -661,8 +661,8 @@ int main(int argc, char **argv)
     char tried[SWEEP_PATH_SIZE * 2];
     const char *prog = sweep_program(&spec);
     int found = sweep_find_program(prog, spec.is_model ? o.bgsim : o.crane,
-                             spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
-                             sizeof run.crane, tried, sizeof tried);
+                                   spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
+                                   sizeof run.crane, tried, sizeof tried);
     if (found != 1) {
         if (g_print && found < 0)
             fprintf(stderr, "crane-sweep: --%s %s; give the %s program with --%s PATH\n", prog,

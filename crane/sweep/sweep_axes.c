@@ -277,9 +277,8 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
             if (i == a->npoints - 1 && count > 1)
                 x = to;
             else if (a->log)
-                x = isfinite(to / from) && to / from > 0
-                        ? from * pow(to / from, f)
-                        : exp((1 - f) * log(from) + f * log(to));
+                x = isfinite(to / from) && to / from > 0 ? from * pow(to / from, f)
+                                                         : exp((1 - f) * log(from) + f * log(to));
             else
                 x = isfinite(to - from) ? from + f * (to - from) : (1 - f) * from + f * to;
             xs[i] = x;

@@ -189,8 +189,7 @@ long sweep_case_busy(const char *dir)
     if (!sweep_read_field(path, "pid", pid_s, sizeof pid_s)) return 0;
     char *end;
     long pid = strtol(pid_s, &end, 10);
-    if (end == pid_s || *end || pid <= 1 || pid == (long)getpid() || pid > (long)INT_MAX)
-        return 0;
+    if (end == pid_s || *end || pid <= 1 || pid == (long)getpid() || pid > (long)INT_MAX) return 0;
     if (kill((pid_t)pid, 0) != 0 && errno != EPERM) return 0;
     return runs_in(pid, dir) ? pid : 0;
 }
@@ -219,8 +218,8 @@ int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
     }
     /* the program writes its status.txt first thing; an older one must not stand for this run,
      * nor an older results.csv for its results; the log is made anew (not a link's target) */
-    static const char *const stale[] = {"status.txt", "case.txt", "results.csv",
-                                        "solver_stats.txt", NULL};
+    static const char *const stale[] = {"status.txt", "case.txt", "results.csv", "solver_stats.txt",
+                                        NULL};
     for (int i = 0; stale[i]; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, stale[i]);
         unlink(path);

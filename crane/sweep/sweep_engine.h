@@ -51,7 +51,8 @@ void sweep_case_dir(const sweep_run *r, long index, char *buf, size_t size);
 /* Prepares the case's folder (created, the old status.txt, case.txt, results.csv,
  * solver_stats.txt and log removed, case.txt "running" written) and starts its crane process in
  * p. 0, or -1 when it could not be started (p->out says why; the case is over); a folder in
- * which a crane of an earlier sweep still runs (sweep_case_busy) is left alone (p->out.busy_pid). */
+ * which a crane of an earlier sweep still runs (sweep_case_busy) is left alone
+ * (p->out.busy_pid). */
 int sweep_case_start(sweep_run *r, sweep_proc *p, long index);
 /* The pid of a crane (or bgsim) still running in the case folder dir, left by an earlier sweep:
  * its status.txt says running with its pid, that process exists and has "--out dir" on its

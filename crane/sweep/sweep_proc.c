@@ -59,8 +59,8 @@ int sweep_proc_start(sweep_proc *p, long index, const char *exe, char *const arg
     sigaddset(&deflt, SIGPIPE);
     if (!e) e = posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     if (!e)
-        e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW,
-                                             0644);
+        e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log,
+                                             O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
     if (!e) e = posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
     if (!e) e = posix_spawnattr_setsigmask(&at, &none);
     if (!e) e = posix_spawnattr_setsigdefault(&at, &deflt);
@@ -150,7 +150,7 @@ static int executable(const char *path, char *why, size_t size)
 }
 
 int sweep_find_program(const char *name, const char *given, const char *build, char *out,
-                        size_t size, char *tried, size_t tsize)
+                       size_t size, char *tried, size_t tsize)
 {
     tried[0] = '\0';
     char why[256];

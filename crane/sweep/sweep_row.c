@@ -523,9 +523,10 @@ void sweep_row_read(const sweep_spec *s, sweep_row *row, long index, const char 
     if (code != 0 && no_room(dir, reason, logline, room, sizeof room)) {
         row->status = SWEEP_FAILED; /* the disk, not the program: status.txt may not be final */
         set_message(row, "the disk is full (%s): the %s ended with exit status %d%s%s%s", room,
-                    prog, code, !strcmp(cstatus, "running") ? ", status.txt still saying running"
-                                : !cstatus[0]                ? " without a status.txt"
-                                                             : "",
+                    prog, code,
+                    !strcmp(cstatus, "running") ? ", status.txt still saying running"
+                    : !cstatus[0]               ? " without a status.txt"
+                                                : "",
                     reason[0] || logline[0] ? ": " : "", reason[0] ? reason : logline);
         return;
     }

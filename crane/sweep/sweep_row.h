@@ -85,7 +85,7 @@ typedef struct sweep_outcome {
     int stopped_by;    /* the sweep passed this signal on (0: none) */
     double time_limit; /* s */
     double cpu_s, wall_s;
-    long busy_pid; /* not started: a crane of an earlier sweep (this pid) still runs in the folder */
+    long busy_pid; /* not started: an earlier sweep's crane (this pid) still runs in the folder */
     char why[384]; /* not started: why, when more than errno_start says (the folder's state) */
 } sweep_outcome;
 

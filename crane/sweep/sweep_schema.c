@@ -220,8 +220,8 @@ static int base_scene(parse_ctx *c, raw_kv *kv, const char *dir, const char *con
     char tried[2048];
     snprintf(s->scene_arg, sizeof s->scene_arg, "%s", kv ? kv->value : "paper");
     if (!s->scene_arg[0]) return spec_bad_value(c, kv, "sweep", "a scene file or a scene's name");
-    int found = resolve_scene(s->scene_arg, dir, roots, s->scene_path, sizeof s->scene_path,
-                              tried, sizeof tried);
+    int found = resolve_scene(s->scene_arg, dir, roots, s->scene_path, sizeof s->scene_path, tried,
+                              sizeof tried);
     if (found < 0)
         return spec_fail_line(c, kv ? kv->line : 0, "%s '%s': cannot use the scene file: %s",
                               kv ? "key 'scene' in [sweep]" : "the base scene (default)",
