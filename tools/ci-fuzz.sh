@@ -3,7 +3,8 @@
 # and runs each for FUZZ_TIME seconds from a temporary copy of its seed corpus (fuzz/corpus/*),
 # so that the repository is not changed: fuzz_scene (the scene-file parser, with the dictionary
 # fuzz/scene.dict), fuzz_dae_input (the DAE solver's input validation), fuzz_model_yaml
-# (the model files' YAML loader and expressions) and fuzz_model (the whole model-file reader).
+# (the model files' YAML loader and expressions), fuzz_model (the whole model-file reader) and
+# fuzz_sweep (crane-sweep's sweep files, with the dictionary fuzz/sweep.dict).
 # Every seed is run
 # first. Prints one TAP point per target; exit status 0 when all passed. A crashing input is
 # kept in build-fuzz/artifacts/ (add it to the corpus once the bug is fixed); the logs are in
@@ -15,7 +16,7 @@ cd "$(dirname "$0")/.."
 B=${BUILD_FUZZ:-build-fuzz}
 T=${FUZZ_TIME:-30}
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(fuzz_scene fuzz_dae_input fuzz_model_yaml fuzz_model)
+[ ${#targets[@]} -eq 0 ] && targets=(fuzz_scene fuzz_dae_input fuzz_model_yaml fuzz_model fuzz_sweep)
 fail_all() { for t in "${targets[@]}"; do echo "not ok - fuzz $t: $1"; done; exit 1; }
 bash tools/install-deps.sh >&2 || fail_all "installing packages failed"
 command -v clang >/dev/null || fail_all "clang is not installed (libFuzzer)"
@@ -34,6 +35,7 @@ for t in "${targets[@]}"; do
     fuzz_dae_input) corpus=fuzz/corpus/dae; extra=() ;;
     fuzz_model_yaml) corpus=fuzz/corpus/model; extra=() ;;
     fuzz_model) corpus=fuzz/corpus/modelfile; extra=() ;;
+    fuzz_sweep) corpus=fuzz/corpus/sweep; extra=(-dict=fuzz/sweep.dict) ;;
     *) echo "not ok - fuzz $t: unknown target"; failed=1; continue ;;
   esac
   mkdir -p "$work/$t"

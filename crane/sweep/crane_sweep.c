@@ -22,7 +22,8 @@
  * interrupted or failed, replaced atomically.
  *
  * --resume keeps the cases whose folder holds a completed status.txt and whose scene.ini is the
- * case's scene (the same base scene, [set] and values), and runs the rest.
+ * case's scene (the same base scene, [set] and values), and runs the rest; a case folder in
+ * which a crane of an earlier sweep still runs is left to it (a not_run row, sweep_engine.h).
  *
  * Exit status: 0 every case completed; 1 the sweep ran but a case did not complete (see
  * sweep.csv), or a file of the sweep could not be written; 2 bad command line or sweep file
@@ -74,8 +75,18 @@ enum { EXIT_OK = 0, EXIT_RUN = 1, EXIT_USAGE = 2 };
 
 volatile sig_atomic_t sweep_signal = 0, sweep_signal_count = 0;
 
+/* 1 until the sweep writes its first file: till then (reading and expanding the sweep file,
+ * --list) a signal ends the program at once, by the signal, as if it had no handler: nothing is
+ * written that would need a final status, and no loop has to look for it. */
+static volatile sig_atomic_t g_end_on_signal = 1;
+
 static void on_signal(int sig)
 {
+    if (g_end_on_signal) { /* async-signal-safe: signal and raise */
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
     if (!sweep_signal) sweep_signal = sig;
     if (sweep_signal_count < 100) sweep_signal_count++;
 }
@@ -260,49 +271,6 @@ static int under_launcher(long *rank, long *size)
     return found;
 }
 
-static int executable(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && access(path, X_OK) == 0;
-}
-
-/* The program a case runs (name: crane or bgsim): given (--crane, --bgsim), next to this
- * program, the build's (build, NULL if unknown). */
-static int find_program(const char *name, const char *given, const char *build, char *out,
-                        size_t size, char *tried, size_t tsize)
-{
-    tried[0] = '\0';
-    if (given) {
-        snprintf(tried, tsize, "%s", given);
-        if (!executable(given)) return 0;
-        if (!realpath(given, out)) snprintf(out, size, "%s", given);
-        return 1;
-    }
-    char self[SWEEP_PATH_SIZE];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n > 0) {
-        self[n] = '\0';
-        char *slash = strrchr(self, '/');
-        if (slash) {
-            snprintf(slash + 1, sizeof self - (size_t)(slash + 1 - self), "%s", name);
-            snprintf(tried, tsize, "%s", self);
-            if (executable(self)) {
-                snprintf(out, size, "%s", self);
-                return 1;
-            }
-        }
-    }
-    if (build) {
-        size_t tl = strlen(tried);
-        snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", build);
-        if (executable(build)) {
-            snprintf(out, size, "%s", build);
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* ----------------------------------------------------------- status.txt ---- */
 
 typedef struct sweep_state {
@@ -360,7 +328,7 @@ static int write_status(sweep_state *st, int final)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/status.txt", r->outdir);
-    int rc = pu_write_atomic(path, buf, len);
+    int rc = sweep_write_file(path, buf, len);
     int e = errno;
     free(buf);
     if (rc) fprintf(stderr, "crane-sweep: cannot write %s: %s\n", path, strerror(e));
@@ -454,7 +422,7 @@ static int write_final_csv(sweep_run *r, char *msg, size_t size)
     }
     char path[SWEEP_PATH_SIZE + 16];
     snprintf(path, sizeof path, "%s/sweep.csv", r->outdir);
-    int rc = pu_write_atomic(path, buf, len);
+    int rc = sweep_write_file(path, buf, len);
     if (rc) snprintf(msg, size, "cannot write %s: %s", path, strerror(errno));
     free(buf);
     return rc;
@@ -506,6 +474,7 @@ static int prepare(sweep_state *st)
     }
     long kept = 0;
     for (long c = 0; c < s->ncases; c++) {
+        if (sweep_signal) break; /* the cases not looked at: not_run rows (conclude) */
         if (st->o->resume && case_done(r, c)) {
             char dir[SWEEP_DIR_SIZE];
             sweep_case_dir(r, c, dir, sizeof dir);
@@ -691,10 +660,14 @@ int main(int argc, char **argv)
     run.jobs = o.jobs ? o.jobs : size > 1 ? 1 : ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
     char tried[SWEEP_PATH_SIZE * 2];
     const char *prog = sweep_program(&spec);
-    if (!find_program(prog, spec.is_model ? o.bgsim : o.crane,
-                      spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
-                      sizeof run.crane, tried, sizeof tried)) {
-        if (g_print)
+    int found = sweep_find_program(prog, spec.is_model ? o.bgsim : o.crane,
+                                   spec.is_model ? SWEEP_BUILD_BGSIM : SWEEP_BUILD_CRANE, run.crane,
+                                   sizeof run.crane, tried, sizeof tried);
+    if (found != 1) {
+        if (g_print && found < 0)
+            fprintf(stderr, "crane-sweep: --%s %s; give the %s program with --%s PATH\n", prog,
+                    tried, prog, prog);
+        else if (g_print)
             fprintf(stderr,
                     "crane-sweep: the %s program was not found (tried %s); give it "
                     "with --%s PATH\n",
@@ -730,6 +703,7 @@ int main(int argc, char **argv)
         snprintf(st.engine, sizeof st.engine, "local, %d job%s", run.jobs, run.jobs > 1 ? "s" : "");
 
     int code = EXIT_OK;
+    g_end_on_signal = 0; /* from here a signal stops the sweep in order (sweep_engine.h) */
     if (rank == 0) {
         run.rows = calloc((size_t)spec.ncases, sizeof *run.rows);
         run.have = calloc((size_t)spec.ncases, 1);

@@ -86,6 +86,20 @@ static int add_param(parse_ctx *c, const swept_key *k, int axis, int line)
     return s->nparams++;
 }
 
+/* The axes before this one with npoints more: at most SWEEP_MAX_CASES cases, checked before the
+ * values are made and checked one by one (16 axes of 100000 values would take that long only to
+ * be refused). 0, or -1 with the error recorded at line. */
+static int within_cases(parse_ctx *c, long long npoints, int line)
+{
+    double n = (double)npoints;
+    for (int a = 0; a < c->s->naxes; a++)
+        n *= c->s->axes[a].npoints;
+    if (n > SWEEP_MAX_CASES)
+        return spec_fail_line(c, line, "the axes make %.0f cases, more than %ld", n,
+                              SWEEP_MAX_CASES);
+    return 0;
+}
+
 /* -------------------------------------------------------- lists and ranges ---- */
 
 /* A generated value's text, 12 significant digits (a range's 0.30000000000000004 is written
@@ -93,6 +107,38 @@ static int add_param(parse_ctx *c, const swept_key *k, int axis, int line)
 static void fmt_value(double x, char *buf, size_t size)
 {
     snprintf(buf, size, "%.12g", x);
+}
+
+/* The first repeat among the n texts v[0..n-1]: the smallest i that equals an earlier v[j] (the
+ * first such j in *j); -1 if every text differs, -2 out of memory. Sorted indices (by text, then
+ * index) put equal texts side by side: O(n log n) comparisons, not the n^2 / 2 of comparing each
+ * with every earlier one (100000 values: 1.7e6 against 5e9). */
+static int by_text(const void *a, const void *b)
+{
+    const char *sa = *(const char *const *)a, *sb = *(const char *const *)b;
+    int d = strcmp(sa, sb);
+    return d ? d : (sa > sb) - (sa < sb); /* the texts lie in one array: address = index order */
+}
+
+int spec_first_repeat(const char (*v)[SWEEP_VALUE_SIZE], int n, int *j)
+{
+    if (n < 2) return -1;
+    const char **ptr = malloc((size_t)n * sizeof *ptr);
+    if (!ptr) return -2;
+    for (int i = 0; i < n; i++)
+        ptr[i] = v[i];
+    qsort(ptr, (size_t)n, sizeof *ptr, by_text);
+    int best = -1;
+    for (int k = 1; k < n; k++) { /* in a run of equal texts, its first two: the first repeat */
+        if (strcmp(ptr[k], ptr[k - 1]) || (k >= 2 && !strcmp(ptr[k - 1], ptr[k - 2]))) continue;
+        int i = (int)((ptr[k] - v[0]) / SWEEP_VALUE_SIZE);
+        if (best < 0 || i < best) {
+            best = i;
+            *j = (int)((ptr[k - 1] - v[0]) / SWEEP_VALUE_SIZE);
+        }
+    }
+    free(ptr);
+    return best;
 }
 
 static int numeric_type(int type)
@@ -134,12 +180,29 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
         int n = 1;
         for (const char *q = kvals->value; *q; q++)
             n += *q == sep;
+        if (within_cases(c, n, kvals->line)) return -1;
         a->values = calloc((size_t)n, sizeof *a->values);
         if (!a->values) return spec_fail_line(c, kvals->line, "out of memory");
         const char *q = kvals->value;
         for (int i = 0; i < n; i++) {
             const char *e = strchr(q, sep);
             pu_ini_trim_copy(q, e ? e : q + strlen(q), a->values[i], SWEEP_VALUE_SIZE);
+            q = e ? e + 1 : q + strlen(q);
+        }
+        /* a number's value, not its text, repeats: "1" and "1.0" (a list is short: a copy) */
+        char(*canon)[SWEEP_VALUE_SIZE] = calloc((size_t)n, sizeof *canon);
+        if (!canon) return spec_fail_line(c, kvals->line, "out of memory");
+        for (int i = 0; i < n; i++) {
+            double x;
+            if (numeric_type(k->type) && pu_ini_parse_double(a->values[i], &x))
+                snprintf(canon[i], SWEEP_VALUE_SIZE, "%.17g", x == 0 ? 0.0 : x); /* -0 = 0 */
+            else
+                memcpy(canon[i], a->values[i], SWEEP_VALUE_SIZE);
+        }
+        int rj = 0, ri = spec_first_repeat((const char(*)[SWEEP_VALUE_SIZE])canon, n, &rj);
+        free(canon);
+        if (ri == -2) return spec_fail_line(c, kvals->line, "out of memory");
+        for (int i = 0; i < n; i++) {
             if (!a->values[i][0])
                 return spec_fail_line(c, kvals->line,
                                       "key 'values' in [axis]: value %d of %s is empty (values are "
@@ -147,16 +210,14 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
                                       i + 1, s->params[p].name, sep,
                                       sep == '|' ? ": a vector's values are 'x, y, z | x, y, z'"
                                                  : "");
-            for (int j = 0; j < i; j++)
-                if (!strcmp(a->values[j], a->values[i]))
-                    return spec_fail_line(
-                        c, kvals->line,
-                        "key 'values' in [axis]: value %d of %s ('%s') repeats value %d", i + 1,
-                        s->params[p].name, a->values[i], j + 1);
+            if (i == ri)
+                return spec_fail_line(
+                    c, kvals->line,
+                    "key 'values' in [axis]: value %d of %s ('%s') repeats value %d ('%s')", i + 1,
+                    s->params[p].name, a->values[i], rj + 1, a->values[rj]);
             snprintf(what, sizeof what, "key 'values' in [axis]: value %d of %s", i + 1,
                      s->params[p].name);
             if (check_value(c, base, k, a->values[i], kvals->line, what)) return -1;
-            q = e ? e + 1 : q + strlen(q);
         }
         a->npoints = n;
     } else {
@@ -203,43 +264,66 @@ int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base)
                                   "key 'spacing' in [axis]: log spacing needs 'from' and 'to' > 0 "
                                   "(got %g and %g)",
                                   from, to);
+        if (within_cases(c, count, kcount->line)) return -1;
         a->npoints = (int)count;
         a->values = calloc((size_t)count, sizeof *a->values);
         if (!a->values) return spec_fail_line(c, kcount->line, "out of memory");
-        for (int i = 0; i < a->npoints; i++) {
+        double *xs = malloc((size_t)count * sizeof *xs);
+        if (!xs) return spec_fail_line(c, kcount->line, "out of memory");
+        for (int i = 0; i < a->npoints; i++) { /* the texts, then the checks in order */
             double f = count > 1 ? (double)i / (double)(count - 1) : 0, x;
+            /* the ends' difference or ratio may overflow (-1e308 .. 1e308, 1e-300 .. 1e300):
+             * then the weighted mean of the ends (of their logarithms), which stays finite */
             if (i == a->npoints - 1 && count > 1)
                 x = to;
             else if (a->log)
-                x = from * pow(to / from, f);
+                x = isfinite(to / from) && to / from > 0 ? from * pow(to / from, f)
+                                                         : exp((1 - f) * log(from) + f * log(to));
             else
-                x = from + f * (to - from);
+                x = isfinite(to - from) ? from + f * (to - from) : (1 - f) * from + f * to;
+            xs[i] = x;
+            if (k->type == CRANE_KEY_INTEGER)
+                snprintf(a->values[i], SWEEP_VALUE_SIZE, "%.0f", fabs(x) < 1e15 ? round(x) : 0.0);
+            else
+                fmt_value(x, a->values[i], SWEEP_VALUE_SIZE);
+        }
+        int rj = 0,
+            ri = spec_first_repeat((const char(*)[SWEEP_VALUE_SIZE])a->values, a->npoints, &rj);
+        for (int i = 0; i < a->npoints; i++) {
+            double x = xs[i];
             if (k->type == CRANE_KEY_INTEGER) {
                 double rx = round(x);
-                if (fabs(x - rx) > 1e-9 * fmax(1, fabs(x)))
+                if (!(fabs(x - rx) <= 1e-9 * fmax(1, fabs(x)))) {
+                    free(xs);
                     return spec_fail_line(
                         c, kcount->line,
                         "[axis] %s is an integer key: the range %g .. %g in %lld "
                         "values gives %.6g (choose 'count' so that the step is whole, "
                         "or list the values)",
                         s->params[p].name, from, to, count, x);
-                if (fabs(rx) > 1e9) return spec_bad_value(c, kfrom, "axis", k->expected);
-                snprintf(a->values[i], SWEEP_VALUE_SIZE, "%.0f", rx);
-            } else {
-                fmt_value(x, a->values[i], SWEEP_VALUE_SIZE);
+                }
+                if (fabs(rx) > 1e9) {
+                    free(xs);
+                    return spec_bad_value(c, kfrom, "axis", k->expected);
+                }
             }
-            for (int j = 0; j < i; j++)
-                if (!strcmp(a->values[j], a->values[i]))
-                    return spec_fail_line(
-                        c, kcount->line,
-                        "[axis] %s: the range gives the value %s twice (fewer values, "
-                        "or a wider range)",
-                        s->params[p].name, a->values[i]);
+            if (i == ri || ri == -2) {
+                free(xs);
+                if (ri == -2) return spec_fail_line(c, kcount->line, "out of memory");
+                return spec_fail_line(c, kcount->line,
+                                      "[axis] %s: the range gives the value %s twice (values %d "
+                                      "and %d; fewer values, or a wider range)",
+                                      s->params[p].name, a->values[i], rj + 1, i + 1);
+            }
             raw_kv *at = i == a->npoints - 1 && kto ? kto : kfrom;
             snprintf(what, sizeof what, "key '%s' in [axis]: value %d of the range of %s", at->key,
                      i + 1, s->params[p].name);
-            if (check_value(c, base, k, a->values[i], at->line, what)) return -1;
+            if (check_value(c, base, k, a->values[i], at->line, what)) {
+                free(xs);
+                return -1;
+            }
         }
+        free(xs);
     }
     s->params[p].log = a->log;
     if (s->is_model) /* a model's value is an expression: drawn as a number if each is one */

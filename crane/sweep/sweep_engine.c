@@ -3,7 +3,9 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -123,30 +125,16 @@ static void case_command_make(const sweep_run *r, long index, char *dir, case_co
     format_command(argv, cc->command, sizeof cc->command);
 }
 
-/* The whole file at path (NUL-terminated, free() it), or NULL. */
+/* The whole file at path (NUL-terminated, free() it) if it is a regular file of at most 64 MB,
+ * or NULL. */
 static char *read_text(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
+    long long size = 0;
+    FILE *f = sweep_open_regular(path, 64LL << 20, &size);
     if (!f) return NULL;
-    char *buf = NULL;
-    size_t cap = 0, n = 0, k;
-    char chunk[8192];
-    while ((k = fread(chunk, 1, sizeof chunk, f)) > 0) {
-        if (n + k + 1 > cap) {
-            cap = 2 * (n + k + 1);
-            char *nb = realloc(buf, cap);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                return NULL;
-            }
-            buf = nb;
-        }
-        memcpy(buf + n, chunk, k);
-        n += k;
-    }
+    char *buf = malloc((size_t)size + 1);
+    size_t n = buf ? fread(buf, 1, (size_t)size, f) : 0;
     fclose(f);
-    if (!buf) buf = calloc(1, 1);
     if (buf) buf[n] = '\0';
     *len = n;
     return buf;
@@ -172,6 +160,40 @@ int sweep_model_case_done(const sweep_run *r, long index, const char *dir)
     return same;
 }
 
+/* The process pid runs with "--out dir" on its command line (/proc/PID/cmdline): 1; 0 if not; 1
+ * when /proc cannot tell (the process exists: assumed to be the case's). */
+static int runs_in(long pid, const char *dir)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/proc/%ld/cmdline", pid);
+    FILE *f = fopen(path, "rb");
+    if (!f) return 1;
+    static char buf[65536]; /* a command line: NUL-separated arguments */
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    for (size_t i = 0; i < n; i += strlen(buf + i) + 1) {
+        const char *a = buf + i;
+        if (!strcmp(a, "--out") && i + 6 < n && !strcmp(buf + i + 6, dir)) return 1;
+        if (!strncmp(a, "--out=", 6) && !strcmp(a + 6, dir)) return 1;
+    }
+    return 0;
+}
+
+long sweep_case_busy(const char *dir)
+{
+    char path[SWEEP_DIR_SIZE + 16], status[64], pid_s[64];
+    snprintf(path, sizeof path, "%s/status.txt", dir);
+    if (!sweep_read_field(path, "status", status, sizeof status) || strcmp(status, "running"))
+        return 0;
+    if (!sweep_read_field(path, "pid", pid_s, sizeof pid_s)) return 0;
+    char *end;
+    long pid = strtol(pid_s, &end, 10);
+    if (end == pid_s || *end || pid <= 1 || pid == (long)getpid() || pid > (long)INT_MAX) return 0;
+    if (kill((pid_t)pid, 0) != 0 && errno != EPERM) return 0;
+    return runs_in(pid, dir) ? pid : 0;
+}
+
 int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
 {
     const sweep_spec *s = r->spec;
@@ -182,13 +204,28 @@ int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
     snprintf(p->dir, sizeof p->dir, "%s", dir);
     if (pu_mkdir_p(dir, 0777, msg, sizeof msg) != 0) {
         p->out.errno_start = errno ? errno : EIO;
+        snprintf(p->out.why, sizeof p->out.why, "its folder cannot be used: %.*s",
+                 (int)sizeof p->out.why - 32, msg);
         return -1;
     }
-    /* the program writes its status.txt first thing; an older one must not stand for this run */
-    for (int i = 0; i < 2; i++) {
-        snprintf(path, sizeof path, "%s/%s", dir, i ? "case.txt" : "status.txt");
+    /* a crane of an earlier sweep (killed, its cranes left running) still writes here: a second
+     * one would mix their files; the case is left to it */
+    long busy = sweep_case_busy(dir);
+    if (busy) {
+        p->out.busy_pid = busy;
+        p->out.errno_start = EBUSY;
+        return -1;
+    }
+    /* the program writes its status.txt first thing; an older one must not stand for this run,
+     * nor an older results.csv for its results; the log is made anew (not a link's target) */
+    static const char *const stale[] = {"status.txt", "case.txt", "results.csv", "solver_stats.txt",
+                                        NULL};
+    for (int i = 0; stale[i]; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, stale[i]);
         unlink(path);
     }
+    snprintf(path, sizeof path, "%s/%s", dir, sweep_log_name(s));
+    unlink(path);
     case_command *cc = malloc(sizeof *cc);
     if (!cc) {
         p->out.errno_start = ENOMEM;
@@ -205,7 +242,7 @@ int sweep_case_start(sweep_run *r, sweep_proc *p, long index)
 void sweep_case_finish(sweep_run *r, const sweep_proc *p, sweep_row *row)
 {
     sweep_row_read(r->spec, row, p->index, p->dir, &p->out);
-    write_case_txt(r, p->index, p->dir, NULL, row);
+    if (!p->out.busy_pid) write_case_txt(r, p->index, p->dir, NULL, row); /* not the other's */
 }
 
 void sweep_record(sweep_run *r, const sweep_row *row, int from_rank)
@@ -298,4 +335,38 @@ void sweep_engine_local(sweep_run *r)
         if (!events) sleep_ms(10);
     }
     free(slots);
+}
+
+int sweep_write_file(const char *path, const char *data, size_t len)
+{
+    if (pu_write_atomic(path, data, len) == 0) return 0;
+    int e = errno;
+    if (e != ENOSPC && e != EDQUOT) return -1;
+    int fd = open(path, O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) {
+        errno = e;
+        return -1;
+    }
+    size_t done = 0;
+    while (done < len) {
+        ssize_t w = write(fd, data + done, len - done);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) break;
+        done += (size_t)w;
+    }
+    if (done < len) {
+        size_t whole = done;
+        while (whole > 0 && data[whole - 1] != '\n')
+            whole--;
+        if (ftruncate(fd, (off_t)whole) != 0) {
+        }
+    }
+    if (close(fd) != 0 && done == len) done = 0;
+    if (done < len) {
+        errno = e;
+        return -1;
+    }
+    fprintf(stderr, "crane-sweep: %s: %s: rewritten in place (not atomically)\n", path,
+            strerror(e));
+    return 0;
 }

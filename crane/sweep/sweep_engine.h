@@ -16,6 +16,7 @@
 #define SWEEP_ENGINE_H
 
 #include <signal.h>
+#include <stddef.h>
 
 #include "sweep_proc.h"
 #include "sweep_row.h"
@@ -47,10 +48,16 @@ typedef struct sweep_run {
 
 /* The folder of case index: OUT/cases/NNNN (at least 4 digits). */
 void sweep_case_dir(const sweep_run *r, long index, char *buf, size_t size);
-/* Prepares the case's folder (created, the old status.txt and case.txt removed, case.txt
- * "running" written) and starts its crane process in p. 0, or -1 when it could not be started
- * (p->out says why; the case is over). */
+/* Prepares the case's folder (created, the old status.txt, case.txt, results.csv,
+ * solver_stats.txt and log removed, case.txt "running" written) and starts its crane process in
+ * p. 0, or -1 when it could not be started (p->out says why; the case is over); a folder in
+ * which a crane of an earlier sweep still runs (sweep_case_busy) is left alone
+ * (p->out.busy_pid). */
 int sweep_case_start(sweep_run *r, sweep_proc *p, long index);
+/* The pid of a crane (or bgsim) still running in the case folder dir, left by an earlier sweep:
+ * its status.txt says running with its pid, that process exists and has "--out dir" on its
+ * command line (/proc/PID/cmdline; without /proc, its existence suffices). 0: none. */
+long sweep_case_busy(const char *dir);
 /* --resume of a model sweep: the completed case in dir ran the command it would run now (case.txt)
  * on the model file as it is now (model.yaml starts with its text) and has its results.csv. */
 int sweep_model_case_done(const sweep_run *r, long index, const char *dir);
@@ -58,6 +65,12 @@ int sweep_model_case_done(const sweep_run *r, long index, const char *dir);
 void sweep_case_finish(sweep_run *r, const sweep_proc *p, sweep_row *row);
 /* Keeps the row (rank 0) and appends it to sweep.csv; prints a line unless quiet. */
 void sweep_record(sweep_run *r, const sweep_row *row, int from_rank);
+
+/* The file at path replaced by data (pu_write_atomic). On a full disk (ENOSPC, EDQUOT) the
+ * atomic copy, whose temporary pu_write_atomic removes, needs room the disk lacks: the file is
+ * then rewritten in place, its old blocks freed first (O_TRUNC), and if that falls short too it is
+ * cut back to its last whole line (no partial line left). 0, or -1 with errno. */
+int sweep_write_file(const char *path, const char *data, size_t len);
 
 /* The local engine: every case of the queue. */
 void sweep_engine_local(sweep_run *r);

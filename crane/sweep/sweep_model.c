@@ -21,6 +21,7 @@
  * that did not complete. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +29,8 @@
 #include <sys/stat.h>
 
 #include "mdl_model.h"
+#include "pu_fs.h"
+#include "sweep_engine.h" /* sweep_signal_count */
 #include "sweep_row.h"
 #include "sweep_spec_impl.h"
 
@@ -102,8 +105,15 @@ int spec_model_base(parse_ctx *c, const raw_kv *kv, const char *dir)
     int n = snprintf(cand, sizeof cand, "%s%s%s", kv->value[0] == '/' ? "" : dir,
                      kv->value[0] == '/' ? "" : "/", kv->value);
     struct stat st;
-    if (n < 0 || (size_t)n >= sizeof cand || stat(cand, &st) != 0 || !S_ISREG(st.st_mode) ||
-        !realpath(cand, s->scene_path))
+    if (n < 0 || (size_t)n >= sizeof cand)
+        return spec_fail_line(c, kv->line, "key 'model' in [sweep]: the name is too long");
+    if (stat(cand, &st) != 0 && errno != ENOENT)
+        return spec_fail_line(c, kv->line, "key 'model' in [sweep]: model file '%s': %s", cand,
+                              strerror(errno));
+    if (stat(cand, &st) == 0 && !S_ISREG(st.st_mode))
+        return spec_fail_line(c, kv->line, "key 'model' in [sweep]: model file '%s' is %s", cand,
+                              pu_fs_kind((unsigned)st.st_mode));
+    if (stat(cand, &st) != 0 || !realpath(cand, s->scene_path))
         return spec_fail_line(c, kv->line, "key 'model' in [sweep]: model file '%s' not found",
                               cand);
     bg_error e = {0};
@@ -305,7 +315,8 @@ void sweep_model_results(const sweep_spec *s, const char *dir, double *mq)
         mq[i] = NAN;
     char path[SWEEP_DIR_SIZE + 32];
     snprintf(path, sizeof path, "%s/results.csv", dir);
-    FILE *f = fopen(path, "r");
+    long long fsize = 0;
+    FILE *f = sweep_open_regular(path, 0, &fsize);
     if (!f) return;
     char *line = NULL;
     size_t cap = 0;
@@ -330,7 +341,8 @@ void sweep_model_results(const sweep_spec *s, const char *dir, double *mq)
     for (int i = 0; i < s->nmq; i++)
         mx[i] = -INFINITY, mn[i] = INFINITY, last[i] = prev[i] = NAN, i1[i] = i2[i] = 0,
         bad[i] = col[i] < 0;
-    while (v && tcol >= 0 && getline(&line, &cap, f) > 0) {
+    while (v && tcol >= 0 && ftell(f) <= fsize && sweep_signal_count < 2 &&
+           getline(&line, &cap, f) > 0) {
         if (sweep_parse_row(line, v, ncols) < ncols) continue; /* not a whole row */
         double t = v[tcol];
         if (rows == 0) t0 = t;

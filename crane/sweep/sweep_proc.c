@@ -1,18 +1,23 @@
 /* A case's crane process (sweep_proc.h). */
-#define _DEFAULT_SOURCE /* wait4 (a child's CPU time) */
+#define _DEFAULT_SOURCE /* wait4 (a child's CPU time), realpath */
 #include "sweep_proc.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <limits.h>
 #include <spawn.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/resource.h>
 #include <sys/time.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+#include "pu_fs.h"
 
 extern char **environ;
 
@@ -54,8 +59,8 @@ int sweep_proc_start(sweep_proc *p, long index, const char *exe, char *const arg
     sigaddset(&deflt, SIGPIPE);
     if (!e) e = posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     if (!e)
-        e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log, O_WRONLY | O_CREAT | O_TRUNC,
-                                             0644);
+        e = posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log,
+                                             O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
     if (!e) e = posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
     if (!e) e = posix_spawnattr_setsigmask(&at, &none);
     if (!e) e = posix_spawnattr_setsigdefault(&at, &deflt);
@@ -121,4 +126,66 @@ void sweep_proc_stop(sweep_proc *p, int sig, int hard)
         p->term_at = sweep_now();
         kill(p->pid, SIGTERM);
     }
+}
+
+/* path is a program that can be run: 1; 0 with why not in why ("not found", "is a directory, not
+ * a program", "not executable (no execute permission)", the error of stat). */
+static int executable(const char *path, char *why, size_t size)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        snprintf(why, size, "%s", errno == ENOENT ? "not found" : strerror(errno));
+        return 0;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(why, size, "is %s, not a program", pu_fs_kind((unsigned)st.st_mode));
+        return 0;
+    }
+    if (access(path, X_OK) != 0) {
+        snprintf(why, size, "not executable (%s)",
+                 errno == EACCES ? "no execute permission" : strerror(errno));
+        return 0;
+    }
+    return 1;
+}
+
+int sweep_find_program(const char *name, const char *given, const char *build, char *out,
+                       size_t size, char *tried, size_t tsize)
+{
+    tried[0] = '\0';
+    char why[256];
+    if (given) {
+        if (!executable(given, why, sizeof why)) {
+            if (strcmp(why, "not found")) /* there, but not a program: said as such */
+                snprintf(tried, tsize, "%s: %s", given, why);
+            else
+                snprintf(tried, tsize, "%s", given);
+            return strcmp(why, "not found") ? -1 : 0;
+        }
+        if (!realpath(given, out)) snprintf(out, size, "%s", given);
+        return 1;
+    }
+    char self[SWEEP_PATH_SIZE];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n > 0) {
+        self[n] = '\0';
+        char *slash = strrchr(self, '/');
+        if (slash) {
+            snprintf(slash + 1, sizeof self - (size_t)(slash + 1 - self), "%s", name);
+            snprintf(tried, tsize, "%s", self);
+            if (executable(self, why, sizeof why)) {
+                snprintf(out, size, "%s", self);
+                return 1;
+            }
+        }
+    }
+    if (build) {
+        size_t tl = strlen(tried);
+        snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", build);
+        if (executable(build, why, sizeof why)) {
+            snprintf(out, size, "%s", build);
+            return 1;
+        }
+    }
+    return 0;
 }

@@ -7,6 +7,7 @@
 #ifndef SWEEP_PROC_H
 #define SWEEP_PROC_H
 
+#include <stddef.h>
 #include <sys/types.h>
 
 #include "sweep_row.h"
@@ -35,5 +36,12 @@ int sweep_proc_poll(sweep_proc *p);
 /* The sweep was stopped by signal sig: SIGTERM to the process (the crane stops between two
  * solver steps and writes its status), or SIGKILL when hard (a second signal). */
 void sweep_proc_stop(sweep_proc *p, int sig, int hard);
+
+/* The program a case runs (name: crane or bgsim): given (--crane, --bgsim), next to this
+ * program (/proc/self/exe), the build's (build, NULL if unknown); its path in out. 1 found; 0 not
+ * found (tried: where it was looked for); -1 the given one is there but cannot be run (tried:
+ * "PATH: why": "is a directory, not a program", "not executable (no execute permission)"). */
+int sweep_find_program(const char *name, const char *given, const char *build, char *out,
+                       size_t size, char *tried, size_t tsize);
 
 #endif

@@ -1,16 +1,22 @@
 /* A case's row of sweep.csv from its folder (sweep_row.h). */
 #include "sweep_row.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "crane_scene.h"
 #include "pu_ini.h"
+#include "sweep_engine.h" /* sweep_signal_count */
 
 const sweep_quantity sweep_quantities[SWEEP_NQ] = {
     {"omega_err_max", "rad/s", "largest |omega - omega_ref| (platform rate against its reference)",
@@ -110,15 +116,46 @@ static void copy_text(char *dst, size_t size, const char *src)
     dst[n] = '\0';
 }
 
+FILE *sweep_open_regular(const char *path, long long max, long long *size)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) return NULL;
+    struct stat st;
+    int e = 0;
+    if (fstat(fd, &st) != 0)
+        e = errno;
+    else if (!S_ISREG(st.st_mode))
+        e = S_ISDIR(st.st_mode) ? EISDIR : EINVAL;
+    else if (max > 0 && (long long)st.st_size > max)
+        e = EFBIG;
+    FILE *f = e ? NULL : fdopen(fd, "r");
+    if (!f) {
+        if (!e) e = errno;
+        close(fd);
+        errno = e;
+        return NULL;
+    }
+    if (size) *size = (long long)st.st_size;
+    return f;
+}
+
+/* Read no further than the size the file had when opened (it may grow while the crane runs). */
+static int within(FILE *f, long long size)
+{
+    long pos = ftell(f);
+    return pos >= 0 && (long long)pos <= size;
+}
+
 int sweep_read_field(const char *path, const char *key, char *value, size_t size)
 {
     value[0] = '\0';
-    FILE *f = fopen(path, "r");
+    long long fsize = 0;
+    FILE *f = sweep_open_regular(path, SWEEP_TEXT_MAX, &fsize);
     if (!f) return 0;
     char line[4096];
     size_t kl = strlen(key);
     int found = 0;
-    while (!found && fgets(line, sizeof line, f)) {
+    while (!found && within(f, fsize) && fgets(line, sizeof line, f)) {
         if (strncmp(line, key, kl) || line[kl] != ':') continue;
         const char *v = line + kl + 1;
         while (*v == ' ')
@@ -134,10 +171,12 @@ int sweep_read_field(const char *path, const char *key, char *value, size_t size
 static void first_line(const char *path, char *buf, size_t size)
 {
     buf[0] = '\0';
-    FILE *f = fopen(path, "r");
+    long long fsize = 0;
+    FILE *f = sweep_open_regular(path, 0, &fsize);
     if (!f) return;
+    if (fsize > SWEEP_TEXT_MAX) fsize = SWEEP_TEXT_MAX; /* the first line is at the top */
     char line[2048];
-    while (fgets(line, sizeof line, f)) {
+    while (within(f, fsize) && fgets(line, sizeof line, f)) {
         line[strcspn(line, "\r\n")] = '\0';
         if (line[0]) {
             copy_text(buf, size, line);
@@ -159,12 +198,13 @@ static double field_number(const char *path, const char *key)
 /* The steps of solver_stats.txt's CSV part ("# CSV", a header, a row). */
 static double solver_steps(const char *path)
 {
-    FILE *f = fopen(path, "r");
+    long long fsize = 0;
+    FILE *f = sweep_open_regular(path, SWEEP_TEXT_MAX, &fsize);
     if (!f) return NAN;
     char line[4096], head[4096] = "";
     double steps = NAN;
     int state = 0;
-    while (fgets(line, sizeof line, f)) {
+    while (within(f, fsize) && fgets(line, sizeof line, f)) {
         line[strcspn(line, "\r\n")] = '\0';
         if (state == 0 && !strcmp(line, "# CSV"))
             state = 1;
@@ -243,7 +283,8 @@ static void read_results(const char *dir, double *q)
     double ax = NAN, ay = NAN;
     if (crane_scene_load(&sc, path, &e) == BG_OK) ax = sc.joint_A[0], ay = sc.joint_A[1];
     snprintf(path, sizeof path, "%s/results.csv", dir);
-    FILE *f = fopen(path, "r");
+    long long fsize = 0;
+    FILE *f = sweep_open_regular(path, 0, &fsize);
     if (!f) return;
     char *line = NULL;
     size_t cap = 0;
@@ -264,7 +305,7 @@ static void read_results(const char *dir, double *q)
     for (int i = 0; i < NCOL; i++)
         last[i] = NAN;
     double omax = NAN, d1 = NAN, d2 = NAN, ph = NAN, pl = NAN, pmin = NAN, rope = NAN;
-    while (v && getline(&line, &cap, f) > 0) {
+    while (v && within(f, fsize) && sweep_signal_count < 2 && getline(&line, &cap, f) > 0) {
         if (sweep_parse_row(line, v, ncols) < ncols) continue; /* not a whole row */
         rows++;
 #define V(c) (col[c] >= 0 ? v[col[c]] : NAN)
@@ -297,6 +338,33 @@ static void read_results(const char *dir, double *q)
     q[SQ_P_LOW_MAX] = pl;
     q[SQ_P_MIN] = pmin;
     q[SQ_ROPE_FORCE_MAX] = rope;
+}
+
+/* The case's folder dir has no room left: its file system has less than SWEEP_ROOM_MIN bytes
+ * or no inode free, or the crane's reason or log says so (ENOSPC, EDQUOT). 1 with what was
+ * found in room. */
+#define SWEEP_ROOM_MIN 16384
+static int no_room(const char *dir, const char *reason, const char *logline, char *room,
+                   size_t size)
+{
+    static const char *const says[] = {"No space left on device", "Disk quota exceeded"};
+    for (int i = 0; i < 2; i++)
+        if (strstr(reason, says[i]) || strstr(logline, says[i])) {
+            snprintf(room, size, "%s", says[i]);
+            return 1;
+        }
+    struct statvfs v;
+    if (statvfs(dir, &v) != 0) return 0;
+    unsigned long long avail = (unsigned long long)v.f_bavail * (unsigned long long)v.f_frsize;
+    if (avail < SWEEP_ROOM_MIN) {
+        snprintf(room, size, "no space left on device: %llu bytes free", avail);
+        return 1;
+    }
+    if (v.f_files > 0 && v.f_favail == 0) {
+        snprintf(room, size, "no space left on device: no inode free");
+        return 1;
+    }
+    return 0;
 }
 
 /* ------------------------------------------------------------------ the row ---- */
@@ -373,10 +441,18 @@ void sweep_row_read(const sweep_spec *s, sweep_row *row, long index, const char 
     }
     row->q[SQ_CPU_S] = o->cpu_s;
     row->q[SQ_WALL_S] = o->wall_s;
+    if (!o->started && o->busy_pid) {
+        row->status = SWEEP_NOT_RUN;
+        set_message(row,
+                    "not run: its folder is in use by the %s (pid %ld) of an earlier sweep, still "
+                    "running (status.txt: running); run --resume once it has ended, or stop it",
+                    prog, o->busy_pid);
+        return;
+    }
     if (!o->started) {
         row->status = SWEEP_FAILED;
         set_message(row, "the %s program could not be started: %s", prog,
-                    strerror(o->errno_start));
+                    o->why[0] ? o->why : strerror(o->errno_start));
         return;
     }
     int ws = o->wait_status, code = -1, sig = 0;
@@ -412,6 +488,14 @@ void sweep_row_read(const sweep_spec *s, sweep_row *row, long index, const char 
                     sig ? "was killed by " : "stopped", sig ? sig_name(sig) : at);
         return;
     }
+    if (sig == SIGXFSZ) { /* a write beyond RLIMIT_FSIZE: the limit, not the program */
+        row->status = SWEEP_FAILED;
+        set_message(row,
+                    "a file of the case outgrew the file size limit (SIGXFSZ: ulimit -f, "
+                    "RLIMIT_FSIZE)%s",
+                    isfinite(tr) ? at : "");
+        return;
+    }
     if (sig) {
         row->status = SWEEP_CRASHED;
         set_message(row, "the %s was ended by %s (signal %d)%s%s", prog, sig_name(sig), sig,
@@ -433,6 +517,17 @@ void sweep_row_read(const sweep_spec *s, sweep_row *row, long index, const char 
         row->status = SWEEP_FAILED;
         set_message(row, "the %s program could not be run (exit status %d)%s%s", prog, code,
                     logline[0] ? ": " : "", logline);
+        return;
+    }
+    char room[128];
+    if (code != 0 && no_room(dir, reason, logline, room, sizeof room)) {
+        row->status = SWEEP_FAILED; /* the disk, not the program: status.txt may not be final */
+        set_message(row, "the disk is full (%s): the %s ended with exit status %d%s%s%s", room,
+                    prog, code,
+                    !strcmp(cstatus, "running") ? ", status.txt still saying running"
+                    : !cstatus[0]               ? " without a status.txt"
+                                                : "",
+                    reason[0] || logline[0] ? ": " : "", reason[0] ? reason : logline);
         return;
     }
     if (!strcmp(cstatus, "running") || !cstatus[0]) {

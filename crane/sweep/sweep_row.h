@@ -4,20 +4,25 @@
  * Statuses of a case (the column status):
  *   completed    the crane reached t_end (exit 0, status.txt completed)
  *   failed       the crane ended the run with a failure (exit 1: the model, the solver or a
- *                write; the message is status.txt's reason), or could not be started
+ *                write; the message is status.txt's reason), or could not be started (the
+ *                case's folder is a file, ...); a case whose crane ended without a final
+ *                status.txt on a full disk ("the disk is full") or by SIGXFSZ (the file size
+ *                limit)
  *   invalid      the crane refused the case's scene (exit 2: e.g. an inconsistent scene made by
  *                the case's values; the message is the crane's)
  *   timeout      stopped at the sweep's per-case time limit (SIGTERM, SIGKILL 5 s later)
  *   crashed      ended by a signal it did not handle (SIGSEGV, SIGKILL from outside, ...) or
  *                ended without a final status.txt
  *   interrupted  stopped by a signal: to the sweep (which passes it on) or to the crane alone
- *   not_run      the sweep was stopped before the case started
+ *   not_run      the sweep was stopped before the case started, or the case's folder is in
+ *                use by a crane of an earlier sweep still running there (sweep_case_busy)
  * The figures read from results.csv are given for completed cases only (a partial run's peaks
  * would be read as the case's); steps, cpu_s, wall_s and t_reached for every case that ran. */
 #ifndef SWEEP_ROW_H
 #define SWEEP_ROW_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "sweep_spec.h"
 
@@ -80,6 +85,8 @@ typedef struct sweep_outcome {
     int stopped_by;    /* the sweep passed this signal on (0: none) */
     double time_limit; /* s */
     double cpu_s, wall_s;
+    long busy_pid; /* not started: an earlier sweep's crane (this pid) still runs in the folder */
+    char why[384]; /* not started: why, when more than errno_start says (the folder's state) */
 } sweep_outcome;
 
 /* The reported quantity report[i] of a sweep: its name (sweep.csv's header), unit, the stem of
@@ -103,6 +110,13 @@ void sweep_row_not_run(sweep_row *row, long index, const char *why);
  * too small. */
 int sweep_csv_header(const sweep_spec *s, char *buf, size_t size);
 int sweep_csv_row(const sweep_spec *s, const sweep_row *row, char *buf, size_t size);
+
+/* A file the sweep reads (status.txt, the log, results.csv, ...) opened for reading if it is a
+ * regular file (not a device, FIFO or folder: /dev/zero never ends) of at most max bytes (0: any
+ * size), without blocking; its size then in *size (the readers stop there: a file that grows
+ * while read ends where it was). NULL with errno (EISDIR, EINVAL: not a regular file; EFBIG). */
+FILE *sweep_open_regular(const char *path, long long max, long long *size);
+#define SWEEP_TEXT_MAX (1LL << 20) /* status.txt, case.txt, solver_stats.txt: 1 MB at most */
 
 /* The first line of the file's "key: value" line for key (e.g. "status"), or "" (0). */
 int sweep_read_field(const char *path, const char *key, char *value, size_t size);

@@ -8,6 +8,7 @@
  * ([sweep] model) has its base, [set] and quantities checked in sweep_model.c. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include <ctype.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,7 @@
 
 #include "crane_scene.h"
 #include "pu_cli.h"
+#include "pu_fs.h"
 #include "sweep_row.h"
 #include "sweep_spec_impl.h"
 
@@ -136,7 +138,8 @@ static int regular_file(const char *path)
 
 /* The scene file for arg: relative to dir (the sweep file's folder), then a bare name in each
  * scene folder of roots, with or without .ini. 1 with the absolute path, or 0 with what was
- * tried. */
+ * tried; -1 with tried saying why a candidate that is there cannot be used (a folder, a
+ * symbolic link loop, no permission). */
 static int resolve_scene(const char *arg, const char *dir, const char *const *roots, char *out,
                          size_t size, char *tried, size_t tsize)
 {
@@ -159,8 +162,18 @@ static int resolve_scene(const char *arg, const char *dir, const char *const *ro
                     snprintf(cand, sizeof cand, "%s%s%s%s", base, base[0] ? "/" : "", arg, suf[f]);
                 if (n < 0 || (size_t)n >= sizeof cand) continue;
                 if (regular_file(cand) && realpath(cand, out) && strlen(out) < size) return 1;
+                struct stat st;
+                const char *kind = "";
+                if (stat(cand, &st) != 0 && errno != ENOENT && errno != ENOTDIR) {
+                    /* there, but cannot be read: a symbolic link loop, no permission */
+                    snprintf(tried, tsize, "%.1500s: %s", cand, strerror(errno));
+                    return -1;
+                }
+                if (lstat(cand, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode))
+                    kind = pu_fs_kind((unsigned)st.st_mode);
                 if (tl < tsize) {
-                    n = snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", cand);
+                    n = snprintf(tried + tl, tsize - tl, "%s%s%s%s%s", tl ? ", " : "", cand,
+                                 kind[0] ? " (" : "", kind, kind[0] ? ")" : "");
                     tl = n < 0 ? tsize : tl + (size_t)n;
                 }
             }
@@ -207,8 +220,13 @@ static int base_scene(parse_ctx *c, raw_kv *kv, const char *dir, const char *con
     char tried[2048];
     snprintf(s->scene_arg, sizeof s->scene_arg, "%s", kv ? kv->value : "paper");
     if (!s->scene_arg[0]) return spec_bad_value(c, kv, "sweep", "a scene file or a scene's name");
-    if (!resolve_scene(s->scene_arg, dir, roots, s->scene_path, sizeof s->scene_path, tried,
-                       sizeof tried))
+    int found = resolve_scene(s->scene_arg, dir, roots, s->scene_path, sizeof s->scene_path, tried,
+                              sizeof tried);
+    if (found < 0)
+        return spec_fail_line(c, kv ? kv->line : 0, "%s '%s': cannot use the scene file: %s",
+                              kv ? "key 'scene' in [sweep]" : "the base scene (default)",
+                              s->scene_arg, tried);
+    if (!found)
         return spec_fail_line(c, kv ? kv->line : 0, "%s '%s': scene file not found (tried %s)",
                               kv ? "key 'scene' in [sweep]" : "the base scene (default)",
                               s->scene_arg, tried);
@@ -270,6 +288,12 @@ static int finish_sweep(parse_ctx *c, raw_section *r, const char *const *roots, 
             char name[64];
             pu_ini_trim_copy(p, e ? e : p + strlen(p), name, sizeof name);
             int q = sweep_quantity_index(name);
+            if (!name[0])
+                return spec_fail_line(c, kv->line,
+                                      "key 'report' in [sweep]: quantity %d is empty (expected "
+                                      "the names of summary quantities separated by ',', e.g. "
+                                      "'theta_end, steps')",
+                                      i);
             if (q < 0) {
                 const char *names[SWEEP_NQ + 1];
                 for (int j = 0; j < SWEEP_NQ; j++)

@@ -98,6 +98,9 @@ int spec_finish(parse_ctx *c, const char *const *roots);
 
 /* -------------------------------------------------- sweep_axes.c: the axes ---- */
 
+/* The first repeat among n value texts: the smallest i with v[i] equal to an earlier v[j] (*j),
+ * -1 if none, -2 out of memory; O(n log n) (a sort of the indices). */
+int spec_first_repeat(const char (*v)[SWEEP_VALUE_SIZE], int n, int *j);
 /* An [axis] section -> the next axis and its swept key (values checked against base). */
 int spec_finish_axis(parse_ctx *c, raw_section *r, const crane_scene *base);
 /* The [lhs] section -> the last axis: its keys sampled together (the interval's ends checked
