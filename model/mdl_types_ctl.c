@@ -354,8 +354,8 @@ static const mdl_param_def shaper_params[] = {
      "the knots t_k of the reference r, strictly increasing"},
     {"values", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_FINITE, NULL,
      "its values v_k, as many as times (a trapezoid: [0, h, h, 0])"},
-    {"shaper", MDL_CHOICE, 0, "-", "zv", 0, 0, 0, "zv|zvd",
-     "zero vibration (2 impulses) or zero vibration derivative (3)"},
+    {"shaper", MDL_CHOICE, 0, "-", "zv", 0, 0, 0, "zv|zvd|none",
+     "zero vibration (2 impulses), zero vibration derivative (3), or none (r itself)"},
     {"frequency", MDL_NUMBER, 0, "Hz", NULL, 0, INF, MDL_LO_OPEN, NULL,
      "the natural frequency of the mode to cancel"},
     {"damping", MDL_NUMBER, 0, "1", "0", 0, 1, MDL_HI_OPEN, NULL, "its damping ratio"},
@@ -376,8 +376,9 @@ static int shaper_build(bgr_model *m, bgr_comp c, const char *name, const mdl_ar
                                   "times[%d] = %g, expected > times[%d] = %g (strictly "
                                   "increasing)",
                                   k, t[k], k - 1, t[k - 1]);
-    ctl_shaper_kind kind = strcmp(mdl_arg_choice(a, "shaper"), "zvd") ? CTL_SHAPER_ZV
-                                                                      : CTL_SHAPER_ZVD;
+    const char *kn = mdl_arg_choice(a, "shaper");
+    if (!strcmp(kn, "none")) return output(m, sig_pwl(m, c, name, nt, t, v, output_of(a)), "y", out, err);
+    ctl_shaper_kind kind = strcmp(kn, "zvd") ? CTL_SHAPER_ZV : CTL_SHAPER_ZVD;
     int id = ctl_shaped_pwl(m, c, name, nt, t, v, kind, mdl_arg_num(a, "frequency"),
                             mdl_arg_num(a, "damping"), output_of(a));
     return output(m, id, "y", out, err);
@@ -386,7 +387,7 @@ static int shaper_build(bgr_model *m, bgr_comp c, const char *name, const mdl_ar
 static const mdl_type shaper_type = {
     "ctl.shaper",
     "a piecewise linear reference shaped by a ZV or ZVD shaper (ctl_shaper.h)",
-    "r_s(t) = sum_i A_i r(t - t_i)   (r: linear between (t_k, v_k))\n"
+    "r_s(t) = sum_i A_i r(t - t_i)   (r: linear between (t_k, v_k); none: r_s = r)\n"
     "ZV:  A = [1, K] / (1 + K),  t = [0, Td / 2]\n"
     "ZVD: A = [1, 2K, K^2] / (1 + K)^2,  t = [0, Td / 2, Td]\n"
     "K = exp(-z pi / sqrt(1 - z^2)),  Td = 1 / (f sqrt(1 - z^2))" SIG_EQS,
@@ -416,6 +417,8 @@ static const mdl_param_def sf_params[] = {
      "the state weight: n entries (diagonal) or n x n row by row"},
     {"R", MDL_NUMBER, 0, "-", NULL, 0, INF, MDL_OPTIONAL | MDL_LO_OPEN, NULL,
      "the input weight (> 0)"},
+    {"gain_scale", MDL_NUMBER, 0, "1", "1", -INF, INF, MDL_FINITE, NULL,
+     "a factor on the gains (0: the feedback off, the bias alone passes)"},
     {"form", MDL_CHOICE, 0, "-", "value", 0, 0, 0, "value|integral",
      "u = b - K e, or w' = -K e with u = b + w and rate = b' - K e"},
     {"bias", MDL_SIGNAL, 0, "-", NULL, 0, 0, MDL_OPTIONAL, NULL, "b (left out: 0)"},
@@ -490,6 +493,7 @@ static int sf_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *
         int st = ctl_lqr(n, 1, A, Br, Q, &R, s.gain, NULL, err);
         if (st != BG_OK) return st;
     }
+    for (int i = 0; i < n; i++) s.gain[i] *= mdl_arg_num(a, "gain_scale");
     s.integrate = !strcmp(mdl_arg_choice(a, "form"), "integral");
     if ((s.use_bias = mdl_arg_has(a, "bias"))) s.bias = mdl_arg_signal(a, "bias");
     if ((s.use_bias_rate = mdl_arg_has(a, "bias_rate"))) {
@@ -508,7 +512,7 @@ static int sf_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *
 
 static const mdl_type sf_type = {
     "ctl.state_feedback", "state feedback, its gains given or designed by LQR (ctl_lqr.h)",
-    "e_i = x_i - r_i\n"
+    "e_i = x_i - r_i   (K: the gains or the design's, times gain_scale)\n"
     "value form:     u = b - sum_i K_i e_i\n"
     "integral form:  w' = -sum_i K_i e_i,  u = b + w,  rate = b' - sum_i K_i e_i\n"
     "LQR design: K = R^-1 B^T P,  A^T P + P A - P B R^-1 B^T P + Q = 0  (Schur method, Laub 1979)",
