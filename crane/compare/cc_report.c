@@ -83,7 +83,7 @@ static int plots(const char *dir, const int *which, int n, int quiet)
     FILE *g = fopen(path, "w");
     if (!g) return -1;
     fputs("# crane-compare's figures: gnuplot plots.gp in this folder\n"
-          "set datafile separator ','\nset terminal pngcairo size 1100,650\n"
+          "set datafile separator ','\nset terminal pngcairo size 1100,650 noenhanced\n"
           "set grid\nset key outside right\nset xlabel 't (s)'\n",
           g);
     figure(g, dir, which, n, "sway.png", "The load's distance from its rest point",

@@ -1,7 +1,8 @@
 /* crane-compare: the crane's manoeuvre under each controller of the platform, side by side.
  *
  *   crane-compare [MODEL] [--out DIR] [--t-end T] [--output-step DT] [--controllers LIST]
- *                 [--shaper-frequency F] [--shaper-damping Z] [--no-plots] [--quiet]
+ *                 [--shaper-frequency F] [--shaper-damping Z] [--set PATH=VALUE] [--no-plots]
+ *                 [--quiet]
  *
  * MODEL is a model file with the controller switches of crane/models/crane-control.yaml (the
  * paper crane with its controller platform, the default; a bare name is looked up in
@@ -10,7 +11,8 @@
  * into DIR/<controller>/ (bgsim's files: results.csv, status.txt, ...). The shapers are tuned to
  * the load's pendulum mode, found first by the modes of the model at its static start
  * (bs_run_file with --modes into DIR/modes/: the lowest elastic mode whose part is `load`),
- * unless --shaper-frequency gives it. Then:
+ * unless --shaper-frequency gives it. --set PATH=VALUE (up to 8) goes to every run, the modes'
+ * too, before the controller's own replacements. Then:
  *   DIR/comparison.csv   one row per controller: controller, status, the metrics (cc_metrics.c)
  *   DIR/comparison.md    the same as a Markdown table, with the units
  *   DIR/sway.png, theta_err.png, pressures.png (and plots.gp): the load's distance from rest,
@@ -51,13 +53,36 @@ const cc_controller cc_controllers[] = {
 };
 const int cc_ncontrollers = (int)(sizeof cc_controllers / sizeof *cc_controllers);
 
+#define CC_MAX_USER_SETS 8
+
 typedef struct cc_options {
     const char *model, *out, *controllers;
+    const char *user_sets[CC_MAX_USER_SETS]; /* --set PATH=VALUE, for every run */
+    int nuser_sets;
     double t_end, output_step, shaper_f, shaper_z;
     int has_shaper_f, no_plots, quiet, help, version;
 } cc_options;
 
 #define AT(m) PU_CLI_AT(cc_options, m)
+
+/* --set PATH=VALUE: kept for every run (the model reader checks the path and the value) */
+static int take_set(const pu_cli_option *opt, const char *value, void *base, char *msg,
+                    size_t size)
+{
+    (void)opt;
+    cc_options *o = base;
+    const char *eq = value ? strchr(value, '=') : NULL;
+    if (!eq || eq == value || !eq[1] || eq - value >= 256) {
+        snprintf(msg, size, "option --set expects PATH=VALUE (got '%s')", value ? value : "");
+        return -1;
+    }
+    if (o->nuser_sets >= CC_MAX_USER_SETS) {
+        snprintf(msg, size, "option --set given more than %d times", CC_MAX_USER_SETS);
+        return -1;
+    }
+    o->user_sets[o->nuser_sets++] = value;
+    return 0;
+}
 static const pu_cli_option options[] = {
     {.name = "--out", .kind = PU_CLI_STRING, .arg = "DIR",
      .help = "output folder (default results/compare/)", .at = AT(out)},
@@ -77,6 +102,9 @@ static const pu_cli_option options[] = {
     {.name = "--shaper-damping", .kind = PU_CLI_DOUBLE, .arg = "Z",
      .help = "the shapers' damping ratio with --shaper-frequency (default 0)", .at = AT(shaper_z),
      .min = 0, .max = 1, .max_open = 1, .what = "a damping ratio in [0, 1)"},
+    {.name = "--set", .kind = PU_CLI_CALL, .arg = "PATH=VALUE", .take = take_set,
+     .help = "replace a model parameter in every run (--set ref_rate=0.05), before the "
+             "controller's own"},
     {.name = "--no-plots", .kind = PU_CLI_FLAG, .help = "do not draw the figures",
      .at = AT(no_plots)},
     {.name = "--quiet", .kind = PU_CLI_FLAG, .help = "no progress lines (errors only)",
@@ -121,9 +149,15 @@ static int find_model(const char *arg, char *path, size_t size)
  * "@z" replaced); 0, or -1 (a set too long). */
 static int run_options(const cc_options *o, const char *model, const char *dir,
                        const char *const *sets, double f, double z, int argc, char **argv,
-                       bs_options *b, char (*values)[64])
+                       bs_options *b, char (*values)[256])
 {
     memset(b, 0, sizeof *b);
+    const char *all[CC_MAX_USER_SETS + CC_MAX_SETS + 1];
+    int na = 0;
+    for (int i = 0; i < o->nuser_sets; i++) all[na++] = o->user_sets[i];
+    for (int i = 0; sets && sets[i]; i++) all[na++] = sets[i];
+    all[na] = NULL;
+    sets = all;
     b->model = model;
     b->out = dir;
     b->max_rows = BS_DEFAULT_MAX_ROWS;
@@ -136,14 +170,14 @@ static int run_options(const cc_options *o, const char *model, const char *dir,
     b->argv = argv;
     for (int i = 0; sets && sets[i]; i++) {
         const char *eq = strchr(sets[i], '=');
-        if (!eq || i >= CC_MAX_SETS) return -1;
+        if (!eq || i >= CC_MAX_USER_SETS + CC_MAX_SETS) return -1;
         snprintf(b->set_paths[i], sizeof b->set_paths[i], "%.*s", (int)(eq - sets[i]), sets[i]);
         if (!strcmp(eq + 1, "@f"))
-            snprintf(values[i], 64, "%.10g", f);
+            snprintf(values[i], 256, "%.10g", f);
         else if (!strcmp(eq + 1, "@z"))
-            snprintf(values[i], 64, "%.10g", z);
+            snprintf(values[i], 256, "%.10g", z);
         else
-            snprintf(values[i], 64, "%s", eq + 1);
+            snprintf(values[i], 256, "%s", eq + 1);
         b->sets[i].path = b->set_paths[i];
         b->sets[i].value = values[i];
         b->nsets = i + 1;
@@ -253,7 +287,7 @@ int main(int argc, char **argv)
         return RN_EXIT_RUN;
     }
     double f = o.shaper_f, z = o.shaper_z;
-    char dir[CC_PATH], values[CC_MAX_SETS][64];
+    char dir[CC_PATH], values[CC_MAX_USER_SETS + CC_MAX_SETS][256];
     bs_options b;
     if (!o.has_shaper_f) {
         snprintf(dir, sizeof dir, "%s/modes", o.out);
