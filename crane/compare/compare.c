@@ -276,6 +276,10 @@ int main(int argc, char **argv)
             p += k + (p[k] ? 1 : 0);
         }
     }
+    if (n == 0) {
+        fprintf(stderr, "crane-compare: --controllers names no controller\n");
+        return RN_EXIT_USAGE;
+    }
     char model[CC_PATH];
     if (!find_model(o.model, model, sizeof model)) {
         fprintf(stderr, "crane-compare: model file '%s' not found (as given, in crane/models/)\n",
