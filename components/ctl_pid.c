@@ -11,7 +11,24 @@ typedef struct pid {
     ctl_pid_spec sp;
     int I, u, r, y, rd, yd; /* variable ids (rd, yd: -1 when absent) */
     int z;                  /* filter state, -1 without a derivative filter */
+    int f;                  /* feedforward, -1 without */
+    double b, c;            /* setpoint weights (1, 1 unweighted) */
 } pid;
+
+/* The unknowns v depends on, in the order of the Jacobian's entries after the first one of
+ * each equation: r, y, I, then r', y', z, f where present (r', y' only with kd != 0). */
+static int pid_inputs(const pid *q, int *var)
+{
+    int n = 0;
+    var[n++] = q->r;
+    var[n++] = q->y;
+    var[n++] = q->I;
+    if (q->rd >= 0 && q->sp.kd != 0) var[n++] = q->rd;
+    if (q->yd >= 0 && q->sp.kd != 0) var[n++] = q->yd;
+    if (q->z >= 0) var[n++] = q->z;
+    if (q->f >= 0) var[n++] = q->f;
+    return n;
+}
 
 static int pid_declare(bgr_element *el, bgr_model *m)
 {
@@ -24,27 +41,32 @@ static int pid_declare(bgr_element *el, bgr_model *m)
     q->y = bgr_ref_var(m, q->sp.measurement);
     q->rd = q->sp.use_reference_rate ? bgr_ref_var(m, q->sp.reference_rate) : -1;
     q->yd = q->sp.use_measurement_rate ? bgr_ref_var(m, q->sp.measurement_rate) : -1;
+    q->f = q->sp.use_feedforward ? bgr_ref_var(m, q->sp.feedforward) : -1;
+    q->b = q->sp.weighted ? q->sp.b : 1.0;
+    q->c = q->sp.weighted ? q->sp.c : 1.0;
     if (q->r < 0 || q->y < 0 || (q->sp.use_reference_rate && q->rd < 0) ||
-        (q->sp.use_measurement_rate && q->yd < 0))
+        (q->sp.use_measurement_rate && q->yd < 0) || (q->sp.use_feedforward && q->f < 0))
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_compile",
                               "controller %s: its %s refers to no unknown", el->name,
                               q->r < 0                                ? "reference"
                               : q->y < 0                              ? "measurement"
                               : q->sp.use_reference_rate && q->rd < 0 ? "reference rate"
-                                                                      : "measurement rate");
+                              : q->sp.use_measurement_rate && q->yd < 0 ? "measurement rate"
+                                                                        : "feedforward");
     int st = bgr_declare_equations(el, m, q->z >= 0 ? 3 : 2, lab);
     if (st) return st;
+    int var[8], n = pid_inputs(q, var);
     CMP_DEP(el, m, 0, q->I, 1);
-    CMP_DEP(el, m, 0, q->r, 0);
-    CMP_DEP(el, m, 0, q->y, 0);
+    if (q->sp.tracking_time > 0) {
+        CMP_DEP(el, m, 0, q->u, 0);
+        for (int k = 0; k < n; k++) CMP_DEP(el, m, 0, var[k], 0);
+    } else {
+        CMP_DEP(el, m, 0, q->r, 0);
+        CMP_DEP(el, m, 0, q->y, 0);
+    }
     CMP_DEP(el, m, 1, q->u, 0);
-    CMP_DEP(el, m, 1, q->r, 0);
-    CMP_DEP(el, m, 1, q->y, 0);
-    CMP_DEP(el, m, 1, q->I, 0);
-    if (q->rd >= 0 && q->sp.kd != 0) CMP_DEP(el, m, 1, q->rd, 0);
-    if (q->yd >= 0 && q->sp.kd != 0) CMP_DEP(el, m, 1, q->yd, 0);
+    for (int k = 0; k < n; k++) CMP_DEP(el, m, 1, var[k], 0);
     if (q->z >= 0) {
-        CMP_DEP(el, m, 1, q->z, 0);
         CMP_DEP(el, m, 2, q->z, 1);
         CMP_DEP(el, m, 2, q->y, 0);
         CMP_DEP(el, m, 2, q->z, 0);
@@ -61,23 +83,47 @@ static int pid_declare(bgr_element *el, bgr_model *m)
     return BG_OK;
 }
 
-/* The unlimited law v and the slope g = dsat/dv of the limit at v. */
-static double pid_law(const pid *q, const double *y, double *g)
+/* The unlimited law v, its gradient dv (in pid_inputs' order, may be NULL) and the slope
+ * g = dsat/dv of the limit at v. */
+static double pid_law(const pid *q, const double *y, double *dv, double *g)
 {
     const ctl_pid_spec *s = &q->sp;
-    double err = y[q->r] - y[q->y], v = s->kp * err + s->ki * y[q->I];
+    double v = s->kp * (q->b * y[q->r] - y[q->y]) + s->ki * y[q->I];
+    double dy = -s->kp;
     if (s->kd != 0) {
         double ydot = q->z >= 0    ? (y[q->y] - y[q->z]) / s->derivative_filter
                       : q->yd >= 0 ? y[q->yd]
                                    : 0.0;
-        double rate = (q->rd >= 0 ? y[q->rd] : 0.0) - ydot;
-        v += s->kd * rate;
+        v += s->kd * ((q->rd >= 0 ? q->c * y[q->rd] : 0.0) - ydot);
+        if (q->z >= 0) dy -= s->kd / s->derivative_filter;
+    }
+    if (q->f >= 0) v += y[q->f];
+    if (dv) {
+        int n = 0;
+        dv[n++] = s->kp * q->b;
+        dv[n++] = dy;
+        dv[n++] = s->ki;
+        if (q->rd >= 0 && s->kd != 0) dv[n++] = s->kd * q->c;
+        if (q->yd >= 0 && s->kd != 0) dv[n++] = -s->kd;
+        if (q->z >= 0) dv[n++] = s->kd / s->derivative_filter;
+        if (q->f >= 0) dv[n++] = 1.0;
     }
     if (!s->limit) {
         *g = 1.0;
         return v;
     }
     return cmp_clamp(v, s->out_min, s->out_max, s->smoothing, g);
+}
+
+/* the unlimited v itself (pid_law returns sat(v)) */
+static double pid_unlimited(const pid *q, const double *y)
+{
+    ctl_pid_spec s = q->sp;
+    pid p = *q;
+    double g;
+    s.limit = 0;
+    p.sp = s;
+    return pid_law(&p, y, NULL, &g);
 }
 
 static int pid_residual(const bgr_element *el, double t, const double *y, const double *yp,
@@ -87,7 +133,9 @@ static int pid_residual(const bgr_element *el, double t, const double *y, const 
     const pid *q = el->params;
     double g;
     F[0] = yp[q->I] - (y[q->r] - y[q->y]);
-    F[1] = y[q->u] - pid_law(q, y, &g);
+    if (q->sp.tracking_time > 0)
+        F[0] -= (y[q->u] - pid_unlimited(q, y)) / (q->sp.ki * q->sp.tracking_time);
+    F[1] = y[q->u] - pid_law(q, y, NULL, &g);
     if (q->z >= 0) F[2] = yp[q->z] - (y[q->y] - y[q->z]) / q->sp.derivative_filter;
     return 0;
 }
@@ -98,23 +146,24 @@ static int pid_jacobian(const bgr_element *el, double t, const double *y, const 
     (void)t, (void)yp;
     const pid *q = el->params;
     const ctl_pid_spec *s = &q->sp;
-    double g;
-    pid_law(q, y, &g);
+    double g, dv[8];
+    int var[8], nin = pid_inputs(q, var);
+    pid_law(q, y, dv, &g);
     int n = 0;
     v[n++] = 1.0;
-    v[n++] = -1.0;
+    if (s->tracking_time > 0) {
+        double w = 1.0 / (s->ki * s->tracking_time);
+        v[n++] = -w;
+        for (int k = 0; k < nin; k++)
+            v[n++] = w * dv[k] + (var[k] == q->r ? -1.0 : var[k] == q->y ? 1.0 : 0.0);
+    } else {
+        v[n++] = -1.0;
+        v[n++] = 1.0;
+    }
     v[n++] = 1.0;
-    v[n++] = 1.0;
-    /* filtered: y enters the output through kp and through kd (y - z) / tau */
-    double dy = q->z >= 0 ? s->kp + s->kd / s->derivative_filter : s->kp;
-    v[n++] = -g * s->kp;
-    v[n++] = g * dy;
-    v[n++] = -g * s->ki;
-    if (q->rd >= 0 && s->kd != 0) v[n++] = -g * s->kd;
-    if (q->yd >= 0 && s->kd != 0) v[n++] = g * s->kd;
+    for (int k = 0; k < nin; k++) v[n++] = -g * dv[k];
     if (q->z >= 0) {
         double tau = s->derivative_filter;
-        v[n++] = -g * s->kd / tau;
         v[n++] = 1.0;
         v[n++] = -1.0 / tau;
         v[n++] = 1.0 / tau;
@@ -133,7 +182,10 @@ static void pid_describe(const bgr_element *el, const bgr_model *m, int k, char 
     const pid *q = el->params;
     const ctl_pid_spec *s = &q->sp;
     const char *r = vname(m, q->r, "r"), *y = vname(m, q->y, "y"), *I = vname(m, q->I, "I");
-    if (k == 0)
+    if (k == 0 && s->tracking_time > 0)
+        snprintf(buf, n, "%s' = %s - %s + (%s - v) / (%g * %g)", I, r, y, vname(m, q->u, "u"),
+                 s->ki, s->tracking_time);
+    else if (k == 0)
         snprintf(buf, n, "%s' = %s - %s", I, r, y);
     else if (k == 2)
         snprintf(buf, n, "%s' = (%s - %s) / %g", vname(m, q->z, "z"), y, vname(m, q->z, "z"),
@@ -154,7 +206,7 @@ static int pid_regime(const bgr_element *el, const double *y)
 {
     const pid *q = el->params;
     double g;
-    pid_law(q, y, &g);
+    pid_law(q, y, NULL, &g);
     return cmp_regime(g);
 }
 
@@ -201,6 +253,15 @@ int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec
             return bgr_refuse(m, c, name, w, "out_max = %g, expected > out_min = %g",
                               spec->out_max, spec->out_min);
     }
+    if (spec->weighted && (bgr_check_value(m, c, name, w, "b", spec->b, BGR_FINITE) ||
+                           bgr_check_value(m, c, name, w, "c", spec->c, BGR_FINITE)))
+        return BG_ERR_ARGUMENT;
+    if (bgr_check_value(m, c, name, w, "tracking_time", spec->tracking_time, BGR_NONNEGATIVE))
+        return BG_ERR_ARGUMENT;
+    if (spec->tracking_time > 0 && (!spec->limit || spec->ki == 0))
+        return bgr_refuse(m, c, name, w,
+                          "tracking_time = %g (anti-windup) needs the output limits and ki != 0",
+                          spec->tracking_time);
     pid *q = calloc(1, sizeof *q);
     if (!q)
         return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "ctl_pid", "out of memory");

@@ -36,7 +36,26 @@
  * must restart from the right limits (see the note in sig_sources.h).
  * Nominal magnitudes (bgr_declare_nominal): with limits, the output u gets the output range
  * max(|u_min|, |u_max|) and the integral I that range over |Ki| (the integral that alone drives
- * the output to its limit); without limits nothing is declared (the gains give no scale). */
+ * the output to its limit); without limits nothing is declared (the gains give no scale).
+ *
+ * Extensions (each off by default: a zeroed spec is the controller above exactly):
+ * Setpoint weighting (weighted = 1, weights b and c; Astrom and Hagglund 1995, Sec. 3.4, the
+ * "two-degree-of-freedom" PID): the proportional and derivative terms act on b r - y and
+ * c r' - y' while the integral keeps the full error r - y, so that the steady state is still
+ * y = r; b < 1 softens the response to reference changes without changing the response to
+ * disturbances. Unweighted: b = c = 1.
+ * Feedforward (use_feedforward = 1, signal f): f is added before the limit,
+ *   v = Kp (b r - y) + Kd (c r' - y') + Ki I + f,   u = sat(v),
+ * e.g. the pump displacement a reference rate needs (ctl_feedforward.h), so that the PID
+ * corrects only what the feedforward misses.
+ * Anti-windup by back-calculation (tracking_time Tt > 0, with limits and Ki != 0; Astrom and
+ * Hagglund 1995, Sec. 3.5): while the output is held by the limit, the integral is driven back
+ * towards the value that makes v = u, with time constant Tt:
+ *   I' = (r - y) + (u - v) / (Ki Tt)                                   ("integral")
+ * In range u = v (up to the smooth limit's eps ln 2) and the integral is the plain one; at the
+ * limit the integral settles where Ki I = u - (the other terms) + Ki Tt (r - y), so that the
+ * output leaves the limit as soon as the error changes sign instead of after the integral has
+ * unwound. A common choice is Tt = sqrt(Ti Td) with Ti = Kp / Ki, Td = Kd / Kp. */
 #ifndef CTL_PID_H
 #define CTL_PID_H
 
@@ -58,6 +77,11 @@ typedef struct ctl_pid_spec {
     double derivative_filter; /* tau > 0: y' estimated by the filter (y - z) / tau; 0: none */
     int limit;                /* 1: smooth limits [out_min, out_max] of width smoothing > 0 */
     double out_min, out_max, smoothing; /* with limit: finite, out_min < out_max, smoothing > 0 */
+    int weighted;           /* 1: setpoint weights b, c (finite); 0: b = c = 1 */
+    double b, c;
+    int use_feedforward; /* 1: the signal feedforward is added before the limit */
+    bgr_ref feedforward;
+    double tracking_time; /* Tt > 0: anti-windup by back-calculation (needs limit, ki != 0) */
 } ctl_pid_spec;
 
 /* Returns the element id (its output is bgr_ref {BGR_OWN, id, 0}) or < 0 (message in the
@@ -65,7 +89,8 @@ typedef struct ctl_pid_spec {
  * derivative_filter finite and >= 0 (0: none; > 0 with a finite 1 / tau), not together with
  * use_measurement_rate; kd != 0 only with the measured rate or the filter; with limit: out_min
  * and out_max finite with out_min < out_max, smoothing finite and > 0 (the limits are not read
- * without limit). Anything else gives BG_ERR_ARGUMENT before anything is built, with a message
+ * without limit); with weighted: b and c finite; tracking_time finite and >= 0, > 0 only with
+ * limit and ki != 0. Anything else gives BG_ERR_ARGUMENT before anything is built, with a message
  * naming the controller's path and the parameter (nothing is added to the model). The signals
  * are resolved by bgr_compile, which reports one that names no unknown. */
 BG_API int ctl_pid(bgr_model *m, bgr_comp c, const char *name, const ctl_pid_spec *spec);

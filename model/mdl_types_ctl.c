@@ -1,12 +1,19 @@
-/* Model-file types of the control library: the PID controller (ctl_pid.h), the signal sources
- * (sig_sources.h) and the signal gain (bgr_gain of bgr_elements.h). None has ports: each offers
+/* Model-file types of the control library: the PID controller (ctl_pid.h), the feedforward
+ * (ctl_feedforward.h), the input shaper (ctl_shaper.h), the state feedback with its LQR design
+ * (ctl_lqr.h), the sway sensor (ctl_sway.h), the signal sources (sig_sources.h) and the signal
+ * gain (bgr_gain of bgr_elements.h). The user's callback controller (ctl_user.h) is C only. None has ports: each offers
  * signals (its algebraic output, its states) and reads others' through MDL_SIGNAL parameters.
  * The equations are the headers', restated here for the type reference. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "bgr_elements.h"
+#include "ctl_feedforward.h"
+#include "ctl_lqr.h"
 #include "ctl_pid.h"
+#include "ctl_shaper.h"
+#include "ctl_sway.h"
 #include "mdl_impl.h"
 #include "sig_sources.h"
 
@@ -44,6 +51,15 @@ static const mdl_param_def pid_params[] = {
      "upper output limit, > out_min"},
     {"smoothing", MDL_NUMBER, 0, "-", NULL, 0, INF, MDL_OPTIONAL | MDL_LO_OPEN, NULL,
      "width eps of the smooth limits (left out: 1 % of out_max - out_min)"},
+    {"b", MDL_NUMBER, 0, "1", "1", -INF, INF, MDL_FINITE, NULL,
+     "setpoint weight of the proportional term: Kp (b r - y)"},
+    {"c", MDL_NUMBER, 0, "1", "1", -INF, INF, MDL_FINITE, NULL,
+     "setpoint weight of the derivative term: Kd (c r' - y')"},
+    {"feedforward", MDL_SIGNAL, 0, "-", NULL, 0, 0, MDL_OPTIONAL, NULL,
+     "a signal f added before the limit (e.g. ctl.feedforward's u)"},
+    {"tracking_time", MDL_NUMBER, 0, "s", "0", 0, INF, 0, NULL,
+     "Tt > 0: anti-windup by back-calculation, I' = r - y + (u - v) / (Ki Tt); needs the "
+     "limits and ki != 0"},
 };
 static const mdl_signal_def pid_signals[] = {
     {"u", "-", "the controller's output"},
@@ -93,6 +109,16 @@ static int pid_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args 
         s.smoothing = mdl_arg_has(a, "smoothing") ? mdl_arg_num(a, "smoothing")
                                                   : 0.01 * (s.out_max - s.out_min);
     }
+    s.b = mdl_arg_num(a, "b");
+    s.c = mdl_arg_num(a, "c");
+    s.weighted = s.b != 1 || s.c != 1;
+    if ((s.use_feedforward = mdl_arg_has(a, "feedforward")))
+        s.feedforward = mdl_arg_signal(a, "feedforward");
+    s.tracking_time = mdl_arg_num(a, "tracking_time");
+    if (s.tracking_time > 0 && (!s.limit || s.ki == 0))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "tracking_time: %g (anti-windup) needs out_min, out_max and ki != 0",
+                              s.tracking_time);
     int id = ctl_pid(m, c, name, &s);
     int r = output(m, id, "u", out, err);
     if (r == BG_OK) r = mdl_instance_signal(out, "integral", (bgr_ref){BGR_STATE, id, 0});
@@ -102,9 +128,12 @@ static int pid_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args 
 }
 
 static const mdl_type pid_type = {
-    "ctl.pid", "PID controller with optional smooth output limits (ctl_pid.h)",
+    "ctl.pid",
+    "PID controller: smooth output limits, derivative filter, setpoint weights, feedforward, "
+    "anti-windup (ctl_pid.h)",
     "I' = r - y                                         integral (state I)\n"
-    "u  = sat(Kp (r - y) + Kd (r' - y') + Ki I)         output\n"
+    "u  = sat(v),  v = Kp (b r - y) + Kd (c r' - y') + Ki I + f      output\n"
+    "with tracking_time Tt > 0: I' = r - y + (u - v) / (Ki Tt)  (anti-windup)\n"
     "sat(v) = u_min + sp(v - u_min) - sp(v - u_max),  sp(z) = eps ln(1 + exp(z / eps))\n"
     "       (the identity without limits)\n"
     "with derivative_filter tau > 0:  z' = (y - z) / tau  (state z),  y' = (y - z) / tau",
@@ -286,7 +315,256 @@ static const mdl_type gain_type = {
     "sig.gain", "a signal times a constant (bgr_gain, bgr_elements.h)", "y = g x", gain_params,
     COUNT(gain_params), NULL, 0, gain_signals, COUNT(gain_signals), 0, gain_build, NULL, NULL};
 
+/* ---- ctl.feedforward ---- */
+
+static const mdl_param_def ff_params[] = {
+    {"reference_rate", MDL_SIGNAL, 0, "rad/s", NULL, 0, 0, 0, NULL,
+     "the reference rate omega_r of the load (e.g. a sig.trapezoid's value)"},
+    {"ratio", MDL_NUMBER, 0, "1", NULL, -INF, INF, MDL_FINITE, NULL,
+     "gear ratio i, motor turns per load turn (!= 0)"},
+    {"motor_displacement", MDL_NUMBER, 0, "m^3/rev", NULL, 0, INF, MDL_LO_OPEN, NULL,
+     "the motor's displacement Dm"},
+    {"pump_displacement", MDL_NUMBER, 0, "m^3/rev", NULL, 0, INF, MDL_LO_OPEN, NULL,
+     "the pump's displacement Dp at x = 1"},
+    {"pump_speed", MDL_NUMBER, 0, "rad/s", NULL, -INF, INF, MDL_FINITE, NULL,
+     "the pump's drive speed w_p (!= 0)"},
+};
+static const mdl_signal_def ff_signals[] = {{"u", "1", "the displacement command k omega_r"}};
+
+static int ff_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
+                    mdl_instance *out, bg_error *err)
+{
+    ctl_ff_spec s = {.ratio = mdl_arg_num(a, "ratio"),
+                     .motor_disp = mdl_arg_num(a, "motor_displacement"),
+                     .pump_disp = mdl_arg_num(a, "pump_displacement"),
+                     .pump_speed = mdl_arg_num(a, "pump_speed"),
+                     .reference_rate = mdl_arg_signal(a, "reference_rate")};
+    return output(m, ctl_feedforward(m, c, name, &s), "u", out, err);
+}
+
+static const mdl_type ff_type = {
+    "ctl.feedforward", "the pump displacement a reference rate needs (ctl_feedforward.h)",
+    "u = k omega_r,  k = i Dm / (Dp w_p)   (steady flow, no leakage)", ff_params,
+    COUNT(ff_params), NULL, 0, ff_signals, COUNT(ff_signals), 0, ff_build, NULL, NULL};
+
+/* ---- ctl.shaper ---- */
+
+static const mdl_param_def shaper_params[] = {
+    {"times", MDL_VECTOR, 0, "s", NULL, -INF, INF, MDL_FINITE, NULL,
+     "the knots t_k of the reference r, strictly increasing"},
+    {"values", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_FINITE, NULL,
+     "its values v_k, as many as times (a trapezoid: [0, h, h, 0])"},
+    {"shaper", MDL_CHOICE, 0, "-", "zv", 0, 0, 0, "zv|zvd|none",
+     "zero vibration (2 impulses), zero vibration derivative (3), or none (r itself)"},
+    {"frequency", MDL_NUMBER, 0, "Hz", NULL, 0, INF, MDL_LO_OPEN, NULL,
+     "the natural frequency of the mode to cancel"},
+    {"damping", MDL_NUMBER, 0, "1", "0", 0, 1, MDL_HI_OPEN, NULL, "its damping ratio"},
+    OUTPUT,
+};
+
+static int shaper_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
+                        mdl_instance *out, bg_error *err)
+{
+    int nt, nv;
+    const double *t = mdl_arg_vec(a, "times", &nt), *v = mdl_arg_vec(a, "values", &nv);
+    if (nt != nv)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "values: %d of them, expected as many as times (%d)", nv, nt);
+    for (int k = 1; k < nt; k++)
+        if (!(t[k] > t[k - 1]))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "times[%d] = %g, expected > times[%d] = %g (strictly "
+                                  "increasing)",
+                                  k, t[k], k - 1, t[k - 1]);
+    const char *kn = mdl_arg_choice(a, "shaper");
+    if (!strcmp(kn, "none")) return output(m, sig_pwl(m, c, name, nt, t, v, output_of(a)), "y", out, err);
+    ctl_shaper_kind kind = strcmp(kn, "zvd") ? CTL_SHAPER_ZV : CTL_SHAPER_ZVD;
+    int id = ctl_shaped_pwl(m, c, name, nt, t, v, kind, mdl_arg_num(a, "frequency"),
+                            mdl_arg_num(a, "damping"), output_of(a));
+    return output(m, id, "y", out, err);
+}
+
+static const mdl_type shaper_type = {
+    "ctl.shaper",
+    "a piecewise linear reference shaped by a ZV or ZVD shaper (ctl_shaper.h)",
+    "r_s(t) = sum_i A_i r(t - t_i)   (r: linear between (t_k, v_k); none: r_s = r)\n"
+    "ZV:  A = [1, K] / (1 + K),  t = [0, Td / 2]\n"
+    "ZVD: A = [1, 2K, K^2] / (1 + K)^2,  t = [0, Td / 2, Td]\n"
+    "K = exp(-z pi / sqrt(1 - z^2)),  Td = 1 / (f sqrt(1 - z^2))" SIG_EQS,
+    shaper_params, COUNT(shaper_params), NULL, 0, source_signals, COUNT(source_signals), 0,
+    shaper_build, source_place, NULL};
+
+/* ---- ctl.state_feedback ---- */
+
+#define SF_N 6
+#define SF_X(k)                                                                                    \
+    {"x" #k, MDL_SIGNAL, 0, "-", NULL, 0, 0, k == 1 ? 0 : MDL_OPTIONAL, NULL,                      \
+     "measured signal " #k " (x1 required; x1..xn without gaps)"},                                 \
+    {                                                                                              \
+        "r" #k, MDL_SIGNAL, 0, "-", NULL, 0, 0, MDL_OPTIONAL, NULL,                                \
+            "its reference (left out: 0)"                                                          \
+    }
+
+static const mdl_param_def sf_params[] = {
+    SF_X(1), SF_X(2), SF_X(3), SF_X(4), SF_X(5), SF_X(6),
+    {"gains", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_OPTIONAL | MDL_FINITE, NULL,
+     "K, one per measured signal (or leave out and give A, B, Q, R)"},
+    {"A", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_OPTIONAL | MDL_FINITE, NULL,
+     "the design model's n x n matrix, row by row"},
+    {"B", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_OPTIONAL | MDL_FINITE, NULL,
+     "its input column (n entries)"},
+    {"Q", MDL_VECTOR, 0, "-", NULL, -INF, INF, MDL_OPTIONAL | MDL_FINITE, NULL,
+     "the state weight: n entries (diagonal) or n x n row by row"},
+    {"R", MDL_NUMBER, 0, "-", NULL, 0, INF, MDL_OPTIONAL | MDL_LO_OPEN, NULL,
+     "the input weight (> 0)"},
+    {"gain_scale", MDL_NUMBER, 0, "1", "1", -INF, INF, MDL_FINITE, NULL,
+     "a factor on the gains (0: the feedback off, the bias alone passes)"},
+    {"form", MDL_CHOICE, 0, "-", "value", 0, 0, 0, "value|integral",
+     "u = b - K e, or w' = -K e with u = b + w and rate = b' - K e"},
+    {"bias", MDL_SIGNAL, 0, "-", NULL, 0, 0, MDL_OPTIONAL, NULL, "b (left out: 0)"},
+    {"bias_rate", MDL_SIGNAL, 0, "-", NULL, 0, 0, MDL_OPTIONAL, NULL,
+     "b' (integral form; left out: 0)"},
+};
+static const mdl_signal_def sf_signals[] = {
+    {"u", "-", "the command"},
+    {"rate", "-", "its rate b' - K e (integral form)"},
+    {"integral", "-", "the state w (integral form)"},
+};
+
+static int sf_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
+                    mdl_instance *out, bg_error *err)
+{
+    ctl_sf_spec s;
+    memset(&s, 0, sizeof s);
+    char key[8];
+    for (int k = 0; k < SF_N; k++) {
+        snprintf(key, sizeof key, "x%d", k + 1);
+        if (!mdl_arg_has(a, key)) {
+            snprintf(key, sizeof key, "r%d", k + 1);
+            if (mdl_arg_has(a, key))
+                return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                      "%s: given without x%d", key, k + 1);
+            continue;
+        }
+        if (s.n != k)
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "%s: given without x%d (x1..xn without gaps)", key, s.n + 1);
+        s.x[s.n] = mdl_arg_signal(a, key);
+        snprintf(key, sizeof key, "r%d", k + 1);
+        if ((s.use_ref[s.n] = mdl_arg_has(a, key))) s.r[s.n] = mdl_arg_signal(a, key);
+        s.n++;
+    }
+    int n = s.n, ng = 0, na = 0, nb = 0, nq = 0;
+    int design = mdl_arg_has(a, "A") || mdl_arg_has(a, "B") || mdl_arg_has(a, "Q") ||
+                 mdl_arg_has(a, "R");
+    if (mdl_arg_has(a, "gains") == design)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "gains: give the gains or the design (A, B, Q, R), one of them");
+    if (!design) {
+        const double *g = mdl_arg_vec(a, "gains", &ng);
+        if (ng != n)
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "gains: %d of them, expected one per measured signal (%d)", ng,
+                                  n);
+        memcpy(s.gain, g, sizeof *g * (size_t)n);
+    } else {
+        const char *miss = !mdl_arg_has(a, "A")   ? "A"
+                           : !mdl_arg_has(a, "B") ? "B"
+                           : !mdl_arg_has(a, "Q") ? "Q"
+                           : !mdl_arg_has(a, "R") ? "R"
+                                                  : NULL;
+        if (miss)
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "%s: the design needs A, B, Q and R", miss);
+        const double *Ar = mdl_arg_vec(a, "A", &na), *Br = mdl_arg_vec(a, "B", &nb),
+                     *Qr = mdl_arg_vec(a, "Q", &nq);
+        if (na != n * n || nb != n || (nq != n && nq != n * n))
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "%s: %d entries, expected %d for %d measured signals",
+                                  na != n * n ? "A" : nb != n ? "B" : "Q",
+                                  na != n * n ? na : nb != n ? nb : nq,
+                                  na != n * n ? n * n : n, n);
+        double A[SF_N * SF_N], Q[SF_N * SF_N], R = mdl_arg_num(a, "R");
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                A[i + j * n] = Ar[i * n + j];
+                Q[i + j * n] = nq == n ? (i == j ? Qr[i] : 0.0) : Qr[i * n + j];
+            }
+        int st = ctl_lqr(n, 1, A, Br, Q, &R, s.gain, NULL, err);
+        if (st != BG_OK) return st;
+    }
+    for (int i = 0; i < n; i++) s.gain[i] *= mdl_arg_num(a, "gain_scale");
+    s.integrate = !strcmp(mdl_arg_choice(a, "form"), "integral");
+    if ((s.use_bias = mdl_arg_has(a, "bias"))) s.bias = mdl_arg_signal(a, "bias");
+    if ((s.use_bias_rate = mdl_arg_has(a, "bias_rate"))) {
+        if (!s.integrate)
+            return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                                  "bias_rate: only with form: integral");
+        s.bias_rate = mdl_arg_signal(a, "bias_rate");
+    }
+    int id = ctl_state_feedback(m, c, name, &s);
+    int r = output(m, id, "u", out, err);
+    if (r == BG_OK && s.integrate) r = mdl_instance_signal(out, "rate", (bgr_ref){BGR_OWN, id, 1});
+    if (r == BG_OK && s.integrate)
+        r = mdl_instance_signal(out, "integral", (bgr_ref){BGR_STATE, id, 0});
+    return r;
+}
+
+static const mdl_type sf_type = {
+    "ctl.state_feedback", "state feedback, its gains given or designed by LQR (ctl_lqr.h)",
+    "e_i = x_i - r_i   (K: the gains or the design's, times gain_scale)\n"
+    "value form:     u = b - sum_i K_i e_i\n"
+    "integral form:  w' = -sum_i K_i e_i,  u = b + w,  rate = b' - sum_i K_i e_i\n"
+    "LQR design: K = R^-1 B^T P,  A^T P + P A - P B R^-1 B^T P + Q = 0  (Schur method, Laub 1979)",
+    sf_params, COUNT(sf_params), NULL, 0, sf_signals, COUNT(sf_signals), 0, sf_build, NULL, NULL};
+
+/* ---- ctl.sway_sensor ---- */
+
+static const mdl_param_def sway_params[] = {
+    {"load", MDL_ELEMENT, 0, "-", NULL, 0, 0, 0, NULL, "the point mass (mech.point_mass)"},
+    {"angle", MDL_SIGNAL, 0, "rad", NULL, 0, 0, 0, NULL, "the plane's angle theta"},
+    {"rate", MDL_SIGNAL, 0, "rad/s", NULL, 0, 0, 0, NULL, "its rate omega"},
+    {"center", MDL_VECTOR, 2, "m", "[0, 0]", -INF, INF, MDL_FINITE, NULL,
+     "the vertical axis (cx, cy)"},
+};
+static const mdl_signal_def sway_signals[] = {
+    {"s", "m", "the load's offset from the turning plane"},
+    {"s_rate", "m/s", "its rate in the turning frame"},
+};
+
+static int sway_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
+                      mdl_instance *out, bg_error *err)
+{
+    int load = mdl_arg_element(a, "load");
+    bgr_element *el = bgr_element_get(m, load);
+    if (!el || strcmp(el->cls->type, "point mass"))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "model",
+                              "load: expected a point mass (mech.point_mass), got %s",
+                              el ? el->cls->type : "no element");
+    const double *cen = mdl_arg_vec(a, "center", NULL);
+    ctl_sway_spec s = {.x = {BGR_STATE, load, 0},
+                       .y = {BGR_STATE, load, 1},
+                       .vx = {BGR_STATE, load, 3},
+                       .vy = {BGR_STATE, load, 4},
+                       .theta = mdl_arg_signal(a, "angle"),
+                       .omega = mdl_arg_signal(a, "rate"),
+                       .cx = cen[0],
+                       .cy = cen[1]};
+    int id = ctl_sway(m, c, name, &s);
+    int r = output(m, id, "s", out, err);
+    if (r == BG_OK) r = mdl_instance_signal(out, "s_rate", (bgr_ref){BGR_OWN, id, 1});
+    return r;
+}
+
+static const mdl_type sway_type = {
+    "ctl.sway_sensor", "a load's sway out of a turning vertical plane (ctl_sway.h)",
+    "s  = -(x - cx) sin(theta) + (y - cy) cos(theta)\n"
+    "s' = -vx sin(theta) + vy cos(theta) - omega ((x - cx) cos(theta) + (y - cy) sin(theta))",
+    sway_params, COUNT(sway_params), NULL, 0, sway_signals, COUNT(sway_signals), 0, sway_build,
+    NULL, NULL};
+
 const mdl_type *const mdl_types_ctl[] = {
-    &pid_type, &trap_type, &pwl_type, &step_type, &ramp_type, &sine_type, &const_type, &gain_type,
+    &pid_type,  &ff_type,   &shaper_type, &sf_type,   &sway_type, &trap_type,
+    &pwl_type,  &step_type, &ramp_type,   &sine_type, &const_type, &gain_type,
 };
 const int mdl_types_ctl_count = COUNT(mdl_types_ctl);

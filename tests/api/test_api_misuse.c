@@ -22,7 +22,12 @@
 #include "bgr_analysis.h"
 #include "bgr_elements.h"
 #include "bgr_model.h"
+#include "ctl_feedforward.h"
+#include "ctl_lqr.h"
 #include "ctl_pid.h"
+#include "ctl_shaper.h"
+#include "ctl_sway.h"
+#include "ctl_user.h"
 #include "hyd_motor.h"
 #include "hyd_pump.h"
 #include "hyd_source.h"
@@ -990,6 +995,13 @@ static void test_bondgraph_states(void)
 
 /* --------------------------------------------------- element constructors ---- */
 
+static int user_fn(void *user, double t, const double *x, double *u, double *jac)
+{
+    (void)user, (void)t, (void)jac;
+    u[0] = x[0];
+    return 0;
+}
+
 static void test_constructors(void)
 {
     const double g[3] = {0, 0, -9.81}, J[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, r3[3] = {0, 0, 0};
@@ -998,6 +1010,10 @@ static void test_constructors(void)
     const mech_section sec = {2e11, 8e10, 1e-2, 1e-5, 1e-5, 2e-5, 7800, 0, 0};
     ctl_pid_spec spec;
     memset(&spec, 0, sizeof spec);
+    ctl_ff_spec ffs = {.ratio = 1, .motor_disp = 1, .pump_disp = 1, .pump_speed = 1};
+    ctl_sf_spec sfs = {.n = 1, .gain = {1}};
+    ctl_sway_spec sws = {.cx = 0};
+    ctl_user_spec us = {.n_in = 1, .n_out = 1, .fn = user_fn};
     bgr_ref ref = {BGR_EFFORT, 0, 0};
     int nodes[3] = {0, 1, 2}, elems[2] = {0, 0};
 
@@ -1021,6 +1037,12 @@ static void test_constructors(void)
         {"bgr_one", bgr_one(NULL, 0, "x", 3, 1)},
         {"bgr_gain", bgr_gain(NULL, 0, "x", ref, 2.0)},
         {"ctl_pid", ctl_pid(NULL, 0, "x", &spec)},
+        {"ctl_feedforward", ctl_feedforward(NULL, 0, "x", &ffs)},
+        {"ctl_shaped_pwl", ctl_shaped_pwl(NULL, 0, "x", 2, tt, vv, CTL_SHAPER_ZV, 1.0, 0.0,
+                                          SIG_VALUE)},
+        {"ctl_state_feedback", ctl_state_feedback(NULL, 0, "x", &sfs)},
+        {"ctl_sway", ctl_sway(NULL, 0, "x", &sws)},
+        {"ctl_user", ctl_user(NULL, 0, "x", &us)},
         {"hyd_motor", hyd_motor(NULL, 0, "x", 1e-4, 0, 0)},
         {"hyd_pump", hyd_pump(NULL, 0, "x", 1e-4, 0, ref)},
         {"hyd_tank", hyd_tank(NULL, 0, "x", 1e5)},
@@ -1082,6 +1104,19 @@ static void test_constructors(void)
     bgr_model *m = bgr_model_create("parts");
     const char *msg = bgr_model_error(m)->message;
     expect(ctl_pid(m, 0, "pid", NULL), BG_ERR_ARGUMENT, msg, "specification", "ctl_pid(spec NULL)");
+    expect(ctl_feedforward(m, 0, "ff", NULL), BG_ERR_ARGUMENT, msg, "specification",
+           "ctl_feedforward(spec NULL)");
+    expect(ctl_state_feedback(m, 0, "sf", NULL), BG_ERR_ARGUMENT, msg, "specification",
+           "ctl_state_feedback(spec NULL)");
+    expect(ctl_sway(m, 0, "sway", NULL), BG_ERR_ARGUMENT, msg, "specification",
+           "ctl_sway(spec NULL)");
+    expect(ctl_user(m, 0, "user", NULL), BG_ERR_ARGUMENT, msg, "callback",
+           "ctl_user(spec NULL)");
+    expect(ctl_shaped_pwl(m, 0, "shaper", 2, NULL, vv, CTL_SHAPER_ZV, 1.0, 0.0, SIG_VALUE),
+           BG_ERR_ARGUMENT, msg, "knots", "ctl_shaped_pwl(t NULL)");
+    bg_error le = {0};
+    expect(ctl_lqr(2, 1, NULL, NULL, NULL, NULL, NULL, NULL, &le), BG_ERR_ARGUMENT, le.message,
+           "NULL", "ctl_lqr(matrices NULL)");
     expect(mech_body(m, 0, "body", 1, NULL, g, 1, r3, NULL), BG_ERR_ARGUMENT, msg, "inertia",
            "mech_body(inertia NULL)");
     expect(mech_body(m, 0, "body", 1, J, g, 1, NULL, NULL), BG_ERR_ARGUMENT, msg, "points",

@@ -11,7 +11,9 @@
  *   hyd.pump 3 (torque, flow, continuity), with the servo + 1 (swash); motor 3; volume
  *   nports + 1 (p); sources 1; leakage and relief valve 2 (flow, continuity);
  *   rot.inertia 3 (momentum, velocity, angle); gear 2; damper 1; sensor 1;
- *   ctl.pid 2 (integral, output), with the filter 3; every sig.* and sig.gain 1;
+ *   ctl.pid 2 (integral, output), with the filter 3; ctl.feedforward, ctl.shaper 1;
+ *   ctl.state_feedback 1 (output), integral form 3 (+ integral, rate); ctl.sway_sensor 2;
+ *   every sig.* and sig.gain 1;
  *   bg.I and bg.C 2 d; R, Se, Sf d; Se_signal, Sf_signal 1; TF, GY 2 d; TF_signal 2;
  *   junctions nports d.
  * Every signal the type lists is read by a sig.gain `g_<signal>` (skip: signals the variant does
@@ -122,6 +124,33 @@ static const build_case builds[] = {
      "r: {type: sig.trapezoid, t0: 0, t1: 2, t2: 10, t3: 12, height: 0.5}; y: {type: sig.constant, "
      "value: 0}",
      "", 3, ""},
+    {"ctl.pid",
+     "kp: 1, ki: 0.5, b: 0.5, c: 0, out_min: -1, out_max: 1, tracking_time: 2, feedforward: f.y, "
+     "reference: r.y, measurement: y.y",
+     "r: {type: sig.step, t_step: 1, after: 1}; y: {type: sig.constant, value: 0}; "
+     "f: {type: sig.constant, value: 0.1}",
+     "", 2, "filter"},
+    {"ctl.feedforward",
+     "reference_rate: r.y, ratio: 300, motor_displacement: 0.005, pump_displacement: 0.1, "
+     "pump_speed: 150",
+     "r: {type: sig.constant, value: 0.5}", "", 1, ""},
+    {"ctl.shaper", "times: [0, 2, 10, 12], values: [0, 0.5, 0.5, 0], frequency: 0.057", "", "", 1,
+     ""},
+    {"ctl.shaper",
+     "times: [0, 2], values: [0, 1], frequency: 0.5, damping: 0.1, shaper: zvd, output: integral",
+     "", "", 1, ""},
+    {"ctl.state_feedback",
+     "x1: a.y, x2: b.y, r1: c.y, A: [0, 1, 0, 0], B: [0, 1], Q: [1, 2], R: 0.5, form: integral, "
+     "bias: c.y, bias_rate: c.y",
+     "a: {type: sig.constant, value: 1}; b: {type: sig.constant, value: 2}; "
+     "c: {type: sig.constant, value: 3}",
+     "", 3, ""},
+    {"ctl.state_feedback", "x1: a.y, gains: [2]", "a: {type: sig.constant, value: 1}", "", 1,
+     "rate integral"},
+    {"ctl.sway_sensor", "load: p, angle: th.y, rate: om.y, center: [1, 0]",
+     "p: {type: mech.point_mass, mass: 1, position: [3, 1, 0]}; f: {type: mech.free, dim: 3}; "
+     "th: {type: sig.constant, value: 0.1}; om: {type: sig.constant, value: 0.2}",
+     "p.p -> f.p", 2, ""},
     {"sig.trapezoid", "t0: 0, t1: 2, t2: 10, t3: 12, height: 0.5, output: integral", "", "", 1, ""},
     {"sig.pwl", "times: [0, 1, 2], values: [0, 1, 0]", "", "", 1, ""},
     {"sig.step", "t_step: 1, after: 2, output: integral", "", "", 1, ""},
@@ -297,6 +326,22 @@ static const error_case errors[] = {
      "kp: 1, derivative_filter: -1, reference: c.y, measurement: c.y",
      "c: {type: sig.constant, value: 1}",
      {"dut.derivative_filter", "out of range"}},
+    {"ctl.pid",
+     "kp: 1, ki: 1, tracking_time: 1, reference: c.y, measurement: c.y",
+     "c: {type: sig.constant, value: 1}",
+     {"dut", "tracking_time"}},
+    {"ctl.feedforward",
+     "reference_rate: c.y, ratio: 0, motor_displacement: 1, pump_displacement: 1, pump_speed: 1",
+     "c: {type: sig.constant, value: 1}",
+     {"dut", "ratio"}},
+    {"ctl.shaper", "times: [0, 1], values: [0, 1], frequency: 1, damping: 1", "",
+     {"dut.damping", "out of range"}},
+    {"ctl.state_feedback", "x1: c.y, gains: [1, 2]", "c: {type: sig.constant, value: 1}",
+     {"dut", "gains"}},
+    {"ctl.state_feedback", "x1: c.y, A: [0], B: [0], Q: [1], R: 1",
+     "c: {type: sig.constant, value: 1}", {"dut", "stabilisable"}},
+    {"ctl.sway_sensor", "load: c, angle: c.y, rate: c.y", "c: {type: sig.constant, value: 1}",
+     {"dut", "point mass"}},
     {"sig.trapezoid", "t0: 0, t1: -1, t2: 10, t3: 12, height: 1", "", {"dut", "t1"}},
     {"sig.pwl", "times: [0, 1], values: [0, 1, 2]", "", {"dut", "values"}},
     {"sig.pwl", "times: [0, 1, 1], values: [0, 1, 2]", "", {"dut", "times"}},
