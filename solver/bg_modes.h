@@ -56,7 +56,11 @@
  * LU of s A + B (the real shift's rounding along the drift directions of a model with many bodies
  * limits the Ritz values to a relative accuracy of about 1e-4; a solve with the shift at the mode
  * itself has no such limit, and the refined damping ratios of undamped modes come out at the
- * rounding level). The sparse method finds elastic modes only.
+ * rounding level). A repeated eigenvalue (the two bending planes of a symmetric section, identical
+ * subsystems) is returned once per independent eigenvector: a mode found twice is told by its
+ * vector lying in the span of the kept ones of that eigenvalue (sine of the angle below 1e-3,
+ * modified Gram-Schmidt), never by its eigenvalue alone. The sparse method finds elastic modes
+ * only.
  *
  * Errors: BG_ERR_ARGUMENT (NULL problem, state or result; an option out of range: the message
  * names the field, its value and its range; a nominal magnitude that is not finite and > 0: the
