@@ -152,6 +152,7 @@ static int newton_matrix(st_ctx *c, const double *y, double H, int eval)
  * it converges within the budget (2 lim; dae_nls.c's extension at a good rate). */
 #define STATIC_DGMAX 0.3
 #define STATIC_RATE_REFRESH 0.5
+#define STATIC_STEADY_TOL 1e-4 /* bg_jaceval_steadiness's ratio of a steady motion, at most */
 enum { STATIC_NEWTON_FULL = 5 };
 static int newton(st_ctx *c, double *y, double lam, double H, int exact, int *iters)
 {
@@ -165,7 +166,7 @@ static int newton(st_ctx *c, double *y, double lam, double H, int exact, int *it
     if (!c->have_mat) {
         if ((st = newton_matrix(c, y, H, 1)) != 0) return st < 0 ? st : 1;
         at_y = 1;
-    } else if (fabs(c->H_mat / H - 1.0) > STATIC_DGMAX) {
+    } else if (!exact && fabs(c->H_mat / H - 1.0) > STATIC_DGMAX) {
         if ((st = newton_matrix(c, y, H, 0)) != 0) return st < 0 ? st : 1;
     }
     double nd_prev = 0; /* the last correction */
@@ -503,6 +504,7 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         c.alpha_min = can_shrink && lt < 1.0 ? 0.1 : 1e-4;
         c.newton_scale = o->continuation ? 1 : STATIC_NEWTON_FULL;
         int nst = newton(&c, ytry, lt, H, !predicted, &iters);
+
         if (nst < 0 && nst != BG_ERR_SINGULAR) { /* fatal */
             st = c.fatal ? BG_ERR_CALLBACK : nst;
             if (c.fatal)
@@ -613,6 +615,23 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
     free(yrest);
     free(yold);
     final_residual(&c, y);
+    if (ok && o->yp_steady) { /* constant rates: a steady motion only if it stays a solution */
+        double ratio;
+        int row;
+        if (bg_jaceval_steadiness(&c.J, t, y, c.yps, &ratio, &row) == 0 &&
+            ratio > STATIC_STEADY_TOL) {
+            char eb[256];
+            ok = 0;
+            st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
+                                "the rates yp_steady give no steady motion: the state found "
+                                "solves the equations at this instant, but %s changes along the "
+                                "motion (%.3g of its terms), so the motion does not keep it (a "
+                                "structure spinning in the inertial frame has no state of "
+                                "constant rates: model it in a co-moving frame)",
+                                bg_eq_label(p, row, eb, sizeof eb), ratio);
+            goto out;
+        }
+    }
     if (!ok) {
         char eb[256], vb[256], why[512];
         if (st == DAE_TOO_MUCH_WORK) /* the budget, not the problem */

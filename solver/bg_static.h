@@ -71,8 +71,15 @@
  * change of equation i when every unknown moves by its weight (an equation within 1 is satisfied
  * to the tolerance of its unknowns).
  *
+ * Steady motion. Constant rates yp_s describe a steady motion only if the state stays a solution
+ * along it (motion along ignorable coordinates: a shaft angle growing, a mass dragged at constant
+ * speed through linear members). A structure spinning in the inertial frame has no such state
+ * (its positions move along rotating directions, its velocities turn): the state found solves
+ * F(t, y, yp_s) = 0 at one instant only, and is refused (BG_ERR_ARGUMENT naming the equation
+ * that changes along the motion; bg_jaceval_steadiness, ratio above 1e-4; y holds it).
+ *
  * Errors: BG_ERR_ARGUMENT (a NULL problem, y or result, n < 1, no residual, options out of
- * range, a nominal magnitude that is not finite and > 0 (dae_create's rule): the message names
+ * range, constant rates that give no steady motion (above), a nominal magnitude that is not finite and > 0 (dae_create's rule): the message names
  * them, the unknown by dae_problem.names), BG_ERR_NONFINITE (a starting value of y not finite:
  * the message names the unknown), BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton
  * matrix is singular: the message names the unknown of the singular column, which nothing
