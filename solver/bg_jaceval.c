@@ -157,8 +157,8 @@ int bg_check_state(const dae_problem *p, const double *v, const char *what, int 
     return BG_OK;
 }
 
-int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp,
-                          double *ratio, int *row)
+int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp, double *ratio,
+                          int *row)
 {
     const int n = J->n;
     const double *nom = J->p->nominal;

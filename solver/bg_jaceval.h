@@ -42,8 +42,8 @@ int bg_jaceval_eval(bg_jaceval *J, double t, const double *y, const double *yp, 
  * |dF/dt_i| / sum_j |dF/dy_ij yp_j| over the equations whose terms are above rounding, *row its
  * equation (-1: yp zero, or none). 0, or the residual's status; scratch: J->F0, J->F1, J->ycopy
  * (J->Jy, J->Jyp are left as they were). */
-int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp,
-                          double *ratio, int *row);
+int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp, double *ratio,
+                          int *row);
 
 /* The name of unknown i / equation i: the problem's, else "y[i]" / "equation i" written into buf. */
 const char *bg_var_label(const dae_problem *p, int i, char *buf, size_t size);

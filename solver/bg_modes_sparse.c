@@ -174,8 +174,8 @@ typedef struct found {
  * found twice (a window's copies, a mode and its conjugate flipped) passes; the second
  * eigenvector of a symmetric section's bending frequency (another plane) does not. 1 the same,
  * 0 new, < 0 out of memory. */
-static int mode_known(const dae_modes *M, const found *f, int nf, const char *use,
-                      double complex s, const double *zr, const double *zi)
+static int mode_known(const dae_modes *M, const found *f, int nf, const char *use, double complex s,
+                      const double *zr, const double *zi)
 {
     const int n = M->n;
     int m = 0;
@@ -565,8 +565,7 @@ int mode_sparse(mctx *c)
     for (int pass = 0; kept && pass < nf; pass++) {
         int k = -1;
         for (int j = 0; j < nf; j++)
-            if (f[j].zr && !kept[j] && (k < 0 || f[j].res < f[k].res || isnan(f[k].res)))
-                k = j;
+            if (f[j].zr && !kept[j] && (k < 0 || f[j].res < f[k].res || isnan(f[k].res))) k = j;
         if (k < 0) break;
         int dup = mode_known(M, f, nf, kept, f[k].s, f[k].zr, f[k].zi);
         if (dup < 0) {

@@ -44,11 +44,11 @@ typedef struct st_ctx {
     dae_static_result *r;
     bg_error *err;
     int singular_col;
-    int fatal;      /* a callback's fatal status */
-    int have_mat;   /* a factored Newton matrix is kept (newton) */
+    int fatal;        /* a callback's fatal status */
+    int have_mat;     /* a factored Newton matrix is kept (newton) */
     double alpha_min; /* the smallest damping factor before newton gives up */
     int newton_scale; /* newton's iteration limit in units of max_newton */
-    double H_mat;   /* the pseudo-time step it was formed with */
+    double H_mat;     /* the pseudo-time step it was formed with */
     /* position constraints of the problem (dae_problem.cons): kept at their starting values */
     aat_solver *aat;
     sp_csc *Gc;
@@ -156,8 +156,7 @@ static int newton_matrix(st_ctx *c, const double *y, double H, int eval)
 enum { STATIC_NEWTON_FULL = 5 };
 static int newton(st_ctx *c, double *y, double lam, double H, int exact, int *iters)
 {
-    const int n = c->n, lim = c->o->max_newton * c->newton_scale,
-              budget = exact ? lim : 2 * lim;
+    const int n = c->n, lim = c->o->max_newton * c->newton_scale, budget = exact ? lim : 2 * lim;
     dae_static_result *r = c->r;
     *iters = 0;
     int st = geval(c, y, lam, H, c->G);
@@ -189,8 +188,7 @@ static int newton(st_ctx *c, double *y, double lam, double H, int exact, int *it
         r->correction = nd;
         double rate = nd_prev > 0 ? nd / nd_prev : 0;
         if (!at_y && (!isfinite(nd) || rate > STATIC_RATE_REFRESH ||
-                      (rate > 0 && nd > 1 &&
-                       *iters + ceil(log(nd) / -log(rate)) > budget))) {
+                      (rate > 0 && nd > 1 && *iters + ceil(log(nd) / -log(rate)) > budget))) {
             refresh = 1;
             continue;
         }
@@ -637,30 +635,29 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         if (st == DAE_TOO_MUCH_WORK) /* the budget, not the problem */
             snprintf(why, sizeof why,
                      "the step budget ran out: max_steps = %ld continuation steps (%ld accepted, "
-                     "%ld rejected) %s",
+                     "%ld rejected)%s",
                      o->max_steps, r->steps, r->rejected,
-                     r->lambda < 1 ? "took the load factor to" : "reached the full load but the "
-                                                                 "state was still moving at");
+                     r->lambda < 1 ? "" : " reached the full load, but the state was still moving");
         else if (!o->continuation)
             snprintf(why, sizeof why,
                      "without load continuation (continuation = 0) the full load at once did not "
                      "converge, down to the smallest pseudo-time step %g (continuation = 1 "
-                     "ramps the load); the load factor",
+                     "ramps the load)",
                      h_min);
         else if (r->lambda < 1)
             snprintf(why, sizeof why,
-                     "the load factor could not be raised beyond the value below, even by the "
+                     "the load factor could not be raised further, even by the "
                      "smallest increment dlambda_min = %g: the equilibrium path ends there (a "
-                     "limit point, a mechanism or a part that cannot carry the load); the load "
-                     "factor",
+                     "limit point, a mechanism or a part that cannot carry the load)",
                      o->dlambda_min);
         else
             snprintf(why, sizeof why,
                      "at the full load the pseudo-time steps did not come to rest, down to the "
-                     "smallest pseudo-time step %g; the load factor",
+                     "smallest pseudo-time step %g",
                      h_min);
         bg_error_raise(err, st, where,
-                       "no static equilibrium found: %s %.4g%s; the largest scaled residual is "
+                       "no static equilibrium found: %s; load factor reached %.4g%s; the largest "
+                       "scaled residual is "
                        "in %s (|F| = %.4g, %.3g tolerance units), the largest Newton correction "
                        "on %s (%.3g tolerance units)",
                        why, r->lambda, st == DAE_TOO_MUCH_WORK ? " (raise max_steps)" : "",

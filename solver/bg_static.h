@@ -79,17 +79,17 @@
  * that changes along the motion; bg_jaceval_steadiness, ratio above 1e-4; y holds it).
  *
  * Errors: BG_ERR_ARGUMENT (a NULL problem, y or result, n < 1, no residual, options out of
- * range, constant rates that give no steady motion (above), a nominal magnitude that is not finite and > 0 (dae_create's rule): the message names
- * them, the unknown by dae_problem.names), BG_ERR_NONFINITE (a starting value of y not finite:
- * the message names the unknown), BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton
- * matrix is singular: the message names the unknown of the singular column, which nothing
- * determines at rest even with the pseudo-time term: a mechanism or a free rigid motion under
- * a load), BG_ERR_CALLBACK (the residual or Jacobian returned < 0), DAE_CONV_FAIL (the
- * continuation could not reach lambda = 1 or the equilibrium: the message gives the load factor
- * reached and names the equation with the largest scaled residual and the unknown with the
- * largest weighted Newton correction; res has them as indices; the message says which of these
- * stopped it: the load factor could not be raised even by dlambda_min (a limit point, a
- * mechanism, a part that cannot carry the load), the full load did not come to rest, or
+ * range, constant rates that give no steady motion (above), a nominal magnitude that is not finite
+ * and > 0 (dae_create's rule): the message names them, the unknown by dae_problem.names),
+ * BG_ERR_NONFINITE (a starting value of y not finite: the message names the unknown),
+ * BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton matrix is singular: the message names
+ * the unknown of the singular column, which nothing determines at rest even with the pseudo-time
+ * term: a mechanism or a free rigid motion under a load), BG_ERR_CALLBACK (the residual or Jacobian
+ * returned < 0), DAE_CONV_FAIL (the continuation could not reach lambda = 1 or the equilibrium: the
+ * message gives the load factor reached and names the equation with the largest scaled residual and
+ * the unknown with the largest weighted Newton correction; res has them as indices; the message
+ * says which of these stopped it: the load factor could not be raised even by dlambda_min (a limit
+ * point, a mechanism, a part that cannot carry the load), the full load did not come to rest, or
  * continuation = 0 did not converge at once), DAE_TOO_MUCH_WORK (the budget of max_steps
  * continuation steps ran out: the message gives the counts and the load factor reached, and
  * blames nothing else). On failure y holds the last accepted state (the equilibrium under the

@@ -105,8 +105,8 @@ static void test_rotor(void)
     double wn = sqrt(q.k / q.J), zeta = q.c / (2 * sqrt(q.k * q.J)), got_w = NAN, got_z = NAN;
     for (int k = 0; M && k < dae_modes_count(M); k++) {
         const dae_mode *md = dae_modes_get(M, k);
-        if (md->kind == DAE_MODE_ELASTIC) got_w = 2 * 3.14159265358979323846 * md->freq_hz,
-                                          got_z = md->damping;
+        if (md->kind == DAE_MODE_ELASTIC)
+            got_w = 2 * 3.14159265358979323846 * md->freq_hz, got_z = md->damping;
     }
     if (st != BG_OK) tap_diag("%s", err.message);
     tap_ok(st == BG_OK && fabs(got_w - wn) < 1e-9 * wn && fabs(got_z - zeta) < 1e-9,

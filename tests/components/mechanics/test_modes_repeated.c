@@ -93,9 +93,13 @@ static int compare(bgr_model *m, int nev, double *worst, int *nsparse)
 
 static void test_symmetric_section(void)
 {
-    const mech_section sec = {
-        .E = 2.1e11, .G = 8.1e10, .A = 1e-4, .Iy = 8.33e-10, .Iz = 8.33e-10, .J = 1.4e-9,
-        .rho = 7850};
+    const mech_section sec = {.E = 2.1e11,
+                              .G = 8.1e10,
+                              .A = 1e-4,
+                              .Iy = 8.33e-10,
+                              .Iz = 8.33e-10,
+                              .J = 1.4e-9,
+                              .rho = 7850};
     const double L = 1.0, beta[3] = {1.875104, 4.694091, 7.854757};
     const int n = 32, nev = 20;
     bgr_model *m = cantilevers(1, n, L, &sec);
@@ -132,9 +136,13 @@ static void test_symmetric_section(void)
 
 static void test_two_identical(void)
 {
-    const mech_section sec = {
-        .E = 2.1e11, .G = 8.1e10, .A = 1e-4, .Iy = 1.6e-9, .Iz = 8.33e-10, .J = 1.4e-9,
-        .rho = 7850};
+    const mech_section sec = {.E = 2.1e11,
+                              .G = 8.1e10,
+                              .A = 1e-4,
+                              .Iy = 1.6e-9,
+                              .Iz = 8.33e-10,
+                              .J = 1.4e-9,
+                              .rho = 7850};
     const int n = 16, nev = 16;
     bgr_model *m = cantilevers(2, n, 1.0, &sec);
     if (!m) {

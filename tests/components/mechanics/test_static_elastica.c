@@ -39,8 +39,8 @@ static double seconds(void)
 /* int_0^U f(u) du for f = 1 / cos theta (which 0) or sin theta / cos theta (which 1). */
 static double elastica_int(double st, int which)
 {
-    static const double gx[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
-                                 0.5384693101056831, 0.9061798459386640},
+    static const double gx[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                 0.9061798459386640},
                         gw[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                  0.4786286704993665, 0.2369268850561891};
     const int P = 400;
@@ -198,8 +198,8 @@ static void test_messages(void)
     dae_static_result r;
     char msg[1024];
     int st = solve(16, 10.0, &o, &e, &r, msg, sizeof msg);
-    tap_ok(st == DAE_TOO_MUCH_WORK && strstr(msg, "max_steps = 2") &&
-               !strstr(msg, "limit point") && r.lambda > 0 && r.lambda < 1,
+    tap_ok(st == DAE_TOO_MUCH_WORK && strstr(msg, "max_steps = 2") && !strstr(msg, "limit point") &&
+               r.lambda > 0 && r.lambda < 1,
            "max_steps = 2 at k = 10: DAE_TOO_MUCH_WORK, the message names the budget and no "
            "limit point: \"%s\"",
            msg);
