@@ -508,6 +508,9 @@ int crane_modes(crane *c, double T, dae_modes **out, double *yout, bg_error *err
         dae_modes_options_default(&mo);
         mo.dense_max = 1200;
         mo.nev = 20;
+        /* at T > 0 the run's state moves (slewing, transients): the library refuses such a
+         * state; --modes T asks for the frozen linearisation at that instant */
+        mo.frozen = T > 0;
         st = dae_modes_compute(&p, T, y, yp, &mo, out, err);
     }
     if (yout && st == BG_OK) memcpy(yout, y, (size_t)n * sizeof *y);

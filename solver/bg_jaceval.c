@@ -156,3 +156,40 @@ int bg_check_state(const dae_problem *p, const double *v, const char *what, int 
         }
     return BG_OK;
 }
+
+int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp, double *ratio,
+                          int *row)
+{
+    const int n = J->n;
+    const double *nom = J->p->nominal;
+    *ratio = 0;
+    *row = -1;
+    double rmax = 0;
+    for (int i = 0; i < n; i++)
+        rmax = fmax(rmax, fabs(yp[i]) / (fabs(y[i]) + (nom ? nom[i] : 1.0)));
+    if (!(rmax > 0)) return 0; /* at rest */
+    double h = 1e-7 / rmax, *F0 = J->F0, *F1 = J->F1, *ys = J->ycopy;
+    int st = bg_jaceval_res(J, t, y, yp, F0);
+    if (st) return st;
+    for (int i = 0; i < n; i++)
+        ys[i] = y[i] + h * yp[i];
+    if ((st = bg_jaceval_res(J, t + h, ys, yp, F1)) != 0) return st;
+    /* the terms: sum_j |dF/dy_ij yp_j| into ys */
+    memset(ys, 0, (size_t)n * sizeof *ys);
+    const sp_csc *A = J->Jy;
+    double big = 0;
+    for (int j = 0; j < n; j++)
+        for (int q = A->colptr[j]; q < A->colptr[j + 1]; q++)
+            ys[A->rowind[q]] += fabs(A->val[q] * yp[j]);
+    for (int i = 0; i < n; i++)
+        big = fmax(big, ys[i]);
+    for (int i = 0; i < n; i++) {
+        if (!(ys[i] > 1e-9 * big)) continue; /* nothing moves in this equation */
+        double r = fabs(F1[i] - F0[i]) / h / ys[i];
+        if (!(r <= *ratio)) {
+            *ratio = r;
+            *row = i;
+        }
+    }
+    return 0;
+}

@@ -30,6 +30,21 @@ int bg_jaceval_res(bg_jaceval *J, double t, const double *y, const double *yp, d
  * differences need it). The callback's status, or BG_ERR_MEMORY. */
 int bg_jaceval_eval(bg_jaceval *J, double t, const double *y, const double *yp, const double *F);
 
+/* Whether the state (t, y, yp) stays a solution along its own motion, the condition for its
+ * linearisation (the pencil dF/dy, dF/dy') to describe small motions about it with constant
+ * coefficients and for constant rates yp to be a steady motion: the total derivative
+ * dF/dt = dF/dy yp + dF/dt|explicit, by a forward difference along (1, yp) of step h (h = 1e-7
+ * over the largest relative rate |yp_i| / (|y_i| + nominal_i)), must vanish against its terms,
+ * sum_j |dF/dy_ij yp_j| (J->Jy as evaluated at this state, before the call). A motion along
+ * ignorable coordinates (a shaft angle growing under a constant rate, a mass dragged at constant
+ * speed through a linear spring) keeps every equation; a structure spinning in the inertial
+ * frame does not (its positions move along directions that rotate). *ratio receives the largest
+ * |dF/dt_i| / sum_j |dF/dy_ij yp_j| over the equations whose terms are above rounding, *row its
+ * equation (-1: yp zero, or none). 0, or the residual's status; scratch: J->F0, J->F1, J->ycopy
+ * (J->Jy, J->Jyp are left as they were). */
+int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp, double *ratio,
+                          int *row);
+
 /* The name of unknown i / equation i: the problem's, else "y[i]" / "equation i" written into buf. */
 const char *bg_var_label(const dae_problem *p, int i, char *buf, size_t size);
 const char *bg_eq_label(const dae_problem *p, int i, char *buf, size_t size);

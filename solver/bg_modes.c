@@ -52,6 +52,7 @@ int dae_modes_options_default(dae_modes_options *o)
     o->zero_tol = 1e-6;
     o->inf_tol = 1e-9;
     o->linsol = LS_KLU;
+    o->frozen = 0;
     return BG_OK;
 }
 
@@ -655,6 +656,8 @@ static int check_args(const dae_problem *p, const dae_modes_options *o, double t
     if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
         return out_of_range(err, "linsol", (double)o->linsol,
                             "a linear solver: 0 (LS_KLU) or 1 (LS_DENSE)");
+    if (o->frozen != 0 && o->frozen != 1)
+        return out_of_range(err, "frozen", (double)o->frozen, "0 or 1");
     if (!isfinite(t)) return bg_error_raise(err, BG_ERR_ARGUMENT, w, "t is not finite");
     if (p->n < 1) return BG_OK; /* bg_jaceval_init refuses it */
     int st = bg_check_nominal(p, w, err);
@@ -662,6 +665,10 @@ static int check_args(const dae_problem *p, const dae_modes_options *o, double t
     if (st == BG_OK && yp) st = bg_check_state(p, yp, "derivative", BG_ERR_NONFINITE, w, err);
     return st;
 }
+
+/* bg_jaceval_steadiness's ratio above which a moving state is refused (rounding and the
+ * difference's own error are about 1e-7) */
+#define MODES_STEADY_TOL 1e-4
 
 int dae_modes_compute(const dae_problem *p, double t, const double *y, const double *yp,
                       const dae_modes_options *opt, dae_modes **out, bg_error *err)
@@ -712,6 +719,37 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
         st = bg_error_raise(err, BG_ERR_CALLBACK, where,
                             "the Jacobian could not be evaluated (status %d)", st);
         goto done;
+    }
+    if (yp && !o->frozen) { /* a moving state: its pencil must hold along the motion */
+        double ratio;
+        int row;
+        st = bg_jaceval_steadiness(&c.J, t, y, yp, &ratio, &row);
+        if (st != 0) {
+            st = bg_error_raise(err, BG_ERR_CALLBACK, where,
+                                "the residual could not be evaluated along the motion (status "
+                                "%d)",
+                                st);
+            goto done;
+        }
+        if (ratio > MODES_STEADY_TOL) {
+            char eb[256], vb[256];
+            int fast = 0;
+            for (int i = 1; i < n; i++)
+                if (fabs(yp[i]) / (fabs(y[i]) + mode_nominal(M, i)) >
+                    fabs(yp[fast]) / (fabs(y[fast]) + mode_nominal(M, fast)))
+                    fast = i;
+            st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
+                                "the state is moving and not steady: %s changes along the motion "
+                                "(%.3g of its terms; the fastest unknown is %s), so the "
+                                "linearisation has no constant coefficients and its modes are "
+                                "not those of small motions about the state (a structure "
+                                "spinning in the inertial frame: linearise it in a co-moving "
+                                "frame; options.frozen = 1 gives the frozen pencil's modes "
+                                "anyway)",
+                                bg_eq_label(p, row, eb, sizeof eb), ratio,
+                                bg_var_label(p, fast, vb, sizeof vb));
+            goto done;
+        }
     }
     c.normA = mode_frob(c.J.Jyp);
     c.normB = mode_frob(c.J.Jy);

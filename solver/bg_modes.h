@@ -56,9 +56,25 @@
  * LU of s A + B (the real shift's rounding along the drift directions of a model with many bodies
  * limits the Ritz values to a relative accuracy of about 1e-4; a solve with the shift at the mode
  * itself has no such limit, and the refined damping ratios of undamped modes come out at the
- * rounding level). The sparse method finds elastic modes only.
+ * rounding level). A repeated eigenvalue (the two bending planes of a symmetric section, identical
+ * subsystems) is returned once per independent eigenvector: a mode found twice is told by its
+ * vector lying in the span of the kept ones of that eigenvalue (sine of the angle below 1e-3,
+ * modified Gram-Schmidt), never by its eigenvalue alone. The sparse method finds elastic modes
+ * only.
  *
- * Errors: BG_ERR_ARGUMENT (NULL problem, state or result; an option out of range: the message
+ * States in motion. The pencil describes small motions about (t, y, yp) with constant
+ * coefficients only when the state stays a solution along its own motion (y' = yp constant
+ * along ignorable coordinates: a shaft turning at a constant rate, a mass dragged at constant
+ * speed). A structure spinning steadily in the inertial frame is not such a state (its positions
+ * move along directions that rotate, and the pencil with them): its frozen pencil gives spurious
+ * modes at Omega/2 and in-plane frequencies equal to the flapwise ones; the right ones need the
+ * co-moving frame's gyroscopic and centrifugal terms (Southwell's coefficients), which this
+ * analysis does not form. A moving state that is not steady is therefore refused
+ * (BG_ERR_ARGUMENT, naming the equation that changes along the motion and the fastest unknown)
+ * unless options.frozen asks for the frozen pencil's modes. yp NULL or zero: at rest, accepted.
+ *
+ * Errors: BG_ERR_ARGUMENT (NULL problem, state or result; a moving state that is not steady (see
+ * above); an option out of range: the message
  * names the field, its value and its range; a nominal magnitude that is not finite and > 0: the
  * message names the unknown and the value), BG_ERR_NONFINITE (a value of y or yp not finite: the
  * message names the unknown), BG_ERR_PATTERN,
@@ -111,6 +127,10 @@ typedef struct dae_modes_options {
     double zero_tol;       /* |s| <= zero_tol * sigma: a zero eigenvalue, default 1e-6 */
     double inf_tol;        /* |mu| <= inf_tol * max |mu|: an infinite eigenvalue, default 1e-9 */
     ls_kind linsol;        /* default LS_KLU */
+    int frozen;            /* 0 (default): a moving state (yp given, not zero) is linearised only
+                              if it is steady, i.e. stays a solution along its own motion
+                              (bg_jaceval_steadiness: a motion along ignorable coordinates);
+                              else BG_ERR_ARGUMENT. 1: the frozen pencil at that instant anyway */
 } dae_modes_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */

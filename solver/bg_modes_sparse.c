@@ -165,6 +165,61 @@ typedef struct found {
     double *zr, *zi;
 } found;
 
+/* Whether the mode (s, z) is one already in f (those of f[0..nf) with vectors and use[j] set,
+ * or all with vectors when use is NULL):
+ * a repeated eigenvalue has as many modes as independent eigenvectors, so two modes are the
+ * same only when their eigenvalues agree (relative 1e-6) and the vector lies in the span of the
+ * kept vectors of that eigenvalue: the part of z (weighted by the nominal magnitudes) orthogonal
+ * to that span, by modified Gram-Schmidt in complex arithmetic, below 1e-3 of |z|. A copy
+ * found twice (a window's copies, a mode and its conjugate flipped) passes; the second
+ * eigenvector of a symmetric section's bending frequency (another plane) does not. 1 the same,
+ * 0 new, < 0 out of memory. */
+static int mode_known(const dae_modes *M, const found *f, int nf, const char *use, double complex s,
+                      const double *zr, const double *zi)
+{
+    const int n = M->n;
+    int m = 0;
+    for (int j = 0; j < nf; j++)
+        if ((!use || use[j]) && f[j].zr && cabs(f[j].s - s) <= 1e-6 * cabs(s)) m++;
+    if (m == 0) return 0;
+    double complex *Q = malloc((size_t)(m + 1) * (size_t)n * sizeof *Q);
+    if (!Q) return -1;
+    int q = 0;
+    for (int j = 0; j <= nf; j++) { /* the cluster's vectors, then z (j == nf) */
+        if (j < nf && ((use && !use[j]) || !f[j].zr || !(cabs(f[j].s - s) <= 1e-6 * cabs(s))))
+            continue;
+        const double *vr = j < nf ? f[j].zr : zr, *vi = j < nf ? f[j].zi : zi;
+        double complex *v = Q + (size_t)q * n;
+        double n0 = 0;
+        for (int i = 0; i < n; i++) {
+            v[i] = (vr[i] + I * (vi ? vi[i] : 0.0)) / mode_nominal(M, i);
+            n0 += creal(v[i] * conj(v[i]));
+        }
+        for (int b = 0; b < q; b++) { /* v -= Q_b (Q_b^H v) */
+            const double complex *u = Q + (size_t)b * n;
+            double complex h = 0;
+            for (int i = 0; i < n; i++)
+                h += conj(u[i]) * v[i];
+            for (int i = 0; i < n; i++)
+                v[i] -= h * u[i];
+        }
+        double n1 = 0;
+        for (int i = 0; i < n; i++)
+            n1 += creal(v[i] * conj(v[i]));
+        if (j == nf) {
+            free(Q);
+            return !(n0 > 0) || n1 <= 1e-6 * n0; /* sine of the angle to the span < 1e-3 */
+        }
+        if (!(n1 > 1e-12 * n0)) continue; /* dependent on the kept ones: adds nothing */
+        double r = 1.0 / sqrt(n1);
+        for (int i = 0; i < n; i++)
+            v[i] *= r;
+        q++;
+    }
+    free(Q);
+    return 0;
+}
+
 /* One ARPACK run at shift sigma: the elastic modes it finds into f (at most cap, vectors
  * allocated), their count into *nf. BG_OK, DAE_CONV_FAIL (some converged) or an error. */
 static int arpack_run(mctx *c, double sigma, int nev_a, found *f, int cap, int *nf, int *iters)
@@ -393,9 +448,11 @@ static int arpack_window(mctx *c, refiner *R, double wc, int nev, found *f, int 
             zi[i] = flip ? -cimag(z) : cimag(z);
         }
         if (flip) s = conj(s);
-        int dup = 0;
-        for (int k = 0; k < *nf; k++)
-            if (cabs(f[k].s - s) <= 1e-8 * cabs(s)) dup = 1;
+        int dup = mode_known(M, f, *nf, NULL, s, zr, zi);
+        if (dup < 0) {
+            st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
+            goto done;
+        }
         if (dup) continue;
         found *fd = &f[*nf];
         fd->zr = malloc((size_t)n * sizeof *fd->zr);
@@ -500,17 +557,31 @@ int mode_sparse(mctx *c)
         }
     }
     refiner_free(&R);
-    /* the same mode found twice (a window's copies converge to one eigenvalue when refined):
-     * the one with the larger residual goes */
-    for (int k = 0; k < nf; k++)
+    /* the same mode found twice (copies converge to one eigenvalue and vector when refined):
+     * visited by increasing residual, a mode already among the kept ones goes; the independent
+     * eigenvectors of a repeated eigenvalue all stay (mode_known) */
+    char *kept = calloc((size_t)(nf > 0 ? nf : 1), 1);
+    if (!kept) st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
+    for (int pass = 0; kept && pass < nf; pass++) {
+        int k = -1;
         for (int j = 0; j < nf; j++)
-            if (j != k && f[j].zr && f[k].zr && cabs(f[j].s - f[k].s) <= 1e-8 * cabs(f[k].s) &&
-                (f[j].res < f[k].res || (f[j].res == f[k].res && j < k))) {
-                free(f[k].zr), free(f[k].zi);
-                f[k].zr = f[k].zi = NULL;
-                f[k].s = INFINITY;
-                break;
-            }
+            if (f[j].zr && !kept[j] && (k < 0 || f[j].res < f[k].res || isnan(f[k].res))) k = j;
+        if (k < 0) break;
+        int dup = mode_known(M, f, nf, kept, f[k].s, f[k].zr, f[k].zi);
+        if (dup < 0) {
+            st = bg_error_raise(c->err, BG_ERR_MEMORY, "dae_modes_compute", "out of memory");
+            break;
+        }
+        if (dup) {
+            free(f[k].zr), free(f[k].zi);
+            f[k].zr = f[k].zi = NULL;
+            f[k].s = INFINITY;
+        } else {
+            kept[k] = 1;
+        }
+    }
+    free(kept);
+    keep = keep && (st == BG_OK || st == DAE_CONV_FAIL);
     /* keep the nev lowest (auto) or all found (window) */
     for (int k = 0; keep && k < nf; k++) {
         if (!f[k].zr) continue;

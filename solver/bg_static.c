@@ -44,7 +44,11 @@ typedef struct st_ctx {
     dae_static_result *r;
     bg_error *err;
     int singular_col;
-    int fatal; /* a callback's fatal status */
+    int fatal;        /* a callback's fatal status */
+    int have_mat;     /* a factored Newton matrix is kept (newton) */
+    double alpha_min; /* the smallest damping factor before newton gives up */
+    int newton_scale; /* newton's iteration limit in units of max_newton */
+    double H_mat;     /* the pseudo-time step it was formed with */
     /* position constraints of the problem (dae_problem.cons): kept at their starting values */
     aat_solver *aat;
     sp_csc *Gc;
@@ -105,46 +109,96 @@ static int geval(st_ctx *c, const double *y, double lam, double H, double *G)
     return 0;
 }
 
-/* Newton matrix dF/dy + dF/dy'/H at y (c->ypw set by the last geval at y), factored. */
-static int newton_matrix(st_ctx *c, const double *y, double H, const double *F)
+/* The Newton matrix dF/dy + dF/dy'/H factored: with eval, the Jacobian evaluated at y first
+ * (c->ypw set by the last geval at y), else formed again from the saved one (another H). */
+static int newton_matrix(st_ctx *c, const double *y, double H, int eval)
 {
-    int st = bg_jaceval_eval(&c->J, c->t, y, c->ypw, F);
-    if (st < 0) return c->fatal = st;
-    if (st > 0) return st;
+    if (eval) {
+        int st = bg_jaceval_eval(&c->J, c->t, y, c->ypw, NULL);
+        if (st < 0) return c->fatal = st;
+        if (st > 0) return st;
+    }
+    c->have_mat = 0;
     sp_union_combine(c->u, c->J.Jy, 1.0, c->J.Jyp, isinf(H) ? 0.0 : 1.0 / H);
     c->r->factorizations++;
-    st = ls_factor(c->ls, c->u->M);
+    int st = ls_factor(c->ls, c->u->M);
     if (st == BG_ERR_SINGULAR) {
         c->singular_col = ls_singular_col(c->ls);
         return st;
     }
     if (st == BG_ERR_NONFINITE) return 1;
+    if (st == BG_OK) {
+        c->have_mat = 1;
+        c->H_mat = H;
+    }
     return st;
 }
 
-/* One continuation step: Newton on G from y (in place). 0 converged, 1 not converged, < 0 a
- * fatal error (BG_ERR_SINGULAR, a callback's, the linear solver's). *iters: the iterations. */
-static int newton(st_ctx *c, double *y, double lam, double H, int *iters)
+/* One continuation step: modified Newton on G from y (in place). 0 converged, 1 not converged,
+ * < 0 a fatal error (BG_ERR_SINGULAR, a callback's, the linear solver's). *iters: the
+ * iterations.
+ *
+ * The factored matrix is kept across iterations and steps, with the integrator's refresh rules
+ * (dae_nls.c, after CVODE and IDA): formed again from the saved Jacobian when H has moved by
+ * more than STATIC_DGMAX from the H it was factored with (CVODE's dgmax on gamma); the Jacobian
+ * evaluated again at the current iterate, and the iteration continued from there, when a matrix
+ * of an earlier iterate contracts at a rate worse than STATIC_RATE_REFRESH, would need more
+ * iterations at its rate than the budget has left, fails the damping test
+ * at the full step, or follows a damped step (a failure on a stale matrix is redone with a fresh
+ * one, never reported). exact: a fresh matrix at every iterate (a step without a predictor:
+ * the first, and every step of continuation = 0, where a kept matrix can lead the iteration away).
+ * The iteration fails when the damping factor goes below c->alpha_min (Deuflhard's test, on a
+ * fresh matrix), or after lim = max_newton c->newton_scale iterations unless the last rate says
+ * it converges within the budget (2 lim; dae_nls.c's extension at a good rate). */
+#define STATIC_DGMAX 0.3
+#define STATIC_RATE_REFRESH 0.5
+#define STATIC_STEADY_TOL 1e-4 /* bg_jaceval_steadiness's ratio of a steady motion, at most */
+enum { STATIC_NEWTON_FULL = 5 };
+static int newton(st_ctx *c, double *y, double lam, double H, int exact, int *iters)
 {
-    const int n = c->n;
+    const int n = c->n, lim = c->o->max_newton * c->newton_scale, budget = exact ? lim : 2 * lim;
     dae_static_result *r = c->r;
     *iters = 0;
     int st = geval(c, y, lam, H, c->G);
     if (st) return st < 0 ? st : 1;
-    for (int it = 0; it < c->o->max_newton; it++) {
+    int at_y = 0; /* the matrix's Jacobian was evaluated at the current iterate */
+    if (!c->have_mat) {
+        if ((st = newton_matrix(c, y, H, 1)) != 0) return st < 0 ? st : 1;
+        at_y = 1;
+    } else if (!exact && fabs(c->H_mat / H - 1.0) > STATIC_DGMAX) {
+        if ((st = newton_matrix(c, y, H, 0)) != 0) return st < 0 ? st : 1;
+    }
+    double nd_prev = 0; /* the last correction */
+    int refresh = exact;
+    while (*iters < budget) {
+        if (refresh && !at_y) { /* the Jacobian at the current iterate (c->ypw of its G) */
+            if ((st = geval(c, y, lam, H, c->G)) != 0) return st < 0 ? st : 1;
+            if ((st = newton_matrix(c, y, H, 1)) != 0) return st < 0 ? st : 1;
+            at_y = 1;
+            nd_prev = 0;
+        }
+        refresh = 0;
         (*iters)++;
         r->newton_iters++;
         weights(c, y);
-        /* the Jacobian at y with the residual of the finite differences: F = G + offset */
-        st = newton_matrix(c, y, H, NULL);
-        if (st) return st < 0 ? st : 1;
         for (int i = 0; i < n; i++)
             c->d[i] = -c->G[i];
         if ((st = ls_solve(c->ls, c->d, 1)) != BG_OK) return st;
         double nd = wnorm(c, c->d, &r->worst_var);
         r->correction = nd;
+        double rate = nd_prev > 0 ? nd / nd_prev : 0;
+        if (!at_y && (!isfinite(nd) || rate > STATIC_RATE_REFRESH ||
+                      (rate > 0 && nd > 1 && *iters + ceil(log(nd) / -log(rate)) > budget))) {
+            refresh = 1;
+            continue;
+        }
         if (!isfinite(nd)) return 1;
-        if (nd <= 1.0) {
+        /* beyond max_newton only while the rate says it converges within the budget */
+        const double tol = 1.0;
+        if (*iters >= lim && nd > tol &&
+            !(rate > 0 && *iters + ceil(log(nd / tol) / -log(rate)) <= budget))
+            return 1;
+        if (nd <= tol) {
             for (int i = 0; i < n; i++)
                 y[i] += c->d[i];
             return 0;
@@ -163,17 +217,27 @@ static int newton(st_ctx *c, double *y, double lam, double H, int *iters)
                 ndt = wnorm(c, c->dt, NULL);
                 if (ndt <= (1.0 - 0.25 * alpha) * nd) break;
             }
+            if (!at_y) { /* a stale matrix does not damp: a fresh one first */
+                refresh = 1;
+                break;
+            }
             alpha *= 0.5;
-            if (alpha < 1e-4) return 1;
+            if (alpha < c->alpha_min) return 1;
         }
+        if (refresh) continue;
         memcpy(y, c->yt, (size_t)n * sizeof *y);
         memcpy(c->G, c->Gt, (size_t)n * sizeof *c->G);
-        if (alpha == 1.0 && ndt <= 1.0) { /* the simplified correction finishes it */
+        if (alpha == 1.0 && ndt <= tol && (at_y || ndt <= STATIC_RATE_REFRESH * nd)) {
+            /* the simplified correction finishes it */
             for (int i = 0; i < n; i++)
                 y[i] += c->dt[i];
             r->correction = ndt;
             return 0;
         }
+        at_y = 0; /* the iterate moved */
+        nd_prev = alpha == 1.0 ? nd : 0;
+        refresh = exact || alpha < 1.0; /* a damped step: the global phase, a fresh matrix each
+                                           time */
     }
     return 1;
 }
@@ -403,8 +467,12 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
      * for a smaller increment after SETTLE_MAX of them. */
     enum { SETTLE_MAX = 8 };
     double *yrest = malloc(sz), lam_rest = lam, lam_cur = lam;
-    int settling = 0, can_shrink = o->continuation;
-    if (!yrest) {
+    /* the state at rest before it (lam_old < lam_rest: the secant predictor's other point) */
+    double *yold = malloc(sz), lam_old = NAN;
+    int settling = 0, can_shrink = o->continuation, rejected_since = 0;
+    if (!yrest || !yold) {
+        free(yrest);
+        free(yold);
         free(ytry);
         st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
         goto done;
@@ -417,8 +485,24 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         if (!o->continuation) lt = 1.0;
         if (lt > 1.0 - 1e-12) lt = 1.0;
         memcpy(ytry, c.yprev, sz);
+        int predicted = !settling && lt > lam_rest && lam_old < lam_rest;
+        if (predicted) {
+            /* secant predictor along the equilibrium path (Allgower and Georg, Introduction to
+             * Numerical Continuation Methods, 2003, sec. 2.2): Newton starts from the
+             * extrapolation of the last two states at rest, an error of second order in the
+             * increment instead of first */
+            double f = (lt - lam_rest) / (lam_rest - lam_old);
+            for (int i = 0; i < n; i++)
+                ytry[i] += f * (yrest[i] - yold[i]);
+        }
         int iters = 0;
-        int nst = newton(&c, ytry, lt, H, &iters);
+        /* a step the continuation can shrink gives up at a damping factor of 0.1 (a smaller
+         * increment is cheaper than a long damped iteration); at the full load, and without
+         * continuation, the damping goes down to 1e-4 */
+        c.alpha_min = can_shrink && lt < 1.0 ? 0.1 : 1e-4;
+        c.newton_scale = o->continuation ? 1 : STATIC_NEWTON_FULL;
+        int nst = newton(&c, ytry, lt, H, !predicted, &iters);
+
         if (nst < 0 && nst != BG_ERR_SINGULAR) { /* fatal */
             st = c.fatal ? BG_ERR_CALLBACK : nst;
             if (c.fatal)
@@ -432,6 +516,7 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         if (nst != 0) { /* not converged (or singular): a smaller step */
             r->rejected++;
             back_off = 1;
+            rejected_since = 1;
         } else {
             /* accepted */
             if (c.aat) {
@@ -462,6 +547,10 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
             memcpy(y, ytry, sz);
             if (defect <= fmax(1.0, 1e-2 * r->change)) { /* at rest */
                 settling = 0;
+                if (lt > lam_rest) {
+                    memcpy(yold, yrest, sz);
+                    lam_old = lam_rest;
+                }
                 lam_rest = lt;
                 memcpy(yrest, ytry, sz);
                 r->lambda = lam_rest;
@@ -470,7 +559,13 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                     st = BG_OK;
                     break;
                 }
-                if (iters <= (o->max_newton + 2) / 3) dlam = fmin(1.0, 2.0 * dlam);
+                /* the next increment from this step's iterations (Crisfield, Comput. Struct.
+                 * 13 (1981) 55: the increment times sqrt(I_d / I), I_d = max_newton, within
+                 * [1/2, 2]); not grown right after a rejected step */
+                double g = sqrt((double)o->max_newton / (iters > 0 ? iters : 1));
+                dlam = fmin(1.0, fmax(o->dlambda_min,
+                                      dlam * fmin(rejected_since ? 1.0 : 2.0, fmax(0.5, g))));
+                rejected_since = 0;
                 if (iters <= (o->max_newton + 1) / 2) H = fmin(o->h_max, 10.0 * H);
                 continue;
             }
@@ -488,7 +583,7 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                 memcpy(y, yrest, sz);
             }
             if (can_shrink && lam_rest < 1.0 && dlam > o->dlambda_min) {
-                dlam = fmax(0.5 * dlam, o->dlambda_min);
+                dlam = fmax(0.25 * dlam, o->dlambda_min);
                 if (nst == BG_ERR_SINGULAR) H = fmax(0.25 * H, h_min);
                 continue;
             }
@@ -505,6 +600,7 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                                     lt, bg_var_label(p, c.singular_col, nb, sizeof nb));
                 r->worst_var = c.singular_col;
                 free(yrest);
+                free(yold);
                 goto out;
             }
             st = DAE_CONV_FAIL;
@@ -515,19 +611,56 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         memcpy(y, yrest, sz);
     }
     free(yrest);
+    free(yold);
     final_residual(&c, y);
+    if (ok && o->yp_steady) { /* constant rates: a steady motion only if it stays a solution */
+        double ratio;
+        int row;
+        if (bg_jaceval_steadiness(&c.J, t, y, c.yps, &ratio, &row) == 0 &&
+            ratio > STATIC_STEADY_TOL) {
+            char eb[256];
+            ok = 0;
+            st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
+                                "the rates yp_steady give no steady motion: the state found "
+                                "solves the equations at this instant, but %s changes along the "
+                                "motion (%.3g of its terms), so the motion does not keep it (a "
+                                "structure spinning in the inertial frame has no state of "
+                                "constant rates: model it in a co-moving frame)",
+                                bg_eq_label(p, row, eb, sizeof eb), ratio);
+            goto out;
+        }
+    }
     if (!ok) {
-        char eb[256], vb[256];
-        const char *why = st == DAE_TOO_MUCH_WORK ? "max_steps continuation steps taken"
-                                                  : "the Newton iteration did not converge";
+        char eb[256], vb[256], why[512];
+        if (st == DAE_TOO_MUCH_WORK) /* the budget, not the problem */
+            snprintf(why, sizeof why,
+                     "the step budget ran out: max_steps = %ld continuation steps (%ld accepted, "
+                     "%ld rejected)%s",
+                     o->max_steps, r->steps, r->rejected,
+                     r->lambda < 1 ? "" : " reached the full load, but the state was still moving");
+        else if (!o->continuation)
+            snprintf(why, sizeof why,
+                     "without load continuation (continuation = 0) the full load at once did not "
+                     "converge, down to the smallest pseudo-time step %g (continuation = 1 "
+                     "ramps the load)",
+                     h_min);
+        else if (r->lambda < 1)
+            snprintf(why, sizeof why,
+                     "the load factor could not be raised further, even by the "
+                     "smallest increment dlambda_min = %g: the equilibrium path ends there (a "
+                     "limit point, a mechanism or a part that cannot carry the load)",
+                     o->dlambda_min);
+        else
+            snprintf(why, sizeof why,
+                     "at the full load the pseudo-time steps did not come to rest, down to the "
+                     "smallest pseudo-time step %g",
+                     h_min);
         bg_error_raise(err, st, where,
-                       "no static equilibrium found: %s; the load factor reached %.4g%s; the "
-                       "largest scaled residual is in %s (|F| = %.4g, %.3g tolerance units), the "
-                       "largest Newton correction on %s (%.3g tolerance units)",
-                       why, r->lambda,
-                       r->lambda < 1 ? " (the equilibrium path ends there: a limit point, "
-                                       "a mechanism or a part that cannot carry the load)"
-                                     : "",
+                       "no static equilibrium found: %s; load factor reached %.4g%s; the largest "
+                       "scaled residual is "
+                       "in %s (|F| = %.4g, %.3g tolerance units), the largest Newton correction "
+                       "on %s (%.3g tolerance units)",
+                       why, r->lambda, st == DAE_TOO_MUCH_WORK ? " (raise max_steps)" : "",
                        r->residual_eq >= 0 ? bg_eq_label(p, r->residual_eq, eb, sizeof eb) : "-",
                        r->residual_abs, r->residual,
                        r->worst_var >= 0 ? bg_var_label(p, r->worst_var, vb, sizeof vb) : "-",

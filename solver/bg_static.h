@@ -26,9 +26,13 @@
  * exactly minus the applied loads (gravity, forces of sources), so lambda is the load factor of
  * structural mechanics without any help from the model; a model that scales its own loads may
  * give a callback instead (options.load: then the offset term is dropped). lambda grows in steps
- * that adapt (doubled after an easy step, halved after a failed one) and H grows by switched
- * evolution relaxation (tenfold after an easy step) up to options.h_max; once lambda = 1 the
- * steps go on until a step changes the state by less than the tolerance. A step is at rest when
+ * that adapt to the Newton iterations I of the last one (times sqrt(max_newton / I) within
+ * [1/2, 2], Crisfield, Comput. Struct. 13 (1981) 55; not grown right after a rejection;
+ * quartered after a failed one), each started from the secant predictor through the last two
+ * states at rest (Allgower and Georg, Introduction to Numerical Continuation Methods, 2003,
+ * sec. 2.2), and H grows by switched evolution relaxation (tenfold after an easy step) up to
+ * options.h_max; once lambda = 1 the steps go on until a step changes the state by less than
+ * the tolerance. A step is at rest when
  * the Newton correction towards the equilibrium at its load factor (y' = yp_s exactly) is small
  * against the step's change; beyond a limit point the pseudo-time steps would follow the motion
  * (the structure falls), so a step that ends moving is followed by up to 8 settling steps at the
@@ -36,9 +40,21 @@
  * rest: the load factor reached is that of the limit point. Each
  * Newton step is damped by the affine-invariant monotonicity test of Deuflhard (the next
  * simplified correction must be smaller than (1 - alpha/4) times the current one; alpha halved
- * down to 1e-4), so a large deflection is followed instead of jumped over. The Newton matrix is
- * factored by the integrator's linear solvers (KLU by default) at every iteration; Jacobians
- * come from the problem's analytic ones, or coloured finite differences without them.
+ * down to 0.1 on a step the continuation can shrink, where a smaller increment is cheaper than a
+ * long damped iteration, else down to 1e-4), so a large deflection is followed instead of jumped
+ * over. Modified Newton: the factored matrix is kept across iterations and steps with the
+ * integrator's refresh rules (formed again from the saved Jacobian when H has moved by more than
+ * 30 % from the H it was factored with, CVODE's dgmax; the Jacobian evaluated again at the
+ * current iterate when a kept matrix contracts at a rate worse than 0.5, would not converge
+ * within the iteration budget at its rate, fails the damping test or follows a damped step), and
+ * a fresh matrix at every iterate on a step without a predictor (the first, and continuation =
+ * 0). An iteration may run past max_newton while its rate says it converges within
+ * 2 max_newton; without continuation (nothing to shrink) the limits are five times larger. The
+ * matrix is factored by the integrator's linear solvers (KLU by default); Jacobians come from
+ * the problem's analytic ones, or coloured finite differences without them. The elastica (a
+ * cantilever of 64 elements under a dead tip load P L^2 / EI = 10) takes 131 factorizations
+ * (393 with a fresh matrix at every iteration and the earlier step rule), and continuation = 0
+ * solves it up to P L^2 / EI = 3 (tests/components/mechanics/test_static_elastica.c).
  *
  * Nonlinear invariants. The backward-Euler steps keep linear invariants exactly and nonlinear
  * ones (a joint's closure through rotating bodies, the length of a pendulum held at velocity
@@ -55,17 +71,28 @@
  * change of equation i when every unknown moves by its weight (an equation within 1 is satisfied
  * to the tolerance of its unknowns).
  *
+ * Steady motion. Constant rates yp_s describe a steady motion only if the state stays a solution
+ * along it (motion along ignorable coordinates: a shaft angle growing, a mass dragged at constant
+ * speed through linear members). A structure spinning in the inertial frame has no such state
+ * (its positions move along rotating directions, its velocities turn): the state found solves
+ * F(t, y, yp_s) = 0 at one instant only, and is refused (BG_ERR_ARGUMENT naming the equation
+ * that changes along the motion; bg_jaceval_steadiness, ratio above 1e-4; y holds it).
+ *
  * Errors: BG_ERR_ARGUMENT (a NULL problem, y or result, n < 1, no residual, options out of
- * range, a nominal magnitude that is not finite and > 0 (dae_create's rule): the message names
- * them, the unknown by dae_problem.names), BG_ERR_NONFINITE (a starting value of y not finite:
- * the message names the unknown), BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton
- * matrix is singular: the message names the unknown of the singular column, which nothing
- * determines at rest even with the pseudo-time term: a mechanism or a free rigid motion under
- * a load), BG_ERR_CALLBACK (the residual or Jacobian returned < 0), DAE_CONV_FAIL (the
- * continuation could not reach lambda = 1 or the equilibrium: the message gives the load factor
- * reached and names the equation with the largest scaled residual and the unknown with the
- * largest weighted Newton correction; res has them as indices), DAE_TOO_MUCH_WORK (max_steps
- * continuation steps). On failure y holds the last accepted state (the equilibrium under the
+ * range, constant rates that give no steady motion (above), a nominal magnitude that is not finite
+ * and > 0 (dae_create's rule): the message names them, the unknown by dae_problem.names),
+ * BG_ERR_NONFINITE (a starting value of y not finite: the message names the unknown),
+ * BG_ERR_PATTERN, BG_ERR_MEMORY, BG_ERR_SINGULAR (the Newton matrix is singular: the message names
+ * the unknown of the singular column, which nothing determines at rest even with the pseudo-time
+ * term: a mechanism or a free rigid motion under a load), BG_ERR_CALLBACK (the residual or Jacobian
+ * returned < 0), DAE_CONV_FAIL (the continuation could not reach lambda = 1 or the equilibrium: the
+ * message gives the load factor reached and names the equation with the largest scaled residual and
+ * the unknown with the largest weighted Newton correction; res has them as indices; the message
+ * says which of these stopped it: the load factor could not be raised even by dlambda_min (a limit
+ * point, a mechanism, a part that cannot carry the load), the full load did not come to rest, or
+ * continuation = 0 did not converge at once), DAE_TOO_MUCH_WORK (the budget of max_steps
+ * continuation steps ran out: the message gives the counts and the load factor reached, and
+ * blames nothing else). On failure y holds the last accepted state (the equilibrium under the
  * load factor res->lambda). The library never prints. */
 #ifndef BG_STATIC_H
 #define BG_STATIC_H
@@ -84,12 +111,13 @@ typedef int (*dae_load_fn)(void *user, double lambda);
 typedef struct dae_static_options {
     double rtol;             /* default 1e-8 */
     double atol;             /* default 1e-8 (times the problem's nominal magnitudes) */
-    int max_newton;          /* Newton iterations per step, default 12 */
+    int max_newton;          /* Newton iterations per step, default 12 (up to twice as many at
+                                a good rate; five times without continuation) */
     long max_steps;          /* continuation steps, default 400 */
     int continuation;        /* 1 (default): lambda from 0 to 1 in adaptive steps; 0: the full
                                 load at once (pseudo-time steps only) */
-    double dlambda;          /* first load increment, default 1 (the whole load, halved until
-                                Newton converges) */
+    double dlambda;          /* first load increment, default 1 (the whole load, quartered
+                                until Newton converges) */
     double dlambda_min;      /* smallest increment before giving up, default 1e-5 */
     double h0;               /* first pseudo-time step, default 1e3 (the problem's time unit) */
     double h_max;            /* largest pseudo-time step, default 1e9 */
