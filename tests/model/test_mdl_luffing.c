@@ -104,7 +104,7 @@ static int valve_balance(double F, double x[3])
     x[2] = D.u0 * (rho - 1) / (rho + 1);
     const double sc[3] = {D.ps, D.ps, 1};
     for (int it = 0; it < 50; it++) {
-        double f[3], J[3][3];
+        double f[3] = {0, 0, 0}, J[3][3];
         for (int k = -1; k < 3; k++) {
             double y[3] = {x[0], x[1], x[2]}, h = k >= 0 ? 1e-7 * sc[k] : 0;
             if (k >= 0) y[k] += h;

@@ -137,7 +137,7 @@ static void test_defaults(void)
 {
     const double ks[2] = {5.0, 10.0};
     for (int i = 0; i < 2; i++) {
-        double e, t0 = seconds();
+        double e = NAN, t0 = seconds();
         dae_static_result r;
         char msg[1024];
         int st = solve(64, ks[i], NULL, &e, &r, msg, sizeof msg);
@@ -175,7 +175,7 @@ static void test_no_continuation(void)
     o.continuation = 0;
     const double ks[2] = {0.1, 1.0};
     for (int i = 0; i < 2; i++) {
-        double e;
+        double e = NAN;
         dae_static_result r;
         char msg[1024];
         int st = solve(32, ks[i], &o, &e, &r, msg, sizeof msg);
