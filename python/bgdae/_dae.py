@@ -106,6 +106,9 @@ class DAE:
                 raise TypeError("jac_pattern: expected a pair (pattern of dF/dy, of dF/dyp)")
             self._pat = (_check.pattern("jac_pattern[0]", jac_pattern[0], n),
                          _check.pattern("jac_pattern[1]", jac_pattern[1], n))
+        elif self.jac is not None:
+            raise ValueError("jac_pattern: needed with jac (the patterns of dF/dy and dF/dyp "
+                             "on which jac gives its values)")
         else:
             self._pat = (None, None)
         self.kinds = _check.kinds(kinds, n)

@@ -28,8 +28,12 @@
 extern PyObject *pyb_SolverError;
 
 /* Raises SolverError(message) with attributes status (name), code, t; extra (a dict or NULL)
- * adds more attributes (the values computed before the failure). Returns NULL. */
+ * adds more attributes (the values computed before the failure; its key "t", the rows' times,
+ * becomes t_out). Returns NULL. */
 PyObject *pyb_raise_solver(int code, const char *message, double t, PyObject *extra);
+
+/* PyErr_Format with the C library's formats (%g and all): type(message). Returns NULL. */
+PyObject *pyb_error(PyObject *type, const char *fmt, ...);
 
 /* The statistics as a dict. */
 PyObject *pyb_stats_dict(const dae_stats *st);

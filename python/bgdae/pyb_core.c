@@ -4,11 +4,24 @@
 #include "pyb.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "bg_status.h"
 
 PyObject *pyb_SolverError = NULL;
+
+PyObject *pyb_error(PyObject *type, const char *fmt, ...)
+{
+    char buf[BG_MESSAGE_SIZE + 256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    PyErr_SetString(type, buf);
+    return NULL;
+}
 
 PyObject *pyb_raise_solver(int code, const char *message, double t, PyObject *extra)
 {
@@ -29,8 +42,10 @@ PyObject *pyb_raise_solver(int code, const char *message, double t, PyObject *ex
     if (!bad && extra) {
         PyObject *key, *val;
         Py_ssize_t pos = 0;
-        while (!bad && PyDict_Next(extra, &pos, &key, &val))
-            bad = PyObject_SetAttr(exc, key, val) < 0;
+        while (!bad && PyDict_Next(extra, &pos, &key, &val)) /* the rows' times: t_out */
+            bad = PyUnicode_Check(key) && !PyUnicode_CompareWithASCIIString(key, "t")
+                      ? PyObject_SetAttrString(exc, "t_out", val) < 0
+                      : PyObject_SetAttr(exc, key, val) < 0;
     }
     if (!bad) PyErr_SetObject(pyb_SolverError, exc);
     Py_DECREF(exc);

@@ -105,7 +105,7 @@ static int fill_jacobian(pyb_prob *q, PyObject *m, sp_csc *J, const char *what)
                 if (lo < J->colptr[j + 1] && J->rowind[lo] == i)
                     J->val[lo] += x[k];
                 else if (x[k] != 0) {
-                    PyErr_Format(PyExc_ValueError,
+                    pyb_error(PyExc_ValueError,
                                  "jac: %s has the entry (%d, %d) = %g outside its pattern", what, i,
                                  j, x[k]);
                     goto sparse_done;
@@ -138,7 +138,7 @@ static int fill_jacobian(pyb_prob *q, PyObject *m, sp_csc *J, const char *what)
             if (k < J->colptr[j + 1] && J->rowind[k] == i)
                 J->val[k++] = v;
             else if (v != 0) {
-                PyErr_Format(PyExc_ValueError,
+                pyb_error(PyExc_ValueError,
                              "jac: %s has the entry (%d, %d) = %g outside its pattern", what, i, j, v);
                 Py_DECREF(a);
                 return -1;

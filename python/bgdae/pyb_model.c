@@ -179,7 +179,7 @@ static int settings(pyb_model *self, PyObject *const *ov, mdl_solver_settings *s
             if (PyErr_Occurred()) return -1;
         }
     if (mdl_solver_override(self->mm, s) != BG_OK) {
-        PyErr_Format(PyExc_ValueError,
+        pyb_error(PyExc_ValueError,
                      "the solver settings are out of range (t_end %g, output_step %g, rtol %g, "
                      "atol %g: each finite and > 0)",
                      s->t_end, s->output_step, s->rtol, s->atol);
@@ -285,7 +285,7 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
         !loaded(self))
         return NULL;
     if (factor != 0 && !(factor > 1 && factor <= RN_ERREST_MAX_FACTOR)) {
-        PyErr_Format(PyExc_ValueError, "error_estimate: %g is out of range (expected > 1 and <= %g)",
+        pyb_error(PyExc_ValueError, "error_estimate: %g is out of range (expected > 1 and <= %g)",
                      factor, RN_ERREST_MAX_FACTOR);
         return NULL;
     }
@@ -324,6 +324,7 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
     double *bk = NULL, t_fail = 0;
     dae_solver *s = NULL;
     rn_errest *e = NULL;
+    out_ctx oc = {mm, 0, ""};
     long rows = 0;
     char msg[BG_MESSAGE_SIZE + 128] = "", warning[BG_MESSAGE_SIZE] = "";
     if (!T || !OUT || !yf || !ypf) goto done;
@@ -346,7 +347,7 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
     } else {
         if (factor > 0) {
             rn_errest_spec es = {&p, &o, factor, 0.0, bgr_y0(m), bgr_yp0(m), 1, no, errest_out,
-                                 &(out_ctx){mm, 0, ""}, NULL};
+                                 &oc, NULL};
             e = rn_errest_create(&es, NULL);
         }
         rc = run_loop(mm, s, e, set.t_end, set.output_step, nout, PyArray_DATA(T),
@@ -431,7 +432,7 @@ static PyObject *model_modes(PyObject *self_, PyObject *args)
     double T = 0;
     if (!PyArg_ParseTuple(args, "|d", &T) || !loaded(self)) return NULL;
     if (!(T >= 0 && isfinite(T))) {
-        PyErr_Format(PyExc_ValueError, "t: %g is out of range (expected finite and >= 0)", T);
+        pyb_error(PyExc_ValueError, "t: %g is out of range (expected finite and >= 0)", T);
         return NULL;
     }
     mdl_solver_settings set = *mdl_solver(self->mm);
