@@ -71,6 +71,9 @@ class Model:
         self.n = len(self.unknowns)
 
     def _fresh(self):
+        if self._m.busy:
+            raise RuntimeError(f"the model {self.name!r} is in use by another thread's call "
+                               "(one call at a time on a Model)")
         if self._m.used:  # a run's static start changed the loaded model
             self._load()
         return self._m

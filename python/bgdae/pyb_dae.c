@@ -6,7 +6,8 @@
  * The GIL is held throughout (every residual is a Python call). Each call hands the callable
  * fresh arrays (copies of the solver's y and y'), so that a callable that keeps them keeps valid
  * values. A callable that raises stops the library's call (status -1, fatal) and its exception,
- * with its traceback, is what the extension raises. */
+ * with its traceback, is what the extension raises; so is KeyboardInterrupt, the signals being
+ * looked at before each residual call. */
 #include "pyb.h"
 
 #include <math.h>
@@ -39,7 +40,7 @@ static int call_args(pyb_prob *q, double t, const double *y, const double *yp, P
 static int residual(void *user, double t, const double *y, const double *yp, double *F)
 {
     pyb_prob *q = user;
-    if (PyErr_Occurred()) return -1;
+    if (PyErr_Occurred() || PyErr_CheckSignals() < 0) return -1; /* Ctrl-C: KeyboardInterrupt */
     PyObject *args, *r;
     if (call_args(q, t, y, yp, &args) < 0) return -1;
     r = PyObject_Call(q->res, args, NULL);
@@ -228,10 +229,16 @@ static void prob_clear(pyb_prob *q)
     Py_XDECREF(q->keep);
 }
 
-/* The problem from the common keyword arguments; the rest into *rest (borrowed). */
-static int prob_setup(pyb_prob *q, PyObject *kw)
+/* The problem from the keyword arguments, after a check that those the call needs are there
+ * (required: a NULL-terminated list of names). */
+static int prob_setup(pyb_prob *q, PyObject *kw, const char *const *required)
 {
     memset(q, 0, sizeof *q);
+    for (int i = 0; required[i]; i++)
+        if (!PyDict_GetItemString(kw, required[i])) {
+            PyErr_Format(PyExc_TypeError, "the argument %s is required", required[i]);
+            return -1;
+        }
     q->keep = PyList_New(0);
     if (!q->keep) return -1;
     PyObject *res = PyDict_GetItemString(kw, "res"), *jac = PyDict_GetItemString(kw, "jac");
@@ -242,8 +249,13 @@ static int prob_setup(pyb_prob *q, PyObject *kw)
     }
     q->res = res;
     q->jac = jac == Py_None ? NULL : jac;
-    q->n = (int)PyLong_AsLong(n);
+    long nl = PyLong_AsLong(n);
     if (PyErr_Occurred()) return -1;
+    if (nl < 1 || nl > 100000000L || !PyCallable_Check(res) || (q->jac && !PyCallable_Check(q->jac))) {
+        PyErr_SetString(PyExc_ValueError, "n must be in 1..1e8, res and jac callables");
+        return -1;
+    }
+    q->n = (int)nl;
     dae_problem *p = &q->p;
     p->n = q->n;
     p->res = residual;
@@ -323,7 +335,8 @@ PyObject *pyb_dae_solve(PyObject *self, PyObject *args, PyObject *kw)
         PyErr_SetString(PyExc_TypeError, "keyword arguments expected");
         return NULL;
     }
-    if (prob_setup(&q, kw) < 0) goto done;
+    static const char *const req[] = {"res", "jac", "n", "t0", "y0", "t_out", "consistent", NULL};
+    if (prob_setup(&q, kw, req) < 0) goto done;
     int n = q.n;
     dae_options o;
     if (pyb_options_from_dict(PyDict_GetItemString(kw, "options"), &o, n, &keep) < 0) goto done;
@@ -410,7 +423,8 @@ PyObject *pyb_dae_static(PyObject *self, PyObject *args, PyObject *kw)
         PyErr_SetString(PyExc_TypeError, "keyword arguments expected");
         return NULL;
     }
-    if (prob_setup(&q, kw) < 0) goto done;
+    static const char *const req[] = {"res", "jac", "n", "t0", "y0", NULL};
+    if (prob_setup(&q, kw, req) < 0) goto done;
     dae_static_options so;
     dae_static_options_default(&so);
     PyObject *d = PyDict_GetItemString(kw, "options"), *key, *v;
@@ -474,7 +488,8 @@ PyObject *pyb_dae_modes(PyObject *self, PyObject *args, PyObject *kw)
         PyErr_SetString(PyExc_TypeError, "keyword arguments expected");
         return NULL;
     }
-    if (prob_setup(&q, kw) < 0) goto done;
+    static const char *const req[] = {"res", "jac", "n", "t0", "y0", NULL};
+    if (prob_setup(&q, kw, req) < 0) goto done;
     double t = PyFloat_AsDouble(PyDict_GetItemString(kw, "t0"));
     if (PyErr_Occurred() || !(y = kw_vector(kw, "y0", q.n))) goto done;
     PyObject *v = PyDict_GetItemString(kw, "yp0");

@@ -26,6 +26,7 @@ typedef struct {
     PyObject_HEAD
     mdl_model *mm;
     int used;
+    int busy; /* a call is working on mm with the GIL released: another one is refused */
 } pyb_model;
 
 static int model_init(PyObject *self_, PyObject *args, PyObject *kw)
@@ -35,6 +36,10 @@ static int model_init(PyObject *self_, PyObject *args, PyObject *kw)
     const char *path;
     PyObject *sets = NULL;
     if (!PyArg_ParseTupleAndKeywords(args, kw, "s|O", kwlist, &path, &sets)) return -1;
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "the model is in use by another thread's call");
+        return -1;
+    }
     Py_ssize_t ns = sets && sets != Py_None ? PySequence_Length(sets) : 0;
     if (ns < 0) return -1;
     mdl_set *ms = calloc((size_t)ns + 1, sizeof *ms);
@@ -52,9 +57,11 @@ static int model_init(PyObject *self_, PyObject *args, PyObject *kw)
     }
     bg_error err = {0};
     mdl_model *mm;
+    self->busy = 1;
     Py_BEGIN_ALLOW_THREADS
     mm = mdl_load(path, ms, (int)ns, &err);
     Py_END_ALLOW_THREADS
+    self->busy = 0;
     if (!mm) {
         PyErr_SetString(err.status == BG_ERR_IO ? PyExc_OSError : PyExc_ValueError, err.message);
         goto done;
@@ -78,6 +85,11 @@ static void model_dealloc(PyObject *self_)
 
 static int loaded(pyb_model *self)
 {
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError,
+                        "the model is in use by another thread's call (one call at a time)");
+        return 0;
+    }
     if (self->mm) return 1;
     PyErr_SetString(PyExc_RuntimeError, "the model is not loaded");
     return 0;
@@ -304,9 +316,11 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
     bg_error err = {0};
     int static_done = mdl_start_kind(self->mm) == MDL_START_STATIC, st = BG_OK;
     if (static_done) {
+        self->busy = 1;
         Py_BEGIN_ALLOW_THREADS
         st = static_start(self, &set, &rep, &err);
         Py_END_ALLOW_THREADS
+        self->busy = 0;
         if (st != BG_OK) return pyb_raise_solver(st, err.message, 0.0, NULL);
     }
     mdl_model *mm = self->mm;
@@ -333,6 +347,7 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
         goto done;
     }
     int rc;
+    self->busy = 1;
     Py_BEGIN_ALLOW_THREADS
     s = dae_create(&p, &o, &err);
     rc = s ? dae_init(s, 0.0, bgr_y0(m), bgr_yp0(m)) : err.status;
@@ -355,6 +370,7 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
                       PyArray_DATA((PyArrayObject *)ypf), &rows, &t_fail, msg, sizeof msg);
     }
     Py_END_ALLOW_THREADS
+    self->busy = 0;
     PyObject *stats = s ? pyb_stats_dict(dae_get_stats(s)) : Py_NewRef(Py_None);
     PyObject *rep_d = static_done ? report_dict(&rep) : Py_NewRef(Py_None);
     PyObject *est = e ? errest_dict(e, mm) : Py_NewRef(Py_None);
@@ -400,9 +416,11 @@ static PyObject *model_static(PyObject *self_, PyObject *unused)
     bg_error err = {0};
     int st;
     self->used = 1;
+    self->busy = 1;
     Py_BEGIN_ALLOW_THREADS
     st = static_start(self, &set, &rep, &err);
     Py_END_ALLOW_THREADS
+    self->busy = 0;
     PyObject *rd = report_dict(&rep);
     if (!rd) return NULL;
     if (st != BG_OK) {
@@ -441,9 +459,11 @@ static PyObject *model_modes(PyObject *self_, PyObject *args)
     int st = BG_OK;
     self->used = 1;
     if (T == 0 || mdl_start_kind(self->mm) == MDL_START_STATIC) {
+        self->busy = 1;
         Py_BEGIN_ALLOW_THREADS
         st = static_start(self, &set, &rep, &err);
         Py_END_ALLOW_THREADS
+        self->busy = 0;
         if (st != BG_OK) return pyb_raise_solver(st, err.message, 0.0, NULL);
     }
     bgr_model *m = mdl_bgr(self->mm);
@@ -457,6 +477,7 @@ static PyObject *model_modes(PyObject *self_, PyObject *args)
     dae_modes *M = NULL;
     dae_solver *s = NULL;
     char msg[BG_MESSAGE_SIZE + 64] = "";
+    self->busy = 1;
     Py_BEGIN_ALLOW_THREADS
     if (T > 0) {
         dae_options o;
@@ -485,6 +506,7 @@ static PyObject *model_modes(PyObject *self_, PyObject *args)
         else st = BG_OK;
     }
     Py_END_ALLOW_THREADS
+    self->busy = 0;
     dae_free(&s);
     free(y), free(yp), free(bk);
     if (st != BG_OK) {
@@ -512,8 +534,15 @@ static PyMethodDef model_methods[] = {
     {"modes", model_modes, METH_VARARGS, "modes(t=0): the modes at time t."},
     {NULL, NULL, 0, NULL}};
 
+static PyObject *model_busy(PyObject *self_, void *closure)
+{
+    (void)closure;
+    return PyBool_FromLong(((pyb_model *)self_)->busy);
+}
+
 static PyGetSetDef model_getset[] = {
     {"used", model_used, NULL, "1 once a run or a static solve has changed the model", NULL},
+    {"busy", model_busy, NULL, "1 while a call works on the model without the GIL", NULL},
     {NULL, NULL, NULL, NULL, NULL}};
 
 PyTypeObject pyb_ModelType = {

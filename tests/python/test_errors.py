@@ -130,3 +130,27 @@ def test_options_out_of_range_are_the_library_s_refusal():
     with pytest.raises(bgdae.SolverError, match="max_order") as ei:
         bgdae.DAE(lambda t, y, yp: yp + y, [1.0]).solve([1.0], max_order=9)
     assert ei.value.status == "BG_ERR_ARGUMENT"
+
+
+def test_keyboard_interrupt_stops_a_solve():
+    import _thread
+    import threading
+    calls = []
+
+    def residual(t, y, yp):
+        calls.append(t)
+        if len(calls) == 50:  # Ctrl-C from another thread, seen before the next call
+            threading.Thread(target=_thread.interrupt_main).start()
+            threading.Event().wait(0.2)
+        return yp + y
+    with pytest.raises(KeyboardInterrupt):
+        bgdae.DAE(residual, [1.0]).solve([1e6], rtol=1e-12, atol=1e-14)
+    assert 50 <= len(calls) < 1000
+
+
+def test_core_refuses_missing_arguments():
+    from bgdae import _core
+    with pytest.raises(TypeError, match="the argument consistent is required"):
+        _core.dae_solve(res=lambda t, y, yp: yp, jac=None, n=1, t0=0.0, y0=[1.0], t_out=[1.0])
+    with pytest.raises(ValueError, match="n must be in 1..1e8"):
+        _core.dae_static(res=1, jac=None, n=1, t0=0.0, y0=[1.0])

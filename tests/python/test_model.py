@@ -109,3 +109,30 @@ def test_bad_model_input(root, tmp_path):
     bad.write_text("format: bgsim 1\nname: x\ncomponents:\n  a: {type: mech.nothing}\n")
     with pytest.raises(ValueError, match=r"bad.yaml:4"):
         bgdae.Model(bad)
+
+
+def test_the_gil_is_released_during_a_run(root):
+    import threading
+    import time
+    m = bgdae.Model(os.path.join(root, "crane", "models", "paper.yaml"))
+    box = {}
+    th = threading.Thread(target=lambda: box.setdefault("run", m.run(t_end=0.5)))
+    t0 = time.perf_counter()
+    th.start()
+    stamps, refused = [], None
+    while th.is_alive():
+        stamps.append(time.perf_counter())
+        if refused is None and len(stamps) > 100:
+            try:
+                m.run(t_end=0.1)
+                refused = False
+            except RuntimeError as e:  # one call at a time on a model
+                refused = "in use" in str(e)
+        time.sleep(0)
+    wall = time.perf_counter() - t0
+    th.join()
+    gaps = np.diff([t0] + stamps + [time.perf_counter()])
+    # the main thread ran all along: no pause near the run's length
+    assert len(box["run"].t) == 501 and wall > 0.1
+    assert gaps.max() < 0.5 * wall, (gaps.max(), wall)
+    assert refused is True
