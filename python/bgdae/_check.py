@@ -1,6 +1,7 @@
 """Argument checks: every refusal names the argument and says what was expected."""
 import math
 import numbers
+import re
 
 import numpy as np
 
@@ -109,3 +110,21 @@ def pattern(name, p, n):
     indptr[1:] = np.cumsum(nz.sum(axis=0))
     indices = np.nonzero(nz.T)[1].astype(np.int32)
     return indptr, indices
+
+
+def name_unknown(exc, names):
+    """exc.unknown: the first unknown the solver's message names (a name of names, or "y[i]"
+    when the problem has none), None when it names none."""
+    msg = getattr(exc, "message", "") or ""
+    found = None
+    if names:
+        best = len(msg) + 1
+        for nm in names:
+            m = re.search(r"(?<![\w/.\[])" + re.escape(nm) + r"(?![\w/.\[])", msg)
+            if m and m.start() < best:
+                best, found = m.start(), nm
+    else:
+        m = re.search(r"\by\[(\d+)\]", msg)
+        found = m.group(0) if m else None
+    exc.unknown = found
+    return exc

@@ -127,7 +127,8 @@ class DAE:
         """The states at the times t_out (ascending, >= t0; t0 itself gives the start) from
         consistent initial values (consistent=False: y0, yp0 as given). Options: the fields
         of the C library's dae_options by name (bgdae.default_options()). Raises SolverError
-        on a failure of the solver (its attributes t, y, yp, stats hold what was computed)."""
+        on a failure of the solver: message, status, t, unknown (the unknown the message
+        names, or None), and what was computed (t_out, y, yp, stats)."""
         t = np.atleast_1d(_check.vector("t_out", np.atleast_1d(t_out)))
         if len(t) == 0:
             raise ValueError("t_out: expected at least one time")
@@ -135,9 +136,12 @@ class DAE:
             raise ValueError("t_out: expected ascending times")
         if t[0] < self.t0:
             raise ValueError(f"t_out: {t[0]} is before t0 = {self.t0}")
-        r = _core.dae_solve(**self._args(t0=self.t0, y0=self.y0, yp0=self.yp0, t_out=t,
-                                         options=_options(options, self.n),
-                                         consistent=bool(consistent)))
+        try:
+            r = _core.dae_solve(**self._args(t0=self.t0, y0=self.y0, yp0=self.yp0, t_out=t,
+                                             options=_options(options, self.n),
+                                             consistent=bool(consistent)))
+        except _core.SolverError as e:
+            raise _check.name_unknown(e, self.names)
         return Solution(r, self.names)
 
     def static(self, y=None, t=None, **options):

@@ -106,7 +106,10 @@ class Model:
             k = 100.0
         elif error_estimate not in (None, False):
             k = _check.real("error_estimate", error_estimate)
-        r = self._fresh().run(error_estimate=k, **ov)
+        try:
+            r = self._fresh().run(error_estimate=k, **ov)
+        except _core.SolverError as e:
+            raise _check.name_unknown(e, self.unknowns)
         return ModelRun(r, self.outputs)
 
     def static(self):
