@@ -106,3 +106,14 @@ def test_modes_of_a_damped_oscillator():
     z = md["shape_re"] + 1j * md["shape_im"]
     s = md["re"] + 1j * md["im"]
     assert abs(z[1] - s * z[0]) < 1e-10 * abs(z[1])
+
+
+def test_patterns_without_jacobian():
+    Jy, Jyp = pendulum_jac(0, np.ones(5), np.zeros(5))
+    given = bgdae.DAE(pendulum, [1, 0, 0, 0, 0], jac_pattern=(Jy != 0, Jyp != 0))
+    found = bgdae.DAE(pendulum, [1, 0, 0, 0, 0])
+    a, b = given.solve([2.0], rtol=1e-8, atol=1e-8), found.solve([2.0], rtol=1e-8, atol=1e-8)
+    assert a.stats["pattern_nnz"] == 0 and b.stats["pattern_nnz"] == (Jy != 0).sum() + 4
+    assert a.stats["res_evals_fd"] > 0 and a.stats["jac_evals"] > 0
+    assert list(a.kinds) == [0, 0, 0, 0, 2]
+    assert np.max(np.abs(a.y - b.y)) < 1e-9
