@@ -200,18 +200,14 @@ static int settings(pyb_model *self, PyObject *const *ov, mdl_solver_settings *s
     return 0;
 }
 
-typedef struct {
-    mdl_model *mm;
-    int failed; /* an output could not be computed */
-    char msg[BG_MESSAGE_SIZE];
-} out_ctx;
-
+/* The companion's outputs (ctx: the model): the run's, NAN where they cannot be computed (the
+ * column then has no values), as bgsim's. */
 static void errest_out(void *ctx, double t, const double *y, const double *yp, double *out)
 {
     (void)yp;
-    out_ctx *c = ctx;
-    if (mdl_outputs(c->mm, t, y, out, NULL) != BG_OK)
-        for (int i = 0; i < mdl_noutputs(c->mm); i++)
+    mdl_model *mm = ctx;
+    if (mdl_outputs(mm, t, y, out, NULL) != BG_OK)
+        for (int i = 0; i < mdl_noutputs(mm); i++)
             out[i] = NAN;
 }
 
@@ -338,7 +334,6 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
     double *bk = NULL, t_fail = 0;
     dae_solver *s = NULL;
     rn_errest *e = NULL;
-    out_ctx oc = {mm, 0, ""};
     long rows = 0;
     char msg[BG_MESSAGE_SIZE + 128] = "", warning[BG_MESSAGE_SIZE] = "";
     if (!T || !OUT || !yf || !ypf) goto done;
@@ -362,7 +357,7 @@ static PyObject *model_run(PyObject *self_, PyObject *args, PyObject *kw)
     } else {
         if (factor > 0) {
             rn_errest_spec es = {&p, &o, factor, 0.0, bgr_y0(m), bgr_yp0(m), 1, no, errest_out,
-                                 &oc, NULL};
+                                 mm, NULL};
             e = rn_errest_create(&es, NULL);
         }
         rc = run_loop(mm, s, e, set.t_end, set.output_step, nout, PyArray_DATA(T),
