@@ -5,6 +5,8 @@ pkgs=(build-essential meson ninja-build pkg-config python3 libsuitesparse-dev li
       libblas-dev libsundials-dev libinih-dev gnuplot-nox
       libarpack2-dev  # the sparse modal analysis (solver/bg_modes.c)
       libyaml-dev  # model files (model/mdl_yaml.c)
+      python3-dev python3-numpy python3-pytest  # the Python package (python/) and its tests
+      python3-scipy python3-matplotlib  # its sparse Jacobians, examples/python/compare_scipy.py
       cmake  # the CMake package's version file (meson) and the CMake install check (tools/test.sh)
       libopenmpi-dev openmpi-bin  # crane-sweep's MPI engine and its mpirun test (crane/sweep/)
       valgrind gcovr clang libclang-rt-14-dev)  # CI jobs (tools/ci-*.sh, tools/coverage.sh)

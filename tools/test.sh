@@ -92,6 +92,23 @@ if meson install -C "$B" --destdir "$dest" >/dev/null 2>&1; then
     echo "not ok - install check: the exported symbols differ from the public headers' declarations"
     extra_fail=$((extra_fail+1))
   fi
+  # the Python package as installed: imported from the installation (not the build folder) by
+  # the interpreter it was built for, and a DAE solved with it
+  if [ -s "$B/python/bgdae/python-path.txt" ]; then
+    pyexe=$(cat "$B/python/bgdae/python-path.txt")
+    pkg=$(find "$dest" -path '*/bgdae/__init__.py' -printf '%h\n' | head -n 1)
+    if [ -n "$pkg" ] && (cd "$dest" && LD_LIBRARY_PATH="$dest$libdir" PYTHONPATH="$(dirname "$pkg")" \
+         "$pyexe" -c 'import bgdae, numpy as np, sys
+assert bgdae.__file__.startswith(sys.argv[1]), bgdae.__file__
+s = bgdae.DAE(lambda t, y, yp: yp + y, [1.0]).solve([1.0], rtol=1e-10, atol=1e-12)
+assert abs(s.y[0, 0] - np.exp(-1)) < 1e-8, s.y' "$dest") >"$dest/python.log" 2>&1; then
+      echo "ok - install check: the Python package bgdae imported from the installation and ran"
+      extra_pass=$((extra_pass+1))
+    else
+      sed 's/^/# /' "$dest/python.log"
+      echo "not ok - install check: the installed Python package failed"; extra_fail=$((extra_fail+1))
+    fi
+  fi
   bad=""
   pc --libs --static bgdae | grep -q inih && bad="$bad pkg-config --static names inih;"
   ldd "$dest$libdir/libbgdae.so" 2>/dev/null | grep -q inih && bad="$bad libbgdae.so needs inih;"
