@@ -181,6 +181,15 @@ int main(int argc, char **argv)
         fprintf(stderr, "crane: %s\n", err.message);
         return RN_EXIT_USAGE;
     }
+    /* --modes T: the modes at a time of the run, T within [0, t_end] (a T beyond it would
+     * integrate past the scene's end, without end for a huge T) */
+    if (o.modes && !(o.modes_t <= r.scene.t_end)) {
+        fprintf(stderr,
+                "crane: option --modes %g: T must be within [0, t_end] = [0, %g] s (the scene's "
+                "[solver] t_end; --t-end sets it)\n",
+                o.modes_t, r.scene.t_end);
+        return RN_EXIT_USAGE;
+    }
     /* the number of output rows, in floating point before any conversion to an integer */
     double nout = ceil(r.scene.t_end / r.scene.output_step - 1e-9);
     if (!(nout >= 1)) nout = 1;

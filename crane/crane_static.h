@@ -80,14 +80,28 @@ int crane_equilibrium_write(const crane *c, const crane_start_report *rep, FILE 
  * *out as dae_modes_compute (free it with dae_modes_free); y receives the state (bgr_n values, may
  * be NULL). BG_OK or a status with err. */
 int crane_modes(crane *c, double T, dae_modes **out, double *y, bg_error *err);
+/* Drift modes. The static start is an equilibrium: there the invariants the velocity-level
+ * constraints leave (the quaternions' norms, the nodes' positions against their bodies) give
+ * exact zero eigenvalues, constraint modes (bg_modes.h). At a state of the run (T > 0) the
+ * model is linearised at a state in motion, and those eigenvalues move off zero by the
+ * motion's rates: real or complex, some with negative damping, 1e-7 to 5e-4 Hz for the paper
+ * scene, where its slowest physical mode (the drive's PID) is at 0.032 Hz at every T. They are
+ * no motion of the crane: an elastic mode at T slower than CRANE_DRIFT_RATIO times the slowest
+ * elastic mode of the static start is classed as drift (reported apart: modes.csv's kind
+ * "drift", the summary's count, not plotted). *hz receives that bound (0 for T = 0: none); it
+ * costs the modes at the static start once more. BG_OK or the failure of those modes. */
+#define CRANE_DRIFT_RATIO 0.1
+int crane_modes_drift(crane *c, double T, double *hz, bg_error *err);
 /* The part a mode belongs to: the component under crane/ with the largest share ("boom",
  * "hydraulics", "load", "ties", "rope", "platform", ...; the left and right ties together).
  * Writes into buf, returns buf. */
 const char *crane_mode_part(const dae_modes *M, int k, char *buf, size_t size);
 /* modes.csv is the programs' writer (runner/rn_run.h: rn_modes_write with crane_mode_part). */
 /* modes.gp: the elastic modes' damping ratio against frequency (log scale), one colour per part,
- * the lowest labelled, into modes.png, from modes.csv. BG_OK or BG_ERR_IO. */
-int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, FILE *f);
+ * the lowest labelled, into modes.png, from modes.csv (the drift modes below drift_hz left
+ * out). BG_OK or BG_ERR_IO. */
+int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, double drift_hz,
+                            FILE *f);
 
 #ifdef __cplusplus
 }
