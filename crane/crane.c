@@ -139,6 +139,7 @@ int main(int argc, char **argv)
     r.rn.est.on = o.errest; /* --error-estimate: the runner's (rn_estimate.c, cp_errest.c) */
     r.rn.est.factor = o.errest_factor;
     r.o = &o;
+    o.viz.stop = rn_signal_flag(); /* a signal stops gnuplot on the animation */
 
     char tried[2048], odd[RN_PATH_SIZE + 128];
     const char *arg = o.scene ? o.scene : CP_DEFAULT_SCENE;
@@ -218,10 +219,13 @@ int main(int argc, char **argv)
 
     int completed = !strcmp(r.rn.status, "completed");
     if (completed && rn_signal()) {
+        int figs = r.rn.rows > 1 && !o.no_plots;
         snprintf(r.rn.reason, sizeof r.rn.reason,
-                 "the integration reached t_end; %s received afterwards%s",
-                 rn_signal_name(rn_signal()),
-                 r.rn.rows > 1 && !o.no_plots ? ": the figures were not drawn" : "");
+                 "the integration reached t_end; %s received afterwards%s%s%s",
+                 rn_signal_name(rn_signal()), figs || o.viz.animate ? ": " : "",
+                 figs ? "the figures were not drawn" : "",
+                 o.viz.animate ? (figs ? ", nor the animation" : "the animation was not drawn")
+                               : "");
     } else if (completed && r.rn.rows > 1 && !o.no_plots) {
         cp_draw_figures(&r);
         if (rn_signal() && !strcmp(r.rn.status, "completed"))

@@ -207,8 +207,8 @@ static int write_script(crane_anim *a)
     if (!f) return -1;
     /* real time: the mean interval of the frames (the output step when it is the longer) */
     double dt = a->frames > 1 ? (a->times[a->frames - 1] - a->times[0]) / (a->frames - 1) : a->step;
-    int delay = (int)lround(100 * dt);
-    if (delay < 2) delay = 2; /* viewers show shorter delays slower */
+    /* GIF's delay: hundredths of a second in 16 bits; viewers show delays below 2 slower */
+    int delay = !(100 * dt < 65535) ? 65535 : !(100 * dt >= 2) ? 2 : (int)lround(100 * dt);
     fprintf(f,
             "# Animation of the crane run (crane --animate, crane/crane_anim.h) from anim.dat and\n"
             "# anim_track.dat; run in this folder: gnuplot anim.gp\n"
@@ -240,10 +240,11 @@ static int write_script(crane_anim *a)
 
 /* gnuplot anim.gp in the folder, its messages into anim.log (pu_gnuplot.h); crane.gif and
  * crane_frame.png checked whole. 0, or -1 with the reason in msg (the pictures removed). */
-static int render_gif(const crane_anim *a, const char *exe, char *msg, size_t size)
+static int render_gif(const crane_anim *a, const char *exe, const volatile sig_atomic_t *stop,
+                      char *msg, size_t size)
 {
     char gif[4200], png[4200], why[512], first[256];
-    pu_gnuplot_job job = {exe, a->dir, "anim.gp", NULL, "anim.log", NULL};
+    pu_gnuplot_job job = {exe, a->dir, "anim.gp", NULL, "anim.log", stop};
     int st = pu_gnuplot_run(&job, why, sizeof why);
     snprintf(gif, sizeof gif, "%s/crane.gif", a->dir);
     snprintf(png, sizeof png, "%s/crane_frame.png", a->dir);
@@ -258,6 +259,8 @@ static int render_gif(const crane_anim *a, const char *exe, char *msg, size_t si
     const char *sep = first[0] ? ": " : "";
     if (st == -1)
         snprintf(msg, size, "gnuplot on the animation: %s", why);
+    else if (stop && *stop)
+        snprintf(msg, size, "a signal stopped gnuplot on the animation");
     else if (!WIFEXITED(st))
         snprintf(msg, size, "gnuplot on the animation ended by signal %d%s%s (see %s/anim.log)",
                  WTERMSIG(st), sep, first, a->dir);
@@ -272,7 +275,8 @@ static int render_gif(const crane_anim *a, const char *exe, char *msg, size_t si
     return -1;
 }
 
-int crane_anim_close(crane_anim **ap, int render, int quiet, char *msg, size_t size)
+int crane_anim_close(crane_anim **ap, int render, int quiet, const volatile sig_atomic_t *stop,
+                     char *msg, size_t size)
 {
     if (!ap || !*ap) return 0;
     crane_anim *a = *ap;
@@ -300,7 +304,7 @@ int crane_anim_close(crane_anim **ap, int render, int quiet, char *msg, size_t s
         char exe[4200];
         if (!pu_gnuplot_find(exe, sizeof exe)) {
             if (!quiet) printf("gnuplot not found: animation skipped (anim.gp written)\n");
-        } else if (render_gif(a, exe, msg, size) != 0) {
+        } else if (render_gif(a, exe, stop, msg, size) != 0) {
             n = -1;
         } else if (!quiet) {
             printf("crane: animation %s/crane.gif, %d frames every %g s, boom deflection x%g\n",

@@ -19,6 +19,7 @@ struct crane_viz {
     int bad, quiet, vtk_frames;
     char dir[4096];
     char why[1024]; /* the first failure's reason ("" none) */
+    const volatile sig_atomic_t *stop;
 };
 
 /* A failure: said on stderr now (what: msg), the first kept for crane_viz_close. */
@@ -63,6 +64,7 @@ crane_viz *crane_viz_open(const crane_viz_options *o, const crane *c, const char
     }
     v->c = c;
     v->quiet = quiet;
+    v->stop = o->stop;
     snprintf(v->dir, sizeof v->dir, "%s", dir);
     v->vtk_step = o->vtk_step > 0 ? o->vtk_step : CRANE_VIZ_VTK_STEP;
     v->anim_step = o->anim_step > 0 ? o->anim_step : CRANE_VIZ_ANIM_STEP;
@@ -104,7 +106,7 @@ void crane_viz_row(crane_viz *v, double t, const double *y, const double *yp)
         snprintf(msg, sizeof msg, "the geometry at t = %g s failed", t);
         failed(v, "ParaView series and animation stopped", msg);
         v->vtk_frames = crane_vtk_close(&v->vtk);
-        crane_anim_close(&v->anim, 0, 1, msg, sizeof msg);
+        crane_anim_close(&v->anim, 0, 1, NULL, msg, sizeof msg);
         return;
     }
     if (dv) {
@@ -118,7 +120,7 @@ void crane_viz_row(crane_viz *v, double t, const double *y, const double *yp)
         v->anim_next = next_time(t, v->anim_step);
         if (crane_anim_frame(v->anim, v->g, msg, sizeof msg) != 0) {
             failed(v, "animation stopped", msg);
-            crane_anim_close(&v->anim, 0, 1, msg, sizeof msg);
+            crane_anim_close(&v->anim, 0, 1, NULL, msg, sizeof msg);
         }
     }
 }
@@ -138,7 +140,7 @@ int crane_viz_close(crane_viz **vp, int render, char *msg, size_t size)
                    v->vtk_step);
         }
     }
-    if (v->anim && crane_anim_close(&v->anim, render, v->quiet, why, sizeof why) < 0)
+    if (v->anim && crane_anim_close(&v->anim, render, v->quiet, v->stop, why, sizeof why) < 0)
         failed(v, "animation", why);
     int bad = v->bad;
     if (bad && msg && size) snprintf(msg, size, "%s", v->why);

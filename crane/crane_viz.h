@@ -10,6 +10,8 @@
 #ifndef CRANE_VIZ_H
 #define CRANE_VIZ_H
 
+#include <signal.h>
+
 #include "crane_model.h"
 
 #ifdef __cplusplus
@@ -23,6 +25,7 @@ extern "C" {
 typedef struct crane_viz_options {
     int vtk, animate;
     double vtk_step, anim_step, anim_scale; /* 0: the defaults above */
+    const volatile sig_atomic_t *stop; /* non-zero: stop drawing the animation (NULL: never) */
 } crane_viz_options;
 
 /* Takes the option name (--vtk, --animate: value NULL; --vtk-step, --anim-step, --anim-scale: a

@@ -257,7 +257,7 @@ done:
     char why[1024] = "";
     if (crane_viz_close(&r->viz, !strcmp(r->rn.status, "completed") && !rn_signal(), why,
                         sizeof why) != 0 &&
-        !strcmp(r->rn.status, "completed")) {
+        !strcmp(r->rn.status, "completed") && !rn_signal()) {
         r->rn.status = "failed"; /* said on stderr already: the reason only for status.txt */
         snprintf(r->rn.reason, sizeof r->rn.reason, "%s", why);
         code = RN_EXIT_RUN;
