@@ -20,7 +20,9 @@
  *   - the tip at the scene's radius: |r - tip_radius| <= 1e-6 max(tip_radius, 1 m);
  *   - the boom above its foot (tip higher than the foot) and straight: no node farther than
  *     5 % of the boom's length from the line foot - tip (a buckled boom fails);
- *   - the load above the ground: its height above the slewing joint A's (the crane's base) > 0;
+ *   - the load above the ground: its height above the slewing joint A's (the crane's base) > 0
+ *     (the keys named: the rope's stiffness when it is strained beyond 5 %, else the geometry
+ *     and the ground's height [platform] joint_A);
  *   - the ties in tension (a truss also carries compression: a tie anchored where it can only
  *     push would be a strut, which a tie or pendant is not);
  *   - every body at rest: the kinetic energy of platform, boom, load and counterweight at most
