@@ -7,7 +7,9 @@
  *     written; --modes T beyond t_end refused at once;
  *   - the animation: gnuplot failing on it, or leaving a GIF cut short with exit 0, fails the run
  *     (exit 1, status failed with the reason itself, no crane.gif), said with --quiet too; a
- *     signal while gnuplot draws it stops gnuplot and the program within the bound;
+ *     signal while gnuplot draws it stops gnuplot and the program within the bound; a view
+ *     that cannot start (vtk/ a file) fails the run with its reason in status.txt; a signal
+ *     while --modes T runs to T ends the program at once (interrupted);
  *   - a full disk (a small tmpfs, when this test may mount one) during --vtk and --animate: the
  *     final status written (failed, naming the file and the system's error), no partial picture;
  *   - messages: a loop of symbolic links as the scene, the static start's keys (the ground's
@@ -208,6 +210,51 @@ static void test_animation_failures(void)
            r.seconds, g_bound, r.code, r.err);
 }
 
+/* A view that cannot start (vtk/ is a file): the run fails with that reason in status.txt; a
+ * signal while --modes T runs to T ends the program at once, status.txt saying so. */
+static void test_view_reason_and_modes_signal(void)
+{
+    char out[4200], vfile[4300];
+    result r;
+    path2(out, sizeof out, tmp, "vtk-file");
+    mkdir(out, 0777);
+    path2(vfile, sizeof vfile, out, "vtk");
+    FILE *f = fopen(vfile, "w");
+    if (f) {
+        fputs("a file where the frames' folder goes\n", f);
+        fclose(f);
+    }
+    run(NULL,
+        (const char *[]){"rigid-boom", "--t-end", "0.02", "--vtk", "--no-plots", "--quiet",
+                         "--out", out, NULL},
+        "vtkfile", 60, &r);
+    tap_ok(r.exited && r.code == 1 && first_line_is(out, "status.txt", "status: failed") &&
+               file_contains(out, "status.txt", "reason: ParaView series: ") &&
+               file_contains(out, "status.txt", "not a folder") &&
+               !file_contains(out, "status.txt", "see above"),
+           "--vtk where vtk/ is a file: exit 1, status.txt failed with that reason (exit %d: "
+           "%.200s)",
+           r.code, r.err);
+    path2(out, sizeof out, tmp, "modes-signal");
+    pid_t pid = start(NULL,
+                      (const char *[]){"paper", "--modes", "12.5", "--no-plots", "--quiet",
+                                       "--out", out, NULL},
+                      "modessig");
+    double t0 = now_s();
+    while (now_s() - t0 < 60 && !file_contains(out, "status.txt", "status: running") &&
+           waitpid(pid, NULL, WNOHANG) == 0)
+        sleep_ms(10);
+    sleep_ms(300);
+    kill(pid, SIGTERM);
+    finish_from(pid, 30, "modessig", now_s(), &r);
+    tap_ok(r.signaled == 0 && r.exited && r.code == 128 + SIGTERM && r.seconds < g_bound &&
+               first_line_is(out, "status.txt", "status: interrupted") &&
+               file_contains(out, "status.txt", "SIGTERM received while") &&
+               !file_exists(out, "modes.csv"),
+           "SIGTERM during --modes 12.5: exit %d in %.2f s, status.txt interrupted, no modes.csv",
+           r.code, r.seconds);
+}
+
 /* ------------------------------------------------------------- a full disk ---- */
 
 static void test_full_disk(void)
@@ -336,6 +383,7 @@ int main(int argc, char **argv)
     test_frames();
     test_combinations();
     test_animation_failures();
+    test_view_reason_and_modes_signal();
     test_full_disk();
     test_messages();
     test_drift_modes();
