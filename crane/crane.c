@@ -7,8 +7,9 @@
  *         [--anim-step DT] [--anim-scale K] [--static] [--modes [T]] [--error-estimate [K]]
  *
  * --static and --modes replace the dynamic run by the analyses of crane/crane_static.h: the
- * static equilibrium (equilibrium.csv, static.txt) and the modes at time T (modes.csv, modes.gp,
- * modes.png). A static start whose checks fail (scene keys that cannot be met together) ends
+ * static equilibrium (equilibrium.csv, static.txt) and the modes at time T, 0 <= T <= t_end
+ * (modes.csv, modes.gp, modes.png; the drift modes of a state in motion apart). The options of
+ * the dynamic run (--vtk, --animate and their steps, --error-estimate) are refused with them. A static start whose checks fail (scene keys that cannot be met together) ends
  * with exit status 2, status.txt and static.txt naming the keys. --error-estimate adds a second
  * run at rtol / K, atol / K (K = 100 unless given) beside the first, compared at every row:
  * error_estimate.csv (crane/program/cp_errest.c); a second run that fails leaves the first run's

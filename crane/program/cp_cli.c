@@ -122,7 +122,8 @@ static const pu_cli_option OPTIONS[] = {
     {.name = "--modes", .kind = PU_CLI_DOUBLE, .value = PU_CLI_OPTIONAL, .arg = "[T]",
      .at = AT(modes_t), .seen = AT(modes), .min = 0, .max = HUGE_VAL,
      .what = "a time >= 0 in s",
-     .help = "the modes at time T (default 0: the static start) instead of the run: modes.csv, "
+     .help = "the modes at time T, 0 <= T <= t_end (default 0: the static start) instead of "
+             "the run, the drift modes apart: modes.csv, "
              "modes.gp, modes.png (frequency against damping)"},
     {.name = "--error-estimate", .kind = PU_CLI_DOUBLE, .value = PU_CLI_OPTIONAL, .arg = "[K]",
      .at = AT(errest_factor), .seen = AT(errest), .min = 1, .min_open = 1,
