@@ -1,6 +1,7 @@
 /* The crane's static start and checks, equilibrium.csv, and its modes (crane_static.h). */
 #include "crane_static.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -239,10 +240,36 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
          * is mostly whatever moves most, the load or the drive) */
         const char *e = rep->solve.residual_eq >= 0 ? bgr_eq_name(m, rep->solve.residual_eq)
                                                     : NULL;
-        keys_of_path(rep, &sc, e);
-        add_key(rep, "[environment] g");
-        if (sc.rope) add_key(rep, "[load] mass");
-        say(rep, "no static equilibrium: the structure carries only %.3g of the scene's loads", rep->solve.lambda, 0, 0);
+        /* a load whose weight is below the rounding of the rope's force at slack: the rope is
+         * tension only, smoothed at slack (mech_axial.h: k eps ln 2 at its rest length, eps =
+         * 1e-4 L0, decaying as k eps e^(x / eps) when slack by x), so the load would hang where
+         * that force equals its weight, at a stiffness that much below the rope's: lost in
+         * its rounding, and a weightless load has no equilibrium on it at all */
+        double W = sc.load_mass * fabs(sc.g), fs = sc.rope_E * sc.rope_A * 1e-4 * log(2.0);
+        int weightless = sc.rope && !(W > DBL_EPSILON * fs);
+        if (weightless) {
+            if (!rep->message[0]) rep->keys[0] = '\0'; /* the structure is not to blame */
+            add_key(rep, "[environment] g");
+            add_key(rep, "[load] mass");
+            add_key(rep, "[rope] enabled");
+            say(rep, "the load weighs %.3g N, below the rounding of the rope's force at slack "
+                     "(%.4g N, the tension-only rope smoothed there: mech_axial.h): hanging on "
+                     "the rope it has no static equilibrium the solve can resolve (a weightless "
+                     "load none at all); give it a weight, or no rope",
+                W, fs, 0);
+        } else {
+            keys_of_path(rep, &sc, e);
+            add_key(rep, "[environment] g");
+            if (sc.rope) add_key(rep, "[load] mass");
+            if (rep->solve.lambda >= 1)
+                say(rep, "no static equilibrium: the solve reached the full load but did not "
+                         "converge there",
+                    0, 0, 0);
+            else
+                say(rep, "no static equilibrium: the structure carries only %.3g of the scene's "
+                         "loads",
+                    rep->solve.lambda, 0, 0);
+        }
         size_t l = strlen(rep->message);
         snprintf(rep->message + l, sizeof rep->message - l, " (%s)", serr.message);
     } else {

@@ -27,6 +27,10 @@
  *     push would be a strut, which a tie or pendant is not);
  *   - every body at rest: the kinetic energy of platform, boom, load and counterweight at most
  *     1e-6 J.
+ * A static solve that fails with a load whose weight is below the rounding of the rope's force
+ * at slack (DBL_EPSILON k eps ln 2, mech_axial.h; a weightless load: g = 0) is said as such,
+ * naming [environment] g, [load] mass, [rope] enabled: the tension-only rope, smoothed at slack,
+ * holds it at no equilibrium the solve can resolve.
  * A check that fails gives CRANE_ERR_START with a message naming the scene keys that cannot be
  * met together ("[ties] gantry_top, [boom] tip_radius, [load] mass") and what was found; the
  * state reached stays in the model (for equilibrium.csv). */

@@ -13,7 +13,8 @@
  *   - a full disk (a small tmpfs, when this test may mount one) during --vtk and --animate: the
  *     final status written (failed, naming the file and the system's error), no partial picture;
  *   - messages: a loop of symbolic links as the scene, the static start's keys (the ground's
- *     height [platform] joint_A, a rope too thin [rope] A);
+ *     height [platform] joint_A, a rope too thin [rope] A, a load without weight on the rope:
+ *     g = 0 or 1e-300 kg);
  *   - drift modes: the modes at t = 12.5 s of the paper scene list as their slowest elastic mode
  *     the drive's PID mode of the static start (the same physics at any T), the drift modes of the
  *     constraints' invariants apart (kind "drift").
@@ -319,6 +320,27 @@ static void test_messages(void)
     tap_ok(r.exited && r.code == 2 && strstr(r.err, "the keys [rope] A") &&
                !strstr(r.err, "[rope] length") && strstr(r.err, "the rope stretches"),
            "a rope of 1e-12 m^2: [rope] A blamed, not [rope] length (%.300s)", r.err);
+    /* no weight on the rope (g = 0, a 1e-300 kg load): no equilibrium for the load hanging on
+     * a tension-only rope, said as such; without the rope the unloaded crane stands */
+    const char *weightless[2] = {"environment.g=0", "load.mass=1e-300"};
+    for (int i = 0; i < 2; i++) {
+        path2(out, sizeof out, tmp, i ? "light-load" : "no-gravity");
+        run(NULL, (const char *[]){"--static", "--set", weightless[i], "--out", out, NULL},
+            "weightless", 60, &r);
+        tap_ok(r.exited && r.code == 2 && strstr(r.err, "the keys [environment] g, [load] mass") &&
+                   strstr(r.err, "the load weighs") && !strstr(r.err, "carries only"),
+               "--set %s: the load's weight named as the cause, not 'carries only 1 of the "
+               "loads' (%.300s)",
+               weightless[i], r.err);
+    }
+    path2(out, sizeof out, tmp, "no-gravity-no-rope");
+    run(NULL,
+        (const char *[]){"--static", "--set", "environment.g=0", "--set", "rope.enabled=false",
+                         "--out", out, NULL},
+        "norope", 60, &r);
+    tap_ok(r.exited && r.code == 0 && first_line_is(out, "status.txt", "status: completed"),
+           "g = 0 without the rope: the unloaded crane's static start verified (exit %d: %.200s)",
+           r.code, r.err);
 }
 
 /* ------------------------------------------------------------------ drift ---- */
