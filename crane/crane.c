@@ -7,8 +7,9 @@
  *         [--anim-step DT] [--anim-scale K] [--static] [--modes [T]] [--error-estimate [K]]
  *
  * --static and --modes replace the dynamic run by the analyses of crane/crane_static.h: the
- * static equilibrium (equilibrium.csv, static.txt) and the modes at time T (modes.csv, modes.gp,
- * modes.png). A static start whose checks fail (scene keys that cannot be met together) ends
+ * static equilibrium (equilibrium.csv, static.txt) and the modes at time T, 0 <= T <= t_end
+ * (modes.csv, modes.gp, modes.png; the drift modes of a state in motion apart). The options of
+ * the dynamic run (--vtk, --animate and their steps, --error-estimate) are refused with them. A static start whose checks fail (scene keys that cannot be met together) ends
  * with exit status 2, status.txt and static.txt naming the keys. --error-estimate adds a second
  * run at rtol / K, atol / K (K = 100 unless given) beside the first, compared at every row:
  * error_estimate.csv (crane/program/cp_errest.c); a second run that fails leaves the first run's
@@ -139,6 +140,7 @@ int main(int argc, char **argv)
     r.rn.est.on = o.errest; /* --error-estimate: the runner's (rn_estimate.c, cp_errest.c) */
     r.rn.est.factor = o.errest_factor;
     r.o = &o;
+    o.viz.stop = rn_signal_flag(); /* a signal stops gnuplot on the animation */
 
     char tried[2048], odd[RN_PATH_SIZE + 128];
     const char *arg = o.scene ? o.scene : CP_DEFAULT_SCENE;
@@ -181,6 +183,15 @@ int main(int argc, char **argv)
         fprintf(stderr, "crane: %s\n", err.message);
         return RN_EXIT_USAGE;
     }
+    /* --modes T: the modes at a time of the run, T within [0, t_end] (a T beyond it would
+     * integrate past the scene's end, without end for a huge T) */
+    if (o.modes && !(o.modes_t <= r.scene.t_end)) {
+        fprintf(stderr,
+                "crane: option --modes %g: T must be within [0, t_end] = [0, %g] s (the scene's "
+                "[solver] t_end; --t-end sets it)\n",
+                o.modes_t, r.scene.t_end);
+        return RN_EXIT_USAGE;
+    }
     /* the number of output rows, in floating point before any conversion to an integer */
     double nout = ceil(r.scene.t_end / r.scene.output_step - 1e-9);
     if (!(nout >= 1)) nout = 1;
@@ -209,10 +220,13 @@ int main(int argc, char **argv)
 
     int completed = !strcmp(r.rn.status, "completed");
     if (completed && rn_signal()) {
+        int figs = r.rn.rows > 1 && !o.no_plots;
         snprintf(r.rn.reason, sizeof r.rn.reason,
-                 "the integration reached t_end; %s received afterwards%s",
-                 rn_signal_name(rn_signal()),
-                 r.rn.rows > 1 && !o.no_plots ? ": the figures were not drawn" : "");
+                 "the integration reached t_end; %s received afterwards%s%s%s",
+                 rn_signal_name(rn_signal()), figs || o.viz.animate ? ": " : "",
+                 figs ? "the figures were not drawn" : "",
+                 o.viz.animate ? (figs ? ", nor the animation" : "the animation was not drawn")
+                               : "");
     } else if (completed && r.rn.rows > 1 && !o.no_plots) {
         cp_draw_figures(&r);
         if (rn_signal() && !strcmp(r.rn.status, "completed"))

@@ -207,8 +207,8 @@ static int write_script(crane_anim *a)
     if (!f) return -1;
     /* real time: the mean interval of the frames (the output step when it is the longer) */
     double dt = a->frames > 1 ? (a->times[a->frames - 1] - a->times[0]) / (a->frames - 1) : a->step;
-    int delay = (int)lround(100 * dt);
-    if (delay < 2) delay = 2; /* viewers show shorter delays slower */
+    /* GIF's delay: hundredths of a second in 16 bits; viewers show delays below 2 slower */
+    int delay = !(100 * dt < 65535) ? 65535 : !(100 * dt >= 2) ? 2 : (int)lround(100 * dt);
     fprintf(f,
             "# Animation of the crane run (crane --animate, crane/crane_anim.h) from anim.dat and\n"
             "# anim_track.dat; run in this folder: gnuplot anim.gp\n"
@@ -238,33 +238,77 @@ static int write_script(crane_anim *a)
     return fclose(f) != 0 || bad ? -1 : 0;
 }
 
-int crane_anim_close(crane_anim **ap, int render, int quiet)
+/* gnuplot anim.gp in the folder, its messages into anim.log (pu_gnuplot.h); crane.gif and
+ * crane_frame.png checked whole. 0, or -1 with the reason in msg (the pictures removed). */
+static int render_gif(const crane_anim *a, const char *exe, const volatile sig_atomic_t *stop,
+                      char *msg, size_t size)
+{
+    char gif[4200], png[4200], why[512], first[256];
+    pu_gnuplot_job job = {exe, a->dir, "anim.gp", NULL, "anim.log", stop};
+    int st = pu_gnuplot_run(&job, why, sizeof why);
+    snprintf(gif, sizeof gif, "%s/crane.gif", a->dir);
+    snprintf(png, sizeof png, "%s/crane_frame.png", a->dir);
+    int gif_ok = pu_gif_whole(gif), png_ok = pu_png_whole(png);
+    if (st != -1 && WIFEXITED(st) && WEXITSTATUS(st) == 0 && gif_ok && png_ok) {
+        char log[4200];
+        snprintf(log, sizeof log, "%s/anim.log", a->dir);
+        remove(log); /* gnuplot's count of the frames */
+        return 0;
+    }
+    pu_gnuplot_log_first(a->dir, "anim.log", 0, first, sizeof first);
+    const char *sep = first[0] ? ": " : "";
+    if (st == -1)
+        snprintf(msg, size, "gnuplot on the animation: %s", why);
+    else if (stop && *stop)
+        snprintf(msg, size, "a signal stopped gnuplot on the animation");
+    else if (!WIFEXITED(st))
+        snprintf(msg, size, "gnuplot on the animation ended by signal %d%s%s (see %s/anim.log)",
+                 WTERMSIG(st), sep, first, a->dir);
+    else if (WEXITSTATUS(st) != 0)
+        snprintf(msg, size, "gnuplot on the animation exited with %d%s%s (see %s/anim.log)",
+                 WEXITSTATUS(st), sep, first, a->dir);
+    else /* gnuplot says nothing when its output cannot be written (a full disk) */
+        snprintf(msg, size, "gnuplot on the animation exited with 0 but %s not written whole%s%s",
+                 !gif_ok ? "crane.gif was" : "crane_frame.png was", sep, first);
+    remove(gif); /* no partial picture behind: a GIF cut by a full disk would keep it full */
+    remove(png);
+    return -1;
+}
+
+int crane_anim_close(crane_anim **ap, int render, int quiet, const volatile sig_atomic_t *stop,
+                     char *msg, size_t size)
 {
     if (!ap || !*ap) return 0;
     crane_anim *a = *ap;
     int n = a->bad ? -1 : a->frames;
-    if (fclose(a->dat) != 0) n = -1;
-    if (fclose(a->track) != 0) n = -1;
-    if (a->frames > 0 && write_script(a) != 0) n = -1;
+    if (a->bad) snprintf(msg, size, "writing %s/anim.dat failed", a->dir);
+    int e1 = fclose(a->dat) != 0 ? errno : 0, e2 = fclose(a->track) != 0 ? errno : 0;
+    if (n >= 0 && (e1 || e2)) {
+        snprintf(msg, size, "cannot write %s/%s: %s", a->dir, e1 ? "anim.dat" : "anim_track.dat",
+                 strerror(e1 ? e1 : e2));
+        n = -1;
+    }
+    if (n > 0 && write_script(a) != 0) {
+        snprintf(msg, size, "cannot write %s/anim.gp: %s", a->dir, strerror(errno));
+        n = -1;
+    }
+    if (n < 0) { /* the data cut short: removed with the script, none of it kept half */
+        static const char *const parts[] = {"anim.dat", "anim_track.dat", "anim.gp"};
+        for (int k = 0; k < 3; k++) {
+            char path[4200];
+            snprintf(path, sizeof path, "%s/%s", a->dir, parts[k]);
+            remove(path);
+        }
+    }
     if (n > 0 && render) {
         char exe[4200];
         if (!pu_gnuplot_find(exe, sizeof exe)) {
             if (!quiet) printf("gnuplot not found: animation skipped (anim.gp written)\n");
-        } else {
-            /* gnuplot anim.gp in the folder, its messages into anim.log (pu_gnuplot.h) */
-            char log[4200], last[512];
-            pu_gnuplot_job job = {exe, a->dir, "anim.gp", NULL, "anim.log", NULL};
-            int st = pu_gnuplot_run(&job, last, sizeof last);
-            snprintf(log, sizeof log, "%s/anim.log", a->dir);
-            if (st == -1 || !WIFEXITED(st) || WEXITSTATUS(st) != 0) {
-                if (!quiet) printf("gnuplot failed on the animation: see %s\n", log);
-            } else {
-                remove(log); /* gnuplot's count of the frames */
-                if (!quiet)
-                    printf("crane: animation %s/crane.gif, %d frames every %g s, boom "
-                           "deflection x%g\n",
-                           a->dir, a->frames, a->step, a->scale);
-            }
+        } else if (render_gif(a, exe, stop, msg, size) != 0) {
+            n = -1;
+        } else if (!quiet) {
+            printf("crane: animation %s/crane.gif, %d frames every %g s, boom deflection x%g\n",
+                   a->dir, a->frames, a->step, a->scale);
         }
     }
     free(a->times);

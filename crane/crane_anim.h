@@ -14,6 +14,7 @@
 #ifndef CRANE_ANIM_H
 #define CRANE_ANIM_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #include "crane_model.h"
@@ -31,9 +32,15 @@ crane_anim *crane_anim_open(const char *dir, const char *scene_name, double step
 /* Adds a frame from g. 0, or -1 if the data could not be written (the reason in msg). */
 int crane_anim_frame(crane_anim *a, const crane_geom *g, char *msg, size_t size);
 /* Closes the data files, writes anim.gp and, with render and gnuplot installed, makes crane.gif
- * and crane_frame.png (gnuplot's messages in anim.log if it fails; the messages on stdout unless
- * quiet). Frees a. The number of frames, or -1 if a file could not be written. */
-int crane_anim_close(crane_anim **a, int render, int quiet);
+ * and crane_frame.png (the messages on stdout unless quiet; gnuplot is stopped when *stop
+ * becomes non-zero, stop NULL: never). Frees a. The number of frames, or
+ * -1 with the reason in msg: a file could not be written, or gnuplot failed (it exited with an
+ * error or a signal, or left crane.gif or crane_frame.png not whole; its messages in anim.log,
+ * the first named in msg): crane.gif and crane_frame.png are then removed (a GIF cut short by a
+ * full disk keeps no space); a file that could not be written removes the animation's data
+ * files (anim.dat, anim_track.dat, anim.gp) likewise. */
+int crane_anim_close(crane_anim **a, int render, int quiet, const volatile sig_atomic_t *stop,
+                     char *msg, size_t size);
 
 #ifdef __cplusplus
 }

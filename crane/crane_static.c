@@ -2,6 +2,7 @@
 #include "bg_trim.h"
 #include "crane_static.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -269,10 +270,36 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
          * is mostly whatever moves most, the load or the drive) */
         const char *e = rep->solve.residual_eq >= 0 ? bgr_eq_name(m, rep->solve.residual_eq)
                                                     : NULL;
-        keys_of_path(rep, &sc, e);
-        add_key(rep, "[environment] g");
-        if (sc.rope) add_key(rep, "[load] mass");
-        say(rep, "no static equilibrium: the structure carries only %.3g of the scene's loads", rep->solve.lambda, 0, 0);
+        /* a load whose weight is below the rounding of the rope's force at slack: the rope is
+         * tension only, smoothed at slack (mech_axial.h: k eps ln 2 at its rest length, eps =
+         * 1e-4 L0, decaying as k eps e^(x / eps) when slack by x), so the load would hang where
+         * that force equals its weight, at a stiffness that much below the rope's: lost in
+         * its rounding, and a weightless load has no equilibrium on it at all */
+        double W = sc.load_mass * fabs(sc.g), fs = sc.rope_E * sc.rope_A * 1e-4 * log(2.0);
+        int weightless = sc.rope && !(W > DBL_EPSILON * fs);
+        if (weightless) {
+            if (!rep->message[0]) rep->keys[0] = '\0'; /* the structure is not to blame */
+            add_key(rep, "[environment] g");
+            add_key(rep, "[load] mass");
+            add_key(rep, "[rope] enabled");
+            say(rep, "the load weighs %.3g N, below the rounding of the rope's force at slack "
+                     "(%.4g N, the tension-only rope smoothed there: mech_axial.h): hanging on "
+                     "the rope it has no static equilibrium the solve can resolve (a weightless "
+                     "load none at all); give it a weight, or no rope",
+                W, fs, 0);
+        } else {
+            keys_of_path(rep, &sc, e);
+            add_key(rep, "[environment] g");
+            if (sc.rope) add_key(rep, "[load] mass");
+            if (rep->solve.lambda >= 1)
+                say(rep, "no static equilibrium: the solve reached the full load but did not "
+                         "converge there",
+                    0, 0, 0);
+            else
+                say(rep, "no static equilibrium: the structure carries only %.3g of the scene's "
+                         "loads",
+                    rep->solve.lambda, 0, 0);
+        }
         size_t l = strlen(rep->message);
         snprintf(rep->message + l, sizeof rep->message - l, " (%s)", serr.message);
     } else {
@@ -301,12 +328,27 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
                     rep->straightness, rep->straightness_tol, 0);
         }
         if (!rep->ok_load) {
-            add_key(rep, "[rope] length");
-            add_key(rep, "[boom] length");
-            add_key(rep, "[boom] tip_radius");
-            say(rep, "the load hangs at z = %.4g m, below the ground (z = %.4g m at the slewing "
-                     "joint)",
-                rep->load_z, rep->ground_z, 0);
+            /* the rope's strain at rest: beyond 5 % (steel breaks at about 1 %) the rope's
+             * stiffness is what is wrong, not the geometry */
+            double hang = rep->tip_z - rep->load_z, strain = hang / sc.rope_length - 1;
+            if (strain > 0.05) {
+                add_key(rep, "[rope] A");
+                add_key(rep, "[rope] E");
+                add_key(rep, "[load] mass");
+                say(rep, "the rope stretches to %.4g m (unstretched %.4g m, strain %.3g)", hang,
+                    sc.rope_length, strain);
+                say(rep, "the load hangs at z = %.4g m, below the ground (z = %.4g m at the slewing "
+                         "joint)",
+                    rep->load_z, rep->ground_z, 0);
+            } else {
+                add_key(rep, "[rope] length");
+                add_key(rep, "[boom] length");
+                add_key(rep, "[boom] tip_radius");
+                add_key(rep, "[platform] joint_A"); /* the ground's height */
+                say(rep, "the load hangs at z = %.4g m, below the ground (z = %.4g m at the slewing "
+                         "joint)",
+                    rep->load_z, rep->ground_z, 0);
+            }
         }
         if (!rep->ok_ties) {
             add_key(rep, "[ties] gantry_top");
@@ -519,6 +561,29 @@ int crane_modes(crane *c, double T, dae_modes **out, double *yout, bg_error *err
     return st;
 }
 
+int crane_modes_drift(crane *c, double T, double *hz, bg_error *err)
+{
+    if (hz) *hz = 0;
+    if (!c || !hz || !(T >= 0))
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_modes_drift", "bad arguments (T = %g)",
+                              T);
+    if (T == 0) return BG_OK;
+    dae_modes *M0 = NULL;
+    int st = crane_modes(c, 0.0, &M0, NULL, err);
+    if (st == BG_OK || st == DAE_CONV_FAIL) {
+        st = BG_OK;
+        for (int k = 0; k < dae_modes_count(M0); k++) { /* elastic first, by frequency */
+            const dae_mode *md = dae_modes_get(M0, k);
+            if (md->kind == DAE_MODE_ELASTIC && md->freq_hz > 0) {
+                *hz = CRANE_DRIFT_RATIO * md->freq_hz;
+                break;
+            }
+        }
+    }
+    dae_modes_free(&M0);
+    return st;
+}
+
 const char *crane_mode_part(const dae_modes *M, int k, char *buf, size_t size)
 {
     char d[256];
@@ -537,15 +602,21 @@ const char *crane_mode_part(const dae_modes *M, int k, char *buf, size_t size)
     return buf;
 }
 
-int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, FILE *f)
+int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, double drift_hz,
+                            FILE *f)
 {
     /* the parts present among the elastic modes */
     enum { MAXP = 16 };
     char parts[MAXP][64];
-    int np = 0, ne = 0, nr = 0, nc = 0;
+    int np = 0, ne = 0, nr = 0, nc = 0, nd = 0;
     dae_modes_info(M, &ne, &nr, &nc, NULL, NULL, NULL);
     for (int k = 0; k < dae_modes_count(M); k++) {
-        if (dae_modes_get(M, k)->kind != DAE_MODE_ELASTIC) continue;
+        const dae_mode *md = dae_modes_get(M, k);
+        if (md->kind != DAE_MODE_ELASTIC) continue;
+        if (md->freq_hz < drift_hz) {
+            nd++;
+            continue;
+        }
         char part[64];
         crane_mode_part(M, k, part, sizeof part);
         int j = 0;
@@ -559,14 +630,17 @@ int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, FIL
                "set datafile separator ','\nset grid\nset key outside right top\n"
                "set logscale x\nset xlabel 'natural frequency |s|/(2 pi) [Hz]'\n"
                "set ylabel 'damping ratio -Re(s)/|s|'\n");
-    fprintf(f, "set title 'crane modes, scene %s, t = %g s: %d elastic (plotted), %d rigid, %d "
+    char drift[96] = "";
+    if (nd) snprintf(drift, sizeof drift, ", %d drift (below %.3g Hz)", nd, drift_hz);
+    fprintf(f, "set title 'crane modes, scene %s, t = %g s: %d elastic (plotted)%s, %d rigid, %d "
                "constraint'\n",
-            scene, T, ne, nr, nc);
+            scene, T, ne - nd, drift, nr, nc);
     /* labels of the lowest five */
     int lab = 0;
     for (int k = 0; k < dae_modes_count(M) && lab < 5; k++) {
         const dae_mode *md = dae_modes_get(M, k);
-        if (md->kind != DAE_MODE_ELASTIC || !(md->freq_hz > 0)) continue;
+        if (md->kind != DAE_MODE_ELASTIC || !(md->freq_hz > 0) || md->freq_hz < drift_hz)
+            continue;
         char part[64];
         fprintf(f, "set label %d '%d %s %.3g Hz' at %.9g,%.9g offset 1,%d font ',8'\n", lab + 1,
                 k + 1, crane_mode_part(M, k, part, sizeof part), md->freq_hz, md->freq_hz,

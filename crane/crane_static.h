@@ -22,11 +22,17 @@
  *   - the tip at the scene's radius: |r - tip_radius| <= 1e-6 max(tip_radius, 1 m);
  *   - the boom above its foot (tip higher than the foot) and straight: no node farther than
  *     5 % of the boom's length from the line foot - tip (a buckled boom fails);
- *   - the load above the ground: its height above the slewing joint A's (the crane's base) > 0;
+ *   - the load above the ground: its height above the slewing joint A's (the crane's base) > 0
+ *     (the keys named: the rope's stiffness when it is strained beyond 5 %, else the geometry
+ *     and the ground's height [platform] joint_A);
  *   - the ties in tension (a truss also carries compression: a tie anchored where it can only
  *     push would be a strut, which a tie or pendant is not);
  *   - every body at rest: the kinetic energy of platform, boom, load and counterweight at most
  *     1e-6 J.
+ * A static solve that fails with a load whose weight is below the rounding of the rope's force
+ * at slack (DBL_EPSILON k eps ln 2, mech_axial.h; a weightless load: g = 0) is said as such,
+ * naming [environment] g, [load] mass, [rope] enabled: the tension-only rope, smoothed at slack,
+ * holds it at no equilibrium the solve can resolve.
  * A check that fails gives CRANE_ERR_START with a message naming the scene keys that cannot be
  * met together ("[ties] gantry_top, [boom] tip_radius, [load] mass") and what was found; the
  * state reached stays in the model (for equilibrium.csv). */
@@ -83,14 +89,28 @@ int crane_equilibrium_write(const crane *c, const crane_start_report *rep, FILE 
  * *out as dae_modes_compute (free it with dae_modes_free); y receives the state (bgr_n values, may
  * be NULL). BG_OK or a status with err. */
 int crane_modes(crane *c, double T, dae_modes **out, double *y, bg_error *err);
+/* Drift modes. The static start is an equilibrium: there the invariants the velocity-level
+ * constraints leave (the quaternions' norms, the nodes' positions against their bodies) give
+ * exact zero eigenvalues, constraint modes (bg_modes.h). At a state of the run (T > 0) the
+ * model is linearised at a state in motion, and those eigenvalues move off zero by the
+ * motion's rates: real or complex, some with negative damping, 1e-7 to 5e-4 Hz for the paper
+ * scene, where its slowest physical mode (the drive's PID) is at 0.032 Hz at every T. They are
+ * no motion of the crane: an elastic mode at T slower than CRANE_DRIFT_RATIO times the slowest
+ * elastic mode of the static start is classed as drift (reported apart: modes.csv's kind
+ * "drift", the summary's count, not plotted). *hz receives that bound (0 for T = 0: none); it
+ * costs the modes at the static start once more. BG_OK or the failure of those modes. */
+#define CRANE_DRIFT_RATIO 0.1
+int crane_modes_drift(crane *c, double T, double *hz, bg_error *err);
 /* The part a mode belongs to: the component under crane/ with the largest share ("boom",
  * "hydraulics", "load", "ties", "rope", "platform", ...; the left and right ties together).
  * Writes into buf, returns buf. */
 const char *crane_mode_part(const dae_modes *M, int k, char *buf, size_t size);
 /* modes.csv is the programs' writer (runner/rn_run.h: rn_modes_write with crane_mode_part). */
 /* modes.gp: the elastic modes' damping ratio against frequency (log scale), one colour per part,
- * the lowest labelled, into modes.png, from modes.csv. BG_OK or BG_ERR_IO. */
-int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, FILE *f);
+ * the lowest labelled, into modes.png, from modes.csv (the drift modes below drift_hz left
+ * out). BG_OK or BG_ERR_IO. */
+int crane_modes_plot_script(const dae_modes *M, const char *scene, double T, double drift_hz,
+                            FILE *f);
 
 #ifdef __cplusplus
 }

@@ -3,11 +3,14 @@
  *
  * The program hands every output row (t, y, yp) to crane_viz_row; a row becomes a frame of a
  * writer when its time has reached that writer's next frame time (0, DT, 2 DT, ... within 1e-6
- * DT; with an output step longer than DT every row is a frame), and only then is the geometry
+ * DT; with an output step longer than DT every row is a frame, and so with a DT below the
+ * rounding of the times, where t / DT exceeds 2^52 or overflows), and only then is the geometry
  * computed (crane_geometry). Nothing is allocated or computed when neither option is given:
  * crane_viz_open returns NULL and the program skips the calls. */
 #ifndef CRANE_VIZ_H
 #define CRANE_VIZ_H
+
+#include <signal.h>
 
 #include "crane_model.h"
 
@@ -22,6 +25,7 @@ extern "C" {
 typedef struct crane_viz_options {
     int vtk, animate;
     double vtk_step, anim_step, anim_scale; /* 0: the defaults above */
+    const volatile sig_atomic_t *stop; /* non-zero: stop drawing the animation (NULL: never) */
 } crane_viz_options;
 
 /* Takes the option name (--vtk, --animate: value NULL; --vtk-step, --anim-step, --anim-scale: a
@@ -37,8 +41,10 @@ crane_viz *crane_viz_open(const crane_viz_options *o, const crane *c, const char
 /* One output row. */
 void crane_viz_row(crane_viz *v, double t, const double *y, const double *yp);
 /* Completes the files and, with render, draws the animation (gnuplot); a line per writer on
- * stdout unless quiet; frees v (NULL: nothing). 0, or -1 if a file could not be written. */
-int crane_viz_close(crane_viz **v, int render);
+ * stdout unless quiet; frees v (NULL: nothing). 0, or -1 if a file could not be written or
+ * gnuplot failed on the animation: the first failure's reason in msg (each was said on stderr
+ * when it happened; the files cut short are removed, crane_anim.h). */
+int crane_viz_close(crane_viz **v, int render, char *msg, size_t size);
 
 #ifdef __cplusplus
 }

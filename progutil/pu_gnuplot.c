@@ -46,6 +46,18 @@ int pu_png_whole(const char *path)
     return ok;
 }
 
+int pu_gif_whole(const char *path)
+{
+    unsigned char head[6], tail = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    int ok = fread(head, 1, 6, f) == 6 &&
+             (!memcmp(head, "GIF87a", 6) || !memcmp(head, "GIF89a", 6)) &&
+             fseek(f, -1L, SEEK_END) == 0 && fread(&tail, 1, 1, f) == 1 && tail == 0x3B;
+    fclose(f);
+    return ok;
+}
+
 void pu_gnuplot_log_first(const char *dir, const char *log, int remove_empty, char *buf,
                           size_t size)
 {

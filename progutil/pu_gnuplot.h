@@ -25,6 +25,9 @@ int pu_gnuplot_find(char *buf, size_t size);
 
 /* A PNG file that is whole: it ends with the IEND chunk. 1 or 0. */
 int pu_png_whole(const char *path);
+/* A GIF file that is whole: it starts with "GIF87a" or "GIF89a" and ends with the trailer byte
+ * 0x3B (GIF89a specification, section 27). 1 or 0. */
+int pu_gif_whole(const char *path);
 
 typedef struct pu_gnuplot_job {
     const char *exe;      /* gnuplot (pu_gnuplot_find) */

@@ -191,7 +191,20 @@ const char *rn_mode_part_top(const dae_modes *M, int k, char *buf, size_t size)
     return buf;
 }
 
+const char *rn_mode_kind(const dae_modes *M, int k, double drift_hz)
+{
+    const dae_mode *md = dae_modes_get(M, k);
+    if (!md) return "unknown";
+    if (md->kind == DAE_MODE_ELASTIC && md->freq_hz < drift_hz) return "drift";
+    return dae_mode_kind_name(md->kind);
+}
+
 int rn_modes_write(const dae_modes *M, rn_part_fn part, FILE *f)
+{
+    return rn_modes_write_drift(M, part, 0, f);
+}
+
+int rn_modes_write_drift(const dae_modes *M, rn_part_fn part, double drift_hz, FILE *f)
 {
     if (!part) part = rn_mode_part_top;
     fprintf(f, "index,frequency_hz,damping_ratio,kind,part,dominant\n");
@@ -202,7 +215,7 @@ int rn_modes_write(const dae_modes *M, rn_part_fn part, FILE *f)
         for (char *q = d; *q; q++)
             if (*q == '"') *q = '\'';
         fprintf(f, "%d,%.10g,%.6g,%s,%s,\"%s\"\n", k + 1, md->freq_hz, md->damping,
-                dae_mode_kind_name(md->kind), part(M, k, pb, sizeof pb), d);
+                rn_mode_kind(M, k, drift_hz), part(M, k, pb, sizeof pb), d);
     }
     return ferror(f) ? BG_ERR_IO : BG_OK;
 }

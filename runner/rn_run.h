@@ -22,7 +22,8 @@
  * has one): the signal received, the phase and the status.txt prepared for it. A program runs
  * one rn_run at a time.
  *
- * Invariants: status.txt is always whole (written to a temporary file, fsync, rename), first
+ * Invariants: status.txt is always whole (written to a temporary file, fsync, rename; on a full
+ * disk, which has no room for the copy, rewritten in place: rn_write_status), first
  * "running", at the end what became of the run; results.csv holds whole rows at every moment
  * (a write that fails is cut back to the last whole row). */
 #ifndef RN_RUN_H
@@ -121,7 +122,9 @@ void rn_status_ready(const rn_run *r, int ready);
  * integration. */
 void rn_arm_loop(rn_run *r);
 void rn_arm_finishing(rn_run *r);
-/* status.txt from r->status and r->reason (final: with the end). 0, or RN_EXIT_RUN. */
+/* status.txt from r->status and r->reason (final: with the end), atomically; on a full disk
+ * (ENOSPC, EDQUOT: no room for the temporary copy) rewritten in place, truncated first so that
+ * its own blocks take the new text. 0, or RN_EXIT_RUN. */
 int rn_write_status(rn_run *r, int final);
 
 /* Records a failure and says it on stderr ("program: what: msg"); the first failure's reason
@@ -235,6 +238,11 @@ int rn_print_solver_stats(rn_run *r, FILE *f, const void *info);
  * root with the largest share). */
 typedef const char *(*rn_part_fn)(const dae_modes *M, int k, char *buf, size_t size);
 int rn_modes_write(const dae_modes *M, rn_part_fn part, FILE *f);
+/* The same with the kind "drift" for an elastic mode below drift_hz (0: none), a mode of the
+ * constraints' invariants drifting rather than a motion (crane_static.h: crane_modes_drift). */
+int rn_modes_write_drift(const dae_modes *M, rn_part_fn part, double drift_hz, FILE *f);
+/* Mode k's kind as modes.csv names it: dae_mode_kind_name, or "drift" as above. */
+const char *rn_mode_kind(const dae_modes *M, int k, double drift_hz);
 const char *rn_mode_part_top(const dae_modes *M, int k, char *buf, size_t size);
 
 /* ------------------------------------------------------------- rn_estimate.c ---- */

@@ -207,6 +207,17 @@ int rn_write_status(rn_run *r, int final)
     rn_path_in(r, "status.txt", path, sizeof path);
     char *text = status_text(r, r->status, r->reason, final);
     int rc = text ? rn_save_atomic(path, text, strlen(text)) : -1, e = text ? errno : ENOMEM;
+    if (rc != 0 && (e == ENOSPC || e == EDQUOT)) {
+        /* a full disk has no room for the temporary copy: status.txt rewritten in place, its
+         * own blocks freed by the truncation first (the new text fits in them unless it needs
+         * more blocks than the old: a status of some hundred bytes fits in one) */
+        int fd = open(path, O_WRONLY | O_TRUNC);
+        if (fd >= 0) {
+            int bad = pu_write_all(fd, text, strlen(text)) || fsync(fd) != 0;
+            if (close(fd) != 0) bad = 1;
+            if (!bad) rc = 0;
+        }
+    }
     free(text);
     if (rc == 0) return 0;
     fprintf(stderr, "%s: cannot write %s: %s\n", r->program, path, strerror(e));

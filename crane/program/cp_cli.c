@@ -86,6 +86,7 @@ static int take_viz(const pu_cli_option *opt, const char *value, void *base, cha
                  value ? value : "");
         return -1;
     }
+    if (!o->viz_given) o->viz_given = opt->name;
     return 0;
 }
 
@@ -121,7 +122,8 @@ static const pu_cli_option OPTIONS[] = {
     {.name = "--modes", .kind = PU_CLI_DOUBLE, .value = PU_CLI_OPTIONAL, .arg = "[T]",
      .at = AT(modes_t), .seen = AT(modes), .min = 0, .max = HUGE_VAL,
      .what = "a time >= 0 in s",
-     .help = "the modes at time T (default 0: the static start) instead of the run: modes.csv, "
+     .help = "the modes at time T, 0 <= T <= t_end (default 0: the static start) instead of "
+             "the run, the drift modes apart: modes.csv, "
              "modes.gp, modes.png (frequency against damping)"},
     {.name = "--error-estimate", .kind = PU_CLI_DOUBLE, .value = PU_CLI_OPTIONAL, .arg = "[K]",
      .at = AT(errest_factor), .seen = AT(errest), .min = 1, .min_open = 1,
@@ -191,6 +193,21 @@ static int usage_error(const char *msg)
     return RN_EXIT_USAGE;
 }
 
+/* The one rule for options that cannot go together: those of the dynamic run (they act on its
+ * rows: --error-estimate, --vtk, --vtk-step, --animate, --anim-step, --anim-scale) are refused
+ * with the analyses that make no run (--static, --modes). 0, or -1 with the message. */
+static int check_combination(const cp_options *o, char *msg, size_t size)
+{
+    const char *analysis = o->static_only ? "--static" : o->modes ? "--modes" : NULL;
+    const char *run_only = o->errest ? "--error-estimate" : o->viz_given;
+    if (!analysis || !run_only) return 0;
+    snprintf(msg, size,
+             "option %s belongs to the dynamic run, not to %s (an analysis without a run: it "
+             "would be ignored)",
+             run_only, analysis);
+    return -1;
+}
+
 /* Returns -1 to go on, or an exit status (help and version: 0). */
 int cp_parse_args(int argc, char **argv, cp_options *o)
 {
@@ -223,12 +240,7 @@ int cp_parse_args(int argc, char **argv, cp_options *o)
         printf("crane (bgdae) %s\n", CRANE_VERSION);
         return RN_EXIT_OK;
     }
-    if (o->errest && (o->static_only || o->modes)) {
-        snprintf(msg, sizeof msg,
-                 "option --error-estimate belongs to the dynamic run, not to %s",
-                 o->static_only ? "--static" : "--modes");
-        return usage_error(msg);
-    }
+    if (check_combination(o, msg, sizeof msg) != 0) return usage_error(msg);
     return -1;
 }
 
@@ -237,7 +249,9 @@ int cp_parse_args(int argc, char **argv, cp_options *o)
 /* Finds the scene: as given, then (bare names) in crane/scenes/ with or without .ini, relative
  * to the current folder, then to the source tree and the installed data folder. A candidate
  * that exists but is no regular file (a directory, a FIFO, a device) is remembered in odd (its
- * path and what it is), for the message when nothing is found. */
+ * path and what it is), and so is one that stat cannot reach for another reason than its absence
+ * (a loop of symbolic links: ELOOP; EACCES; ENAMETOOLONG, with the system's message), for the
+ * message when nothing is found. */
 int cp_find_scene(const char *arg, char *path, size_t size, char *tried, size_t tsize, char *odd,
                   size_t osize)
 {
@@ -259,10 +273,15 @@ int cp_find_scene(const char *arg, char *path, size_t size, char *tried, size_t 
             int len = snprintf(path, size, "%s%s%s%s", roots[r], pre[f], arg, suf[f]);
             if (len < 0 || (size_t)len >= size) continue;
             struct stat st;
-            if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) return 1;
-            if (stat(path, &st) == 0 && !odd[0])
+            int e = stat(path, &st) == 0 ? 0 : errno;
+            if (!e && S_ISREG(st.st_mode)) return 1;
+            if (!e && !odd[0])
                 snprintf(odd, osize, "%s is %s, not a scene file", path,
                          pu_fs_kind((unsigned)st.st_mode));
+            /* there but unusable (a loop of symbolic links, a folder on the way that cannot be
+             * searched, a name too long): the system's reason, not "not found" */
+            if (e && e != ENOENT && e != ENOTDIR && !odd[0])
+                snprintf(odd, osize, "%s: %s", path, strerror(e));
             if (tl < tsize) {
                 len = snprintf(tried + tl, tsize - tl, "%s%s", tl ? ", " : "", path);
                 tl = len < 0 ? tsize : tl + (size_t)len;

@@ -58,14 +58,13 @@ static int print_equilibrium(rn_run *rn, FILE *f, const void *ctx)
 
 static int print_modes(rn_run *rn, FILE *f, const void *ctx)
 {
-    (void)rn;
-    return rn_modes_write(ctx, crane_mode_part, f);
+    return rn_modes_write_drift(ctx, crane_mode_part, CP_RUN(rn)->drift_hz, f);
 }
 
 static int print_modes_plot(rn_run *rn, FILE *f, const void *ctx)
 {
     cp_run *r = CP_RUN(rn);
-    return crane_modes_plot_script(ctx, r->scene.name, r->o->modes_t, f);
+    return crane_modes_plot_script(ctx, r->scene.name, r->o->modes_t, r->drift_hz, f);
 }
 
 /* The static start (crane_static_start) with its checks in static.txt, and with --static
@@ -108,29 +107,42 @@ int cp_analyse(cp_run *r)
         rn_set_phase(&r->rn, RN_PHASE_SETUP, "computing the modes");
         dae_modes *M = NULL;
         double t0 = rn_wall_now();
-        rc = crane_modes(r->c, r->o->modes_t, &M, NULL, &err);
+        /* the drift modes' bound from the static start first (crane_static.h) */
+        rc = crane_modes_drift(r->c, r->o->modes_t, &r->drift_hz, &err);
+        if (rc == BG_OK) rc = crane_modes(r->c, r->o->modes_t, &M, NULL, &err);
         if (rc != BG_OK && rc != DAE_CONV_FAIL) {
             dae_modes_free(&M);
             return rn_fail_run(&r->rn, "the modes", err.message);
         }
         r->rn.t = r->o->modes_t;
-        int ne = 0, nr = 0, nc = 0, method = 0;
+        int ne = 0, nr = 0, nc = 0, nd = 0, method = 0;
         dae_modes_info(M, &ne, &nr, &nc, NULL, NULL, &method);
+        for (int k = 0; k < dae_modes_count(M); k++)
+            nd += !strcmp(rn_mode_kind(M, k, r->drift_hz), "drift");
         if (rn_save_file(&r->rn, "modes.csv", print_modes, M) != 0 ||
             rn_save_file(&r->rn, "modes.gp", print_modes_plot, M) != 0) {
             dae_modes_free(&M);
             return RN_EXIT_RUN;
         }
         if (!r->o->quiet) {
-            printf("crane: %d elastic, %d rigid, %d constraint modes at t = %g s (%s, %.3f s)\n",
-                   ne, nr, nc, r->o->modes_t,
-                   method == DAE_MODES_DENSE ? "dense" : "lowest 20 by ARPACK", rn_wall_now() - t0);
-            for (int k = 0; k < dae_modes_count(M) && k < 5; k++) {
+            char drift[160] = "";
+            if (nd)
+                snprintf(drift, sizeof drift,
+                         "; %d drift modes below %.3g Hz, the invariants of the constraints "
+                         "moving at a state in motion, not listed",
+                         nd, r->drift_hz);
+            printf("crane: %d elastic, %d rigid, %d constraint modes at t = %g s (%s, %.3f s)%s\n",
+                   ne - nd, nr, nc, r->o->modes_t,
+                   method == DAE_MODES_DENSE ? "dense" : "lowest 20 by ARPACK", rn_wall_now() - t0,
+                   drift);
+            for (int k = 0, shown = 0; k < dae_modes_count(M) && shown < 5; k++) {
                 const dae_mode *md = dae_modes_get(M, k);
+                if (nd && !strcmp(rn_mode_kind(M, k, r->drift_hz), "drift")) continue;
                 char d[256];
                 dae_modes_describe(M, k, 2, 2, 0, d, sizeof d);
                 printf("  mode %d: %.6g Hz, damping ratio %.3g, %s\n", k + 1, md->freq_hz,
                        md->damping, d);
+                shown++;
             }
         }
         dae_modes_free(&M);
@@ -242,9 +254,14 @@ int cp_simulate(cp_run *r)
 done:
     if (rn_loop_end(&r->rn) != 0) code = RN_EXIT_RUN; /* with error_estimate.csv */
     /* the animation is rendered only for a run that reached t_end with no signal pending */
-    if (crane_viz_close(&r->viz, !strcmp(r->rn.status, "completed") && !rn_signal()) != 0 &&
-        !strcmp(r->rn.status, "completed"))
-        code = rn_fail_run(&r->rn, "writing the ParaView series or the animation", "see above");
+    char why[1024] = "";
+    if (crane_viz_close(&r->viz, !strcmp(r->rn.status, "completed") && !rn_signal(), why,
+                        sizeof why) != 0 &&
+        !strcmp(r->rn.status, "completed") && !rn_signal()) {
+        r->rn.status = "failed"; /* said on stderr already: the reason only for status.txt */
+        snprintf(r->rn.reason, sizeof r->rn.reason, "%s", why);
+        code = RN_EXIT_RUN;
+    }
     if (r->rn.s) {
         rn_stats_info info = {&dopt, dopt.nbreakpoints, bk, r->scene.output_step,
                               r->scene.nominal_scales, NULL};

@@ -56,6 +56,7 @@ typedef struct cp_options {
     int errest;            /* --error-estimate [K] (rn_run.h: rn_estimate) */
     double errest_factor;  /* K */
     crane_viz_options viz; /* --vtk, --animate (crane_viz.h) */
+    const char *viz_given; /* the first of --vtk, --vtk-step, --animate, ... given (NULL: none) */
     long long max_rows;    /* --max-rows */
     int argc;              /* the command line, for status.txt */
     char **argv;
@@ -67,7 +68,8 @@ int cp_parse_args(int argc, char **argv, cp_options *o);
 /* Finds the scene arg: as given, then (bare names) in crane/scenes/ with or without .ini,
  * relative to the current folder, then to the source tree and the installed data folder. 1 with
  * its path in path; 0 with the paths tried in tried, and in odd a candidate that exists but is
- * no regular file (its path and what it is). */
+ * no regular file (its path and what it is) or that cannot be reached for another reason than
+ * its absence (its path and the system's error: a loop of symbolic links). */
 int cp_find_scene(const char *arg, char *path, size_t size, char *tried, size_t tsize, char *odd,
                   size_t osize);
 
@@ -101,6 +103,7 @@ typedef struct cp_run {
     int have_final;
     crane_viz *viz; /* --vtk, --animate (crane_viz.h); NULL when off */
     int bad_scene;  /* the static start found scene keys that cannot be met together: exit 2 */
+    double drift_hz; /* --modes T: elastic modes below it are drift (crane_modes_drift) */
 } cp_run;
 
 /* The crane's run of a runner's hook (rn.owner). */

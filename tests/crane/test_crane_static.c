@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "crane_scene.h"
 #include "crane_spawn.h"
 #include "crane_static.h"
 #include "tap.h"
@@ -243,11 +244,65 @@ static void test_program(void)
            "crane --modes=-1: exit 2 (%.100s)", r.err);
 }
 
+/* The counts of modes docs/crane.md states for the scene at the static start, in its item "The
+ * modes at the start" after the text lead ("no rigid mode and ": the constraint modes; "paper-undamped: ": the elastic ones and,
+ * after "and ", the constraint ones): ne (or -1) and nc. */
+static void documented_counts(const char *doc, const char *lead, int *ne, int *nc)
+{
+    *ne = *nc = -1;
+    const char *at = doc ? strstr(doc, "**The modes at the start**") : NULL;
+    const char *p = at ? strstr(at, lead) : NULL;
+    if (!p) return;
+    p += strlen(lead);
+    char *end;
+    long a = strtol(p, &end, 10);
+    if (!strncmp(end, " constraint modes", 17)) {
+        *nc = (int)a;
+        return;
+    }
+    *ne = (int)a;
+    const char *q = strstr(end, "and ");
+    if (q) *nc = (int)strtol(q + 4, NULL, 10);
+}
+
+/* docs/crane.md's counts of the paper and paper-undamped scenes' modes at the start against the
+ * computed ones. */
+static void test_documented_modes(const char *docs, const char *scenes_dir)
+{
+    static char doc[1 << 17];
+    FILE *f = fopen(docs, "r");
+    size_t n = f ? fread(doc, 1, sizeof doc - 1, f) : 0;
+    doc[n] = '\0';
+    if (f) fclose(f);
+    struct {
+        const char *scene, *lead;
+    } cases[] = {{"paper.ini", "no rigid mode and "}, {"paper-undamped.ini", "paper-undamped: "}};
+    for (int i = 0; i < 2; i++) {
+        char path[4200];
+        snprintf(path, sizeof path, "%s/%s", scenes_dir, cases[i].scene);
+        crane_scene s;
+        bg_error err = {0};
+        crane *c = NULL;
+        dae_modes *M = NULL;
+        int de, dc, ne = -1, nr = -1, nc = -1;
+        documented_counts(doc, cases[i].lead, &de, &dc);
+        if (crane_scene_load(&s, path, &err) == BG_OK && (c = crane_build(&s, &err)) &&
+            crane_settle(c, &err) == BG_OK && crane_modes(c, 0.0, &M, NULL, &err) == BG_OK)
+            dae_modes_info(M, &ne, &nr, &nc, NULL, NULL, NULL);
+        tap_ok(dc > 0 && nc == dc && (de < 0 || ne == de),
+               "%s: docs/crane.md's %d constraint modes (%d elastic) are the %d (%d) computed (%s)",
+               cases[i].scene, dc, de, nc, ne, err.message);
+        dae_modes_free(&M);
+        crane_free(&c);
+    }
+}
+
 int main(int argc, char **argv)
 {
     test_paper_start();
     test_contradictions();
     test_modes();
+    if (argc >= 4) test_documented_modes(argv[3], argv[2]);
     if (argc >= 3 && spawn_setup(argc, argv, "crane_static") == 0) test_program();
     return tap_done();
 }
