@@ -206,7 +206,15 @@ typedef struct dae_options {
                                   differences of the residual (sp_jac_check, 2n residual
                                   evaluations); a disagreement of more than 1e-3 relative is a
                                   warning (DAE_WARNING to the error handler, dae_get_warning)
-                                  that names the equation and the unknown; the run goes on */
+                                  that names the equation and the unknown; the run goes on.
+                                  0 (default): the same comparison, once, at the first
+                                  Jacobian evaluated after the Newton iteration contracted at a
+                                  rate above 0.1 on a Jacobian of its own step (with an exact
+                                  one the rate is of the order of the corrections, nearly 0 on
+                                  a linear problem; Hairer and Wanner's contraction factor
+                                  Theta, dae_nls.c), for problems of at most 500 unknowns; the
+                                  warning then names that rate too. A wrong entry that does
+                                  not slow the iteration down goes unnoticed. -1: never */
     double newton_dgmax;       /* > 0: between Jacobian evaluations the Newton matrix is formed
                                   again from the saved Jacobian and refactored when gamma = 1/cj
                                   has moved by more than this from the gamma it was factored with
@@ -376,10 +384,10 @@ BG_API int dae_dense(const dae_solver *s, double t, double *y, double *yp);
 BG_API int dae_roots_found(const dae_solver *s, int *found);
 
 /* The last warning, "" if none; NULL if s is NULL: the Jacobian check of
- * options.check_jacobian, or dae_consistent_init's unknowns that ended far from the values
- * given (by more than half their size and 100 tolerances: algebraic unknowns given a value
- * other than 0, which stands for "not known", and differential ones that the constraints moved
- * along a path that was not straight; a possible other solution of the algebraic equations or
+ * options.check_jacobian (also the automatic one of its default 0), or dae_consistent_init's
+ * unknowns that ended far from the values given (by more than half their size and 100
+ * tolerances: algebraic unknowns given a value other than 0, which stands for "not known", and
+ * differential ones that the constraints moved along a path that was not straight; a possible other solution of the algebraic equations or
  * of the constraints, such as a mechanism's other assembly), with the values given and found.
  * No such warning where an equation jumps at t0 (the values given are then left-hand values).
  * Warnings never stop the integration and go to the error handler with DAE_WARNING;

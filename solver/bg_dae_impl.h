@@ -155,6 +155,9 @@ struct dae_solver {
     long fact_off[3]; /* factorization counts of the linear solvers of an earlier structure */
     double *yc;       /* y and y' of the last dae_consistent_init (2n), NULL if none */
     int jac_checked;  /* options.check_jacobian done */
+    double jac_suspect_rate; /* > 0: the Newton rate on a Jacobian evaluated at its step that
+                                calls for the automatic check (dae_nls.c), at jac_suspect_t */
+    double jac_suspect_t;
     bg_error warn;    /* the last warning */
     int busy;         /* inside dae_solve_to, dae_step, dae_consistent_init: a callback that
                          calls them again gets BG_ERR_STATE */

@@ -404,7 +404,7 @@ static int take_reduced(dae_solver *s, bg_error *err)
     s->p.cons = red_cons;
     s->p.cons_pattern = R->Gp;
     s->o.projection = 1;
-    s->o.check_jacobian = 0; /* the inner solver checks the Jacobian as given */
+    s->o.check_jacobian = -1; /* the inner solver checks the Jacobian as given */
     memcpy(s->kind, R->kind, (size_t)n * sizeof *s->kind);
     sp_csc_free(&s->Jy);
     sp_csc_free(&s->Jyp);
