@@ -190,7 +190,8 @@ typedef struct dae_options {
     ls_kind linsol;           /* default LS_KLU */
     int has_t_stop;           /* never integrate past t_stop */
     double t_stop;
-    const double *breakpoints; /* ascending times where the step must land (kinks) */
+    const double *breakpoints; /* times where the step must land (kinks); dae_create sorts
+                                  them, a time given twice counts once */
     int nbreakpoints;
     int projection;            /* project onto cons after each step (needs cons) */
     int max_newton;            /* Newton iterations per step, default 4 (< 1: default); up to
@@ -246,7 +247,9 @@ typedef struct dae_options {
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. dae_create checks the options:
  * tolerances as stated, h_init, h_min, h_max finite and >= 0 with h_min <= h_max when h_max > 0,
  * max_order 1..5, a known index2 policy and linear solver, a finite t_stop, nbreakpoints >= 0
- * with finite breakpoints, projection only with constraints. */
+ * with finite breakpoints, projection only with constraints, stability_guard 0 or 1,
+ * check_jacobian -1, 0 or 1, and absolute tolerances (atol times a nominal magnitude, or
+ * atol_vec) that are 0 or normal numbers (not below DBL_MIN = 2.2e-308). */
 BG_API int dae_options_default(dae_options *o);
 
 typedef struct dae_stats {
