@@ -80,7 +80,9 @@ typedef int (*dae_jac_fn)(void *user, double t, const double *y, const double *y
 /* Position-level constraints for projection and drift: g(y) (ncons values) and, if G != NULL,
  * the values of G = dg/dy on cons_pattern. */
 typedef int (*dae_cons_fn)(void *user, double t, const double *y, double *g, sp_csc *G);
-/* Event functions g(t, y, y') (nroots values): their sign changes are located. */
+/* Event functions g(t, y, y') (nroots values): their sign changes are located. Returns 0;
+ * any other status, or a value that is not finite, stops dae_init or dae_solve_to with
+ * DAE_CALLBACK_FAIL (the message names the event function and the time). */
 typedef int (*dae_root_fn)(void *user, double t, const double *y, const double *yp, double *g);
 /* Regimes of the problem's switching characteristics at (t, y): nregimes small integers into r
  * (dae_problem.regimes). Returns 0 on success; any other value is fatal: the integration (or

@@ -302,6 +302,10 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp);
 void daei_output_state(dae_solver *s, double t, double *tret, double *y, double *yp);
 /* Earliest sign change of the event functions in (tlo, tn]: 1 found, 0 none, < 0 failure. */
 int daei_find_root(dae_solver *s);
+/* The event functions at (t, y, yp) into g: BG_OK, or DAE_CALLBACK_FAIL raised (from where)
+ * for a status other than 0 or a value that is not finite (its index named). */
+int daei_call_roots(dae_solver *s, const char *where, double t, const double *y,
+                    const double *yp, double *g);
 /* Minimum-norm correction of y onto g(t, y) = 0. */
 int daei_project_vec(dae_solver *s, double t, double *y);
 /* Drift after an accepted step, and projection of y_n if asked. */
