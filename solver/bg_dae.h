@@ -392,8 +392,9 @@ BG_API int dae_roots_found(const dae_solver *s, int *found);
  * options.check_jacobian (also the automatic one of its default 0), or dae_consistent_init's
  * unknowns that ended far from the values given (by more than half their size and 100
  * tolerances: algebraic unknowns given a value other than 0, which stands for "not known", and
- * differential ones that the constraints moved along a path that was not straight; a possible other solution of the algebraic equations or
- * of the constraints, such as a mechanism's other assembly), with the values given and found.
+ * differential ones that the constraints moved along a path that was not straight; a possible
+ * other solution of the algebraic equations or of the constraints, such as a mechanism's other
+ * assembly), with the values given and found.
  * No such warning where an equation jumps at t0 (the values given are then left-hand values).
  * Warnings never stop the integration and go to the error handler with DAE_WARNING;
  * stats.warnings counts them. */

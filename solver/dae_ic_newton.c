@@ -266,8 +266,7 @@ static int rows_dt2(dae_solver *s, double te, double d, const double *y, const d
  * differenced across the ramp); the larger of the two steps, whose points the agreement
  * covered. F0 holds F(te). Scratch IC_HA, IC_DEN, Db (n values) and rows_dt2's. */
 static int smooth_step(dae_solver *s, double te, double side, double tscale, const double *y,
-                       const double *yp, const double *F0, const double *sc, double *Db,
-                       double *d)
+                       const double *yp, const double *F0, const double *sc, double *Db, double *d)
 {
     double *Da = daei_icw(s, IC_HA), *den = daei_icw(s, IC_DEN);
     *d = side * T_FIRST * tscale;

@@ -65,8 +65,8 @@
 #include "bg_dae_impl.h"
 
 #define RATE_MAX 0.9
-#define RATE_EXTEND 0.5 /* the Newton iteration may go past max_newton ... */
-#define NEWTON_EXTEND 2 /* ... up to this many times max_newton iterations */
+#define RATE_EXTEND 0.5  /* the Newton iteration may go past max_newton ... */
+#define NEWTON_EXTEND 2  /* ... up to this many times max_newton iterations */
 #define RATE_SUSPECT 0.1 /* a rate on a Jacobian of this step that calls for the check ... */
 #define CHECK_AUTO_N 500 /* ... of problems of at most this many unknowns */
 

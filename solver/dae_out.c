@@ -114,8 +114,8 @@ void daei_output_state(dae_solver *s, double t, double *tret, double *y, double 
     }
 }
 
-int daei_call_roots(dae_solver *s, const char *where, double t, const double *y,
-                    const double *yp, double *g)
+int daei_call_roots(dae_solver *s, const char *where, double t, const double *y, const double *yp,
+                    double *g)
 {
     int r = s->p.roots(s->p.user, t, y, yp, g);
     if (r != 0)
