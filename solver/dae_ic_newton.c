@@ -520,9 +520,13 @@ int daei_ic_stage_b(dae_solver *s, double te, double side, double tscale, double
  * carry eps T_i each, so a first difference 2 eps T_i / h and a second one 4 eps T_i / h^2
  * (Dennis and Schnabel, sec. 5.4): where every step of a row is below the resolution of the
  * residual its differences are equal (or 0) and Ridders' estimate, the distance between the
- * table's entries, says 0. */
+ * table's entries, says 0. That floor applies where floor != 0: to runs shorter than the time
+ * unit (daei_ic_alg2_rates). On longer ones Ridders' estimate is taken alone as before: on
+ * the crane's stiff rows (terms of 1e9 N from stiffnesses of 1e8 N/m) the floor rejected rates
+ * it had taken, and the steps of a 20 s run moved by up to 9 % (31 311 to 34 115), in both
+ * directions, not measured as better or worse. */
 static int rates_from(dae_solver *s, double te, double tstep, const double *y, double *yp,
-                      double *todo)
+                      double *todo, int floor)
 {
     int n = s->n, r;
     double side = te > s->tn ? 1.0 : -1.0, tmin, tmax;
@@ -560,7 +564,7 @@ static int rates_from(dae_solver *s, double te, double tstep, const double *y, d
         double noise = s->rowkind[i] == ROW_ALG1 ? 4 * DBL_EPSILON * terms[i] / (h * h)
                                                  : 2 * DBL_EPSILON * terms[i] / h;
         z[i] = -D[i];
-        ze[i] = isfinite(E[i]) && isfinite(hst[i]) ? fmax(E[i], noise) : INFINITY;
+        ze[i] = isfinite(E[i]) && isfinite(hst[i]) ? fmax(E[i], floor ? noise : 0.0) : INFINITY;
     }
     if (k_solve(s, z) != BG_OK || k_solve(s, ze) != BG_OK) return BG_OK; /* y'_A2 stays 0 */
     for (int k = 0; k < s->na2; k++) {
@@ -580,7 +584,7 @@ int daei_ic_alg2_rates(dae_solver *s, double te, double tscale, double tstep, co
     double *todo = daei_icw(s, IC_YC); /* per index-2 unknown: its rate is still to be found */
     for (int k = 0; k < s->na2; k++)
         todo[k] = 1;
-    int r = rates_from(s, te, tstep, y, yp, todo), left = 0;
+    int floor = tscale < 1.0, r = rates_from(s, te, tstep, y, yp, todo, floor), left = 0;
     for (int k = 0; k < s->na2; k++)
         left += todo[k] != 0;
     if (r != BG_OK || left == 0 || !(tscale < 1.0) || s->nalg1_rows == 0) return r;
@@ -598,5 +602,5 @@ int daei_ic_alg2_rates(dae_solver *s, double te, double tscale, double tstep, co
     double t1;
     if ((r = smooth_step(s, te, side, 1.0, y, yp, s->res, sc, db, &t1)) != BG_OK) return r;
     if (!(fabs(t1) > fabs(tstep))) return BG_OK;
-    return rates_from(s, te, t1, y, yp, todo);
+    return rates_from(s, te, t1, y, yp, todo, 1);
 }
