@@ -243,6 +243,18 @@ static void test_create_options(void)
                "nominal 1e-300 (atol * nominal underflows to a subnormal)", "spring.x", "1e-300");
         p.nominal = NULL;
     }
+    {
+        double av[2] = {1e-8, 1e-310}, nv[2] = {NAN, 1};
+        dae_options_default(&o);
+        o.atol_vec = av;
+        expect(create_run(&p, &o, m, sizeof m), BG_ERR_ARGUMENT, m, "atol_vec[1] = 1e-310",
+               "atol_vec[1]", "mass.v");
+        av[1] = 0;      /* rtol > 0: a relative tolerance alone */
+        p.nominal = nv; /* not used with atol_vec (documented) */
+        expect(create_run(&p, &o, m, sizeof m), 0, m,
+               "atol_vec[1] = 0 with rtol, a NaN nominal beside atol_vec: runs", NULL, NULL);
+        p.nominal = NULL;
+    }
 
     /* breakpoints: sorted by dae_create; a time given twice is one breakpoint (before, the
      * second stopped the run: "tout = 5 is too close to t = 1 to choose a first step") */
