@@ -123,10 +123,8 @@ int dae_init(dae_solver *s, double t0, const double *y0, const double *yp0)
     bg_error_clear(&s->err);
     bg_error_clear(&s->warn);
     if (s->p.nroots > 0) {
-        int r = s->p.roots(s->p.user, t0, y0, s->phi[1], s->glo);
-        if (r < 0)
-            return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_init",
-                                  "root function returned %d at t = %g", r, t0);
+        int r = daei_call_roots(s, "dae_init", t0, y0, s->phi[1], s->glo);
+        if (r != BG_OK) return r;
     }
     return BG_OK;
 }

@@ -80,7 +80,9 @@ typedef int (*dae_jac_fn)(void *user, double t, const double *y, const double *y
 /* Position-level constraints for projection and drift: g(y) (ncons values) and, if G != NULL,
  * the values of G = dg/dy on cons_pattern. */
 typedef int (*dae_cons_fn)(void *user, double t, const double *y, double *g, sp_csc *G);
-/* Event functions g(t, y, y') (nroots values): their sign changes are located. */
+/* Event functions g(t, y, y') (nroots values): their sign changes are located. Returns 0;
+ * any other status, or a value that is not finite, stops dae_init or dae_solve_to with
+ * DAE_CALLBACK_FAIL (the message names the event function and the time). */
 typedef int (*dae_root_fn)(void *user, double t, const double *y, const double *yp, double *g);
 /* Regimes of the problem's switching characteristics at (t, y): nregimes small integers into r
  * (dae_problem.regimes). Returns 0 on success; any other value is fatal: the integration (or
@@ -190,7 +192,8 @@ typedef struct dae_options {
     ls_kind linsol;           /* default LS_KLU */
     int has_t_stop;           /* never integrate past t_stop */
     double t_stop;
-    const double *breakpoints; /* ascending times where the step must land (kinks) */
+    const double *breakpoints; /* times where the step must land (kinks); dae_create sorts
+                                  them, a time given twice counts once */
     int nbreakpoints;
     int projection;            /* project onto cons after each step (needs cons) */
     int max_newton;            /* Newton iterations per step, default 4 (< 1: default); up to
@@ -206,7 +209,15 @@ typedef struct dae_options {
                                   differences of the residual (sp_jac_check, 2n residual
                                   evaluations); a disagreement of more than 1e-3 relative is a
                                   warning (DAE_WARNING to the error handler, dae_get_warning)
-                                  that names the equation and the unknown; the run goes on */
+                                  that names the equation and the unknown; the run goes on.
+                                  0 (default): the same comparison, once, at the first
+                                  Jacobian evaluated after the Newton iteration contracted at a
+                                  rate above 0.1 on a Jacobian of its own step (with an exact
+                                  one the rate is of the order of the corrections, nearly 0 on
+                                  a linear problem; Hairer and Wanner's contraction factor
+                                  Theta, dae_nls.c), for problems of at most 500 unknowns; the
+                                  warning then names that rate too. A wrong entry that does
+                                  not slow the iteration down goes unnoticed. -1: never */
     double newton_dgmax;       /* > 0: between Jacobian evaluations the Newton matrix is formed
                                   again from the saved Jacobian and refactored when gamma = 1/cj
                                   has moved by more than this from the gamma it was factored with
@@ -238,7 +249,9 @@ typedef struct dae_options {
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. dae_create checks the options:
  * tolerances as stated, h_init, h_min, h_max finite and >= 0 with h_min <= h_max when h_max > 0,
  * max_order 1..5, a known index2 policy and linear solver, a finite t_stop, nbreakpoints >= 0
- * with finite breakpoints, projection only with constraints. */
+ * with finite breakpoints, projection only with constraints, stability_guard 0 or 1,
+ * check_jacobian -1, 0 or 1, and absolute tolerances (atol times a nominal magnitude, or
+ * atol_vec) that are 0 or normal numbers (not below DBL_MIN = 2.2e-308). */
 BG_API int dae_options_default(dae_options *o);
 
 typedef struct dae_stats {
@@ -376,11 +389,12 @@ BG_API int dae_dense(const dae_solver *s, double t, double *y, double *yp);
 BG_API int dae_roots_found(const dae_solver *s, int *found);
 
 /* The last warning, "" if none; NULL if s is NULL: the Jacobian check of
- * options.check_jacobian, or dae_consistent_init's unknowns that ended far from the values
- * given (by more than half their size and 100 tolerances: algebraic unknowns given a value
- * other than 0, which stands for "not known", and differential ones that the constraints moved
- * along a path that was not straight; a possible other solution of the algebraic equations or
- * of the constraints, such as a mechanism's other assembly), with the values given and found.
+ * options.check_jacobian (also the automatic one of its default 0), or dae_consistent_init's
+ * unknowns that ended far from the values given (by more than half their size and 100
+ * tolerances: algebraic unknowns given a value other than 0, which stands for "not known", and
+ * differential ones that the constraints moved along a path that was not straight; a possible
+ * other solution of the algebraic equations or of the constraints, such as a mechanism's other
+ * assembly), with the values given and found.
  * No such warning where an equation jumps at t0 (the values given are then left-hand values).
  * Warnings never stop the integration and go to the error handler with DAE_WARNING;
  * stats.warnings counts them. */

@@ -155,6 +155,9 @@ struct dae_solver {
     long fact_off[3]; /* factorization counts of the linear solvers of an earlier structure */
     double *yc;       /* y and y' of the last dae_consistent_init (2n), NULL if none */
     int jac_checked;  /* options.check_jacobian done */
+    double jac_suspect_rate; /* > 0: the Newton rate on a Jacobian evaluated at its step that
+                                calls for the automatic check (dae_nls.c), at jac_suspect_t */
+    double jac_suspect_t;
     bg_error warn;    /* the last warning */
     int busy;         /* inside dae_solve_to, dae_step, dae_consistent_init: a callback that
                          calls them again gets BG_ERR_STATE */
@@ -299,6 +302,10 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp);
 void daei_output_state(dae_solver *s, double t, double *tret, double *y, double *yp);
 /* Earliest sign change of the event functions in (tlo, tn]: 1 found, 0 none, < 0 failure. */
 int daei_find_root(dae_solver *s);
+/* The event functions at (t, y, yp) into g: BG_OK, or DAE_CALLBACK_FAIL raised (from where)
+ * for a status other than 0 or a value that is not finite (its index named). */
+int daei_call_roots(dae_solver *s, const char *where, double t, const double *y,
+                    const double *yp, double *g);
 /* Minimum-norm correction of y onto g(t, y) = 0. */
 int daei_project_vec(dae_solver *s, double t, double *y);
 /* Drift after an accepted step, and projection of y_n if asked. */

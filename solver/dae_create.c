@@ -2,6 +2,7 @@
  * options, the copies the solver keeps, the Jacobian patterns and the Newton matrix's structure,
  * the classification of the unknowns when no kinds are given (dae_struct.c) and the matrices of
  * consistent initialisation (dae_ic.c). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -157,6 +158,14 @@ static int check_problem(const dae_problem *p, const dae_options *o, bg_error *e
         if (!isfinite(o->breakpoints[k]))
             return bg_error_raise(err, BG_ERR_ARGUMENT, w, "breakpoint %d is %g", k,
                                   o->breakpoints[k]);
+    if (o->stability_guard != 0 && o->stability_guard != 1)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "stability_guard = %d: must be 0 or 1",
+                              o->stability_guard);
+    if (o->check_jacobian < -1 || o->check_jacobian > 1)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "check_jacobian = %d: must be -1, 0 or 1 (never, when the Newton "
+                              "rate calls for it, at the first Jacobian)",
+                              o->check_jacobian);
     if (p->ncons < 0 || p->nroots < 0 || p->nregimes < 0)
         return bg_error_raise(err, BG_ERR_ARGUMENT, w,
                               "ncons = %d, nroots = %d and nregimes = %d must be >= 0", p->ncons,
@@ -297,6 +306,26 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
             dae_free(&s);
             return NULL;
         }
+        /* a tolerance that underflowed (atol times a tiny nominal) or is subnormal is no
+         * tolerance: the weights 1 / (rtol |y| + atol) of an unknown at 0 become 1e100 */
+        int under = o->atol_vec ? s->atol[i] > 0 && s->atol[i] < DBL_MIN
+                                : o->atol > 0 && s->atol[i] < DBL_MIN;
+        if (under) {
+            char nb[32];
+            if (o->atol_vec)
+                bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                               "atol_vec[%d] = %g (%s) is below the smallest normal number "
+                               "%g: give 0 or a normal number",
+                               i, s->atol[i], bg_var_label(p, i, nb, sizeof nb), DBL_MIN);
+            else
+                bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                               "the nominal magnitude of %s is %g: atol * nominal = %g is below "
+                               "the smallest normal number %g",
+                               bg_var_label(p, i, nb, sizeof nb), p->nominal[i], s->atol[i],
+                               DBL_MIN);
+            dae_free(&s);
+            return NULL;
+        }
     }
     if (p->names) {
         s->names = calloc((size_t)n, sizeof *s->names);
@@ -315,7 +344,10 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
         if (!s->bkpt) goto nomem;
         memcpy(s->bkpt, o->breakpoints, (size_t)o->nbreakpoints * sizeof *s->bkpt);
         qsort(s->bkpt, (size_t)o->nbreakpoints, sizeof *s->bkpt, cmp_double);
-        s->nbkpt = o->nbreakpoints;
+        /* a time given twice is one breakpoint (the step lands there once) */
+        s->nbkpt = 1;
+        for (int k = 1; k < o->nbreakpoints; k++)
+            if (s->bkpt[k] != s->bkpt[s->nbkpt - 1]) s->bkpt[s->nbkpt++] = s->bkpt[k];
     }
     /* Jacobian patterns: as given, or found from the residual at dae_init (dae_struct.c) */
     if (o->index2 == DAE_I2_REDUCE) {

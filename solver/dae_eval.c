@@ -137,7 +137,8 @@ static int fd_res_yp(void *u, const double *x, double *f)
 
 /* options.check_jacobian: the analytic Jy, Jyp just evaluated against central differences of
  * the residual; a relative disagreement above 1e-3 (against |fd| + 1e-8 times the largest
- * entry) is a warning that names the worst entry. */
+ * entry) is a warning that names the worst entry, and the Newton rate that called for the
+ * check when it was the automatic one (s->jac_suspect_rate > 0, dae_nls.c). */
 static void check_jacobian(dae_solver *s, double t, const double *y, const double *yp)
 {
     s->jac_checked = 1;
@@ -163,11 +164,18 @@ static void check_jacobian(dae_solver *s, double t, const double *y, const doubl
     }
     if (wm >= 0) {
         char eb[192], nb[32], tb[96];
+        char why[160] = "";
+        if (s->jac_suspect_rate > 0)
+            snprintf(why, sizeof why,
+                     "; checked because the Newton iteration contracted at the rate %.2g on a "
+                     "Jacobian evaluated at its step (t = %.9g)",
+                     s->jac_suspect_rate, s->jac_suspect_t);
         daei_warn(s, "dae_solve_to",
                   "the analytic Jacobian disagrees with central differences of the residual at %s: "
-                  "d(%s)/d(%s%s) is %.6g, the differences give %.6g (relative error %.2g)",
+                  "d(%s)/d(%s%s) is %.6g, the differences give %.6g (relative error %.2g)%s",
                   daei_when(s, t, tb, sizeof tb), daei_ename(s, we.row, eb, sizeof eb),
-                  daei_vname(s, we.col, nb, sizeof nb), wm ? "'" : "", we.analytic, we.fd, worst);
+                  daei_vname(s, we.col, nb, sizeof nb), wm ? "'" : "", we.analytic, we.fd, worst,
+                  why);
     }
 }
 
@@ -198,7 +206,9 @@ int daei_eval_jac(dae_solver *s, double t, const double *y, const double *yp, co
     if (r != 0 && s->p.jac)
         daei_note(s, "the Jacobian function returned the %s status %d at t = %.17g",
                   r < 0 ? "fatal" : "recoverable", r, t);
-    if (r == 0 && s->p.jac && s->o.check_jacobian && !s->jac_checked) check_jacobian(s, t, y, yp);
+    if (r == 0 && s->p.jac && !s->jac_checked &&
+        (s->o.check_jacobian > 0 || (s->o.check_jacobian == 0 && s->jac_suspect_rate > 0)))
+        check_jacobian(s, t, y, yp);
     if (r == 0) {
         for (int m = 0; m < 2 && r == 0; m++) {
             const sp_csc *J = m ? s->Jyp : s->Jy;

@@ -588,9 +588,9 @@ int daei_consistent_init(dae_solver *s)
 
     /* time scale of the differences in t: |t|, or at t = 0 the span of the run (stop time or
      * first breakpoint) when known, so that short time scales (a 1e-7 s circuit) are not
-     * differenced across a whole period; a span below IC_TSCALE_MIN is no time scale
-     * (dae_ic_impl.h): then 1, as when the span is not known */
-    double tscale = fabs(s->tn);
+     * differenced across a whole period; a |t| or a span below IC_TSCALE_MIN is no time scale
+     * (dae_ic_impl.h): then the span, or 1 as when the span is not known */
+    double tscale = fabs(s->tn) >= IC_TSCALE_MIN ? fabs(s->tn) : 0.0;
     if (tscale == 0) {
         tscale = 1.0;
         if (s->o.has_t_stop && s->o.t_stop != s->tn) tscale = fabs(s->o.t_stop - s->tn);
@@ -615,7 +615,7 @@ int daei_consistent_init(dae_solver *s)
                                        : "; the Jacobian is by finite differences: an analytic "
                                          "one (dae_problem.jac) may let the iteration converge");
     }
-    if (s->na2 > 0 && (r = daei_ic_alg2_rates(s, te, o.tstep, y, yp)) != BG_OK) return r;
+    if (s->na2 > 0 && (r = daei_ic_alg2_rates(s, te, tscale, o.tstep, y, yp)) != BG_OK) return r;
     memcpy(s->phi[0], y, (size_t)n * sizeof *y);
     memcpy(s->phi[1], yp, (size_t)n * sizeof *yp);
     s->need_setup = 1;

@@ -28,7 +28,11 @@
  * 1983, sec. 5.4) with the time unit as typ t (the sqrt(unit roundoff) of IDA's
  * difference-quotient increments): a span below it is not a scale the differences can use,
  * and the scale 1 with hidden_t's shrinking steps (dae_ic_newton.c) finds the smooth step as
- * for a run of unknown length. Runs of 1.5e-8 time units and longer keep their own scale. */
+ * for a run of unknown length. Runs of 1.5e-8 time units and longer keep their own scale; so
+ * does a start time |t| >= 1.5e-8 (below, |t| is no scale either: from t0 = 1e-300 every point
+ * failed as well). The scale bounds the steps in t from above only: the derivatives of the
+ * index-2 unknowns that the steps within it cannot resolve are taken again at the scale 1
+ * (daei_ic_alg2_rates). */
 #define IC_TSCALE_MIN 1.4901161193847656e-08 /* sqrt(DBL_EPSILON) = 2^-26 */
 
 /* Scratch vectors of s->ic_w, n values each. */
@@ -100,8 +104,11 @@ int daei_ic_stage_b(dae_solver *s, double te, double side, double tscale, double
  * terms; the first steps correct that, so only a gross failure is reported). */
 int daei_ic_failed(const ic_outcome *o);
 /* The derivatives of the index-2 unknowns at the consistent values (y, yp) found by stage B,
- * into yp (left at 0 where their error estimate is not small); tstep: stage B's. BG_OK or a
- * failure of the residual. */
-int daei_ic_alg2_rates(dae_solver *s, double te, double tstep, const double *y, double *yp);
+ * into yp (left at 0 where their error estimate, at least the round-off of the differences, is
+ * not small); tstep: stage B's smooth step, tscale its time scale. Where tscale < 1 (the span
+ * of a short run) left some of them unknown, these are taken again from the smooth step of
+ * the time scale 1 (a run of unknown length). BG_OK or a failure of the residual. */
+int daei_ic_alg2_rates(dae_solver *s, double te, double tscale, double tstep, const double *y,
+                       double *yp);
 
 #endif

@@ -114,14 +114,28 @@ void daei_output_state(dae_solver *s, double t, double *tret, double *y, double 
     }
 }
 
+int daei_call_roots(dae_solver *s, const char *where, double t, const double *y, const double *yp,
+                    double *g)
+{
+    int r = s->p.roots(s->p.user, t, y, yp, g);
+    if (r != 0)
+        return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, where,
+                              "the event function returned the status %d at t = %.17g", r, t);
+    for (int i = 0; i < s->p.nroots; i++)
+        if (!isfinite(g[i]))
+            return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, where,
+                                  "event function %d is %g at t = %.17g: its sign changes "
+                                  "cannot be located",
+                                  i, g[i], t);
+    return BG_OK;
+}
+
 /* Illinois search for the earliest sign change of the event functions in (tlo, tn]. */
 int daei_find_root(dae_solver *s)
 {
     int nr = s->p.nroots, r;
     dae_dense(s, s->tn, s->y, s->yp);
-    if ((r = s->p.roots(s->p.user, s->tn, s->y, s->yp, s->ghi)) != 0)
-        return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
-                              "root function returned %d at t = %g", r, s->tn);
+    if ((r = daei_call_roots(s, "dae_solve_to", s->tn, s->y, s->yp, s->ghi)) != BG_OK) return r;
     int any = 0;
     for (int i = 0; i < nr; i++)
         if ((s->glo[i] < 0 && s->ghi[i] >= 0) || (s->glo[i] > 0 && s->ghi[i] <= 0)) any = 1;
@@ -152,9 +166,7 @@ int daei_find_root(dae_solver *s)
         if (fabs(tm - ta) < lim) tm = ta + copysign(lim, tb - ta);
         if (fabs(tb - tm) < lim) tm = tb - copysign(lim, tb - ta);
         dae_dense(s, tm, s->y, s->yp);
-        if ((r = s->p.roots(s->p.user, tm, s->y, s->yp, gm)) != 0)
-            return bg_error_raise(&s->err, DAE_CALLBACK_FAIL, "dae_solve_to",
-                                  "root function returned %d at t = %g", r, tm);
+        if ((r = daei_call_roots(s, "dae_solve_to", tm, s->y, s->yp, gm)) != BG_OK) return r;
         int left = 0;
         for (int i = 0; i < nr; i++)
             if ((ga[i] < 0 && gm[i] >= 0) || (ga[i] > 0 && gm[i] <= 0)) left = 1;

@@ -404,7 +404,7 @@ static int take_reduced(dae_solver *s, bg_error *err)
     s->p.cons = red_cons;
     s->p.cons_pattern = R->Gp;
     s->o.projection = 1;
-    s->o.check_jacobian = 0; /* the inner solver checks the Jacobian as given */
+    s->o.check_jacobian = -1; /* the inner solver checks the Jacobian as given */
     memcpy(s->kind, R->kind, (size_t)n * sizeof *s->kind);
     sp_csc_free(&s->Jy);
     sp_csc_free(&s->Jyp);
@@ -526,7 +526,11 @@ int daei_red_consistent_init(dae_solver *s)
         s->err = in->err;
         return r;
     }
-    memcpy(s->ic_w, in->ic_w, (size_t)IC_NWORK * (size_t)n * sizeof *s->ic_w);
+    /* the inner solver's scratch (the correction of stage A for the warning) but not its
+     * IC_GUESS, IC_GUESSP: the values given are the outer solver's (dae_consistent_init keeps
+     * them there to compare; the inner ones were never set, and every unknown "went from 0") */
+    memcpy(daei_icw(s, IC_DA1), daei_icw(in, IC_DA1),
+           (size_t)(IC_NWORK - IC_DA1) * (size_t)n * sizeof *s->ic_w);
     memcpy(s->phi[0], in->phi[0], (size_t)n * sizeof(double));
     memcpy(s->phi[1], in->phi[1], (size_t)n * sizeof(double));
     memcpy(s->y, s->phi[0], (size_t)n * sizeof(double));

@@ -484,8 +484,8 @@ static int rpend_res(void *user, double t, const double *y, const double *yp, do
     return 0;
 }
 
-/* Consistent values of rpend at t = 0 with t_stop: the status, y and y' into y, yp. */
-static int rpend_init(double t_stop, double *y, double *yp, char *msg, size_t size)
+/* Consistent values of rpend at t0 with t_stop: the status, y and y' into y, yp. */
+static int rpend_init_at(double t0, double t_stop, double *y, double *yp, char *msg, size_t size)
 {
     dae_problem p = {0};
     p.n = 5;
@@ -499,12 +499,17 @@ static int rpend_init(double t_stop, double *y, double *yp, char *msg, size_t si
     dae_solver *s = dae_create(&p, &o, &err);
     const double th = 0.5, om = 1.0;
     double y0[5] = {sin(th), -cos(th), om * cos(th), om * sin(th), 0};
-    int r = s ? dae_init(s, 0.0, y0, NULL) : err.status;
+    int r = s ? dae_init(s, t0, y0, NULL) : err.status;
     if (r == 0) r = dae_consistent_init(s);
     if (r >= 0) dae_get_consistent(s, y, yp);
     snprintf(msg, size, "%s", s ? dae_get_error(s)->message : err.message);
     dae_free(&s);
     return r;
+}
+
+static int rpend_init(double t_stop, double *y, double *yp, char *msg, size_t size)
+{
+    return rpend_init_at(0.0, t_stop, y, yp, msg, size);
 }
 
 /* A run to t_stop = 1e-300 (the crane program's --t-end 1e-300) initialises as one to 1: the
@@ -528,6 +533,28 @@ static void test_tiny_t_stop(void)
            r1 >= 0 ? dmax : NAN, r1 < 0 ? m1 : "");
 }
 
+/* Short runs and tiny start times: the rate of the multiplier, lam' = -3 g v (closed form),
+ * to 1e-6 whatever the span of the run or the start time. The span bounds the steps in t;
+ * before, a run of 1.6e-8 to 1e-5 time units returned lam' = -4.70 (a third) or 0, the second
+ * differences of the velocity constraint at steps of 1e-2 of the span being round-off that
+ * Ridders' estimate called exact (all equal), and a start at t0 = 1e-300 failed as the run to
+ * 1e-300 did ("the difference ... at the step 6.1e-307 is -nan"). */
+static void test_short_runs(void)
+{
+    const double dlam = -3 * PG * sin(0.5), lam = 1.0 + PG * cos(0.5);
+    const double t0s[] = {0, 0, 0, 0, 0, 1e-300, 1e-9, 1e-6};
+    const double spans[] = {1.6e-8, 3e-8, 1e-7, 1e-6, 1e-5, 1, 1, 1e-6};
+    for (size_t k = 0; k < sizeof spans / sizeof *spans; k++) {
+        double y[5] = {0}, yp[5] = {0};
+        char m[BG_MESSAGE_SIZE];
+        int r = rpend_init_at(t0s[k], t0s[k] + spans[k], y, yp, m, sizeof m);
+        tap_ok(r == BG_OK && fabs(y[4] - lam) <= 1e-6 * lam &&
+                   fabs(yp[4] - dlam) <= 1e-6 * fabs(dlam),
+               "t0 = %g, span %g: lam %.10g (exact %.10g), lam' %.10g (exact %.10g) %s",
+               t0s[k], spans[k], y[4], lam, yp[4], dlam, r < 0 ? m : "");
+    }
+}
+
 int main(void)
 {
     test_pendulum_fd();
@@ -539,5 +566,6 @@ int main(void)
     test_jump_at_t0();
     test_message_times();
     test_tiny_t_stop();
+    test_short_runs();
     return tap_done();
 }

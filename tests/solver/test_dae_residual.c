@@ -227,6 +227,86 @@ static void test_jacobian_check(void)
     sp_csc_free(&jyp);
 }
 
+/* A stiff pair, y0' = -K (y0 - cos t), y1' = y0 (K = 1000), whose Jacobian callback may give
+ * dF0/dy0 c times too large: y0 = (K^2 cos t + K sin t) / (K^2 + 1) from y0(0) = K^2 / (K^2 +
+ * 1), y1 its integral from y1(0) = 0. */
+typedef struct stiff2 {
+    double c;
+} stiff2;
+
+static int res_stiff2(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user;
+    F[0] = yp[0] + 1000 * (y[0] - cos(t));
+    F[1] = yp[1] - y[0];
+    return 0;
+}
+
+static int jac_stiff2(void *user, double t, const double *y, const double *yp, sp_csc *Jy,
+                      sp_csc *Jyp)
+{
+    (void)t, (void)y, (void)yp;
+    Jy->val[0] = ((const stiff2 *)user)->c * 1000; /* (0,0), then (1,0) */
+    Jy->val[1] = -1;
+    Jyp->val[0] = Jyp->val[1] = 1;
+    return 0;
+}
+
+/* The Newton rate watched (dae_nls.c): with check_jacobian left at 0, dF0/dy0 three times too
+ * large makes the iteration contract at about 0.5 on a Jacobian of its own step, which has the
+ * Jacobian compared with central differences once: the warning names the entry, 3000 against
+ * 1000, and the rate. The correct Jacobian: no warning, the closed form to the tolerance.
+ * check_jacobian = -1: no check. Before, no warning at all (1404 steps and 142 Newton
+ * failures for 121 steps and none, silently). */
+static void test_jacobian_rate(void)
+{
+    static const double dy[4] = {1, 1, 0, 0}, diag[4] = {1, 0, 0, 1};
+    static const char *const names[2] = {"a", "b"};
+    sp_csc *jy = sp_csc_from_dense(2, 2, dy, 0.0), *jyp = sp_csc_from_dense(2, 2, diag, 0.0);
+    const double K = 1000, A = K * K / (K * K + 1), B = K / (K * K + 1), T = 10;
+    for (int k = 0; k < 3; k++) {
+        stiff2 u = {k == 0 ? 1.0 : 3.0};
+        dae_problem p = {0};
+        p.n = 2;
+        p.res = res_stiff2;
+        p.jac = jac_stiff2;
+        p.user = &u;
+        p.jac_y_pattern = jy;
+        p.jac_yp_pattern = jyp;
+        p.names = names;
+        dae_options o;
+        dae_options_default(&o);
+        o.rtol = o.atol = 1e-6;
+        o.check_jacobian = k == 2 ? -1 : 0;
+        bg_error e = {0};
+        dae_solver *s = dae_create(&p, &o, &e);
+        const double y0[2] = {A, 0}, yp0[2] = {B, A};
+        double t = 0, y[2] = {0, 0};
+        int r = s ? dae_init(s, 0, y0, yp0) : e.status;
+        if (r == 0) r = dae_solve_to(s, T, &t, y, NULL);
+        double err = fmax(fabs(y[0] - (A * cos(T) + B * sin(T))),
+                          fabs(y[1] - (A * sin(T) - B * cos(T) + B)));
+        const char *w = s ? dae_get_warning(s) : "";
+        long nw = s ? dae_get_stats(s)->warnings : -1;
+        if (k == 0)
+            tap_ok(r == 0 && nw == 0 && !*w && err <= 2e-5,
+                   "stiff pair, correct Jacobian: no warning (%ld), error %.2g at t = 10", nw,
+                   err);
+        else if (k == 1)
+            tap_ok(r == 0 && nw == 1 && strstr(w, "d(equation 0") && strstr(w, "/d(a)") &&
+                       strstr(w, "is 3000") && strstr(w, "give 1000") &&
+                       strstr(w, "contracted at the rate"),
+                   "stiff pair, dF0/dy0 three times too large: the entry and the rate named: %s",
+                   w);
+        else
+            tap_ok(r == 0 && nw == 0 && !*w, "check_jacobian = -1: no check, no warning (%ld)",
+                   nw);
+        dae_free(&s);
+    }
+    sp_csc_free(&jy);
+    sp_csc_free(&jyp);
+}
+
 static void test_guards(void)
 {
     nest u = {NULL, 1};
@@ -329,6 +409,7 @@ int main(void)
     bp_instance_free(&in);
     test_guards();
     test_jacobian_check();
+    test_jacobian_rate();
     test_moved_warning();
     return tap_done();
 }
