@@ -177,6 +177,7 @@ struct dae_solver {
     double ic_res;  /* the last daei_consistent_init: scaled residual at the values returned */
     double ic_err;  /* and the weighted correction it calls for (1 = the tolerance) */
     dae_reduce *red; /* DAE_I2_REDUCE: the problem as given and the reduction (dae_reduce.c) */
+    double *mb;      /* DAE_MEBDF: MB_NVEC vectors of n (dae_mebdf.c) */
 };
 
 enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };
@@ -264,6 +265,16 @@ enum { NL_OK = 0, NL_RECOVER = 1, NL_RES_RECOVER = 2, NL_SINGULAR = 3, NL_LSFAIL
 /* Corrects the predicted y, yp at t; ee holds the sum of the corrections. NL_*, or < 0 fatal
  * (a callback's status). A failure is described in s->note. */
 int daei_newton(dae_solver *s, double t);
+
+/* ---- dae_mebdf.c: the modified extended BDF step (options.method = DAE_MEBDF) ---- */
+#define MB_NVEC 7
+/* The corrector of a MEBDF step, after the BDF coefficients and prediction of order k for the
+ * step to t (the step's end): the BDF solution at t, the BDF solution at t + h from it, then
+ * the MEBDF solution at t with the same Newton matrix. Leaves y, yp and ee = y - ypred as
+ * daei_newton does. teval: the time the residual of the first stage sees (a breakpoint's
+ * left-hand side); bdf_only: the step ends on (or its second stage would pass) a stop, BDF
+ * alone. NL_* or a fatal status, as daei_newton. */
+int daei_mebdf_correct(dae_solver *s, double t, double teval, int bdf_only);
 
 /* ---- dae_disc.c: discontinuities ---- */
 /* Whether the first Newton correction shows a jump the predictor missed (another iteration). */
