@@ -27,6 +27,8 @@
  *   dae_ic_newton.c   their Newton iteration for y' and the index-2 unknowns
  *   dae_ic_impl.h     the interface between dae_ic.c and dae_ic_newton.c
  *   dae_reduce.c      index reduction of the constraints (DAE_I2_REDUCE)
+ *   dae_mebdf.c       the modified extended BDF step (options.method = DAE_MEBDF): two BDF
+ *                     stages and Cash's formula with the same Newton matrix
  * The rest of solver/ has interfaces of its own: what the integrator builds on (bg_status,
  * bg_sparse, bg_linsol, bg_fdjac), what builds on its problem form (bg_static, and bg_modes with
  * bg_modes_sparse.c and bg_modes_impl.h, both through bg_jaceval), and bg_api.h, the export
