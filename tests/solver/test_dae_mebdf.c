@@ -11,7 +11,8 @@
  *   4. the IVP Test Set's transistor amplifier (transamp) against its published reference:
  *      no failure from rtol 1e-4 to 1e-10 (BDF fails at 1e-10), correct digits (scd) within one
  *      of the tolerance, at rtol 1e-8 and 1e-10 at least those of Cash's MEBDFI minus 0.5, and
- *      at most twice MEBDFI's steps (docs/mebdfi_stats.md). */
+ *      at most twice MEBDFI's steps (docs/mebdfi_stats.md);
+ *   5. a method that does not exist is refused by dae_create with a message naming it. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -266,8 +267,29 @@ static void test_transamp(void)
     }
 }
 
+/* ---- 5. a method that does not exist ---- */
+
+static void test_bad_method(void)
+{
+    dae_problem p;
+    memset(&p, 0, sizeof p);
+    p.n = 4;
+    p.res = osc_res;
+    dae_options o;
+    dae_options_default(&o);
+    o.method = (dae_method)7;
+    bg_error err;
+    memset(&err, 0, sizeof err);
+    dae_solver *s = dae_create(&p, &o, &err);
+    tap_ok(!s && err.status == BG_ERR_ARGUMENT && strstr(err.message, "method"),
+           "method 7: dae_create refuses with BG_ERR_ARGUMENT naming the option (%s)", err.message);
+    dae_free(&s);
+    tap_ok(dae_options_default(&o) == BG_OK && o.method == DAE_BDF, "the default method is BDF");
+}
+
 int main(void)
 {
+    test_bad_method();
     test_order();
     test_oscillator();
     test_pendulum();
