@@ -18,14 +18,15 @@
 #endif
 
 const solver_def bench_solvers[] = {
-    {"bgdae-klu", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_BDF},
-    {"bgdae-klu-scaleh", 0, LS_KLU, DAE_I2_SCALE_H, DAE_BDF},
-    {"bgdae-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF},
-    {"bgdae-dense-scaleh", 0, LS_DENSE, DAE_I2_SCALE_H, DAE_BDF},
-    {"bgdae-mebdf", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF},
-    {"bgdae-mebdf-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_MEBDF},
-    {"ida-klu", 1, LS_KLU, DAE_I2_EXCLUDE, DAE_BDF},
-    {"ida-dense", 1, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF},
+    {"bgdae-klu", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_BDF, 0},
+    {"bgdae-klu-scaleh", 0, LS_KLU, DAE_I2_SCALE_H, DAE_BDF, 0},
+    {"bgdae-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF, 0},
+    {"bgdae-dense-scaleh", 0, LS_DENSE, DAE_I2_SCALE_H, DAE_BDF, 0},
+    {"bgdae-mebdf", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF, 0},
+    {"bgdae-mebdf-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_MEBDF, 0},
+    {"bgdae-mebdf4", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF, 3},
+    {"ida-klu", 1, LS_KLU, DAE_I2_EXCLUDE, DAE_BDF, 0},
+    {"ida-dense", 1, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF, 0},
 };
 const int bench_nsolvers = (int)(sizeof bench_solvers / sizeof *bench_solvers);
 
@@ -147,6 +148,7 @@ static void our_options(const bench_case *bc, const solver_def *sd, const run_op
     o->newton_dgmax = bc->newton_dgmax;
     o->newton_jac_age = bc->newton_jac_age;
     o->newton_index2_scale_h = bc->newton_index2_scale_h;
+    if (sd && sd->max_order > 0) o->max_order = sd->max_order;
     if (ro->max_order > 0) o->max_order = ro->max_order;
     o->has_t_stop = 1;
     o->t_stop = tend;

@@ -102,7 +102,7 @@ int main(int argc, char **argv)
     /* every solver at both tolerances on both problems: at least our four */
     int ours_p = count_lines(path, "pendulum2,bgdae-", NULL),
         ours_a = count_lines(path, "ap102,bgdae-", NULL);
-    tap_ok(ours_p == 12 && ours_a == 12, "work_precision.csv: 12 rows of ours per problem (%d, %d)",
+    tap_ok(ours_p == 14 && ours_a == 14, "work_precision.csv: 14 rows of ours per problem (%d, %d)",
            ours_p, ours_a);
     tap_ok(rows == 1 + 2 * count_lines(path, "pendulum2,", NULL),
            "work_precision.csv: the same rows for both problems (%d lines)", rows);
