@@ -7,6 +7,11 @@
  *      BDF of orders up to 5 sits at the edge of BDF5's unstable band for the fast mode
  *      (h omega ~ 0.7) whatever the tolerance; MEBDF of order 4 (k = 3, A-stable) takes steps
  *      that follow the slow oscillation, falling as the tolerance loosens, and meets it;
+ *   2b. an undamped oscillator at fixed steps h omega = 1 and 2 (h lambda on the imaginary
+ *      axis): the amplitude's growth per step equals the spectral radius of each method's
+ *      amplification matrix, which the analysis of the formulas gives (MEBDF of orders 2..4
+ *      contracts, as A-stable methods do; of orders 5 and 6, and BDF of orders 3..5, grow at
+ *      h omega = 1);
  *   3. the index-2 pendulum against its 30-digit reference;
  *   4. the IVP Test Set's transistor amplifier (transamp) against its published reference:
  *      no failure from rtol 1e-4 to 1e-10 (BDF fails at 1e-10), correct digits (scd) within one
@@ -267,6 +272,83 @@ static void test_transamp(void)
     }
 }
 
+/* ---- 2b. stability on the imaginary axis ---- */
+
+/* y1' = y2, y2' = -w^2 y1 with w = 1 at a fixed step h: h lambda = +-i h. The amplitude's
+ * growth per step over steps N/2 .. N, for the method m of order k. */
+static int lin_res(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user;
+    (void)t;
+    F[0] = yp[0] - y[1];
+    F[1] = yp[1] + y[0];
+    return 0;
+}
+
+static double growth(dae_method m, int k, double h)
+{
+    enum { N = 400 };
+    dae_problem p;
+    memset(&p, 0, sizeof p);
+    p.n = 2;
+    p.res = lin_res;
+    dae_options o;
+    dae_options_default(&o);
+    o.method = m;
+    o.rtol = 1e-14;
+    o.atol = 1e-300;
+    o.fixed_step = 1;
+    o.h_init = h;
+    o.max_steps = 10 * N;
+    bg_error err;
+    dae_solver *s = dae_create(&p, &o, &err);
+    double Y[12], a_half = NAN, a_end = NAN;
+    for (int i = 0; i <= k; i++) {
+        Y[2 * i] = cos(-i * h);
+        Y[2 * i + 1] = -sin(-i * h);
+    }
+    if (s && dae_set_history(s, 0.0, h, k, Y) == BG_OK) {
+        for (int j = 1; j <= N; j++) {
+            double t, y[2];
+            if (dae_step(s, 1e9, &t, y, NULL) < 0) break;
+            if (j == N / 2) a_half = hypot(y[0], y[1]);
+            if (j == N) a_end = hypot(y[0], y[1]);
+        }
+    }
+    dae_free(&s);
+    return pow(a_end / a_half, 2.0 / N);
+}
+
+static void test_imaginary_axis(void)
+{
+    /* The spectral radius of each method's amplification matrix at h lambda = i h, computed from
+     * its characteristic polynomial (the analysis of dae_mebdf.c's header): MEBDF with BDF
+     * stages of order k = 1..5, then BDF of orders 3..5, at h = 1 and 2. */
+    static const double hs[2] = {1.0, 2.0};
+    static const double rho_mebdf[5][2] = {{0.728869, 0.368782},
+                                           {0.916242, 0.655028},
+                                           {0.985810, 0.844211},
+                                           {1.016496, 0.989075},
+                                           {1.021965, 1.111961}};
+    static const double rho_bdf[3][2] = {
+        {1.043587, 0.993959}, {1.105568, 1.189646}, {1.134673, 1.368620}};
+    for (int ih = 0; ih < 2; ih++) {
+        for (int k = 1; k <= 5; k++) {
+            double g = growth(DAE_MEBDF, k, hs[ih]), want = rho_mebdf[k - 1][ih];
+            tap_ok(fabs(g / want - 1) <= 1e-4,
+                   "MEBDF k = %d (order %d) at h omega = %g: growth per step %.6f, the "
+                   "amplification matrix's spectral radius %.6f",
+                   k, k + 1, hs[ih], g, want);
+        }
+        for (int k = 3; k <= 5; k++) {
+            double g = growth(DAE_BDF, k, hs[ih]), want = rho_bdf[k - 3][ih];
+            tap_ok(fabs(g / want - 1) <= 1e-4,
+                   "BDF%d at h omega = %g: growth per step %.6f, spectral radius %.6f", k, hs[ih],
+                   g, want);
+        }
+    }
+}
+
 /* ---- 5. a method that does not exist ---- */
 
 static void test_bad_method(void)
@@ -292,6 +374,7 @@ int main(void)
     test_bad_method();
     test_order();
     test_oscillator();
+    test_imaginary_axis();
     test_pendulum();
     test_transamp();
     return tap_done();
