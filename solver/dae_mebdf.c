@@ -36,8 +36,8 @@
  * The angles were computed here (the A(alpha) angle: the largest alpha for which the spectral
  * radius of the step's k x k amplification matrix on y' = lambda y stays <= 1 on the rays
  * h lambda = -r exp(+-i alpha), 1e-3 <= r <= 1e6, and on the imaginary axis for k <= 3) and
- * agree with Cash's table (1983, 2000); BDF of the same orders: 90, 90, 86.03, 73.35, 51.84
- * (orders 2..6: BDF6 17.84).
+ * agree with Cash's table (1983, 2000); BDF of orders 2..6: 90, 86.03, 73.35, 51.84, 17.84.
+ * tests/solver/test_dae_mebdf.c measures the amplification on the imaginary axis.
  * Variable step: as in BDF's fixed-leading-coefficient form (dae_step.c), the past values are
  * those of the history's predictor polynomial of degree k at t_{n+1} - j h (j = 1..k): the
  * variable-step history is interpolated onto the constant step h the formulas are written
