@@ -18,12 +18,15 @@
 #endif
 
 const solver_def bench_solvers[] = {
-    {"bgdae-klu", 0, LS_KLU, DAE_I2_EXCLUDE},
-    {"bgdae-klu-scaleh", 0, LS_KLU, DAE_I2_SCALE_H},
-    {"bgdae-dense", 0, LS_DENSE, DAE_I2_EXCLUDE},
-    {"bgdae-dense-scaleh", 0, LS_DENSE, DAE_I2_SCALE_H},
-    {"ida-klu", 1, LS_KLU, DAE_I2_EXCLUDE},
-    {"ida-dense", 1, LS_DENSE, DAE_I2_EXCLUDE},
+    {"bgdae-klu", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_BDF, 0},
+    {"bgdae-klu-scaleh", 0, LS_KLU, DAE_I2_SCALE_H, DAE_BDF, 0},
+    {"bgdae-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF, 0},
+    {"bgdae-dense-scaleh", 0, LS_DENSE, DAE_I2_SCALE_H, DAE_BDF, 0},
+    {"bgdae-mebdf", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF, 0},
+    {"bgdae-mebdf-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_MEBDF, 0},
+    {"bgdae-mebdf4", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF, 3},
+    {"ida-klu", 1, LS_KLU, DAE_I2_EXCLUDE, DAE_BDF, 0},
+    {"ida-dense", 1, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF, 0},
 };
 const int bench_nsolvers = (int)(sizeof bench_solvers / sizeof *bench_solvers);
 
@@ -139,11 +142,13 @@ static void our_options(const bench_case *bc, const solver_def *sd, const run_op
     if (bench_case_atol(bc, ro->rtol, &o->atol, atolv)) o->atol_vec = atolv;
     o->linsol = sd ? sd->ls : LS_KLU;
     o->index2 = ro->reduce ? DAE_I2_REDUCE : sd ? sd->pol : DAE_I2_EXCLUDE;
+    o->method = sd ? sd->method : DAE_BDF;
     o->exclude_alg = bc->exclude_alg;
     o->stability_guard = ro->guard ? ro->guard > 0 : bc->stability_guard;
     o->newton_dgmax = bc->newton_dgmax;
     o->newton_jac_age = bc->newton_jac_age;
     o->newton_index2_scale_h = bc->newton_index2_scale_h;
+    if (sd && sd->max_order > 0) o->max_order = sd->max_order;
     if (ro->max_order > 0) o->max_order = ro->max_order;
     o->has_t_stop = 1;
     o->t_stop = tend;

@@ -74,6 +74,8 @@ typedef struct solver_def {
     int ida; /* 0: ours, 1: SUNDIALS IDA */
     ls_kind ls;
     dae_index2_policy pol;
+    dae_method method; /* ours: DAE_BDF or DAE_MEBDF */
+    int max_order;     /* ours: options.max_order, 0: the default (or run_opts.max_order) */
 } solver_def;
 
 extern const solver_def bench_solvers[];

@@ -482,11 +482,13 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
     }
     /* ours without the stability guard (the hard case: every mode resolved), ours with it when
      * the scene asks for it (as the crane program runs it), IDA */
-    full_row *rows = calloc((size_t)(3 * nr + 1), sizeof *rows);
+    const solver_def *mebdf = bench_solver_find("bgdae-mebdf"),
+                     *mebdf4 = bench_solver_find("bgdae-mebdf4");
+    full_row *rows = calloc((size_t)(5 * nr + 1), sizeof *rows);
     int nrow = 0;
     for (int k = 0; k < nr && rows; k++)
-        for (int q = 0; q < 3; q++) {
-            const solver_def *sd = q < 2 ? ours : ida;
+        for (int q = 0; q < 5; q++) {
+            const solver_def *sd = q < 2 ? ours : q == 2 ? ida : q == 3 ? mebdf : mebdf4;
             if (!sd || (q == 1 && !s->stability_guard)) continue;
             full_row *w = &rows[nrow];
             w->solver = q == 0 ? "bgdae-klu" : q == 1 ? "bgdae-klu+guard" : sd->name;
@@ -524,7 +526,9 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
             "Scene %s (%d boom elements, %d unknowns) over [0, %g] s from its %s start, %d "
             "breakpoints; atol = %g rtol at each tolerance below; one run each (crane_wp.csv): "
             "bgdae-klu without the stability guard (every mode resolved: the hard case)%s, "
-            "IDA-KLU. Reference: bgdae-klu at rtol %g without the guard: %s (%ld steps, %.1f s "
+            "IDA-KLU, bgdae-mebdf (Cash's modified extended BDF in our code, orders up to 6, no "
+            "guard) and bgdae-mebdf4 (orders up to 4, where it is A-stable). "
+            "Reference: bgdae-klu at rtol %g without the guard: %s (%ld steps, %.1f s "
             "CPU). IDA-KLU is restarted "
             "at every breakpoint from values made consistent by our dae_consistent_init (as our "
             "solver restarts there; IDA's own y' before a corner of the reference belongs to "

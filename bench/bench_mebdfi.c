@@ -203,12 +203,14 @@ int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, i
         fprintf(c,
                 "problem,code,rtol,atol,status,steps,failed_steps,res_evals,res_evals_without_fd_"
                 "jacobians,jacobians,lu_factorizations,max_order,scd,scd_measure\n");
-    const solver_def *ours = bench_solver_find("bgdae-klu");
+    const solver_def *oursv[2] = {bench_solver_find("bgdae-klu"),
+                                  bench_solver_find("bgdae-mebdf")};
     int fails = 0, any = 0;
     fprintf(rep,
             "## MEBDFI's published run statistics beside ours\n\n"
             "J. R. Cash's MEBDFI (MEBDFDAE for the pendulum) as its test drivers printed them "
             "(docs/mebdfi_stats.md: source, licence and caveats) beside one run of bgdae-klu "
+            "and one of bgdae-mebdf (Cash's method in our code, options.method = DAE_MEBDF) "
             "with the driver's tolerance convention (below) at each tolerance of this run that "
             "the drivers also used, from the bench's consistent start (the drivers start from "
             "the published values: crank's satisfy its constraints to about 1e-7 only) with our "
@@ -220,10 +222,11 @@ int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, i
             "driver's own measure for MEBDFI (crank: over all 23 non-zero components; pump: y1 "
             "only; the pendulum: a weighted rms), the bench's (the test set's scored "
             "components) for ours. mebdfi_compare.csv has the rows.\n\n");
-    for (int ci = 0; ci < nc; ci++) {
-        const bench_case *bc = cases[ci];
+    for (int ci = 0; ci < nc * 2; ci++) {
+        const solver_def *ours = oursv[ci % 2];
+        const bench_case *bc = cases[ci / 2];
         const driver *d = driver_of(bc->name);
-        if (!d) continue;
+        if (!d || !ours) continue;
         int header = 0;
         for (int k = 0; k < nr; k++) {
             const mebdfi_stat *m = published(bc->name, rtols[k]);
@@ -245,24 +248,24 @@ int bench_mebdfi_compare(const char *dir, FILE *rep, bench_case *const *cases, i
             if (o.status < 0) fails++;
             long failed = o.rejected + o.conv_fail;
             long m_nofd = d->mf == 22 ? m->res - (long)bc->n * m->jac : m->res;
-            if (c) {
+            if (c && ci % 2 == 0) /* the driver's row once, beside bgdae-klu's */
                 fprintf(c, "%s,\"%s\",%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,driver\n", bc->name,
                         d->file, m->rtol, m->atol, 0, m->steps, m->failed, m->res, m_nofd, m->jac,
                         m->lu, m->max_order, m->scd);
-                fprintf(c, "%s,bgdae-klu,%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,bench\n",
-                        bc->name, rtols[k], atol, o.status, o.steps, failed, o.res, o.res, o.jac,
-                        o.fact, o.max_order, sc.scd);
-            }
-            fprintf(stderr, "mebdfi: %-9s rtol %-6g ours %s %ld steps (MEBDFI %ld)\n", bc->name,
-                    rtols[k], o.status < 0 ? "FAIL" : "ok", o.steps, m->steps);
+            if (c)
+                fprintf(c, "%s,%s,%g,%g,%d,%ld,%ld,%ld,%ld,%ld,%ld,%d,%.2f,bench\n",
+                        bc->name, ours->name, rtols[k], atol, o.status, o.steps, failed, o.res,
+                        o.res, o.jac, o.fact, o.max_order, sc.scd);
+            fprintf(stderr, "mebdfi: %-9s rtol %-6g %s %s %ld steps (MEBDFI %ld)\n", bc->name,
+                    rtols[k], ours->name, o.status < 0 ? "FAIL" : "ok", o.steps, m->steps);
             if (!header) {
                 fprintf(rep,
-                        "### %s (%s; Jacobian %s; first step %s)\n\nTolerances: %s.\n\n"
+                        "### %s, %s (%s; Jacobian %s; first step %s)\n\nTolerances: %s.\n\n"
                         "| rtol | steps MEBDFI | ours | ratio | failed MEBDFI | ours | ratio | "
                         "residuals MEBDFI | w/o FD | ours | ratio | Jacobians MEBDFI | ours | "
                         "ratio | scd MEBDFI | ours |\n"
                         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-                        bc->name, d->file,
+                        bc->name, ours->name, d->file,
                         d->mf == 22 ? "by finite differences (MF = 22)" : "analytic (MF = 21)",
                         d->h0, d->tolerances);
                 header = 1;

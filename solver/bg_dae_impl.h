@@ -27,6 +27,8 @@
  *   dae_ic_newton.c   their Newton iteration for y' and the index-2 unknowns
  *   dae_ic_impl.h     the interface between dae_ic.c and dae_ic_newton.c
  *   dae_reduce.c      index reduction of the constraints (DAE_I2_REDUCE)
+ *   dae_mebdf.c       the modified extended BDF step (options.method = DAE_MEBDF): two BDF
+ *                     stages and Cash's formula with the same Newton matrix
  * The rest of solver/ has interfaces of its own: what the integrator builds on (bg_status,
  * bg_sparse, bg_linsol, bg_fdjac), what builds on its problem form (bg_static, and bg_modes with
  * bg_modes_sparse.c and bg_modes_impl.h, both through bg_jaceval), bg_trim (the trim's root
@@ -180,6 +182,7 @@ struct dae_solver {
     double ic_res;  /* the last daei_consistent_init: scaled residual at the values returned */
     double ic_err;  /* and the weighted correction it calls for (1 = the tolerance) */
     dae_reduce *red; /* DAE_I2_REDUCE: the problem as given and the reduction (dae_reduce.c) */
+    double *mb;      /* DAE_MEBDF: MB_NVEC vectors of n (dae_mebdf.c) */
 };
 
 enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };
@@ -267,6 +270,16 @@ enum { NL_OK = 0, NL_RECOVER = 1, NL_RES_RECOVER = 2, NL_SINGULAR = 3, NL_LSFAIL
 /* Corrects the predicted y, yp at t; ee holds the sum of the corrections. NL_*, or < 0 fatal
  * (a callback's status). A failure is described in s->note. */
 int daei_newton(dae_solver *s, double t);
+
+/* ---- dae_mebdf.c: the modified extended BDF step (options.method = DAE_MEBDF) ---- */
+#define MB_NVEC 7
+/* The corrector of a MEBDF step, after the BDF coefficients and prediction of order k for the
+ * step to t (the step's end): the BDF solution at t, the BDF solution at t + h from it, then
+ * the MEBDF solution at t with the same Newton matrix. Leaves y, yp and ee = y - ypred as
+ * daei_newton does. teval: the time the residual of the first stage sees (a breakpoint's
+ * left-hand side); bdf_only: the step ends on (or its second stage would pass) a stop, BDF
+ * alone. NL_* or a fatal status, as daei_newton. */
+int daei_mebdf_correct(dae_solver *s, double t, double teval, int bdf_only);
 
 /* ---- dae_disc.c: discontinuities ---- */
 /* Whether the first Newton correction shows a jump the predictor missed (another iteration). */

@@ -113,6 +113,7 @@ void dae_free(dae_solver **sp)
     free(s->yc);
     for (int j = 0; j < STAB_WIN; j++)
         free(s->stab_e[j]);
+    free(s->mb);
     free(s->reg_jac);
     free(s->reg_now);
     free(s->glo);
@@ -240,6 +241,11 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     }
     if (o->max_order < 1 || o->max_order > MAXORD) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "max_order must be 1..5 (got %d)", o->max_order);
+        return NULL;
+    }
+    if (o->method != DAE_BDF && o->method != DAE_MEBDF) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "method must be DAE_BDF (0) or DAE_MEBDF (1) (got %d)", (int)o->method);
         return NULL;
     }
     if (o->newton_jac_age < 0 || (o->newton_jac_age > 0 && !(o->newton_dgmax > 0))) {
@@ -385,6 +391,8 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
                        &s->stab_e[0], &s->stab_e[1], &s->stab_e[2], &s->stab_e[3], &s->stab_e[4]};
     for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
         if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
+    if (s->o.method == DAE_MEBDF && !(s->mb = calloc((size_t)MB_NVEC * n, sizeof(double))))
+        goto nomem;
     if (p->nregimes > 0) {
         s->reg_jac = calloc((size_t)p->nregimes, sizeof(int));
         s->reg_now = calloc((size_t)p->nregimes, sizeof(int));

@@ -405,7 +405,11 @@ int daei_step(dae_solver *s)
         /* a step that lands on a breakpoint sees the inputs' left-hand values there (one unit of
          * round-off short), whichever side the model gives the jump to: the restart takes the
          * right-hand ones */
-        int nl = daei_newton(s, landing && isb ? nextafter(ts, s->tn) : tnew);
+        double teval = landing && isb ? nextafter(ts, s->tn) : tnew;
+        int nl = s->o.method == DAE_MEBDF
+                     ? daei_mebdf_correct(s, tnew, teval,
+                                          !isnan(ts) && (tnew + s->hh - ts) * s->hh >= 0)
+                     : daei_newton(s, teval);
         if (nl == NL_OK && (s->o.fixed_step || !daei_error_test(s))) {
             complete_step(s);
             s->tn = tnew;

@@ -102,7 +102,7 @@ int main(int argc, char **argv)
     /* every solver at both tolerances on both problems: at least our four */
     int ours_p = count_lines(path, "pendulum2,bgdae-", NULL),
         ours_a = count_lines(path, "ap102,bgdae-", NULL);
-    tap_ok(ours_p == 8 && ours_a == 8, "work_precision.csv: 8 rows of ours per problem (%d, %d)",
+    tap_ok(ours_p == 14 && ours_a == 14, "work_precision.csv: 14 rows of ours per problem (%d, %d)",
            ours_p, ours_a);
     tap_ok(rows == 1 + 2 * count_lines(path, "pendulum2,", NULL),
            "work_precision.csv: the same rows for both problems (%d lines)", rows);
@@ -119,17 +119,22 @@ int main(int argc, char **argv)
                count_lines(path, "| pendulum2 | bgdae-klu |", NULL) == 1,
            "report.md has the steps against tolerance, pendulum2 with bgdae-klu in it");
     tap_ok(count_lines(path, "## MEBDFI's published run statistics", NULL) == 1 &&
-               count_lines(path, "### pendulum2 (MEBDFDAE", NULL) == 1 &&
-               count_lines(path, "| 0.0001 | 21 |", NULL) == 1,
-           "report.md has MEBDFI beside ours: pendulum2 at 1e-4 with MEBDFDAE's 21 steps");
+               count_lines(path, "### pendulum2, bgdae-klu (MEBDFDAE", NULL) == 1 &&
+               count_lines(path, "### pendulum2, bgdae-mebdf (MEBDFDAE", NULL) == 1 &&
+               count_lines(path, "| 0.0001 | 21 |", NULL) == 2,
+           "report.md has MEBDFI beside bgdae-klu and bgdae-mebdf: pendulum2 at 1e-4 with "
+           "MEBDFDAE's 21 steps");
     snprintf(path, sizeof path, "%s/steps_vs_tol.csv", out);
     tap_ok(count_lines(path, "problem,solver,rtol", NULL) == 1 &&
                count_lines(path, "pendulum2,bgdae-klu,", NULL) == 2 &&
                count_lines(path, "ap102,", NULL) == count_lines(path, "pendulum2,", NULL),
            "steps_vs_tol.csv: header, a row per problem, solver and tolerance");
     snprintf(path, sizeof path, "%s/mebdfi_compare.csv", out);
-    tap_ok(count_lines(path, "pendulum2,", NULL) == 4 && count_lines(path, "ap102,", NULL) == 0,
-           "mebdfi_compare.csv: pendulum2 at both tolerances, MEBDFDAE's and ours; no ap102");
+    tap_ok(count_lines(path, "pendulum2,", NULL) == 6 &&
+               count_lines(path, "pendulum2,bgdae-mebdf,", NULL) == 2 &&
+               count_lines(path, "ap102,", NULL) == 0,
+           "mebdfi_compare.csv: pendulum2 at both tolerances, MEBDFDAE's, bgdae-klu's and "
+           "bgdae-mebdf's; no ap102");
 
     snprintf(out, sizeof out, "%s/stab", dir);
     const char *stab[] = {"--problems", "none",  "--stability", "--stability-filter",

@@ -1,0 +1,381 @@
+/* The modified extended BDF (options.method = DAE_MEBDF, solver/dae_mebdf.c) against
+ * independent truths:
+ *   1. order of convergence at fixed step on smooth_ode (closed form y1 = e^-t + sin t,
+ *      y2 = cos 2t + e^-2t) started from the exact history: MEBDF with BDF stages of order k
+ *      converges with order k + 1 (k = 1..5), BDF with order k (the same measurement);
+ *   2. an undamped stiff oscillator driven slowly (closed form, the problem of test_dae_stab.c):
+ *      BDF of orders up to 5 sits at the edge of BDF5's unstable band for the fast mode
+ *      (h omega ~ 0.7) whatever the tolerance; MEBDF of order 4 (k = 3, A-stable) takes steps
+ *      that follow the slow oscillation, falling as the tolerance loosens, and meets it;
+ *   2b. an undamped oscillator at fixed steps h omega = 1 and 2 (h lambda on the imaginary
+ *      axis): the amplitude's growth per step equals the spectral radius of each method's
+ *      amplification matrix, which the analysis of the formulas gives (MEBDF of orders 2..4
+ *      contracts, as A-stable methods do; of orders 5 and 6, and BDF of orders 3..5, grow at
+ *      h omega = 1);
+ *   3. the index-2 pendulum against its 30-digit reference;
+ *   4. the IVP Test Set's transistor amplifier (transamp) against its published reference:
+ *      no failure from rtol 1e-4 to 1e-10 (BDF fails at 1e-10), correct digits (scd) within one
+ *      of the tolerance, at rtol 1e-8 and 1e-10 at least those of Cash's MEBDFI minus 0.5, and
+ *      at most twice MEBDFI's steps (docs/mebdfi_stats.md);
+ *   5. a method that does not exist is refused by dae_create with a message naming it. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bg_dae.h"
+#include "bg_sparse.h"
+#include "problems.h"
+#include "tap.h"
+
+#define MAXN 16
+
+static dae_solver *start(bp_instance *in, const bp_problem *p, const dae_options *o)
+{
+    bg_error err;
+    memset(&err, 0, sizeof err);
+    if (bp_instance_init(in, p) != 0) return NULL;
+    dae_solver *s = dae_create(&in->dp, o, &err);
+    if (!s) {
+        tap_diag("%s: dae_create failed: %s", p->name, err.message);
+        return NULL;
+    }
+    return s;
+}
+
+/* ---- 1. order of convergence ---- */
+
+/* Max error over the components at t = 1 of a fixed-step run with step h, order k. */
+static double fixed_run(const bp_problem *p, dae_method m, int k, double h)
+{
+    bp_instance in;
+    dae_options o;
+    dae_options_default(&o);
+    o.method = m;
+    o.rtol = 1e-13;
+    o.atol = 1e-13;
+    o.fixed_step = 1;
+    o.h_init = h;
+    o.max_steps = 1000000;
+    double err = NAN;
+    dae_solver *s = start(&in, p, &o);
+    double Y[(5 + 1) * 2], e[2], ep[2];
+    for (int i = 0; i <= k; i++)
+        p->exact(p->t0 - i * h, Y + 2 * i, NULL);
+    if (s && dae_set_history(s, p->t0, h, k, Y) == BG_OK) {
+        double y[2], yp[2], t, tend = p->t0 + 1.0;
+        int r = dae_solve_to(s, tend, &t, y, yp);
+        if (r >= 0) {
+            p->exact(t, e, ep);
+            err = fmax(fabs(y[0] - e[0]), fabs(y[1] - e[1]));
+        } else
+            tap_diag("fixed run k %d h %g: %s", k, h, dae_get_error(s)->message);
+    }
+    dae_free(&s);
+    bp_instance_free(&in);
+    return err;
+}
+
+static void test_order(void)
+{
+    const bp_problem *p = bp_find("smooth_ode");
+    for (int m = 0; m < 2; m++) {
+        for (int k = 1; k <= 5; k++) {
+            double h = k <= 2 ? 0.02 : 0.0125; /* landing on t = 1 */
+            double e1 = fixed_run(p, m ? DAE_MEBDF : DAE_BDF, k, h);
+            double e2 = fixed_run(p, m ? DAE_MEBDF : DAE_BDF, k, h / 2);
+            double ord = log2(e1 / e2), want = m ? k + 1 : k;
+            tap_ok(fabs(ord - want) <= 0.3,
+                   "%s k = %d: observed order %.2f (errors %.3g at h = %g, %.3g at h/2), "
+                   "expected %g",
+                   m ? "MEBDF" : "BDF", k, ord, e1, h, e2, want);
+        }
+    }
+}
+
+/* ---- 2. an undamped stiff oscillator ---- */
+
+#define W1 20.0
+#define W2 700.0
+#define WF 1.0
+#define TEND 5.0
+
+static const double osc_y0[4] = {0.0, 0.5, 1e-7, 0.0};
+
+static void osc_exact(double t, double *y)
+{
+    for (int i = 0; i < 2; i++) {
+        double w = i == 0 ? W1 : W2, d = w * w - WF * WF;
+        double q0 = osc_y0[2 * i], v0 = osc_y0[2 * i + 1], B = (v0 - WF / d) / w;
+        y[2 * i] = q0 * cos(w * t) + B * sin(w * t) + sin(WF * t) / d;
+        y[2 * i + 1] = -q0 * w * sin(w * t) + B * w * cos(w * t) + WF * cos(WF * t) / d;
+    }
+}
+
+static int osc_res(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user;
+    F[0] = yp[0] - y[1];
+    F[1] = yp[1] + W1 * W1 * y[0] - sin(WF * t);
+    F[2] = yp[2] - y[3];
+    F[3] = yp[3] + W2 * W2 * y[2] - sin(WF * t);
+    return 0;
+}
+
+typedef struct osc_run {
+    long steps;
+    double err_slow; /* max |q1 - exact| / (rtol |q1| + atol) at 100 output points */
+    int status;
+} osc_run;
+
+static osc_run osc(dae_method m, int max_order, double tol)
+{
+    osc_run r = {0, 0, 0};
+    dae_problem p;
+    memset(&p, 0, sizeof p);
+    p.n = 4;
+    p.res = osc_res;
+    dae_options o;
+    dae_options_default(&o);
+    o.method = m;
+    o.max_order = max_order;
+    o.rtol = tol;
+    o.atol = tol;
+    o.max_steps = 1000000;
+    bg_error err;
+    dae_solver *s = dae_create(&p, &o, &err);
+    double yp0[4] = {osc_y0[1], -W1 * W1 * osc_y0[0], osc_y0[3], -W2 * W2 * osc_y0[2]};
+    if (!s || dae_init(s, 0.0, osc_y0, yp0) != BG_OK) {
+        r.status = -1000;
+        dae_free(&s);
+        return r;
+    }
+    for (int i = 1; i <= 100; i++) {
+        double t, y[4], yp[4], e[4], tout = TEND * i / 100;
+        r.status = dae_solve_to(s, tout, &t, y, yp);
+        if (r.status < 0) break;
+        osc_exact(t, e);
+        r.err_slow = fmax(r.err_slow, fabs(y[0] - e[0]) / (tol * fabs(e[0]) + tol));
+    }
+    r.steps = dae_get_stats(s)->steps;
+    dae_free(&s);
+    return r;
+}
+
+static void test_oscillator(void)
+{
+    static const double tols[4] = {1e-4, 1e-5, 1e-6, 1e-7};
+    osc_run b[4], e[4];
+    for (int i = 0; i < 4; i++) {
+        b[i] = osc(DAE_BDF, 5, tols[i]);
+        e[i] = osc(DAE_MEBDF, 3, tols[i]);
+        tap_diag("oscillator tol %g: BDF (orders 1..5) %ld steps, slow error %.3g tolerances; "
+                 "MEBDF (order 4) %ld steps, slow error %.3g tolerances",
+                 tols[i], b[i].steps, b[i].err_slow, e[i].steps, e[i].err_slow);
+    }
+    /* BDF's step is held at the band's edge h = 0.72 / W2: about TEND W2 / 0.72 steps */
+    double hold = TEND * W2 / 0.72;
+    for (int i = 0; i < 4; i++) {
+        if (i > 0) /* at 1e-4 BDF's own order selection lowers the order */
+            tap_ok(b[i].status >= 0 && b[i].steps >= 0.7 * hold,
+                   "tol %g: BDF up to order 5 is held by the fast mode: %ld steps >= 0.7 x %.0f",
+                   tols[i], b[i].steps, hold);
+        tap_ok(e[i].status >= 0 && e[i].err_slow <= 10.0 && e[i].steps <= b[i].steps * 2,
+               "tol %g: MEBDF's slow oscillator within 10 tolerances of the closed form (%.3g), "
+               "steps %ld within twice BDF's %ld",
+               tols[i], e[i].err_slow, e[i].steps, b[i].steps);
+    }
+    /* where the slow oscillation allows long steps (1e-5), MEBDF of order 4 takes them */
+    for (int i = 1; i < 2; i++)
+        tap_ok(e[i].steps <= 0.25 * b[i].steps,
+               "tol %g: MEBDF of order 4 keeps its step: %ld steps <= a quarter of BDF's %ld",
+               tols[i], e[i].steps, b[i].steps);
+    tap_ok(e[0].steps < e[1].steps && e[1].steps < e[2].steps && e[2].steps < e[3].steps,
+           "MEBDF's steps fall as the tolerance loosens (%ld, %ld, %ld, %ld at 1e-7 .. 1e-4)",
+           e[3].steps, e[2].steps, e[1].steps, e[0].steps);
+}
+
+/* ---- 3. the index-2 pendulum ---- */
+
+static void test_pendulum(void)
+{
+    const bp_problem *p = bp_find("pendulum2");
+    static const double rtols[2] = {1e-6, 1e-9};
+    double yref[MAXN];
+    bp_reference(p, yref);
+    for (int ir = 0; ir < 2; ir++) {
+        bp_instance in;
+        dae_options o;
+        dae_options_default(&o);
+        o.method = DAE_MEBDF;
+        o.rtol = rtols[ir];
+        o.atol = 1e-2 * rtols[ir];
+        dae_solver *s = start(&in, p, &o);
+        int ret = -1000;
+        double t, y[MAXN], yp[MAXN];
+        if (s && (ret = dae_init(s, p->t0, p->y0, p->yp0)) == BG_OK)
+            ret = dae_solve_to(s, p->tend, &t, y, yp);
+        bp_score sc = {0};
+        if (ret >= 0) bp_score_compute(p, y, yref, o.rtol, o.atol, &sc);
+        const dae_stats *st = s ? dae_get_stats(s) : NULL;
+        tap_ok(ret == DAE_SUCCESS && sc.scd >= -log10(rtols[ir]) - 1.0 &&
+                   sc.scd_i2 >= -log10(rtols[ir]) - 2.0,
+               "pendulum2 MEBDF rtol %g: scd %.2f >= %.0f, index-2 scd %.2f >= %.0f (%ld steps, "
+               "drift %.3g)",
+               rtols[ir], sc.scd, -log10(rtols[ir]) - 1.0, sc.scd_i2, -log10(rtols[ir]) - 2.0,
+               st ? st->steps : 0L, st ? st->max_drift : NAN);
+        dae_free(&s);
+        bp_instance_free(&in);
+    }
+}
+
+/* ---- 4. transamp ---- */
+
+static void test_transamp(void)
+{
+    const bp_problem *p = bp_find("transamp");
+    /* MEBDFI's scd and steps at rtol = atol = 1e-4 .. 1e-10 (docs/mebdfi_stats.md, transi.out) */
+    static const double rtols[4] = {1e-4, 1e-6, 1e-8, 1e-10};
+    static const double mebdfi_scd[4] = {4.58, 6.43, 7.59, 10.12};
+    static const long mebdfi_steps[4] = {1481, 2748, 4592, 7767};
+    double yref[MAXN];
+    bp_reference(p, yref);
+    for (int ir = 0; ir < 4; ir++) {
+        bp_instance in;
+        dae_options o;
+        dae_options_default(&o);
+        o.method = DAE_MEBDF;
+        o.rtol = rtols[ir];
+        o.atol = rtols[ir];
+        o.h_init = 1e-2 * rtols[ir]; /* as MEBDFI's driver */
+        o.max_steps = 1000000;
+        dae_solver *s = start(&in, p, &o);
+        int ret = -1000;
+        double t, y[MAXN], yp[MAXN];
+        if (s && (ret = dae_init(s, p->t0, p->y0, p->yp0)) == BG_OK)
+            ret = dae_solve_to(s, p->tend, &t, y, yp);
+        bp_score sc = {0};
+        if (ret >= 0) bp_score_compute(p, y, yref, o.rtol, o.atol, &sc);
+        long steps = s ? dae_get_stats(s)->steps : 0;
+        double want = -log10(rtols[ir]) - 1.0;
+        tap_ok(ret == DAE_SUCCESS && sc.scd >= want,
+               "transamp MEBDF rtol %g: %s, scd %.2f >= %.0f (MEBDFI %.2f)", rtols[ir],
+               dae_return_name(ret), sc.scd, want, mebdfi_scd[ir]);
+        if (ir >= 2)
+            tap_ok(ret == DAE_SUCCESS && sc.scd >= mebdfi_scd[ir] - 0.5,
+                   "transamp MEBDF rtol %g: scd %.2f >= MEBDFI's %.2f - 0.5", rtols[ir], sc.scd,
+                   mebdfi_scd[ir]);
+        tap_ok(ret == DAE_SUCCESS && steps <= 2 * mebdfi_steps[ir],
+               "transamp MEBDF rtol %g: %ld steps <= twice MEBDFI's %ld (ratio %.2f)", rtols[ir],
+               steps, mebdfi_steps[ir], (double)steps / (double)mebdfi_steps[ir]);
+        dae_free(&s);
+        bp_instance_free(&in);
+    }
+}
+
+/* ---- 2b. stability on the imaginary axis ---- */
+
+/* y1' = y2, y2' = -w^2 y1 with w = 1 at a fixed step h: h lambda = +-i h. The amplitude's
+ * growth per step over steps N/2 .. N, for the method m of order k. */
+static int lin_res(void *user, double t, const double *y, const double *yp, double *F)
+{
+    (void)user;
+    (void)t;
+    F[0] = yp[0] - y[1];
+    F[1] = yp[1] + y[0];
+    return 0;
+}
+
+static double growth(dae_method m, int k, double h)
+{
+    enum { N = 400 };
+    dae_problem p;
+    memset(&p, 0, sizeof p);
+    p.n = 2;
+    p.res = lin_res;
+    dae_options o;
+    dae_options_default(&o);
+    o.method = m;
+    o.rtol = 1e-14;
+    o.atol = 1e-300;
+    o.fixed_step = 1;
+    o.h_init = h;
+    o.max_steps = 10 * N;
+    bg_error err;
+    dae_solver *s = dae_create(&p, &o, &err);
+    double Y[12], a_half = NAN, a_end = NAN;
+    for (int i = 0; i <= k; i++) {
+        Y[2 * i] = cos(-i * h);
+        Y[2 * i + 1] = -sin(-i * h);
+    }
+    if (s && dae_set_history(s, 0.0, h, k, Y) == BG_OK) {
+        for (int j = 1; j <= N; j++) {
+            double t, y[2];
+            if (dae_step(s, 1e9, &t, y, NULL) < 0) break;
+            if (j == N / 2) a_half = hypot(y[0], y[1]);
+            if (j == N) a_end = hypot(y[0], y[1]);
+        }
+    }
+    dae_free(&s);
+    return pow(a_end / a_half, 2.0 / N);
+}
+
+static void test_imaginary_axis(void)
+{
+    /* The spectral radius of each method's amplification matrix at h lambda = i h, computed from
+     * its characteristic polynomial (the analysis of dae_mebdf.c's header): MEBDF with BDF
+     * stages of order k = 1..5, then BDF of orders 3..5, at h = 1 and 2. */
+    static const double hs[2] = {1.0, 2.0};
+    static const double rho_mebdf[5][2] = {{0.728869, 0.368782},
+                                           {0.916242, 0.655028},
+                                           {0.985810, 0.844211},
+                                           {1.016496, 0.989075},
+                                           {1.021965, 1.111961}};
+    static const double rho_bdf[3][2] = {
+        {1.043587, 0.993959}, {1.105568, 1.189646}, {1.134673, 1.368620}};
+    for (int ih = 0; ih < 2; ih++) {
+        for (int k = 1; k <= 5; k++) {
+            double g = growth(DAE_MEBDF, k, hs[ih]), want = rho_mebdf[k - 1][ih];
+            tap_ok(fabs(g / want - 1) <= 1e-4,
+                   "MEBDF k = %d (order %d) at h omega = %g: growth per step %.6f, the "
+                   "amplification matrix's spectral radius %.6f",
+                   k, k + 1, hs[ih], g, want);
+        }
+        for (int k = 3; k <= 5; k++) {
+            double g = growth(DAE_BDF, k, hs[ih]), want = rho_bdf[k - 3][ih];
+            tap_ok(fabs(g / want - 1) <= 1e-4,
+                   "BDF%d at h omega = %g: growth per step %.6f, spectral radius %.6f", k, hs[ih],
+                   g, want);
+        }
+    }
+}
+
+/* ---- 5. a method that does not exist ---- */
+
+static void test_bad_method(void)
+{
+    dae_problem p;
+    memset(&p, 0, sizeof p);
+    p.n = 4;
+    p.res = osc_res;
+    dae_options o;
+    dae_options_default(&o);
+    o.method = (dae_method)7;
+    bg_error err;
+    memset(&err, 0, sizeof err);
+    dae_solver *s = dae_create(&p, &o, &err);
+    tap_ok(!s && err.status == BG_ERR_ARGUMENT && strstr(err.message, "method"),
+           "method 7: dae_create refuses with BG_ERR_ARGUMENT naming the option (%s)", err.message);
+    dae_free(&s);
+    tap_ok(dae_options_default(&o) == BG_OK && o.method == DAE_BDF, "the default method is BDF");
+}
+
+int main(void)
+{
+    test_bad_method();
+    test_order();
+    test_oscillator();
+    test_imaginary_axis();
+    test_pendulum();
+    test_transamp();
+    return tap_done();
+}
