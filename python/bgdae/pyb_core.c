@@ -155,7 +155,7 @@ int pyb_options_from_dict(PyObject *d, dae_options *o, int n, PyObject **keep)
     while (PyDict_Next(d, &pos, &key, &v)) {
         const char *k = PyUnicode_AsUTF8(key);
         if (!k) return -1;
-        int r = 1, tmp;
+        int r = 1, tmp = 0;
         if (!strcmp(k, "atol") && !PyFloat_Check(v) && !PyLong_Check(v)) {
             r = keep_array(v, "atol", n, *keep, &o->atol_vec, NULL);
         } else if (!strcmp(k, "breakpoints")) {
