@@ -200,10 +200,10 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
     }
     /* The ties' unstretched length until the tip stands at the radius: the trim of the model
      * files (bg_trim.h: the secant from the geometric length, then Illinois on a bracket of
-     * 0.1 % below it), each trial a static solve of the crane built with that length, the
+     * 1 % below it: a steel tie breaks at about 1 % strain), each trial a static solve of the crane built with that length, the
      * integral held at its value */
     if (st == BG_OK && sc.ties) {
-        dae_trim_options to = {Lg, (1 - 1e-3) * Lg, Lg, 1e-9 * fmax(R, 1.0)};
+        dae_trim_options to = {Lg, (1 - 1e-2) * Lg, Lg, 1e-9 * fmax(R, 1.0)}; /* <= 1 % strain */
         dae_trim_result tres;
         int tr = dae_trim_solve(trial, &sx, &to, &tres, &serr);
         if (tr != BG_OK && sx.static_status == BG_OK) tie_fail = 1; /* the radius not met */
@@ -310,8 +310,16 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
                 add_key(rep, "[ties] E");
             }
             if (sc.rope) add_key(rep, "[load] mass");
+            /* the radius is measured from the slewing axis, through joint A */
+            if (sc.joint_A[0] != 0 || sc.joint_A[1] != 0) add_key(rep, "[platform] joint_A");
             say(rep, "the tip is at %.6g m from the axis, not at the radius %.6g m (within %.2g m)",
                 rep->radius, R, rep->radius_tol);
+            if (tie_fail && sc.ties) {
+                size_t l = strlen(rep->message);
+                snprintf(rep->message + l, sizeof rep->message - l,
+                         " for any unstretched tie length from %.6g m to the geometric %.6g m",
+                         0.99 * rep->tie_L0_geometric, rep->tie_L0_geometric);
+            }
         }
         if (!rep->ok_boom) {
             add_key(rep, "[boom] tip_radius");

@@ -12,9 +12,9 @@
  * theta = 0 (two solves; the value is reported, pid_integral0). Then, the integral held there,
  * the ties' unstretched length is trimmed until the tip is at the scene's radius to 1e-9 of it,
  * by the trim of the model files (solver/bg_trim.h: the secant from the geometric length, then
- * Illinois on a bracket 0.1 % below it), each trial a static solve of the crane built with that
- * length (a few milliseconds with 16 boom elements, 0.4 s with 512); the last one built is the
- * start. crane/models/paper.yaml states the same procedure in the format (its trim, its
+ * Illinois on a bracket 1 % below it: a steel tie breaks at about 1 % strain), each trial a
+ * static solve of the crane built with that length (a few milliseconds with 16 boom elements,
+ * 0.4 s with 512); the last one built is the start. crane/models/paper.yaml states the same procedure in the format (its trim, its
  * pid_integral0), and the two starts agree to the last bit (tests/crane/test_crane_model_file).
 
  * Checks, with their tolerances (crane_start_report; crane --static writes them to static.txt):
