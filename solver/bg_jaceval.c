@@ -129,7 +129,23 @@ const char *bg_var_label(const dae_problem *p, int i, char *buf, size_t size)
 const char *bg_eq_label(const dae_problem *p, int i, char *buf, size_t size)
 {
     if (p && p->eq_names && i >= 0 && i < p->n && p->eq_names[i]) return p->eq_names[i];
-    snprintf(buf, size, "equation %d", i);
+    /* without a name: the unknown whose rate the row holds (a differential equation's), from
+     * the pattern of dF/dy' */
+    const sp_csc *P = p ? p->jac_yp_pattern : NULL;
+    int col = -1;
+    for (int j = 0; P && i >= 0 && j < P->ncol && col < 0; j++)
+        for (int k = P->colptr[j]; k < P->colptr[j + 1]; k++)
+            if (P->rowind[k] == i) {
+                col = j;
+                break;
+            }
+    if (col >= 0) {
+        char nb[64];
+        snprintf(buf, size, "equation %d (with the rate of %s)", i,
+                 bg_var_label(p, col, nb, sizeof nb));
+    } else {
+        snprintf(buf, size, "equation %d", i);
+    }
     return buf;
 }
 

@@ -649,10 +649,14 @@ static int check_args(const dae_problem *p, const dae_modes_options *o, double t
     if (!isfinite(o->sigma)) return out_of_range(err, "sigma", o->sigma, "finite");
     if (o->nev < 1) return out_of_range(err, "nev", o->nev, ">= 1");
     if (o->ncv < 0) return out_of_range(err, "ncv", o->ncv, ">= 0 (0: the default)");
-    if (!(o->tol >= 0)) return out_of_range(err, "tol", o->tol, ">= 0");
+    if (!(o->tol >= 0 && isfinite(o->tol))) return out_of_range(err, "tol", o->tol, ">= 0, finite");
     if (o->maxiter < 1) return out_of_range(err, "maxiter", o->maxiter, ">= 1");
-    if (!(o->zero_tol >= 0)) return out_of_range(err, "zero_tol", o->zero_tol, ">= 0");
-    if (!(o->inf_tol >= 0)) return out_of_range(err, "inf_tol", o->inf_tol, ">= 0");
+    /* relative tolerances: 1 or more would call every mode rigid (zero_tol) or a constraint
+     * (inf_tol) */
+    if (!(o->zero_tol >= 0 && o->zero_tol < 1))
+        return out_of_range(err, "zero_tol", o->zero_tol, "in [0, 1)");
+    if (!(o->inf_tol >= 0 && o->inf_tol < 1))
+        return out_of_range(err, "inf_tol", o->inf_tol, "in [0, 1)");
     if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
         return out_of_range(err, "linsol", (double)o->linsol,
                             "a linear solver: 0 (LS_KLU) or 1 (LS_DENSE)");

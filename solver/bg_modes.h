@@ -122,10 +122,11 @@ typedef struct dae_modes_options {
                               (default) the lowest nev modes */
     int nev;               /* sparse: modes wanted, default 20 */
     int ncv;               /* sparse: Arnoldi basis, default max(2 nev + 1, nev + 20) */
-    double tol;            /* sparse: ARPACK's relative tolerance, default 1e-10 */
+    double tol;            /* sparse: ARPACK's relative tolerance (finite, >= 0), default 1e-10 */
     int maxiter;           /* sparse: ARPACK's restarts, default 500 */
-    double zero_tol;       /* |s| <= zero_tol * sigma: a zero eigenvalue, default 1e-6 */
-    double inf_tol;        /* |mu| <= inf_tol * max |mu|: an infinite eigenvalue, default 1e-9 */
+    double zero_tol;       /* |s| <= zero_tol * sigma: a zero eigenvalue, in [0, 1), default 1e-6 */
+    double inf_tol;        /* |mu| <= inf_tol * max |mu|: an infinite eigenvalue, in [0, 1),
+                              default 1e-9 */
     ls_kind linsol;        /* default LS_KLU */
     int frozen;            /* 0 (default): a moving state (yp given, not zero) is linearised only
                               if it is steady, i.e. stays a solution along its own motion

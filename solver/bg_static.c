@@ -45,6 +45,7 @@ typedef struct st_ctx {
     bg_error *err;
     int singular_col;
     int fatal;        /* a callback's fatal status */
+    int load_status;  /* options.load's status when it failed (0: it did not) */
     int have_mat;     /* a factored Newton matrix is kept (newton) */
     double alpha_min; /* the smallest damping factor before newton gives up */
     int newton_scale; /* newton's iteration limit in units of max_newton */
@@ -95,7 +96,10 @@ static int geval(st_ctx *c, const double *y, double lam, double H, double *G)
         c->ypw[i] = c->yps[i] + (isinf(H) ? 0.0 : (y[i] - c->yprev[i]) / H);
     if (o->load && lam != c->lambda_set) {
         int st = o->load(o->load_user, lam);
-        if (st < 0) return c->fatal = st;
+        if (st != 0) { /* any status but 0 (the regimes' rule): the load's callback failed */
+            c->load_status = st;
+            return c->fatal = st < 0 ? st : -1;
+        }
         c->lambda_set = lam;
     }
     int st = bg_jaceval_res(&c->J, c->t, y, c->ypw, G);
@@ -153,7 +157,7 @@ static int newton_matrix(st_ctx *c, const double *y, double H, int eval)
 #define STATIC_DGMAX 0.3
 #define STATIC_RATE_REFRESH 0.5
 #define STATIC_STEADY_TOL 1e-4 /* bg_jaceval_steadiness's ratio of a steady motion, at most */
-enum { STATIC_NEWTON_FULL = 5 };
+enum { STATIC_NEWTON_FULL = 5, STATIC_MAX_NEWTON = 10000 };
 static int newton(st_ctx *c, double *y, double lam, double H, int exact, int *iters)
 {
     const int n = c->n, lim = c->o->max_newton * c->newton_scale, budget = exact ? lim : 2 * lim;
@@ -333,10 +337,13 @@ static int check_options(const dae_problem *p, const dae_static_options *o, cons
         return bg_error_raise(err, BG_ERR_ARGUMENT, w,
                               "tolerances rtol in [0, 1) and atol >= 0, not both 0 (got %g, %g)",
                               o->rtol, o->atol);
-    if (o->max_newton < 1 || o->max_steps < 1)
+    if (o->max_newton < 1 || o->max_newton > STATIC_MAX_NEWTON || o->max_steps < 1)
         return bg_error_raise(err, BG_ERR_ARGUMENT, w,
-                              "max_newton and max_steps must be >= 1 (got %d, %ld)", o->max_newton,
-                              o->max_steps);
+                              "max_newton in [1, %d] and max_steps >= 1 (got %d, %ld)",
+                              STATIC_MAX_NEWTON, o->max_newton, o->max_steps);
+    if (o->continuation != 0 && o->continuation != 1)
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "continuation is 0 or 1 (got %d)",
+                              o->continuation);
     if (!(o->dlambda > 0 && o->dlambda <= 1) || !(o->dlambda_min > 0 && o->dlambda_min <= o->dlambda))
         return bg_error_raise(err, BG_ERR_ARGUMENT, w,
                               "dlambda in (0, 1] and dlambda_min in (0, dlambda] (got %g, %g)",
@@ -346,7 +353,9 @@ static int check_options(const dae_problem *p, const dae_static_options *o, cons
                               "pseudo-time steps 0 < h0 <= h_max, finite (got %g, %g)", o->h0,
                               o->h_max);
     if (o->linsol != LS_KLU && o->linsol != LS_DENSE)
-        return bg_error_raise(err, BG_ERR_ARGUMENT, w, "unknown linear solver %d", (int)o->linsol);
+        return bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                              "linsol is %d: expected a linear solver, 0 (LS_KLU) or 1 (LS_DENSE)",
+                              (int)o->linsol);
     int st = o->yp_steady ? bg_check_state(p, o->yp_steady, "steady rate (yp_steady)",
                                            BG_ERR_ARGUMENT, w, err)
                           : BG_OK;
@@ -442,7 +451,7 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         if (o->continuation) {
             st = geval(&c, y, 1.0, INFINITY, c.r0);
             if (st != 0) {
-                char nb[64];
+                char nb[256];
                 int bad = -1;
                 for (int i = 0; i < n && bad < 0; i++)
                     if (!isfinite(c.r0[i])) bad = i;
@@ -505,7 +514,10 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
 
         if (nst < 0 && nst != BG_ERR_SINGULAR) { /* fatal */
             st = c.fatal ? BG_ERR_CALLBACK : nst;
-            if (c.fatal)
+            if (c.load_status)
+                bg_error_raise(err, st, where, "the load callback (options.load) returned %d at "
+                               "load factor %g", c.load_status, lt);
+            else if (c.fatal)
                 bg_error_raise(err, st, where, "the residual or Jacobian failed (status %d) at "
                                "load factor %g", c.fatal, lt);
             else
@@ -600,7 +612,9 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                                     lt, bg_var_label(p, c.singular_col, nb, sizeof nb));
                 r->worst_var = c.singular_col;
                 free(yrest);
+                yrest = NULL;
                 free(yold);
+                yold = NULL;
                 goto out;
             }
             st = DAE_CONV_FAIL;
@@ -611,7 +625,9 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         memcpy(y, yrest, sz);
     }
     free(yrest);
+    yrest = NULL;
     free(yold);
+    yold = NULL;
     final_residual(&c, y);
     if (ok && o->yp_steady) { /* constant rates: a steady motion only if it stays a solution */
         double ratio;
@@ -668,6 +684,8 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
     }
 out:
     free(ytry);
+    free(yrest);
+    free(yold);
 done:
     if (yp && st == BG_OK) memcpy(yp, c.yps, sz);
     if (c.J.n) {

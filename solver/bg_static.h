@@ -111,18 +111,19 @@ typedef int (*dae_load_fn)(void *user, double lambda);
 typedef struct dae_static_options {
     double rtol;             /* default 1e-8 */
     double atol;             /* default 1e-8 (times the problem's nominal magnitudes) */
-    int max_newton;          /* Newton iterations per step, default 12 (up to twice as many at
-                                a good rate; five times without continuation) */
+    int max_newton;          /* Newton iterations per step, 1 .. 10000, default 12 (up to
+                                twice as many at a good rate; five times without continuation) */
     long max_steps;          /* continuation steps, default 400 */
     int continuation;        /* 1 (default): lambda from 0 to 1 in adaptive steps; 0: the full
-                                load at once (pseudo-time steps only) */
+                                load at once (pseudo-time steps only); no other value */
     double dlambda;          /* first load increment, default 1 (the whole load, quartered
                                 until Newton converges) */
     double dlambda_min;      /* smallest increment before giving up, default 1e-5 */
     double h0;               /* first pseudo-time step, default 1e3 (the problem's time unit) */
     double h_max;            /* largest pseudo-time step, default 1e9 */
     const double *yp_steady; /* n constant rates (NULL: all zero) */
-    dae_load_fn load;        /* NULL: the Newton homotopy above */
+    dae_load_fn load;        /* NULL: the Newton homotopy above; a status other than 0 from
+                                it stops the solve (BG_ERR_CALLBACK, naming it) */
     void *load_user;
     ls_kind linsol;          /* default LS_KLU */
 } dae_static_options;

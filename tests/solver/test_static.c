@@ -567,8 +567,8 @@ static void test_checks(void)
                    {"ncv", "ncv = -1, it must be >= 0"},
                    {"tol", "tol = -1, it must be >= 0"},
                    {"maxiter", "maxiter = 0, it must be >= 1"},
-                   {"zero_tol", "zero_tol = nan, it must be >= 0"},
-                   {"inf_tol", "inf_tol = -1, it must be >= 0"},
+                   {"zero_tol", "zero_tol = nan, it must be in [0, 1)"},
+                   {"inf_tol", "inf_tol = -1, it must be in [0, 1)"},
                    {"linsol", "linsol = 7, it must be a linear solver"}};
     for (int k = 0; k < 10; k++) {
         dae_modes_options o;
