@@ -107,7 +107,9 @@ static void checks(crane *c, crane_start_report *rep)
     rep->ok_boom = rep->tip_z > rep->foot_z && rep->straightness <= rep->straightness_tol;
     rep->ok_load = !s->rope || rep->load_z > rep->ground_z;
     rep->ok_rest = rep->kinetic <= rep->kinetic_tol;
-    rep->ok_ties = !s->ties || rep->tie_tension_min > 0;
+    /* in tension, or slack within the rounding of a tie's force (E A times one unit of
+     * rounding of its strain: an unloaded crane, g = 0, leaves them at +-1e-18 N) */
+    rep->ok_ties = !s->ties || rep->tie_tension_min > -DBL_EPSILON * s->tie_E * s->tie_A;
 }
 
 static void say(crane_start_report *rep, const char *fmt, double a, double b, double c2)

@@ -26,7 +26,8 @@
  *     (the keys named: the rope's stiffness when it is strained beyond 5 %, else the geometry
  *     and the ground's height [platform] joint_A);
  *   - the ties in tension (a truss also carries compression: a tie anchored where it can only
- *     push would be a strut, which a tie or pendant is not);
+ *     push would be a strut, which a tie or pendant is not), or slack within the rounding of
+ *     their force, E A DBL_EPSILON (an unloaded crane);
  *   - every body at rest: the kinetic energy of platform, boom, load and counterweight at most
  *     1e-6 J.
  * A static solve that fails with a load whose weight is below the rounding of the rope's force

@@ -506,9 +506,11 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
         }
         int iters = 0;
         /* a step the continuation can shrink gives up at a damping factor of 0.1 (a smaller
-         * increment is cheaper than a long damped iteration); at the full load, and without
+         * increment is cheaper than a long damped iteration) the first time; once a smaller
+         * increment has failed too (what is hard is not the load's increment: a kink of a
+         * valve's characteristic, a neutral direction), at the full load, and without
          * continuation, the damping goes down to 1e-4 */
-        c.alpha_min = can_shrink && lt < 1.0 ? 0.1 : 1e-4;
+        c.alpha_min = can_shrink && lt < 1.0 && !rejected_since ? 0.1 : 1e-4;
         c.newton_scale = o->continuation ? 1 : STATIC_NEWTON_FULL;
         int nst = newton(&c, ytry, lt, H, !predicted, &iters);
 

@@ -338,14 +338,9 @@ static void test_messages(void)
         (const char *[]){"--static", "--set", "environment.g=0", "--set", "rope.enabled=false",
                          "--out", out, NULL},
         "norope", 60, &r);
-    /* Known defect: the static solver's modified Newton (bg_static.c) stalls at load factor
-     * 0.0027 on this start whose only loads are the check valves' trickle at zero pressure
-     * difference (the full Newton of before reached the load and left the ties' tension at
-     * -6e-19 N, which the check then refused) */
-    int stands = r.exited && r.code == 0 && first_line_is(out, "status.txt", "status: completed");
-    tap_todo(stands, "the static solver stalls at zero load (bg_static.c)",
-             "g = 0 without the rope: the unloaded crane's static start verified (exit %d: "
-             "%.200s)", r.code, r.err);
+    tap_ok(r.exited && r.code == 0 && first_line_is(out, "status.txt", "status: completed"),
+           "g = 0 without the rope: the unloaded crane's static start verified (exit %d: %.200s)",
+           r.code, r.err);
 }
 
 /* ------------------------------------------------------------------ drift ---- */
