@@ -11,34 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mech_ad.h"
 #include "mech_beam_impl.h"
 #include "mech_body.h"
-#include "mech_util.h"
-
-/* AD scratch of one energy evaluation (about 120 kB with Hessians), allocated with the element
- * so that residual and Jacobian evaluations allocate nothing. The elements of a chain share one
- * (reference counted): they are evaluated one after another, and one scratch stays in cache
- * where one per element (60 MB for 512 elements) made the residual's cost per element grow
- * with their number. */
-typedef struct beam_work {
-    ad X[6], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6]; /* X: the nodes' positions */
-    ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
-    double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
-    int refs;             /* elements sharing it */
-} beam_work;
-
-typedef struct beam {
-    mech_section sec;
-    double E0[9], L0;
-    double K[7][7]; /* local stiffness of (u, theta_a, theta_b): W = d^T K d / 2 */
-    int node_a, node_b;
-    int xa, qa, xb, qb; /* configuration variable ids */
-    int e[2], s[2];     /* first effort id and orientation of each port */
-    int f[2];           /* first flow id of each port (damping) */
-    beam_work *work;
-    mech_scales sc; /* stated nominal scales (the chain builder states its weight) */
-} beam;
 
 beam_work *mech_beam_work_new_(void)
 {
@@ -186,6 +160,7 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
             ad_mul(c, dl[r], dl[q], &k->t2);
             ad_axpy(c, &k->W, (q == r ? 0.5 : 1.0) * b->K[r][q], &k->t2, &k->W);
         }
+    if (b->sec.mass == MECH_BEAM_CONSISTENT) mech_beam_offsets_(c, k);
     /* the Hessians read whole (velocity_gradient): W's, and the deformations' for the damping */
     ad_mirror(c, &k->W);
     for (int r = 0; r < 7; r++)
@@ -193,7 +168,7 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
 }
 
 /* J(q): dq = J(q) dphi for a global rotation dphi, dq = (0, dphi) (x) q / 2; rows j, cols k. */
-static void quat_J(const double *q, double J[4][3])
+void mech_beam_quat_J_(const double *q, double J[4][3])
 {
     double w = q[0], v0 = q[1], v1 = q[2], v2 = q[3];
     double T[4][3] = {{-v0, -v1, -v2}, {w, v2, -v1}, {-v2, w, v0}, {v1, -v0, w}};
@@ -215,7 +190,7 @@ static void velocity_gradient_g(const double *ag, const double *qa, const double
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
         double J[4][3];
-        quat_J(n ? qb : qa, J);
+        mech_beam_quat_J_(n ? qb : qa, J);
         for (int i = 0; i < 3; i++) {
             gv[6 * n + i] = ag[xoff[n] + i];
             double mk = 0;
@@ -226,14 +201,14 @@ static void velocity_gradient_g(const double *ag, const double *qa, const double
     }
 }
 
-static void velocity_gradient(const ad *a, const double *qa, const double *qb, double *gv,
-                              double (*dgv)[14])
+void mech_beam_velocity_gradient_(const ad *a, const double *qa, const double *qb, double *gv,
+                                  double (*dgv)[14])
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     velocity_gradient_g(a->g, qa, qb, gv);
     for (int n = 0; n < 2 && dgv; n++) {
         double J[4][3];
-        quat_J(n ? qb : qa, J);
+        mech_beam_quat_J_(n ? qb : qa, J);
         for (int cc = 0; cc < 14; cc++) {
             for (int i = 0; i < 3; i++) {
                 dgv[6 * n + i][cc] = a->h[(xoff[n] + i) * AD_N + cc];
@@ -243,7 +218,7 @@ static void velocity_gradient(const ad *a, const double *qa, const double *qb, d
                 if (cc >= qoff[n] && cc < qoff[n] + 4) { /* J is linear in q */
                     double e[4] = {0, 0, 0, 0}, Jl[4][3];
                     e[cc - qoff[n]] = 1.0;
-                    quat_J(e, Jl);
+                    mech_beam_quat_J_(e, Jl);
                     for (int j = 0; j < 4; j++)
                         d += a->g[qoff[n] + j] * Jl[j][i];
                 }
@@ -352,7 +327,7 @@ static void beam_tangent(const beam *b, const double *y, const beam_fwd *f, cons
     double tt[2][3][3];
     for (int n = 0; n < 2; n++) {
         double J[4][3], qd[4], Rd[9];
-        quat_J(y + qo[n], J);
+        mech_beam_quat_J_(y + qo[n], J);
         for (int m = 0; m < 4; m++)
             qd[m] = J[m][0] * w[6 * n + 3] + J[m][1] * w[6 * n + 4] + J[m][2] * w[6 * n + 5];
         for (int k = 0; k < 9; k++)
@@ -484,7 +459,7 @@ static void beam_loads(const beam *b, const double *y, int order, double *g, dou
     ad_ctx c = {order};
     beam_energy(b, y, &c, k);
     const double *qa = y + b->qa, *qb = y + b->qb;
-    velocity_gradient(&k->W, qa, qb, g, dg);
+    mech_beam_velocity_gradient_(&k->W, qa, qb, g, dg);
     if (dgw) memset(dgw, 0, 144 * sizeof(double));
     double beta = b->sec.beta;
     if (!(beta > 0)) return;
@@ -492,7 +467,7 @@ static void beam_loads(const beam *b, const double *y, int order, double *g, dou
     double Jd[7][12], (*dJ)[12][14] = k->dJ, w[12], dd[7] = {0}, z[7] = {0};
     const double(*K)[7] = b->K;
     for (int r = 0; r < 7; r++)
-        velocity_gradient(dl[r], qa, qb, Jd[r], dg ? dJ[r] : NULL);
+        mech_beam_velocity_gradient_(dl[r], qa, qb, Jd[r], dg ? dJ[r] : NULL);
     for (int m = 0; m < 6; m++) {
         w[m] = y[b->f[0] + m];
         w[6 + m] = y[b->f[1] + m];
@@ -547,6 +522,13 @@ static void beam_loads(const beam *b, const double *y, int order, double *g, dou
         }
 }
 
+/* The velocity unknowns of the nodes, in the port order (v_a, w_a, v_b, w_b): p = 0 .. 11. */
+static int node_rate_var(const beam *b, int p)
+{
+    const int base[4] = {b->va, b->wa, b->vb, b->wb};
+    return base[p / 3] + p % 3;
+}
+
 static int beam_declare(bgr_element *el, bgr_model *m)
 {
     beam *b = el->params;
@@ -559,6 +541,10 @@ static int beam_declare(bgr_element *el, bgr_model *m)
                               bgr_component_path(m, el->comp), el->name);
     b->xa = bgr_ref_var(m, ra);
     b->xb = bgr_ref_var(m, rb);
+    b->va = b->xa + 3; /* mech_body's states: x, v, w, q */
+    b->vb = b->xb + 3;
+    b->wa = b->xa + 6;
+    b->wb = b->xb + 6;
     b->qa = b->xa + 9;
     b->qb = b->xb + 9;
     for (int k = 0; k < 2; k++) {
@@ -576,6 +562,8 @@ static int beam_declare(bgr_element *el, bgr_model *m)
             st = bgr_declare_dep(el, m, r, config_var(b, cc), 0);
         for (int mm = 0; st == BG_OK && b->sec.beta > 0 && mm < 12; mm++)
             st = bgr_declare_dep(el, m, r, b->f[mm / 6] + mm % 6, 0);
+        for (int p = 0; st == BG_OK && b->sec.mass == MECH_BEAM_CONSISTENT && p < 24; p++)
+            st = bgr_declare_dep(el, m, r, node_rate_var(b, p % 12), p / 12);
     }
     /* Nominal magnitudes of the port loads: the stated force (the chain builder states the
      * chain's weight; a section alone carries no load); moments: the stated moment, else that
@@ -592,8 +580,15 @@ static int beam_residual(const bgr_element *el, double t, const double *y, const
 {
     (void)t, (void)yp;
     const beam *b = el->params;
-    double g[12];
-    beam_loads_plain(b, y, g);
+    double g[12], gi[12];
+    if (b->sec.mass == MECH_BEAM_CONSISTENT) { /* the inertia needs the offsets' Hessians */
+        beam_loads(b, y, 2, g, NULL, NULL);
+        mech_beam_inertia_(b, y, yp, gi, NULL, NULL, NULL);
+        for (int r = 0; r < 12; r++)
+            g[r] += gi[r];
+    } else {
+        beam_loads_plain(b, y, g);
+    }
     for (int r = 0; r < 12; r++)
         F[r] = b->s[r / 6] * y[b->e[r / 6] + r % 6] - g[r];
     for (int r = 0; r < 12; r++)
@@ -606,15 +601,19 @@ static int beam_jacobian(const bgr_element *el, double t, const double *y, const
 {
     (void)t, (void)yp;
     const beam *b = el->params;
-    double g[12], dg[12][14], dgw[12][12];
+    double g[12], dg[12][14], dgw[12][12], gi[12], dX[12][14], dV[12][12], dA[12][12];
+    int cons = b->sec.mass == MECH_BEAM_CONSISTENT;
     beam_loads(b, y, 2, g, dg, dgw);
+    if (cons) mech_beam_inertia_(b, y, yp, gi, dX, dV, dA);
     int n = 0;
     for (int r = 0; r < 12; r++) {
         v[n++] = b->s[r / 6];
         for (int cc = 0; cc < 14; cc++)
-            v[n++] = -dg[r][cc];
+            v[n++] = -dg[r][cc] - (cons ? dX[r][cc] : 0.0);
         for (int mm = 0; b->sec.beta > 0 && mm < 12; mm++)
             v[n++] = -dgw[r][mm];
+        for (int p = 0; cons && p < 24; p++)
+            v[n++] = -(p < 12 ? dV[r][p] : dA[r][p - 12]);
     }
     return 0;
 }
@@ -646,6 +645,11 @@ int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const cha
         bgr_check_value(m, c, name, w, "section.kappa", s->kappa, BGR_NONNEGATIVE) ||
         bgr_check_value(m, c, name, w, "section.beta", s->beta, BGR_NONNEGATIVE))
         return BG_ERR_ARGUMENT;
+    if (s->mass != MECH_BEAM_LUMPED && s->mass != MECH_BEAM_CONSISTENT)
+        return bgr_refuse(m, c, name, w,
+                          "section.mass = %d, expected MECH_BEAM_LUMPED (0) or "
+                          "MECH_BEAM_CONSISTENT (1)",
+                          s->mass);
     return BG_OK;
 }
 
@@ -703,14 +707,21 @@ static int bad_node(bgr_model *m, bgr_comp c, const char *name, const char *w, c
 
 /* mech_beam with the scratch shared (NULL: its own). */
 int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
-                   const mech_section *sec, const double *E0, double L0, beam_work *shared)
+                   const mech_section *sec, const double *E0, double L0, beam_work *shared,
+                   const double *gravity)
 {
     const char *w = "mech_beam";
     if (mech_beam_bad_section_(m, c, name, w, sec) || bad_frame(m, c, name, w, E0) ||
         bgr_check_value(m, c, name, w, "L0", L0, BGR_POSITIVE) ||
         bad_node(m, c, name, w, "node_a", node_a) || bad_node(m, c, name, w, "node_b", node_b) ||
-        mech_beam_bad_stiffness_(m, c, name, w, sec, L0))
+        mech_beam_bad_stiffness_(m, c, name, w, sec, L0) ||
+        bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE))
         return BG_ERR_ARGUMENT;
+    if (sec->mass == MECH_BEAM_CONSISTENT && !(sec->rho > 0 && isfinite(sec->rho * sec->A * L0)))
+        return bgr_refuse(m, c, name, w,
+                          "section.rho = %g with mass = MECH_BEAM_CONSISTENT, expected rho > 0 "
+                          "and a finite element mass rho A L0",
+                          sec->rho);
     if (node_a == node_b)
         return bgr_refuse(m, c, name, w, "node_a = node_b = %d, expected two different bodies",
                           node_a);
@@ -729,6 +740,7 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
     b->sec = *sec;
     memcpy(b->E0, E0, sizeof b->E0);
     b->L0 = L0;
+    if (gravity) memcpy(b->grav, gravity, sizeof b->grav);
     local_stiffness(b, b->K);
     b->node_a = node_a;
     b->node_b = node_b;
@@ -739,7 +751,7 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
 int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
               const mech_section *sec, const double *E0, double L0)
 {
-    return mech_beam_add_(m, c, name, node_a, node_b, sec, E0, L0, NULL);
+    return mech_beam_add_(m, c, name, node_a, node_b, sec, E0, L0, NULL, NULL);
 }
 
 double mech_beam_energy(const bgr_model *m, int elem, const double *y)
@@ -770,6 +782,17 @@ double mech_beam_dissipation(const bgr_model *m, int elem, const double *y)
         for (int c = 0; c < 7; c++)
             P += dd[r] * b->K[r][c] * dd[c];
     return b->sec.beta * P;
+}
+
+double mech_beam_kinetic(const bgr_model *m, int elem, const double *y)
+{
+    bgr_element *el = bgr_element_get((bgr_model *)m, elem);
+    if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
+    const beam *b = el->params;
+    if (b->sec.mass != MECH_BEAM_CONSISTENT) return 0.0;
+    ad_ctx c = {1};
+    beam_energy(b, y, &c, b->work);
+    return mech_beam_kinetic_(b, y);
 }
 
 int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, double g[12])
