@@ -103,6 +103,42 @@ static void half_diff_dots(const ad_ctx *c, const ad *a, const ad *b, const ad *
     ad_dot3s(c, -0.5, cc, d, 1, r);
 }
 
+/* The consistent element's rotation measure: the skew part s of E^T T is sin(phi) n for a
+ * relative rotation phi about n; th = s asin(|s|) / |s| is the rotation vector phi n itself
+ * (the logarithm of the relative rotation, phi < pi / 2), so that the local deformations are
+ * the angles the element's cubic field is written in. f(x) = asin(sqrt x) / sqrt x of x = |s|^2,
+ * by its series sum c_j x^j (c_j = (2j)! / (4^j j!^2 (2j + 1))) below x = 0.04 (truncation
+ * 3e-12), else in closed form. */
+static void angle_measure(const ad_ctx *c, beam_work *k, ad *th)
+{
+    ad_const(c, 0.0, &k->t1);
+    for (int i = 0; i < 3; i++) {
+        ad_mul(c, &th[i], &th[i], &k->t2);
+        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
+    }
+    double x = k->t1.v, f, fp, fpp;
+    if (x < 0.04) {
+        static const double cj[7] = {1.0,         1.0 / 6,      3.0 / 40,      5.0 / 112,
+                                     35.0 / 1152, 63.0 / 2816, 231.0 / 13312};
+        f = fp = fpp = 0;
+        for (int j = 6; j >= 0; j--) {
+            f = f * x + cj[j];
+            if (j >= 1) fp = fp * x + j * cj[j];
+            if (j >= 2) fpp = fpp * x + j * (j - 1) * cj[j];
+        }
+    } else {
+        double sg = sqrt(x), A = asin(fmin(sg, 1.0)), r = sqrt(fmax(1 - x, 1e-300));
+        f = A / sg;
+        fp = 1 / (2 * x * r) - A / (2 * x * sg);
+        fpp = -3 / (4 * x * x * r) + 1 / (4 * x * r * r * r) + 3 * A / (4 * x * x * sg);
+    }
+    ad_apply(c, &k->t1, f, fp, fpp, &k->t2);
+    for (int i = 0; i < 3; i++) {
+        ad_mul(c, &th[i], &k->t2, &k->t1);
+        th[i] = k->t1;
+    }
+}
+
 /* W(x_a, x_b, q_a, q_b) on AD numbers, into k->W. */
 static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_work *k)
 {
@@ -148,19 +184,37 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
         half_diff_dots(c, k->e3, t + 3, k->e2, t + 6, &k->th[3 * n + 0]);
         half_diff_dots(c, k->e1, t + 6, k->e3, t + 0, &k->th[3 * n + 1]);
         half_diff_dots(c, k->e2, t + 0, k->e1, t + 3, &k->th[3 * n + 2]);
+        if (b->sec.element == MECH_BEAM_CONSISTENT) angle_measure(c, k, &k->th[3 * n]);
     }
     /* energy W = d^T K d / 2 over the nonzero entries of the local stiffness */
     ad_const(c, -b->L0, &k->t1);
     ad_axpy(c, &k->L, 1.0, &k->t1, &k->u); /* u = L - L0 */
     const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
     ad_const(c, 0.0, &k->W);
+    int cons = b->sec.element == MECH_BEAM_CONSISTENT;
+    if (cons) { /* EA L0 / 2 eps^2, eps = u / L0 + bow / 30 */
+        ad_const(c, 0.0, &k->bow);
+        for (int a = 1; a <= 2; a++) { /* theta_y, theta_z */
+            const ad *ta = &k->th[a], *tb = &k->th[3 + a];
+            ad_mul(c, ta, ta, &k->t2);
+            ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
+            ad_mul(c, tb, tb, &k->t2);
+            ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
+            ad_mul(c, ta, tb, &k->t2);
+            ad_axpy(c, &k->bow, -1.0, &k->t2, &k->bow);
+        }
+        ad_scale(c, 1.0 / b->L0, &k->u, &k->eps);
+        ad_axpy(c, &k->eps, 1.0 / 30, &k->bow, &k->eps);
+        ad_mul(c, &k->eps, &k->eps, &k->t2);
+        ad_axpy(c, &k->W, 0.5 * b->sec.E * b->sec.A * b->L0, &k->t2, &k->W);
+    }
     for (int r = 0; r < 7; r++)
         for (int q = r; q < 7; q++) {
-            if (b->K[r][q] == 0) continue;
+            if (b->K[r][q] == 0 || (cons && r == 0 && q == 0)) continue;
             ad_mul(c, dl[r], dl[q], &k->t2);
             ad_axpy(c, &k->W, (q == r ? 0.5 : 1.0) * b->K[r][q], &k->t2, &k->W);
         }
-    if (b->sec.mass == MECH_BEAM_CONSISTENT) mech_beam_offsets_(c, k);
+    if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_offsets_(c, k);
     /* the Hessians read whole (velocity_gradient): W's, and the deformations' for the damping */
     ad_mirror(c, &k->W);
     for (int r = 0; r < 7; r++)
@@ -443,6 +497,18 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
         for (int s2 = 0; s2 < 7; s2++)
             z[r] += K[r][s2] * v[s2];
     }
+    if (b->sec.element == MECH_BEAM_CONSISTENT) { /* the bowing term of the axial strain */
+        const double *d = f.def, EA = b->sec.E * b->sec.A;
+        double bow = 0;
+        for (int a = 2; a <= 3; a++)
+            bow += 2 * d[a] * d[a] - d[a] * d[a + 3] + 2 * d[a + 3] * d[a + 3];
+        double N = EA * (d[0] / b->L0 + bow / 30); /* the axial force EA eps */
+        z[0] += EA * bow / 30;
+        for (int a = 2; a <= 3; a++) {
+            z[a] += N * b->L0 * (4 * d[a] - d[a + 3]) / 30;
+            z[a + 3] += N * b->L0 * (4 * d[a + 3] - d[a]) / 30;
+        }
+    }
     beam_reverse(b, &f, z, gc);
     velocity_gradient_g(gc, y + b->qa, y + b->qb, g);
 }
@@ -562,7 +628,7 @@ static int beam_declare(bgr_element *el, bgr_model *m)
             st = bgr_declare_dep(el, m, r, config_var(b, cc), 0);
         for (int mm = 0; st == BG_OK && b->sec.beta > 0 && mm < 12; mm++)
             st = bgr_declare_dep(el, m, r, b->f[mm / 6] + mm % 6, 0);
-        for (int p = 0; st == BG_OK && b->sec.mass == MECH_BEAM_CONSISTENT && p < 24; p++)
+        for (int p = 0; st == BG_OK && b->sec.element == MECH_BEAM_CONSISTENT && p < 24; p++)
             st = bgr_declare_dep(el, m, r, node_rate_var(b, p % 12), p / 12);
     }
     /* Nominal magnitudes of the port loads: the stated force (the chain builder states the
@@ -581,7 +647,7 @@ static int beam_residual(const bgr_element *el, double t, const double *y, const
     (void)t, (void)yp;
     const beam *b = el->params;
     double g[12], gi[12];
-    if (b->sec.mass == MECH_BEAM_CONSISTENT) { /* the inertia needs the offsets' Hessians */
+    if (b->sec.element == MECH_BEAM_CONSISTENT) { /* the inertia needs the offsets' Hessians */
         beam_loads(b, y, 2, g, NULL, NULL);
         mech_beam_inertia_(b, y, yp, gi, NULL, NULL, NULL);
         for (int r = 0; r < 12; r++)
@@ -602,7 +668,7 @@ static int beam_jacobian(const bgr_element *el, double t, const double *y, const
     (void)t, (void)yp;
     const beam *b = el->params;
     double g[12], dg[12][14], dgw[12][12], gi[12], dX[12][14], dV[12][12], dA[12][12];
-    int cons = b->sec.mass == MECH_BEAM_CONSISTENT;
+    int cons = b->sec.element == MECH_BEAM_CONSISTENT;
     beam_loads(b, y, 2, g, dg, dgw);
     if (cons) mech_beam_inertia_(b, y, yp, gi, dX, dV, dA);
     int n = 0;
@@ -645,11 +711,11 @@ int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const cha
         bgr_check_value(m, c, name, w, "section.kappa", s->kappa, BGR_NONNEGATIVE) ||
         bgr_check_value(m, c, name, w, "section.beta", s->beta, BGR_NONNEGATIVE))
         return BG_ERR_ARGUMENT;
-    if (s->mass != MECH_BEAM_LUMPED && s->mass != MECH_BEAM_CONSISTENT)
+    if (s->element != MECH_BEAM_LUMPED && s->element != MECH_BEAM_CONSISTENT)
         return bgr_refuse(m, c, name, w,
-                          "section.mass = %d, expected MECH_BEAM_LUMPED (0) or "
+                          "section.element = %d, expected MECH_BEAM_LUMPED (0) or "
                           "MECH_BEAM_CONSISTENT (1)",
-                          s->mass);
+                          s->element);
     return BG_OK;
 }
 
@@ -717,9 +783,9 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
         mech_beam_bad_stiffness_(m, c, name, w, sec, L0) ||
         bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE))
         return BG_ERR_ARGUMENT;
-    if (sec->mass == MECH_BEAM_CONSISTENT && !(sec->rho > 0 && isfinite(sec->rho * sec->A * L0)))
+    if (sec->element == MECH_BEAM_CONSISTENT && !(sec->rho > 0 && isfinite(sec->rho * sec->A * L0)))
         return bgr_refuse(m, c, name, w,
-                          "section.rho = %g with mass = MECH_BEAM_CONSISTENT, expected rho > 0 "
+                          "section.rho = %g with element = MECH_BEAM_CONSISTENT, expected rho > 0 "
                           "and a finite element mass rho A L0",
                           sec->rho);
     if (node_a == node_b)
@@ -789,7 +855,7 @@ double mech_beam_kinetic(const bgr_model *m, int elem, const double *y)
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);
     if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
     const beam *b = el->params;
-    if (b->sec.mass != MECH_BEAM_CONSISTENT) return 0.0;
+    if (b->sec.element != MECH_BEAM_CONSISTENT) return 0.0;
     ad_ctx c = {1};
     beam_energy(b, y, &c, b->work);
     return mech_beam_kinetic_(b, y);

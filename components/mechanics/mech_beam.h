@@ -23,35 +23,53 @@
  * Jacobian by second-order automatic differentiation (mech_ad.h). W is invariant under any rigid
  * motion, so a rigidly rotating element has no deformation energy, however large the rotation.
  * Ports 0 (node a) and 1 (node b) are 6D (conventions of mech_body.h).
- * Mass, lumped (section.mass = MECH_BEAM_LUMPED, the default): none in the element; the chain
- * builder (mech_beam_chain.h) lumps it into the node bodies, which converges at second order
- * (bending frequencies: relative error about 0.045 (beta_n L / n)^2).
- * Mass, consistent (MECH_BEAM_CONSISTENT): the node bodies keep the lumped masses, and the
- * element adds the inertia of its distributed mass m = rho A L0 over the co-rotational
- * displacement field minus those point masses m/2 at its nodes, so that the total is the
- * consistent mass (Crisfield, Galvanetto and Jelenic, Proc. R. Soc. A 453 (1997) 1125; Le,
- * Battini and Hjiaj, Comput. Struct. 134 (2014) 112: cubic local interpolation, inertia terms
- * derived from it). The field, xi = s/L0 in [0, 1]:
- *     r(xi) = x_a + xi (x_b - x_a) + L0 [H1(xi) P + H2(xi) Q],
- *     H1 = xi (1 - xi)^2,  H2 = -xi^2 (1 - xi),
- *     P = theta_z,a e2 - theta_y,a e3,  Q = theta_z,b e2 - theta_y,b e3,
- * linear along the chord and cubic (Hermite) across it in the co-rotated frame. Its mass is
- * put at the 4 Gauss points xi_g (weights w_g) of [0, 1], which integrate the cubic field's
- * kinetic energy exactly at small deformation: point masses m w_g at r_g = r(xi_g). Their
- * inertia loads follow by d'Alembert's principle, exactly, with r_g'' = G_g u'' + G_g' u' (u'
- * the nodes' velocities v, omega = R w; G_g = dr_g/du the velocity gradient, G_g' its rate
- * along the motion, which carries the centrifugal and Coriolis terms):
- *     f = sum_g m w_g G_g^T (r_g'' - g) - (m/2) [(v_a' - g), 0, (v_b' - g), 0],
- * g the gravity (the chain's: the distributed weight with its end moments m g L0 / 12, where the
- * lumped node weights carry none). Linearised at a straight rest state this is the classical
- * consistent mass (cubic Hermite across, linear along), and the bending frequencies converge at
- * fourth order (relative error about 0.015 (beta_n L / n)^4 for a clamped-free beam). The
- * kinetic energy T = sum_g m w_g |r_g'|^2 / 2 - (m/4)(|v_a|^2 + |v_b|^2) is conserved with the
- * rest of the model's energy. Torsional and rotary inertia of the section stay lumped at the
- * nodes. The Jacobian is exact at rest (modes, static starts); in motion it leaves out the
- * derivatives of G_g' u' with respect to the configuration and of omega = R w, w' with
- * respect to the nodes' orientations (terms of the size of the inertia loads times the
- * rotation rates, which the Newton iteration absorbs).
+ * Two elements (section.element).
+ * MECH_BEAM_LUMPED (the default): the energy W above; no mass in the element: the chain builder
+ * (mech_beam_chain.h) lumps it into the node bodies. Second order in 1/n: at 8 elements the
+ * clamped-free bending frequencies are off by 7e-3, 2.4e-2, 3.9e-2, the tip of the elastica at
+ * P L^2 / (E I) = 10 by 8e-3 L (2e-3 L at 16).
+ * MECH_BEAM_CONSISTENT: fourth order in 1/n (at 8 elements: the frequencies off by 2.1e-6,
+ * 8.0e-5, 6.1e-4, the elastica's tip at k = 10 by 3.4e-5 L, 2.2e-6 L at 16; the tables are in
+ * docs/beam.md and tests/components/mechanics/test_beam_consistent.c), from three changes,
+ * each the local form of the cubic (Hermite) field across the chord that the local bending
+ * stiffness comes from:
+ *   1. Angles: theta of a node is the rotation vector of its triad relative to the element frame
+ *      (the logarithm phi n of E^T T, from its skew part sin(phi) n: theta = s asin|s| / |s|)
+ *      instead of the skew part itself, which is short by phi^3 / 6.
+ *   2. Bowing: the axial strain is that of the cubic field's arc, eps = u / L0 + (2 theta_a^2 -
+ *      theta_a theta_b + 2 theta_b^2) / 30 summed over both bending planes, in the energy
+ *      EA L0 eps^2 / 2 (the shallow-arch local element of Crisfield, Non-linear Finite Element
+ *      Analysis of Solids and Structures vol. 1, 1991, sec. 7.3; it gives the axial force its
+ *      consistent geometric stiffness 6 N / (5 L0) across, where the chord alone gives N / L0).
+ *   3. Inertia: the node bodies keep the lumped masses and rotary inertias, and the element adds
+ *      the kinetic energy of its distributed mass over the co-rotational field, less those
+ *      (Crisfield, Galvanetto and Jelenic, Proc. R. Soc. A 453 (1997) 1125; Le, Battini and
+ *      Hjiaj, Comput. Struct. 134 (2014) 112: cubic local interpolation, its inertia terms kept).
+ *      The fields, xi = s/L0 in [0, 1], H1 = xi (1 - xi)^2, H2 = -xi^2 (1 - xi):
+ *        r(xi)  = x_a + xi (x_b - x_a) + L0 [H1 P + H2 Q],  P = theta_z,a e2 - theta_y,a e3,
+ *                                                             Q = theta_z,b e2 - theta_y,b e3,
+ *        D2(xi) = e2 + psi_x e3 - psi_z e1,  D3(xi) = e3 - psi_x e2 + psi_y e1,
+ *        psi_x = (1 - xi) theta_x,a + xi theta_x,b,  psi_y,z = H1' theta_y,z,a + H2' theta_y,z,b
+ *      (D2, D3: the section's directors turned by its small local rotation psi); the kinetic
+ *      energy T = sum_g w_g L0 [rho A |r_g'|^2 + rho I_z |D2_g'|^2 + rho I_y |D3_g'|^2] / 2
+ *      at the 4 Gauss points xi_g (exact for the cubic field at small deformation; a section
+ *      with directors e2, e3 of "masses" I_z, I_y has the rotary inertia I_y + I_z, I_y, I_z
+ *      about e1, e2, e3), less the same of the node bodies (r = x, D = the triad's t2, t3, half
+ *      the element's mass and rotary inertia at each). Every point p of T moves with its field,
+ *      so d'Alembert's principle gives its inertia loads exactly, with r_p'' = G_p u'' + G_p' u'
+ *      (u' the nodes' velocities v, omega = R w; G_p = dr_p/du the velocity gradient, G_p' its
+ *      rate along the motion, the centrifugal and Coriolis terms):
+ *        f = sum_p mu_p G_p^T (r_p'' - g)   (g: the chain's gravity on the displacement points:
+ *                                            the distributed weight, with its end moments)
+ *      Linearised at a straight rest state this is the classical consistent mass (cubic across,
+ *      linear along, with the consistent rotary inertia). T is conserved with the rest of the
+ *      model's energy. The Jacobian is exact at rest (modes, static starts); in motion it
+ *      leaves out the derivatives of G_p' u' with respect to the configuration and of
+ *      omega = R w, R w' with respect to the nodes' orientations (terms of the size of the
+ *      inertia loads times the rotation rates, which the Newton iteration absorbs). The
+ *      residual of this element takes the automatic-differentiation path (second order: the
+ *      points' accelerations need the fields' Hessians), about ten times the lumped element's
+ *      plain one.
  * No damping in the element unless beta > 0: stiffness-proportional (Rayleigh) damping,
  * the gradient with respect to the port velocities of D = beta/2 d'^T K d', d' the rates of the
  * local deformations and K the local stiffness, so that it acts on deformation only (a rigid
@@ -67,12 +85,12 @@
 extern "C" {
 #endif
 
-/* The element's inertia (mech_section.mass). */
+/* The element (mech_section.element): see above. */
 enum { MECH_BEAM_LUMPED = 0, MECH_BEAM_CONSISTENT = 1 };
 
 /* Accepted: every field finite; E, G, A, Iy, Iz, J > 0; rho, kappa, beta >= 0 (the chain
- * builder, and mass = MECH_BEAM_CONSISTENT, need rho > 0); the stiffnesses they give (EA/L0,
- * GJ/L0, EI/L0, times beta) finite; mass one of the two values. */
+ * builder, and element = MECH_BEAM_CONSISTENT, need rho > 0); the stiffnesses they give (EA/L0,
+ * GJ/L0, EI/L0, times beta) finite; element one of the two values. */
 typedef struct mech_section {
     double E, G;      /* Young's and shear modulus (Pa), > 0 */
     double A, Iy, Iz; /* area (m^2); second moments about the local y (e2) and z (e3) axes (m^4),
@@ -81,7 +99,7 @@ typedef struct mech_section {
     double rho;       /* density (kg/m^3; for the chain builder's lumped masses), >= 0 (chain: > 0) */
     double kappa;     /* shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko */
     double beta;      /* stiffness-proportional damping (s), >= 0: modal damping ratio beta w/2 */
-    int mass;         /* MECH_BEAM_LUMPED (0, in the node bodies) or MECH_BEAM_CONSISTENT */
+    int element;      /* MECH_BEAM_LUMPED (0, masses in the node bodies) or MECH_BEAM_CONSISTENT */
 } mech_section;
 
 /* One element between node bodies node_a and node_b (element ids of mech_body instances whose
@@ -90,9 +108,10 @@ typedef struct mech_section {
  * Ports 0 and 1 must be bonded to ports of node_a and node_b at their mass centres.
  * Accepted: sec not NULL and as stated above; E0 not NULL, finite, orthonormal to 1e-9 and
  * right-handed (e3 = e1 x e2); L0 finite and > 0; node_a != node_b, both rigid bodies made
- * before. With mass = MECH_BEAM_CONSISTENT the node bodies must carry the point masses
- * rho A L0 / 2 of the element at their centres (mech_body_add_mass), as the chain builder's do;
- * a single element has no gravity of its own (the nodes' weights are lumped).
+ * before. With element = MECH_BEAM_CONSISTENT the node bodies must carry half of the
+ * element's mass rho A L0 and rotary inertia rho (I_y + I_z, I_y, I_z) L0 at their centres, as
+ * the chain builder's do; a single element has no gravity of its own (the nodes' weights are
+ * lumped).
  * Anything else gives BG_ERR_ARGUMENT before anything is built, with a message naming
  * the element's path and the parameter (nothing is added to the model). */
 BG_API int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
@@ -106,8 +125,8 @@ BG_API double mech_beam_energy(const bgr_model *m, int elem, const double *y);
  * deformations from the node velocities in y; NaN as for the energy. */
 BG_API double mech_beam_dissipation(const bgr_model *m, int elem, const double *y);
 /* The kinetic energy the element adds to its node bodies' at a state vector y (after
- * bgr_compile): consistent mass, sum_g m w_g |r_g'|^2 / 2 - (m/4)(|v_a|^2 + |v_b|^2); 0 for a
- * lumped element; NaN as for the energy. */
+ * bgr_compile): the consistent element's T less the nodes' share (above); 0 for a lumped
+ * element; NaN as for the energy. */
 BG_API double mech_beam_kinetic(const bgr_model *m, int elem, const double *y);
 /* The 12 port loads (F_a, M_a, F_b, M_b) of a beam element at a state vector y, for tests:
  * path 0 as the residual computes them (plain arithmetic, one reverse pass), path 1 by the

@@ -18,7 +18,10 @@
 typedef struct beam_work {
     ad X[6], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6]; /* X: the nodes' positions */
     ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
-    ad PQ[6];             /* consistent inertia: the transverse offset vectors P, Q */
+    ad bow, eps;          /* consistent element: the bowing term and the axial strain */
+    ad B[16][3];          /* consistent inertia: the basis vectors of the fields (see
+                             mech_beam_inertia.c) */
+    double gv[16][3][12], dgv[16][3][12][14]; /* their velocity gradients and derivatives */
     double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
     int refs;             /* elements sharing it */
 } beam_work;
@@ -64,10 +67,9 @@ void mech_beam_quat_J_(const double *q, double J[4][3]);
 void mech_beam_velocity_gradient_(const ad *a, const double *qa, const double *qb, double *gv,
                                   double (*dgv)[14]);
 
-/* Consistent inertia (mech_beam_inertia.c). After the element frame (e2, e3) and the node
- * angles th are in the scratch, the transverse offset vectors
- *     P = theta_z,a e2 - theta_y,a e3,   Q = theta_z,b e2 - theta_y,b e3
- * into k->PQ (Hessians mirrored at order 2). */
+/* Consistent inertia (mech_beam_inertia.c). After the element frame (e1, e2, e3), the node
+ * triads and the node angles th are in the scratch: the basis vectors of the displacement and
+ * director fields into k->B (Hessians mirrored at order 2). */
 void mech_beam_offsets_(const ad_ctx *c, beam_work *k);
 /* The inertial port loads g (12) of the element at (y, yp), after beam_energy at order 2 (the
  * offsets' Hessians give the accelerations), and, if dX != NULL, their Jacobian: dX (12 x 14,

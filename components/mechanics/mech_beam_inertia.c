@@ -1,9 +1,14 @@
-/* Consistent inertia of the co-rotational beam element (equations in mech_beam.h): the mass of
- * the element at the 4 Gauss points of its co-rotational displacement field, its inertia loads
- * by d'Alembert's principle, less the point masses the node bodies already carry. The field's
- * transverse part is L0 (H1 P + H2 Q), P and Q the offset vectors made here on the AD numbers of
- * the element's energy (mech_beam.c), so that their velocity gradients and Hessians give the
- * Gauss points' velocities and accelerations exactly. */
+/* Consistent inertia of the co-rotational beam element (equations in mech_beam.h). The kinetic
+ * energy is that of "points" moving with vector fields of the configuration: the displacement
+ * field r(xi) carries the mass rho A, the section's directors D2(xi), D3(xi) carry rho I_z and
+ * rho I_y (a rigid section with directors e2, e3 and the "masses" I_z, I_y has the inertia
+ * I_y + I_z, I_y, I_z about e1, e2, e3: sum_i m_i |e_i'|^2 = w^T sum_i m_i (1 - e_i e_i^T) w),
+ * at the 4 Gauss points, less the same points at the nodes (r = x, D = the node triad's t2, t3:
+ * the node bodies' lumped masses and rotary inertias, exactly). Every field is a combination
+ * sum_b c_b(xi) B_b of 18 basis vectors: 16 made here on the AD numbers of the element's energy
+ * (mech_beam.c), so that their velocity gradients and Hessians give the points' velocities and
+ * accelerations exactly, and the node positions x_a, x_b. The inertia loads follow by
+ * d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
 #include <math.h>
 #include <string.h>
 
@@ -15,20 +20,77 @@ static const double GX[4] = {0.069431844202973712, 0.33000947820757187, 0.669990
 static const double GW[4] = {0.17392742256872693, 0.32607257743127307, 0.32607257743127307,
                              0.17392742256872693};
 
+enum { NB = 18, XA = 16, XB = 17 };
+
+/* The basis: 0 P = th_z,a e2 - th_y,a e3, 1 Q = th_z,b e2 - th_y,b e3, 2 e2, 3 e3,
+ * 4 th_x,a e3, 5 th_x,b e3, 6 th_z,a e1, 7 th_z,b e1, 8 th_x,a e2, 9 th_x,b e2, 10 th_y,a e1,
+ * 11 th_y,b e1, 12 t2 of node a, 13 t2 of node b, 14 t3 of node a, 15 t3 of node b (16, 17: the
+ * node positions x_a, x_b). */
 void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
 {
-    for (int n = 0; n < 2; n++)
-        for (int i = 0; i < 3; i++) {
-            ad *o = &k->PQ[3 * n + i];
-            ad_mul(c, &k->th[3 * n + 2], &k->e2[i], &k->t1);
-            ad_mul(c, &k->th[3 * n + 1], &k->e3[i], &k->t2);
-            ad_axpy(c, &k->t1, -1.0, &k->t2, o);
-            if (c->order > 1) ad_mirror(c, o);
+    const ad *th = k->th;
+    for (int i = 0; i < 3; i++) {
+        for (int n = 0; n < 2; n++) {
+            ad_mul(c, &th[3 * n + 2], &k->e2[i], &k->t1);
+            ad_mul(c, &th[3 * n + 1], &k->e3[i], &k->t2);
+            ad_axpy(c, &k->t1, -1.0, &k->t2, &k->B[n][i]);
+            ad_mul(c, &th[3 * n + 0], &k->e3[i], &k->B[4 + n][i]);
+            ad_mul(c, &th[3 * n + 2], &k->e1[i], &k->B[6 + n][i]);
+            ad_mul(c, &th[3 * n + 0], &k->e2[i], &k->B[8 + n][i]);
+            ad_mul(c, &th[3 * n + 1], &k->e1[i], &k->B[10 + n][i]);
         }
+        k->B[2][i] = k->e2[i];
+        k->B[3][i] = k->e3[i];
+        k->B[12][i] = k->ta[3 + i];
+        k->B[13][i] = k->tb[3 + i];
+        k->B[14][i] = k->ta[6 + i];
+        k->B[15][i] = k->tb[6 + i];
+    }
+    if (c->order > 1)
+        for (int b = 0; b < 16; b++)
+            for (int i = 0; i < 3; i++)
+                ad_mirror(c, &k->B[b][i]);
+}
+
+/* The inertia points: coefficients over the basis, mass mu, and whether gravity acts on them.
+ * Returns the number of points (at most 18). */
+typedef struct point {
+    double c[NB], mu;
+    int weight;
+} point;
+
+static int inertia_points(const beam *b, point *p)
+{
+    const mech_section *S = &b->sec;
+    double L0 = b->L0, mA = S->rho * S->A * L0, mz = S->rho * S->Iz * L0, my = S->rho * S->Iy * L0;
+    int n = 0;
+    memset(p, 0, 18 * sizeof *p);
+    for (int g = 0; g < 4; g++) {
+        double xi = GX[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
+        double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi; /* H1', H2' */
+        /* r = (1 - xi) x_a + xi x_b + L0 (H1 P + H2 Q) */
+        p[n].c[XA] = 1 - xi, p[n].c[XB] = xi, p[n].c[0] = L0 * h1, p[n].c[1] = L0 * h2;
+        p[n].mu = mA * GW[g], p[n++].weight = 1;
+        /* D2 = e2 + psi_1 e3 - psi_3 e1, psi_1 = (1 - xi) th_x,a + xi th_x,b,
+         * psi_3 = H1' th_z,a + H2' th_z,b: the section's director e2 turned by its rotation */
+        p[n].c[2] = 1, p[n].c[4] = 1 - xi, p[n].c[5] = xi, p[n].c[6] = -d1, p[n].c[7] = -d2;
+        p[n++].mu = mz * GW[g];
+        /* D3 = e3 - psi_1 e2 + psi_2 e1, psi_2 = H1' th_y,a + H2' th_y,b */
+        p[n].c[3] = 1, p[n].c[8] = -(1 - xi), p[n].c[9] = -xi, p[n].c[10] = d1, p[n].c[11] = d2;
+        p[n++].mu = my * GW[g];
+    }
+    /* less the nodes' lumped masses and rotary inertias (half of the element's at each) */
+    p[n].c[XA] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[XB] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[12] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[13] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[14] = 1, p[n++].mu = -0.5 * my;
+    p[n].c[15] = 1, p[n++].mu = -0.5 * my;
+    return n;
 }
 
 /* The node velocities u' in the port coordinates (v_a, omega_a, v_b, omega_b; omega = R w
- * global) from y (rates NULL) or their rates u'' = (v_a', R_a w_a', ...) from yp. */
+ * global) from src = y, or their rates u'' = (v_a', R_a w_a', ...) from src = yp. */
 static void port_rates(const beam *b, const double *y, const double *src, double *u)
 {
     double R[9];
@@ -56,22 +118,31 @@ static void config_rates(const beam *b, const double *y, double B[14][12])
     }
 }
 
-/* G_g[c]: the velocity gradient (12) of component c of Gauss point xi, from those of P, Q. */
-static void point_gradient(double xi, double L0, const double (*gv)[12], int c, double *G)
+/* The basis' velocity gradients (and their derivatives if dgv is wanted) into the scratch. */
+static void basis_gradients(const beam *b, const double *y, beam_work *k, int with_dgv)
 {
-    double h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
-    for (int k = 0; k < 12; k++)
-        G[k] = L0 * (h1 * gv[c][k] + h2 * gv[3 + c][k]);
-    G[c] += 1 - xi;
-    G[6 + c] += xi;
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++)
+            mech_beam_velocity_gradient_(&k->B[bb][i], y + b->qa, y + b->qb, k->gv[bb][i],
+                                         with_dgv ? k->dgv[bb][i] : NULL);
+}
+
+/* G (12) of component i of a point: sum_b c_b gv_b,i, the node positions' unit gradients. */
+static void point_gradient(const beam_work *k, const point *p, int i, double *G)
+{
+    memset(G, 0, 12 * sizeof *G);
+    for (int bb = 0; bb < 16; bb++)
+        if (p->c[bb] != 0)
+            for (int j = 0; j < 12; j++)
+                G[j] += p->c[bb] * k->gv[bb][i][j];
+    G[i] += p->c[XA];
+    G[6 + i] += p->c[XB];
 }
 
 void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[12],
                         double (*dX)[14], double (*dV)[12], double (*dA)[12])
 {
-    const beam_work *k = b->work;
-    const double *qa = y + b->qa, *qb = y + b->qb, L0 = b->L0;
-    const double m = b->sec.rho * b->sec.A * L0;
+    beam_work *k = b->work;
     double ud[12], ua[12], B[14][12], Xd[14];
     port_rates(b, y, y, ud);
     port_rates(b, y, yp, ua);
@@ -81,91 +152,108 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
         for (int j = 0; j < 12; j++)
             Xd[c] += B[c][j] * ud[j];
     }
-    /* the offsets: velocity gradients gv, their derivatives dgv, accelerations acc */
-    double gv[6][12], dgv[6][12][14], Cd[6][12], acc[6];
-    for (int s = 0; s < 6; s++) {
-        mech_beam_velocity_gradient_(&k->PQ[s], qa, qb, gv[s], dgv[s]);
-        acc[s] = 0;
-        for (int j = 0; j < 12; j++) {
-            Cd[s][j] = 0; /* (dG/dX X')_j: the rate of the gradient */
-            for (int c = 0; c < 14; c++)
-                Cd[s][j] += dgv[s][j][c] * Xd[c];
-            acc[s] += gv[s][j] * ua[j] + ud[j] * Cd[s][j];
-        }
-    }
-    /* Gauss sums of a_g = m w_g (r_g'' - g): f = sum_g G_g^T a_g */
-    double SP[6] = {0}, a[4][3];
-    memset(g, 0, 12 * sizeof *g);
-    for (int p = 0; p < 4; p++) {
-        double xi = GX[p], mg = m * GW[p];
-        double h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
-        for (int c = 0; c < 3; c++) {
-            double rdd = (1 - xi) * ua[c] + xi * ua[6 + c] + L0 * (h1 * acc[c] + h2 * acc[3 + c]);
-            a[p][c] = mg * (rdd - b->grav[c]);
-            g[c] += (1 - xi) * a[p][c];
-            g[6 + c] += xi * a[p][c];
-            SP[c] += L0 * h1 * a[p][c];
-            SP[3 + c] += L0 * h2 * a[p][c];
-        }
-    }
-    for (int c = 0; c < 3; c++) { /* less the nodes' point masses */
-        g[c] -= 0.5 * m * (ua[c] - b->grav[c]);
-        g[6 + c] -= 0.5 * m * (ua[6 + c] - b->grav[c]);
-    }
-    for (int s = 0; s < 6; s++)
-        for (int j = 0; j < 12; j++)
-            g[j] += SP[s] * gv[s][j];
-    if (!dX) return;
-    /* d acc_s / d u' = Cd_s + (dgv_s B)^T u';  d acc_s / dX ~ u''^T dgv_s (the configuration
-     * derivative of G_s' u' left out: see mech_beam.h) */
-    double dacc_u[6][12], dacc_X[6][14];
-    for (int s = 0; s < 6; s++) {
-        for (int j = 0; j < 12; j++) {
-            double sum = Cd[s][j];
-            for (int i = 0; i < 12; i++) {
-                double dB = 0;
+    basis_gradients(b, y, k, 1);
+    /* the basis vectors' accelerations acc = gv . u'' + u' . (dgv X') (the second term: the
+     * rate of the gradient along the motion, centrifugal and Coriolis) */
+    double Cd[16][3][12], acc[NB][3];
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++) {
+            double s = 0;
+            for (int j = 0; j < 12; j++) {
+                double cd = 0;
                 for (int c = 0; c < 14; c++)
-                    dB += dgv[s][i][c] * B[c][j];
-                sum += ud[i] * dB;
+                    cd += k->dgv[bb][i][j][c] * Xd[c];
+                Cd[bb][i][j] = cd;
+                s += k->gv[bb][i][j] * ua[j] + ud[j] * cd;
             }
-            dacc_u[s][j] = sum;
+            acc[bb][i] = s;
         }
-        for (int c = 0; c < 14; c++) {
-            double sum = 0;
-            for (int i = 0; i < 12; i++)
-                sum += ua[i] * dgv[s][i][c];
-            dacc_X[s][c] = sum;
-        }
+    for (int i = 0; i < 3; i++) {
+        acc[XA][i] = ua[i];
+        acc[XB][i] = ua[6 + i];
     }
+    point P[18];
+    int np = inertia_points(b, P);
+    /* a_p = mu_p (r_p'' - g); f = sum_p G_p^T a_p = sum_b sum_i S_b,i gv_b,i (+ the x's) */
+    double S[NB][3];
+    memset(S, 0, sizeof S);
+    double a[18][3];
+    for (int p = 0; p < np; p++)
+        for (int i = 0; i < 3; i++) {
+            double rdd = 0;
+            for (int bb = 0; bb < NB; bb++)
+                rdd += P[p].c[bb] * acc[bb][i];
+            a[p][i] = P[p].mu * (rdd - (P[p].weight ? b->grav[i] : 0.0));
+            for (int bb = 0; bb < NB; bb++)
+                S[bb][i] += P[p].c[bb] * a[p][i];
+        }
+    memset(g, 0, 12 * sizeof *g);
+    for (int i = 0; i < 3; i++) {
+        g[i] += S[XA][i];
+        g[6 + i] += S[XB][i];
+    }
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++)
+            if (S[bb][i] != 0)
+                for (int j = 0; j < 12; j++)
+                    g[j] += S[bb][i] * k->gv[bb][i][j];
+    if (!dX) return;
+    /* d acc / d u' = Cd + (dgv B)^T u';  d acc / dX ~ u''^T dgv (the configuration derivative
+     * of the rate term left out: see mech_beam.h) */
+    double dacc_u[16][3][12], dacc_X[16][3][14];
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++) {
+            const double(*D)[14] = (const double(*)[14])k->dgv[bb][i];
+            for (int j = 0; j < 12; j++) {
+                double sum = Cd[bb][i][j];
+                for (int l = 0; l < 12; l++) {
+                    if (ud[l] == 0) continue;
+                    double dB = 0;
+                    for (int c = 0; c < 14; c++)
+                        dB += D[l][c] * B[c][j];
+                    sum += ud[l] * dB;
+                }
+                dacc_u[bb][i][j] = sum;
+            }
+            for (int c = 0; c < 14; c++) {
+                double sum = 0;
+                for (int l = 0; l < 12; l++)
+                    sum += ua[l] * D[l][c];
+                dacc_X[bb][i][c] = sum;
+            }
+        }
     memset(dX, 0, 12 * 14 * sizeof(double));
     memset(dV, 0, 144 * sizeof(double));
     memset(dA, 0, 144 * sizeof(double));
-    for (int s = 0; s < 6; s++) /* the rate of G_g^T along X */
-        for (int j = 0; j < 12; j++)
-            for (int c = 0; c < 14; c++)
-                dX[j][c] += SP[s] * dgv[s][j][c];
-    for (int p = 0; p < 4; p++) {
-        double xi = GX[p], mg = m * GW[p];
-        double h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
-        for (int c = 0; c < 3; c++) {
-            double G[12];
-            point_gradient(xi, L0, (const double(*)[12])gv, c, G);
+    for (int bb = 0; bb < 16; bb++) /* the rate of G^T along X */
+        for (int i = 0; i < 3; i++)
+            if (S[bb][i] != 0)
+                for (int j = 0; j < 12; j++)
+                    for (int c = 0; c < 14; c++)
+                        dX[j][c] += S[bb][i] * k->dgv[bb][i][j][c];
+    for (int p = 0; p < np; p++)
+        for (int i = 0; i < 3; i++) {
+            double G[12], du[12] = {0}, dx[14] = {0};
+            point_gradient(k, &P[p], i, G);
+            for (int bb = 0; bb < 16; bb++) {
+                double cb = P[p].c[bb];
+                if (cb == 0) continue;
+                for (int j = 0; j < 12; j++)
+                    du[j] += cb * dacc_u[bb][i][j];
+                for (int c = 0; c < 14; c++)
+                    dx[c] += cb * dacc_X[bb][i][c];
+            }
             for (int j = 0; j < 12; j++) {
-                double mgj = mg * G[j];
-                for (int i = 0; i < 12; i++) {
-                    dA[j][i] += mgj * G[i];
-                    dV[j][i] += mgj * L0 * (h1 * dacc_u[c][i] + h2 * dacc_u[3 + c][i]);
+                double mg = P[p].mu * G[j];
+                for (int l = 0; l < 12; l++) {
+                    dA[j][l] += mg * G[l];
+                    dV[j][l] += mg * du[l];
                 }
-                for (int cc = 0; cc < 14; cc++)
-                    dX[j][cc] += mgj * L0 * (h1 * dacc_X[c][cc] + h2 * dacc_X[3 + c][cc]);
+                for (int c = 0; c < 14; c++)
+                    dX[j][c] += mg * dx[c];
             }
         }
-    }
-    for (int c = 0; c < 3; c++) {
-        dA[c][c] -= 0.5 * m;
-        dA[6 + c][6 + c] -= 0.5 * m;
-    }
-    /* columns of omega = R w (and its rate R w'): to the body-frame unknowns w */
+    /* columns of omega = R w (and of its rate R w'): to the body-frame unknowns w */
     for (int n = 0; n < 2; n++) {
         double R[9];
         mech_quat_R(y + (n ? b->qb : b->qa), R, NULL);
@@ -186,21 +274,19 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
 
 double mech_beam_kinetic_(const beam *b, const double *y)
 {
-    const beam_work *k = b->work;
-    double ud[12], gv[6][12], T = 0;
-    const double m = b->sec.rho * b->sec.A * b->L0;
+    beam_work *k = b->work;
+    double ud[12], T = 0;
     port_rates(b, y, y, ud);
-    for (int s = 0; s < 6; s++)
-        mech_beam_velocity_gradient_(&k->PQ[s], y + b->qa, y + b->qb, gv[s], NULL);
-    for (int p = 0; p < 4; p++)
-        for (int c = 0; c < 3; c++) {
+    basis_gradients(b, y, k, 0);
+    point P[18];
+    int np = inertia_points(b, P);
+    for (int p = 0; p < np; p++)
+        for (int i = 0; i < 3; i++) {
             double G[12], v = 0;
-            point_gradient(GX[p], b->L0, (const double(*)[12])gv, c, G);
+            point_gradient(k, &P[p], i, G);
             for (int j = 0; j < 12; j++)
                 v += G[j] * ud[j];
-            T += 0.5 * m * GW[p] * v * v;
+            T += 0.5 * P[p].mu * v * v;
         }
-    for (int c = 0; c < 3; c++)
-        T -= 0.25 * m * (ud[c] * ud[c] + ud[6 + c] * ud[6 + c]);
     return T;
 }

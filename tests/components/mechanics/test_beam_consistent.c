@@ -1,4 +1,4 @@
-/* The co-rotational beam with consistent inertia (mech_beam.h, section.mass) against independent
+/* The consistent co-rotational beam element (mech_beam.h, section.element) against independent
  * references, with the lumped element alongside:
  *   - clamped-free bending frequencies in both planes against the Euler-Bernoulli closed form
  *     (beta_n L the roots of cos b cosh b = -1, found here by bisection), corrected to first
@@ -9,7 +9,9 @@
  *     Coriolis terms of the inertia loads, which the linearised frequencies do not see;
  *   - the element's Jacobian against central differences at a state at rest under gravity;
  *   - the distributed weight: a cantilever's sag under its own weight q L^4 / (8 E I) (the lumped
- *     node weights: second order; the consistent loads are exact at the nodes). */
+ *     node weights: second order; the consistent loads are exact at the nodes);
+ *   - the elastica, tip loads P L^2 / (E I) = 1, 3, 5, 10, against the extensible elastica by
+ *     shooting, 4 .. 32 elements. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,7 +44,7 @@ static bgr_model *cantilever(const mech_section *section, int n, double L, int m
     for (int k = 0; k <= n; k++)
         extra[k] = k == 0 || k == n;
     mech_section sec = *section;
-    sec.mass = mass;
+    sec.element = mass;
     bgr_model *m = bgr_model_create("cant");
     mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, g, extra, NULL, nodes, elems);
     int clamp = mech_support(m, 0, "clamp", 6);
@@ -184,17 +186,17 @@ static void test_frequencies(void)
         if (j % 3) omin = fmin(omin, order[1][j]);
     }
     tap_ok(ok[1] && w8_12 < 1e-4,
-           "consistent mass, 8 elements: the first two bending frequencies of both planes within "
+           "consistent element, 8 elements: the first two bending frequencies of both planes within "
            "%.2e of the closed form (target 1e-4)",
            w8_12);
     tap_ok(ok[1] && w8 < 1e-3 && w16 < 1e-4,
-           "consistent mass: the first three in both planes within %.2e at 8 elements (the third: "
+           "consistent element: the first three in both planes within %.2e at 8 elements (the third: "
            "cubic field, (beta L / n)^4 / 1440), within %.2e at 16",
            w8, w16);
-    tap_ok(ok[1] && omin > 3.7, "consistent mass: fourth order (smallest order %.2f, modes 2, 3)",
+    tap_ok(ok[1] && omin > 3.7, "consistent element: fourth order (smallest order %.2f, modes 2, 3)",
            omin);
     tap_ok(ok[0] && err[0][2][0] > 10 * err[1][2][0] && err[0][2][2] > 10 * err[1][2][2],
-           "lumped mass, 8 elements: errors %.2e and %.2e on modes 1 and 3, ten times the "
+           "lumped element, 8 elements: errors %.2e and %.2e on modes 1 and 3, ten times the "
            "consistent ones at least",
            err[0][2][0], err[0][2][2]);
 }
@@ -226,7 +228,7 @@ static void test_energy(void)
     int nodes[8], elems[8];
     /* a stocky polymer rod: first free-free bending frequency 37 rad/s, axial 3 100 */
     const mech_section sec = {.E = 2.1e9, .G = 8.1e8, .A = 1e-4, .Iy = 1e-9, .Iz = 1e-9,
-                              .J = 1.5e-9, .rho = 1000, .mass = MECH_BEAM_CONSISTENT};
+                              .J = 1.5e-9, .rho = 1000, .element = MECH_BEAM_CONSISTENT};
     bgr_model *m = bgr_model_create("free");
     mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, NULL, NULL, NULL, nodes, elems);
     if (bgr_compile(m) != BG_OK) {
@@ -273,7 +275,7 @@ static void test_energy(void)
     /* at rtol 1e-6: 7e-6 (1e-8: 4e-8); without the rate term G' u' of the accelerations the
      * energy drifts by 2.4e-4 */
     tap_ok(r == 0 && drift < 3e-5,
-           "free chain (consistent mass) spinning at %g rad/s while it bends: total energy %.6e J "
+           "free chain (consistent element) spinning at %g rad/s while it bends: total energy %.6e J "
            "kept within %.1e over two revolutions (elements' kinetic share up to %.2e J, strain "
            "up to %.2e J)",
            W, E0, drift, Tel, Wmax);
@@ -337,10 +339,94 @@ static void test_sag(void)
     bgr_model_free(&m);
 }
 
+/* ---- the elastica: a cantilever under a dead tip load P, k = P L^2 / (E I) up to 10 ----
+ * Reference: the extensible elastica by shooting, EI phi'' = -P (1 + eps) cos phi with the
+ * stretch eps = P sin phi / (E A) of the axial force, phi(0) = 0, phi'(L) = 0; x' = (1 + eps)
+ * cos phi, z' = -(1 + eps) sin phi (RK4, 20 000 steps, bisection on phi'(0)). */
+static void elastica(double k, double c, double *xt, double *zt)
+{
+    const int N = 20000;
+    double lo = 0, hi = 2 * k;
+    for (int it = 0; it < 100; it++) {
+        double k0 = 0.5 * (lo + hi), ph = 0, kp = k0, h = 1.0 / N, x = 0, z = 0;
+        for (int i = 0; i < N; i++) { /* RK4 on (phi, phi', x, z); c = E I / (E A L^2) */
+            double Y[4] = {ph, kp, x, z}, K[4][4];
+            for (int st = 0; st < 4; st++) {
+                double f = st == 0 ? 0 : st == 3 ? 1 : 0.5, yy[4];
+                for (int j = 0; j < 4; j++)
+                    yy[j] = Y[j] + (st ? f * h * K[st - 1][j] : 0);
+                double e = c * k * sin(yy[0]);
+                K[st][0] = yy[1];
+                K[st][1] = -k * (1 + e) * cos(yy[0]);
+                K[st][2] = (1 + e) * cos(yy[0]);
+                K[st][3] = -(1 + e) * sin(yy[0]);
+            }
+            ph += h * (K[0][0] + 2 * K[1][0] + 2 * K[2][0] + K[3][0]) / 6;
+            kp += h * (K[0][1] + 2 * K[1][1] + 2 * K[2][1] + K[3][1]) / 6;
+            x += h * (K[0][2] + 2 * K[1][2] + 2 * K[2][2] + K[3][2]) / 6;
+            z += h * (K[0][3] + 2 * K[1][3] + 2 * K[2][3] + K[3][3]) / 6;
+        }
+        *xt = x, *zt = z;
+        if (kp > 0) /* curvature left at the tip: too much at the root */
+            hi = k0;
+        else
+            lo = k0;
+    }
+}
+
+static void test_elastica(void)
+{
+    /* steel, r / L = 2.9e-3 */
+    const mech_section steel = {.E = 2.1e11, .G = 8.1e10, .A = 1e-4, .Iy = 1.6e-9, .Iz = 8.33e-10,
+                                .J = 1.4e-9, .rho = 7850};
+    const double ks[4] = {1, 3, 5, 10}, EI = steel.E * steel.Iz;
+    const int ns[4] = {4, 8, 16, 32};
+    double err[2][4][4]; /* [element][k][n] */
+    int ok = 1;
+    for (int ik = 0; ik < 4; ik++) {
+        double xt, zt;
+        elastica(ks[ik], steel.Iz / (steel.A), &xt, &zt);
+        for (int mass = 0; mass < 2; mass++)
+            for (int in = 0; in < 4; in++) {
+                int nodes[65], elems[64];
+                bgr_model *m = cantilever(&steel, ns[in], 1.0, mass, NULL, ks[ik] * EI, nodes,
+                                          elems);
+                dae_static_options o;
+                dae_static_options_default(&o);
+                o.max_steps = 5000;
+                dae_static_result r;
+                bg_error e = {0};
+                int st = m ? bgr_static(m, &o, 0.0, &r, &e) : -1;
+                if (st != BG_OK) tap_diag("elastica k = %g, n = %d: %s", ks[ik], ns[in], e.message);
+                ok &= st == BG_OK;
+                const double *tip = m ? bgr_y0(m) + mech_body_var(m, nodes[ns[in]], 'x') : NULL;
+                err[mass][ik][in] = st == BG_OK ? hypot(tip[0] - xt, tip[2] - zt) : INFINITY;
+                bgr_model_free(&m);
+            }
+        tap_diag("elastica k = %g: tip (%.6f, %.6f) L; tip errors / L at 4, 8, 16, 32 elements: "
+                 "lumped %.2e %.2e %.2e %.2e, consistent %.2e %.2e %.2e %.2e",
+                 ks[ik], xt, zt, err[0][ik][0], err[0][ik][1], err[0][ik][2], err[0][ik][3],
+                 err[1][ik][0], err[1][ik][1], err[1][ik][2], err[1][ik][3]);
+    }
+    double w16 = 0, omin = INFINITY;
+    for (int ik = 0; ik < 4; ik++) {
+        w16 = fmax(w16, err[1][ik][2]);
+        omin = fmin(omin, log2(err[1][ik][1] / err[1][ik][2]));
+    }
+    tap_ok(ok && w16 < 1e-4,
+           "elastica, consistent element: tip within %.2e L at 16 elements for k = 1, 3, 5, 10 "
+           "(target 1e-4; lumped: %.2e at k = 10)",
+           w16, err[0][3][2]);
+    tap_ok(ok && omin > 3.7, "elastica, consistent element: fourth order (smallest order 8 -> 16 "
+                             "elements %.2f)",
+           omin);
+}
+
 int main(void)
 {
     test_frequencies();
     test_sag();
+    test_elastica();
     test_energy();
     return tap_done();
 }
