@@ -4,7 +4,9 @@
  * configuration unknowns (x_a, x_b, q_a, q_b): its gradient gives the port loads, its Hessian
  * their Jacobian. The residual, evaluated a hundred times as often as the Jacobian, computes
  * the same loads in plain arithmetic with one reverse (adjoint) pass through the deformations
- * instead (beam_loads_plain); the tests hold the two to each other. */
+ * instead (beam_loads_plain); the tests hold the two to each other. The consistent element's
+ * residual takes the AD path (its inertia needs second derivatives; its own parts are in
+ * mech_beam_consistent.c); the argument checks are in mech_beam_check.c. */
 #include "mech_beam.h"
 
 #include <stdio.h>
@@ -103,42 +105,6 @@ static void half_diff_dots(const ad_ctx *c, const ad *a, const ad *b, const ad *
     ad_dot3s(c, -0.5, cc, d, 1, r);
 }
 
-/* The consistent element's rotation measure: the skew part s of E^T T is sin(phi) n for a
- * relative rotation phi about n; th = s asin(|s|) / |s| is the rotation vector phi n itself
- * (the logarithm of the relative rotation, phi < pi / 2), so that the local deformations are
- * the angles the element's cubic field is written in. f(x) = asin(sqrt x) / sqrt x of x = |s|^2,
- * by its series sum c_j x^j (c_j = (2j)! / (4^j j!^2 (2j + 1))) below x = 0.04 (truncation
- * 3e-12), else in closed form. */
-static void angle_measure(const ad_ctx *c, beam_work *k, ad *th)
-{
-    ad_const(c, 0.0, &k->t1);
-    for (int i = 0; i < 3; i++) {
-        ad_mul(c, &th[i], &th[i], &k->t2);
-        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
-    }
-    double x = k->t1.v, f, fp, fpp;
-    if (x < 0.04) {
-        static const double cj[7] = {1.0,         1.0 / 6,      3.0 / 40,      5.0 / 112,
-                                     35.0 / 1152, 63.0 / 2816, 231.0 / 13312};
-        f = fp = fpp = 0;
-        for (int j = 6; j >= 0; j--) {
-            f = f * x + cj[j];
-            if (j >= 1) fp = fp * x + j * cj[j];
-            if (j >= 2) fpp = fpp * x + j * (j - 1) * cj[j];
-        }
-    } else {
-        double sg = sqrt(x), A = asin(fmin(sg, 1.0)), r = sqrt(fmax(1 - x, 1e-300));
-        f = A / sg;
-        fp = 1 / (2 * x * r) - A / (2 * x * sg);
-        fpp = -3 / (4 * x * x * r) + 1 / (4 * x * r * r * r) + 3 * A / (4 * x * x * sg);
-    }
-    ad_apply(c, &k->t1, f, fp, fpp, &k->t2);
-    for (int i = 0; i < 3; i++) {
-        ad_mul(c, &th[i], &k->t2, &k->t1);
-        th[i] = k->t1;
-    }
-}
-
 /* W(x_a, x_b, q_a, q_b) on AD numbers, into k->W. */
 static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_work *k)
 {
@@ -184,7 +150,7 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
         half_diff_dots(c, k->e3, t + 3, k->e2, t + 6, &k->th[3 * n + 0]);
         half_diff_dots(c, k->e1, t + 6, k->e3, t + 0, &k->th[3 * n + 1]);
         half_diff_dots(c, k->e2, t + 0, k->e1, t + 3, &k->th[3 * n + 2]);
-        if (b->sec.element == MECH_BEAM_CONSISTENT) angle_measure(c, k, &k->th[3 * n]);
+        if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_angles_(c, k, &k->th[3 * n]);
     }
     /* energy W = d^T K d / 2 over the nonzero entries of the local stiffness */
     ad_const(c, -b->L0, &k->t1);
@@ -192,22 +158,7 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
     const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
     ad_const(c, 0.0, &k->W);
     int cons = b->sec.element == MECH_BEAM_CONSISTENT;
-    if (cons) { /* EA L0 / 2 eps^2, eps = u / L0 + bow / 30 */
-        ad_const(c, 0.0, &k->bow);
-        for (int a = 1; a <= 2; a++) { /* theta_y, theta_z */
-            const ad *ta = &k->th[a], *tb = &k->th[3 + a];
-            ad_mul(c, ta, ta, &k->t2);
-            ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
-            ad_mul(c, tb, tb, &k->t2);
-            ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
-            ad_mul(c, ta, tb, &k->t2);
-            ad_axpy(c, &k->bow, -1.0, &k->t2, &k->bow);
-        }
-        ad_scale(c, 1.0 / b->L0, &k->u, &k->eps);
-        ad_axpy(c, &k->eps, 1.0 / 30, &k->bow, &k->eps);
-        ad_mul(c, &k->eps, &k->eps, &k->t2);
-        ad_axpy(c, &k->W, 0.5 * b->sec.E * b->sec.A * b->L0, &k->t2, &k->W);
-    }
+    if (cons) mech_beam_bow_(c, k, b->sec.E * b->sec.A, b->L0);
     for (int r = 0; r < 7; r++)
         for (int q = r; q < 7; q++) {
             if (b->K[r][q] == 0 || (cons && r == 0 && q == 0)) continue;
@@ -497,18 +448,7 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
         for (int s2 = 0; s2 < 7; s2++)
             z[r] += K[r][s2] * v[s2];
     }
-    if (b->sec.element == MECH_BEAM_CONSISTENT) { /* the bowing term of the axial strain */
-        const double *d = f.def, EA = b->sec.E * b->sec.A;
-        double bow = 0;
-        for (int a = 2; a <= 3; a++)
-            bow += 2 * d[a] * d[a] - d[a] * d[a + 3] + 2 * d[a + 3] * d[a + 3];
-        double N = EA * (d[0] / b->L0 + bow / 30); /* the axial force EA eps */
-        z[0] += EA * bow / 30;
-        for (int a = 2; a <= 3; a++) {
-            z[a] += N * b->L0 * (4 * d[a] - d[a + 3]) / 30;
-            z[a + 3] += N * b->L0 * (4 * d[a + 3] - d[a]) / 30;
-        }
-    }
+    if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_bow_loads_(f.def, b->sec.E * b->sec.A, b->L0, z);
     beam_reverse(b, &f, z, gc);
     velocity_gradient_g(gc, y + b->qa, y + b->qb, g);
 }
@@ -695,30 +635,6 @@ mech_scales *mech_beam_scales_(bgr_element *el)
     return el && el->cls == &beam_class ? &((beam *)el->params)->sc : NULL;
 }
 
-/* BG_OK if the section obeys the rules of mech_beam.h (where: the constructor), else the
- * refusal naming the field. */
-int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const char *w,
-                           const mech_section *s)
-{
-    if (!s) return bgr_refuse(m, c, name, w, "the section is NULL");
-    if (bgr_check_value(m, c, name, w, "section.E", s->E, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.G", s->G, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.A", s->A, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.Iy", s->Iy, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.Iz", s->Iz, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.J", s->J, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.rho", s->rho, BGR_NONNEGATIVE) ||
-        bgr_check_value(m, c, name, w, "section.kappa", s->kappa, BGR_NONNEGATIVE) ||
-        bgr_check_value(m, c, name, w, "section.beta", s->beta, BGR_NONNEGATIVE))
-        return BG_ERR_ARGUMENT;
-    if (s->element != MECH_BEAM_LUMPED && s->element != MECH_BEAM_CONSISTENT)
-        return bgr_refuse(m, c, name, w,
-                          "section.element = %d, expected MECH_BEAM_LUMPED (0) or "
-                          "MECH_BEAM_CONSISTENT (1)",
-                          s->element);
-    return BG_OK;
-}
-
 /* BG_OK if the local stiffness of the section over the length L0 (and its damping beta K) is
  * finite, else the refusal (products of the section's numbers that overflow). */
 int mech_beam_bad_stiffness_(bgr_model *m, bgr_comp c, const char *name, const char *w,
@@ -740,46 +656,16 @@ int mech_beam_bad_stiffness_(bgr_model *m, bgr_comp c, const char *name, const c
     return BG_OK;
 }
 
-/* BG_OK if E0 is a finite right-handed orthonormal frame (to 1e-9), else the refusal. */
-static int bad_frame(bgr_model *m, bgr_comp c, const char *name, const char *w, const double *E0)
-{
-    if (!E0) return bgr_refuse(m, c, name, w, "the initial frame E0 is NULL");
-    if (bgr_check_values(m, c, name, w, "E0", E0, 9, BGR_FINITE)) return BG_ERR_ARGUMENT;
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double d = mech_dot(E0 + 3 * i, E0 + 3 * j) - (i == j);
-            if (!(fabs(d) <= 1e-9))
-                return bgr_refuse(m, c, name, w,
-                                  "E0's columns %d and %d have the product %g, expected an "
-                                  "orthonormal frame (column products 1 and 0 to 1e-9)",
-                                  i, j, d + (i == j));
-        }
-    double e3[3];
-    mech_cross(E0, E0 + 3, e3);
-    if (!(mech_dot(e3, E0 + 6) > 0))
-        return bgr_refuse(m, c, name, w, "E0 is left-handed, expected e3 = e1 x e2");
-    return BG_OK;
-}
-
-/* BG_OK if node is a rigid body (mech_body) of m, else the refusal naming param. */
-static int bad_node(bgr_model *m, bgr_comp c, const char *name, const char *w, const char *param,
-                    int node)
-{
-    bgr_element *b = bgr_element_get(m, node);
-    if (b && b->nstates == 13 && !strcmp(b->cls->type, "body")) return BG_OK;
-    return bgr_refuse(m, c, name, w, "%s = %d, expected the element id of a rigid body (mech_body)",
-                      param, node);
-}
-
 /* mech_beam with the scratch shared (NULL: its own). */
 int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
                    const mech_section *sec, const double *E0, double L0, beam_work *shared,
                    const double *gravity)
 {
     const char *w = "mech_beam";
-    if (mech_beam_bad_section_(m, c, name, w, sec) || bad_frame(m, c, name, w, E0) ||
+    if (mech_beam_bad_section_(m, c, name, w, sec) || mech_beam_bad_frame_(m, c, name, w, E0) ||
         bgr_check_value(m, c, name, w, "L0", L0, BGR_POSITIVE) ||
-        bad_node(m, c, name, w, "node_a", node_a) || bad_node(m, c, name, w, "node_b", node_b) ||
+        mech_beam_bad_node_(m, c, name, w, "node_a", node_a) ||
+        mech_beam_bad_node_(m, c, name, w, "node_b", node_b) ||
         mech_beam_bad_stiffness_(m, c, name, w, sec, L0) ||
         bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE))
         return BG_ERR_ARGUMENT;

@@ -1,6 +1,6 @@
 /* Internal to the beam (not installed, nothing here is exported): the element's data, shared by
- * the element (mech_beam.c), its consistent inertia (mech_beam_inertia.c) and the chain builder
- * (mech_beam_chain.c). The checks are the element's own, so that a chain refuses a section, or a
+ * the element (mech_beam.c), the consistent element's parts (mech_beam_consistent.c) and the
+ * chain builder (mech_beam_chain.c). The checks are the element's own, so that a chain refuses a section, or a
  * length that makes its stiffness overflow, with the same messages as a single element, and
  * before it builds anything. */
 #ifndef MECH_BEAM_IMPL_H
@@ -20,7 +20,7 @@ typedef struct beam_work {
     ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
     ad bow, eps;          /* consistent element: the bowing term and the axial strain */
     ad B[16][3];          /* consistent inertia: the basis vectors of the fields (see
-                             mech_beam_inertia.c) */
+                             mech_beam_consistent.c) */
     double gv[16][3][12], dgv[16][3][12][14]; /* their velocity gradients and derivatives */
     double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
     int refs;             /* elements sharing it */
@@ -55,6 +55,12 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
  * constructor, for the message). */
 int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const char *w,
                            const mech_section *sec);
+/* BG_OK if E0 is a finite right-handed orthonormal frame (to 1e-9), else the refusal. */
+int mech_beam_bad_frame_(bgr_model *m, bgr_comp c, const char *name, const char *w,
+                         const double *E0);
+/* BG_OK if node is a rigid body (mech_body) of m, else the refusal naming param. */
+int mech_beam_bad_node_(bgr_model *m, bgr_comp c, const char *name, const char *w,
+                        const char *param, int node);
 /* BG_OK if the local stiffness of the section over the length L0 (and its damping beta K) is
  * finite, else the refusal. */
 int mech_beam_bad_stiffness_(bgr_model *m, bgr_comp c, const char *name, const char *w,
@@ -67,7 +73,16 @@ void mech_beam_quat_J_(const double *q, double J[4][3]);
 void mech_beam_velocity_gradient_(const ad *a, const double *qa, const double *qb, double *gv,
                                   double (*dgv)[14]);
 
-/* Consistent inertia (mech_beam_inertia.c). After the element frame (e1, e2, e3), the node
+/* The consistent element (mech_beam_consistent.c). The rotation measure: the node angles th
+ * (3) of one node turned from the skew part into the rotation vector, in place. */
+void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th);
+/* The bowing term: k->W += EA L0 eps^2 / 2, eps = u / L0 + (2 ta^2 - ta tb + 2 tb^2) / 30 over
+ * both bending planes (k->u, k->th set). */
+void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0);
+/* The same on plain numbers: to z = dW/dd (7: u, theta_a, theta_b) of the quadratic energy
+ * without its EA u^2 / (2 L0), the rest of the axial energy's gradient at the deformations d. */
+void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z);
+/* Inertia. After the element frame (e1, e2, e3), the node
  * triads and the node angles th are in the scratch: the basis vectors of the displacement and
  * director fields into k->B (Hessians mirrored at order 2). */
 void mech_beam_offsets_(const ad_ctx *c, beam_work *k);

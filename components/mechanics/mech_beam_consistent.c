@@ -1,18 +1,87 @@
-/* Consistent inertia of the co-rotational beam element (equations in mech_beam.h). The kinetic
- * energy is that of "points" moving with vector fields of the configuration: the displacement
- * field r(xi) carries the mass rho A, the section's directors D2(xi), D3(xi) carry rho I_z and
- * rho I_y (a rigid section with directors e2, e3 and the "masses" I_z, I_y has the inertia
- * I_y + I_z, I_y, I_z about e1, e2, e3: sum_i m_i |e_i'|^2 = w^T sum_i m_i (1 - e_i e_i^T) w),
- * at the 4 Gauss points, less the same points at the nodes (r = x, D = the node triad's t2, t3:
- * the node bodies' lumped masses and rotary inertias, exactly). Every field is a combination
- * sum_b c_b(xi) B_b of 18 basis vectors: 16 made here on the AD numbers of the element's energy
- * (mech_beam.c), so that their velocity gradients and Hessians give the points' velocities and
- * accelerations exactly, and the node positions x_a, x_b. The inertia loads follow by
- * d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
+/* The consistent co-rotational beam element's own parts (equations in mech_beam.h): its rotation
+ * measure, the bowing term of its axial strain, and its inertia.
+ * Inertia: the kinetic energy is that of "points" moving with vector fields of the configuration:
+ * the displacement field r(xi) carries the mass rho A, the section's directors D2(xi), D3(xi)
+ * carry rho I_z and rho I_y (a rigid section with directors e2, e3 and the "masses" I_z, I_y has
+ * the inertia I_y + I_z, I_y, I_z about e1, e2, e3: sum_i m_i |e_i'|^2 = w^T sum_i m_i (1 - e_i
+ * e_i^T) w), at the 4 Gauss points, less the same points at the nodes (r = x, D = the node
+ * triad's t2, t3: the node bodies' lumped masses and rotary inertias, exactly). Every field is a
+ * combination sum_b c_b(xi) B_b of 18 basis vectors: 16 made here on the AD numbers of the
+ * element's energy (mech_beam.c), so that their velocity gradients and Hessians give the points'
+ * velocities and accelerations exactly, and the node positions x_a, x_b. The inertia loads
+ * follow by d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
 #include <math.h>
 #include <string.h>
 
 #include "mech_beam_impl.h"
+
+/* The rotation measure: the skew part s of E^T T is sin(phi) n for a
+ * relative rotation phi about n; th = s asin(|s|) / |s| is the rotation vector phi n itself
+ * (the logarithm of the relative rotation, phi < pi / 2), so that the local deformations are
+ * the angles the element's cubic field is written in. f(x) = asin(sqrt x) / sqrt x of x = |s|^2,
+ * by its series sum c_j x^j (c_j = (2j)! / (4^j j!^2 (2j + 1))) below x = 0.04 (truncation
+ * 3e-12), else in closed form. */
+void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th)
+{
+    ad_const(c, 0.0, &k->t1);
+    for (int i = 0; i < 3; i++) {
+        ad_mul(c, &th[i], &th[i], &k->t2);
+        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
+    }
+    double x = k->t1.v, f, fp, fpp;
+    if (x < 0.04) {
+        static const double cj[7] = {1.0,         1.0 / 6,      3.0 / 40,      5.0 / 112,
+                                     35.0 / 1152, 63.0 / 2816, 231.0 / 13312};
+        f = fp = fpp = 0;
+        for (int j = 6; j >= 0; j--) {
+            f = f * x + cj[j];
+            if (j >= 1) fp = fp * x + j * cj[j];
+            if (j >= 2) fpp = fpp * x + j * (j - 1) * cj[j];
+        }
+    } else {
+        double sg = sqrt(x), A = asin(fmin(sg, 1.0)), r = sqrt(fmax(1 - x, 1e-300));
+        f = A / sg;
+        fp = 1 / (2 * x * r) - A / (2 * x * sg);
+        fpp = -3 / (4 * x * x * r) + 1 / (4 * x * r * r * r) + 3 * A / (4 * x * x * sg);
+    }
+    ad_apply(c, &k->t1, f, fp, fpp, &k->t2);
+    for (int i = 0; i < 3; i++) {
+        ad_mul(c, &th[i], &k->t2, &k->t1);
+        th[i] = k->t1;
+    }
+}
+
+/* The bowing term: W += EA L0 eps^2 / 2, eps = u / L0 + bow / 30 (k->u, k->th set). */
+void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0)
+{
+    ad_const(c, 0.0, &k->bow);
+    for (int a = 1; a <= 2; a++) { /* theta_y, theta_z */
+        const ad *ta = &k->th[a], *tb = &k->th[3 + a];
+        ad_mul(c, ta, ta, &k->t2);
+        ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
+        ad_mul(c, tb, tb, &k->t2);
+        ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
+        ad_mul(c, ta, tb, &k->t2);
+        ad_axpy(c, &k->bow, -1.0, &k->t2, &k->bow);
+    }
+    ad_scale(c, 1.0 / L0, &k->u, &k->eps);
+    ad_axpy(c, &k->eps, 1.0 / 30, &k->bow, &k->eps);
+    ad_mul(c, &k->eps, &k->eps, &k->t2);
+    ad_axpy(c, &k->W, 0.5 * EA * L0, &k->t2, &k->W);
+}
+
+void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z)
+{
+    double bow = 0;
+    for (int a = 2; a <= 3; a++)
+        bow += 2 * d[a] * d[a] - d[a] * d[a + 3] + 2 * d[a + 3] * d[a + 3];
+    double N = EA * (d[0] / L0 + bow / 30); /* the axial force EA eps */
+    z[0] += EA * bow / 30;
+    for (int a = 2; a <= 3; a++) {
+        z[a] += N * L0 * (4 * d[a] - d[a + 3]) / 30;
+        z[a + 3] += N * L0 * (4 * d[a + 3] - d[a]) / 30;
+    }
+}
 
 /* 4-point Gauss-Legendre rule on [0, 1]: points and weights */
 static const double GX[4] = {0.069431844202973712, 0.33000947820757187, 0.66999052179242813,
