@@ -39,12 +39,13 @@
  *   2. Bowing: the axial strain is that of the cubic field's arc, eps = u / L0 + (2 theta_a^2 -
  *      theta_a theta_b + 2 theta_b^2) / 30 summed over both bending planes, in the energy
  *      EA L0 eps^2 / 2 (the shallow-arch local element of Crisfield, Non-linear Finite Element
- *      Analysis of Solids and Structures vol. 1, 1991, sec. 7.3; it gives the axial force its
+ *      Analysis of Solids and Structures vol. 1, 1991; it gives the axial force its
  *      consistent geometric stiffness 6 N / (5 L0) across, where the chord alone gives N / L0).
  *   3. Inertia: the node bodies keep the lumped masses and rotary inertias, and the element adds
  *      the kinetic energy of its distributed mass over the co-rotational field, less those
- *      (Crisfield, Galvanetto and Jelenic, Proc. R. Soc. A 453 (1997) 1125; Le, Battini and
- *      Hjiaj, Comput. Struct. 134 (2014) 112: cubic local interpolation, its inertia terms kept).
+ *      (Crisfield, Galvanetto and Jelenic, "Dynamics of 3-D co-rotational beams", Comput. Mech. 20
+ *      (1997); Le, Battini and Hjiaj, "A consistent 3D corotational beam element for nonlinear
+ *      dynamic analysis of flexible structures", CMAME 269 (2014): cubic local interpolation).
  *      The fields, xi = s/L0 in [0, 1], H1 = xi (1 - xi)^2, H2 = -xi^2 (1 - xi):
  *        r(xi)  = x_a + xi (x_b - x_a) + L0 [H1 P + H2 Q],  P = theta_z,a e2 - theta_y,a e3,
  *                                                             Q = theta_z,b e2 - theta_y,b e3,
