@@ -5,8 +5,9 @@
  * their Jacobian. The residual, evaluated a hundred times as often as the Jacobian, computes
  * the same loads in plain arithmetic with one reverse (adjoint) pass through the deformations
  * instead (beam_loads_plain); the tests hold the two to each other. The consistent element's
- * residual takes the AD path (its inertia needs second derivatives; its own parts are in
- * mech_beam_consistent.c); the argument checks are in mech_beam_check.c. */
+ * residual takes the AD path at order 3 (its inertia needs the second derivatives along the
+ * motion; its own parts are in mech_beam_consistent.c); the argument checks are in
+ * mech_beam_check.c. */
 #include "mech_beam.h"
 
 #include <stdio.h>
@@ -89,7 +90,13 @@ static void triad_q(const ad_ctx *c, const double *q, int off, const double *E0,
             ad_const(c, e[0] * R[r] + e[1] * R[r + 3] + e[2] * R[r + 6], o);
             for (int m = 0; m < 4; m++)
                 o->g[off + m] = e[0] * dR[r][m] + e[1] * dR[r + 3][m] + e[2] * dR[r + 6][m];
-            if (c->order > 1)
+            if (c->order == 3) /* H dir */
+                for (int m = 0; m < 4; m++)
+                    for (int l = 0; l < 4; l++)
+                        o->h[off + m] += (e[0] * d2R[r][m][l] + e[1] * d2R[r + 3][m][l] +
+                                          e[2] * d2R[r + 6][m][l]) *
+                                         c->dir[off + l];
+            else if (c->order > 1)
                 for (int m = 0; m < 4; m++)
                     for (int l = 0; l < 4; l++)
                         o->h[(off + m) * AD_N + off + l] =
@@ -458,11 +465,11 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
  * Elastic loads: the gradient of W. Stiffness-proportional damping (beta > 0): the gradient of
  * the dissipation function D = beta/2 d'^T K d' with d' = Jd w (Jd: the gradients of the local
  * deformations in the velocity coordinates, w: the port flows), i.e. beta Jd^T K Jd w. */
-static void beam_loads(const beam *b, const double *y, int order, double *g, double (*dg)[14],
-                       double (*dgw)[12])
+static void beam_loads(const beam *b, const double *y, int order, const double *dir, double *g,
+                       double (*dg)[14], double (*dgw)[12])
 {
     beam_work *k = b->work;
-    ad_ctx c = {order};
+    ad_ctx c = {.order = order, .dir = dir};
     beam_energy(b, y, &c, k);
     const double *qa = y + b->qa, *qb = y + b->qb;
     mech_beam_velocity_gradient_(&k->W, qa, qb, g, dg);
@@ -587,8 +594,10 @@ static int beam_residual(const bgr_element *el, double t, const double *y, const
     (void)t, (void)yp;
     const beam *b = el->params;
     double g[12], gi[12];
-    if (b->sec.element == MECH_BEAM_CONSISTENT) { /* the inertia needs the offsets' Hessians */
-        beam_loads(b, y, 2, g, NULL, NULL);
+    if (b->sec.element == MECH_BEAM_CONSISTENT) { /* the inertia: Hessians along the motion */
+        double Xd[14]; /* the configuration's rate: the accelerations' direction */
+        mech_beam_config_rate_(b, y, Xd);
+        beam_loads(b, y, 3, Xd, g, NULL, NULL);
         mech_beam_inertia_(b, y, yp, gi, NULL, NULL, NULL);
         for (int r = 0; r < 12; r++)
             g[r] += gi[r];
@@ -609,7 +618,7 @@ static int beam_jacobian(const bgr_element *el, double t, const double *y, const
     const beam *b = el->params;
     double g[12], dg[12][14], dgw[12][12], gi[12], dX[12][14], dV[12][12], dA[12][12];
     int cons = b->sec.element == MECH_BEAM_CONSISTENT;
-    beam_loads(b, y, 2, g, dg, dgw);
+    beam_loads(b, y, 2, NULL, g, dg, dgw);
     if (cons) mech_beam_inertia_(b, y, yp, gi, dX, dV, dA);
     int n = 0;
     for (int r = 0; r < 12; r++) {
@@ -711,7 +720,7 @@ double mech_beam_energy(const bgr_model *m, int elem, const double *y)
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);
     if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
     const beam *b = el->params;
-    ad_ctx c = {1};
+    ad_ctx c = {.order = 1};
     beam_energy(b, y, &c, b->work);
     return b->work->W.v;
 }
@@ -742,7 +751,7 @@ double mech_beam_kinetic(const bgr_model *m, int elem, const double *y)
     if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
     const beam *b = el->params;
     if (b->sec.element != MECH_BEAM_CONSISTENT) return 0.0;
-    ad_ctx c = {1};
+    ad_ctx c = {.order = 1};
     beam_energy(b, y, &c, b->work);
     return mech_beam_kinetic_(b, y);
 }
@@ -756,6 +765,6 @@ int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, dou
     if (path == 0)
         beam_loads_plain(b, y, g);
     else
-        beam_loads(b, y, 1, g, NULL, NULL);
+        beam_loads(b, y, 1, NULL, g, NULL, NULL);
     return BG_OK;
 }

@@ -187,6 +187,39 @@ static void config_rates(const beam *b, const double *y, double B[14][12])
     }
 }
 
+void mech_beam_config_rate_(const beam *b, const double *y, double *Xd)
+{
+    double ud[12], B[14][12];
+    port_rates(b, y, y, ud);
+    config_rates(b, y, B);
+    for (int c = 0; c < 14; c++) {
+        Xd[c] = 0;
+        for (int j = 0; j < 12; j++)
+            Xd[c] += B[c][j] * ud[j];
+    }
+}
+
+/* Cd = (dgv X') of an AD scalar a of order 3 along X' (h = H X'): the rate of its velocity
+ * gradient, from the positions' rows of H X' and, for the rotations, sum_m (H X')_q,m J(q)_m
+ * + g_q,m J(q')_m (J is linear in q). */
+static void gradient_rate(const ad *a, const double *y, const beam *b, const double *Xd,
+                          double *Cd)
+{
+    const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
+    for (int n = 0; n < 2; n++) {
+        double J[4][3], Jd[4][3];
+        mech_beam_quat_J_(y + (n ? b->qb : b->qa), J);
+        mech_beam_quat_J_(Xd + qoff[n], Jd);
+        for (int i = 0; i < 3; i++) {
+            Cd[6 * n + i] = a->h[xoff[n] + i];
+            double r = 0;
+            for (int m = 0; m < 4; m++)
+                r += a->h[qoff[n] + m] * J[m][i] + a->g[qoff[n] + m] * Jd[m][i];
+            Cd[6 * n + 3 + i] = r;
+        }
+    }
+}
+
 /* The basis' velocity gradients (and their derivatives if dgv is wanted) into the scratch. */
 static void basis_gradients(const beam *b, const double *y, beam_work *k, int with_dgv)
 {
@@ -221,20 +254,25 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
         for (int j = 0; j < 12; j++)
             Xd[c] += B[c][j] * ud[j];
     }
-    basis_gradients(b, y, k, 1);
     /* the basis vectors' accelerations acc = gv . u'' + u' . (dgv X') (the second term: the
-     * rate of the gradient along the motion, centrifugal and Coriolis) */
+     * rate of the gradient along the motion, centrifugal and Coriolis): with the Jacobian from
+     * the whole Hessians (order 2), for the residual from the Hessians along X' (order 3) */
+    basis_gradients(b, y, k, dX != NULL);
     double Cd[16][3][12], acc[NB][3];
     for (int bb = 0; bb < 16; bb++)
         for (int i = 0; i < 3; i++) {
+            if (dX)
+                for (int j = 0; j < 12; j++) {
+                    double cd = 0;
+                    for (int c = 0; c < 14; c++)
+                        cd += k->dgv[bb][i][j][c] * Xd[c];
+                    Cd[bb][i][j] = cd;
+                }
+            else
+                gradient_rate(&k->B[bb][i], y, b, Xd, Cd[bb][i]);
             double s = 0;
-            for (int j = 0; j < 12; j++) {
-                double cd = 0;
-                for (int c = 0; c < 14; c++)
-                    cd += k->dgv[bb][i][j][c] * Xd[c];
-                Cd[bb][i][j] = cd;
-                s += k->gv[bb][i][j] * ua[j] + ud[j] * cd;
-            }
+            for (int j = 0; j < 12; j++)
+                s += k->gv[bb][i][j] * ua[j] + ud[j] * Cd[bb][i][j];
             acc[bb][i] = s;
         }
     for (int i = 0; i < 3; i++) {

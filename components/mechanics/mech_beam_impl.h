@@ -82,12 +82,15 @@ void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0);
 /* The same on plain numbers: to z = dW/dd (7: u, theta_a, theta_b) of the quadratic energy
  * without its EA u^2 / (2 L0), the rest of the axial energy's gradient at the deformations d. */
 void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z);
+/* X' (14) = B u': the configuration's rate from the nodes' velocities in y. */
+void mech_beam_config_rate_(const beam *b, const double *y, double *Xd);
 /* Inertia. After the element frame (e1, e2, e3), the node
  * triads and the node angles th are in the scratch: the basis vectors of the displacement and
  * director fields into k->B (Hessians mirrored at order 2). */
 void mech_beam_offsets_(const ad_ctx *c, beam_work *k);
-/* The inertial port loads g (12) of the element at (y, yp), after beam_energy at order 2 (the
- * offsets' Hessians give the accelerations), and, if dX != NULL, their Jacobian: dX (12 x 14,
+/* The inertial port loads g (12) of the element at (y, yp), after beam_energy at order 3 along
+ * X' (mech_beam_config_rate_; dX NULL) or at order 2 (the whole Hessians), and, if dX != NULL,
+ * their Jacobian: dX (12 x 14,
  * configuration unknowns), dV (12 x 12: the node velocities v, w, body-frame w), dA (12 x 12:
  * their rates v', w'). */
 void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[12],
