@@ -203,7 +203,9 @@ static int build_boom(build_ctx *b)
                             .Iz = s->boom_I_luff,
                             .J = s->boom_J,
                             .rho = s->boom_rho,
-                            .beta = settle ? 0.05 : s->boom_beta};
+                            .beta = settle ? 0.05 : s->boom_beta,
+                            .element = s->boom_consistent ? MECH_BEAM_CONSISTENT
+                                                          : MECH_BEAM_LUMPED};
         int extra[MAXEL + 1] = {0}, extra3[MAXEL + 1] = {0};
         extra[0] = 1;
         extra3[c->n] = ntip;

@@ -27,6 +27,9 @@ static const mdl_param_def chain_params[] = {
     {"J", MDL_NUMBER, 0, "m^4", NULL, 0, INF, MDL_LO_OPEN, NULL, "torsion constant"},
     {"rho", MDL_NUMBER, 0, "kg/m^3", NULL, 0, INF, MDL_LO_OPEN, NULL,
      "density (the masses lumped into the nodes)"},
+    {"element", MDL_CHOICE, 0, "-", "lumped", 0, 0, 0, "lumped|consistent",
+     "the beam element: lumped (masses in the nodes, second order in 1/n) or consistent (the "
+     "elements' distributed inertia, rotation angles and bowing: fourth order; mech_beam.h)"},
     {"kappa", MDL_NUMBER, 0, "1", "0", 0, INF, 0, NULL,
      "shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko"},
     {"beta", MDL_NUMBER, 0, "s", "0", 0, INF, 0, NULL,
@@ -64,7 +67,9 @@ static int chain_build(bgr_model *m, bgr_comp c, const char *name, const mdl_arg
     }
     mech_section sec = {mdl_arg_num(a, "E"),  mdl_arg_num(a, "G"),   mdl_arg_num(a, "A"),
                         mdl_arg_num(a, "Iy"), mdl_arg_num(a, "Iz"),  mdl_arg_num(a, "J"),
-                        mdl_arg_num(a, "rho"), mdl_arg_num(a, "kappa"), mdl_arg_num(a, "beta")};
+                        mdl_arg_num(a, "rho"), mdl_arg_num(a, "kappa"), mdl_arg_num(a, "beta"),
+                        strcmp(mdl_arg_choice(a, "element"), "consistent") ? MECH_BEAM_LUMPED
+                                                                         : MECH_BEAM_CONSISTENT};
     int comp = mech_beam_chain(m, c, name, n, mdl_arg_vec(a, "start", NULL), mdl_arg_vec(a, "end", NULL),
                                mdl_arg_vec(a, "up", NULL), &sec, mdl_arg_vec(a, "gravity", NULL), extra,
                                extra3, nodes, elems);
@@ -120,6 +125,7 @@ static const mdl_type chain_type = {
     "mech.beam_chain",
     "straight chain of co-rotational beam elements between lumped node bodies (mech_beam_chain.h)",
     "n + 1 node bodies (mech.body, lumped masses: half of rho A l of each element at its ends)\n"
+    "  (element: consistent: each element adds its distributed inertia less those masses)\n"
     "n co-rotational beam elements between them (mech_beam.h: the element's local deformations\n"
     "  from its end nodes' positions and rotations, the linear Euler-Bernoulli or Timoshenko\n"
     "  stiffness in the co-rotated frame, stiffness-proportional damping beta)\n"

@@ -3,7 +3,10 @@
  * so that an element that writes its energy once gets exact first and second derivatives:
  * forces and their Jacobian without finite differences. Used by the co-rotational beam.
  * The operations fill the Hessian's upper triangle only (h[i][j], j >= i; every Hessian is
- * symmetric): ad_mirror copies it to the lower one for a value whose Hessian is read whole. */
+ * symmetric): ad_mirror copies it to the lower one for a value whose Hessian is read whole.
+ * Order 3 (directional, for second derivatives along one direction d only): h[0 .. AD_N - 1]
+ * carries H d, at the cost of a gradient: (a b)'' d = H_a d b + a H_b d + g_a (g_b . d) +
+ * g_b (g_a . d), f(a)'' d = f' H_a d + f'' g_a (g_a . d). */
 #ifndef MECH_AD_H
 #define MECH_AD_H
 
@@ -19,14 +22,27 @@ typedef struct ad {
 } ad;
 
 typedef struct ad_ctx {
-    int order; /* 1: gradients only; 2: Hessians too */
+    int order;         /* 1: gradients only; 2: Hessians too; 3: the Hessian times dir only */
+    const double *dir; /* order 3: the direction (AD_N); h[0 .. AD_N - 1] holds H dir */
 } ad_ctx;
+
+/* r (AD_N) = a.g . dir */
+static inline double ad_gdir_(const ad_ctx *c, const ad *a)
+{
+    double s = 0;
+    for (int i = 0; i < AD_N; i++)
+        s += a->g[i] * c->dir[i];
+    return s;
+}
 
 static inline void ad_const(const ad_ctx *c, double v, ad *r)
 {
     r->v = v;
     memset(r->g, 0, sizeof r->g);
-    if (c->order > 1) memset(r->h, 0, sizeof r->h);
+    if (c->order == 3)
+        memset(r->h, 0, AD_N * sizeof r->h[0]);
+    else if (c->order > 1)
+        memset(r->h, 0, sizeof r->h);
 }
 
 static inline void ad_var(const ad_ctx *c, double v, int i, ad *r)
@@ -41,7 +57,10 @@ static inline void ad_axpy(const ad_ctx *c, const ad *a, double s, const ad *b, 
     r->v = a->v + s * b->v;
     for (int i = 0; i < AD_N; i++)
         r->g[i] = a->g[i] + s * b->g[i];
-    if (c->order > 1)
+    if (c->order == 3)
+        for (int i = 0; i < AD_N; i++)
+            r->h[i] = a->h[i] + s * b->h[i];
+    else if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
             for (int j = i; j < AD_N; j++)
                 r->h[i * AD_N + j] = a->h[i * AD_N + j] + s * b->h[i * AD_N + j];
@@ -52,7 +71,10 @@ static inline void ad_scale(const ad_ctx *c, double s, const ad *a, ad *r)
     r->v = s * a->v;
     for (int i = 0; i < AD_N; i++)
         r->g[i] = s * a->g[i];
-    if (c->order > 1)
+    if (c->order == 3)
+        for (int i = 0; i < AD_N; i++)
+            r->h[i] = s * a->h[i];
+    else if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
             for (int j = i; j < AD_N; j++)
                 r->h[i * AD_N + j] = s * a->h[i * AD_N + j];
@@ -64,7 +86,11 @@ static inline void ad_mul(const ad_ctx *c, const ad *a, const ad *b, ad *r)
     r->v = a->v * b->v;
     for (int i = 0; i < AD_N; i++)
         r->g[i] = a->g[i] * b->v + a->v * b->g[i];
-    if (c->order > 1)
+    if (c->order == 3) {
+        double ad = ad_gdir_(c, a), bd = ad_gdir_(c, b);
+        for (int i = 0; i < AD_N; i++)
+            r->h[i] = a->h[i] * b->v + a->v * b->h[i] + a->g[i] * bd + b->g[i] * ad;
+    } else if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
             for (int j = i; j < AD_N; j++)
                 r->h[i * AD_N + j] = a->h[i * AD_N + j] * b->v + a->v * b->h[i * AD_N + j] +
@@ -74,7 +100,11 @@ static inline void ad_mul(const ad_ctx *c, const ad *a, const ad *b, ad *r)
 /* r = f(a) for a scalar function with f, f', f'' at a->v (r may alias a) */
 static inline void ad_apply(const ad_ctx *c, const ad *a, double f, double fp, double fpp, ad *r)
 {
-    if (c->order > 1)
+    if (c->order == 3) {
+        double gd = ad_gdir_(c, a);
+        for (int i = 0; i < AD_N; i++)
+            r->h[i] = fp * a->h[i] + fpp * a->g[i] * gd;
+    } else if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
             for (int j = i; j < AD_N; j++)
                 r->h[i * AD_N + j] = fp * a->h[i * AD_N + j] + fpp * a->g[i] * a->g[j];
@@ -107,7 +137,17 @@ static inline void ad_dot3s(const ad_ctx *c, double s, const ad *a, const ad *b,
                         a[2].g[i] * b2 + a2 * b[2].g[i]);
         r->g[i] = acc ? r->g[i] + g : g;
     }
-    if (c->order > 1)
+    if (c->order == 3) {
+        double ad[3], bd[3];
+        for (int m = 0; m < 3; m++)
+            ad[m] = ad_gdir_(c, &a[m]), bd[m] = ad_gdir_(c, &b[m]);
+        for (int i = 0; i < AD_N; i++) {
+            double h = 0;
+            for (int m = 0; m < 3; m++)
+                h += a[m].h[i] * b[m].v + a[m].v * b[m].h[i] + a[m].g[i] * bd[m] + b[m].g[i] * ad[m];
+            r->h[i] = acc ? r->h[i] + s * h : s * h;
+        }
+    } else if (c->order > 1)
         for (int i = 0; i < AD_N; i++)
             for (int j = i; j < AD_N; j++) {
                 double h = 0;
@@ -121,7 +161,7 @@ static inline void ad_dot3s(const ad_ctx *c, double s, const ad *a, const ad *b,
 /* The Hessian's lower triangle from its upper one (order 2), for a value read whole. */
 static inline void ad_mirror(const ad_ctx *c, ad *a)
 {
-    if (c->order > 1)
+    if (c->order == 2)
         for (int i = 0; i < AD_N; i++)
             for (int j = 0; j < i; j++)
                 a->h[i * AD_N + j] = a->h[j * AD_N + i];

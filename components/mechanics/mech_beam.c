@@ -4,41 +4,18 @@
  * configuration unknowns (x_a, x_b, q_a, q_b): its gradient gives the port loads, its Hessian
  * their Jacobian. The residual, evaluated a hundred times as often as the Jacobian, computes
  * the same loads in plain arithmetic with one reverse (adjoint) pass through the deformations
- * instead (beam_loads_plain); the tests hold the two to each other. */
+ * instead (beam_loads_plain); the tests hold the two to each other. The consistent element's
+ * residual takes the AD path at order 3 (its inertia needs the second derivatives along the
+ * motion; its own parts are in mech_beam_consistent.c); the argument checks are in
+ * mech_beam_check.c. */
 #include "mech_beam.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "mech_ad.h"
 #include "mech_beam_impl.h"
 #include "mech_body.h"
-#include "mech_util.h"
-
-/* AD scratch of one energy evaluation (about 120 kB with Hessians), allocated with the element
- * so that residual and Jacobian evaluations allocate nothing. The elements of a chain share one
- * (reference counted): they are evaluated one after another, and one scratch stays in cache
- * where one per element (60 MB for 512 elements) made the residual's cost per element grow
- * with their number. */
-typedef struct beam_work {
-    ad X[6], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6]; /* X: the nodes' positions */
-    ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
-    double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
-    int refs;             /* elements sharing it */
-} beam_work;
-
-typedef struct beam {
-    mech_section sec;
-    double E0[9], L0;
-    double K[7][7]; /* local stiffness of (u, theta_a, theta_b): W = d^T K d / 2 */
-    int node_a, node_b;
-    int xa, qa, xb, qb; /* configuration variable ids */
-    int e[2], s[2];     /* first effort id and orientation of each port */
-    int f[2];           /* first flow id of each port (damping) */
-    beam_work *work;
-    mech_scales sc; /* stated nominal scales (the chain builder states its weight) */
-} beam;
 
 beam_work *mech_beam_work_new_(void)
 {
@@ -113,7 +90,13 @@ static void triad_q(const ad_ctx *c, const double *q, int off, const double *E0,
             ad_const(c, e[0] * R[r] + e[1] * R[r + 3] + e[2] * R[r + 6], o);
             for (int m = 0; m < 4; m++)
                 o->g[off + m] = e[0] * dR[r][m] + e[1] * dR[r + 3][m] + e[2] * dR[r + 6][m];
-            if (c->order > 1)
+            if (c->order == 3) /* H dir */
+                for (int m = 0; m < 4; m++)
+                    for (int l = 0; l < 4; l++)
+                        o->h[off + m] += (e[0] * d2R[r][m][l] + e[1] * d2R[r + 3][m][l] +
+                                          e[2] * d2R[r + 6][m][l]) *
+                                         c->dir[off + l];
+            else if (c->order > 1)
                 for (int m = 0; m < 4; m++)
                     for (int l = 0; l < 4; l++)
                         o->h[(off + m) * AD_N + off + l] =
@@ -174,18 +157,22 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
         half_diff_dots(c, k->e3, t + 3, k->e2, t + 6, &k->th[3 * n + 0]);
         half_diff_dots(c, k->e1, t + 6, k->e3, t + 0, &k->th[3 * n + 1]);
         half_diff_dots(c, k->e2, t + 0, k->e1, t + 3, &k->th[3 * n + 2]);
+        if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_angles_(c, k, &k->th[3 * n]);
     }
     /* energy W = d^T K d / 2 over the nonzero entries of the local stiffness */
     ad_const(c, -b->L0, &k->t1);
     ad_axpy(c, &k->L, 1.0, &k->t1, &k->u); /* u = L - L0 */
     const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
     ad_const(c, 0.0, &k->W);
+    int cons = b->sec.element == MECH_BEAM_CONSISTENT;
+    if (cons) mech_beam_bow_(c, k, b->sec.E * b->sec.A, b->L0);
     for (int r = 0; r < 7; r++)
         for (int q = r; q < 7; q++) {
-            if (b->K[r][q] == 0) continue;
+            if (b->K[r][q] == 0 || (cons && r == 0 && q == 0)) continue;
             ad_mul(c, dl[r], dl[q], &k->t2);
             ad_axpy(c, &k->W, (q == r ? 0.5 : 1.0) * b->K[r][q], &k->t2, &k->W);
         }
+    if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_offsets_(c, k);
     /* the Hessians read whole (velocity_gradient): W's, and the deformations' for the damping */
     ad_mirror(c, &k->W);
     for (int r = 0; r < 7; r++)
@@ -193,7 +180,7 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
 }
 
 /* J(q): dq = J(q) dphi for a global rotation dphi, dq = (0, dphi) (x) q / 2; rows j, cols k. */
-static void quat_J(const double *q, double J[4][3])
+void mech_beam_quat_J_(const double *q, double J[4][3])
 {
     double w = q[0], v0 = q[1], v1 = q[2], v2 = q[3];
     double T[4][3] = {{-v0, -v1, -v2}, {w, v2, -v1}, {-v2, w, v0}, {v1, -v0, w}};
@@ -215,7 +202,7 @@ static void velocity_gradient_g(const double *ag, const double *qa, const double
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
         double J[4][3];
-        quat_J(n ? qb : qa, J);
+        mech_beam_quat_J_(n ? qb : qa, J);
         for (int i = 0; i < 3; i++) {
             gv[6 * n + i] = ag[xoff[n] + i];
             double mk = 0;
@@ -226,14 +213,14 @@ static void velocity_gradient_g(const double *ag, const double *qa, const double
     }
 }
 
-static void velocity_gradient(const ad *a, const double *qa, const double *qb, double *gv,
-                              double (*dgv)[14])
+void mech_beam_velocity_gradient_(const ad *a, const double *qa, const double *qb, double *gv,
+                                  double (*dgv)[14])
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     velocity_gradient_g(a->g, qa, qb, gv);
     for (int n = 0; n < 2 && dgv; n++) {
         double J[4][3];
-        quat_J(n ? qb : qa, J);
+        mech_beam_quat_J_(n ? qb : qa, J);
         for (int cc = 0; cc < 14; cc++) {
             for (int i = 0; i < 3; i++) {
                 dgv[6 * n + i][cc] = a->h[(xoff[n] + i) * AD_N + cc];
@@ -243,7 +230,7 @@ static void velocity_gradient(const ad *a, const double *qa, const double *qb, d
                 if (cc >= qoff[n] && cc < qoff[n] + 4) { /* J is linear in q */
                     double e[4] = {0, 0, 0, 0}, Jl[4][3];
                     e[cc - qoff[n]] = 1.0;
-                    quat_J(e, Jl);
+                    mech_beam_quat_J_(e, Jl);
                     for (int j = 0; j < 4; j++)
                         d += a->g[qoff[n] + j] * Jl[j][i];
                 }
@@ -352,7 +339,7 @@ static void beam_tangent(const beam *b, const double *y, const beam_fwd *f, cons
     double tt[2][3][3];
     for (int n = 0; n < 2; n++) {
         double J[4][3], qd[4], Rd[9];
-        quat_J(y + qo[n], J);
+        mech_beam_quat_J_(y + qo[n], J);
         for (int m = 0; m < 4; m++)
             qd[m] = J[m][0] * w[6 * n + 3] + J[m][1] * w[6 * n + 4] + J[m][2] * w[6 * n + 5];
         for (int k = 0; k < 9; k++)
@@ -468,6 +455,7 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
         for (int s2 = 0; s2 < 7; s2++)
             z[r] += K[r][s2] * v[s2];
     }
+    if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_bow_loads_(f.def, b->sec.E * b->sec.A, b->L0, z);
     beam_reverse(b, &f, z, gc);
     velocity_gradient_g(gc, y + b->qa, y + b->qb, g);
 }
@@ -477,14 +465,14 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
  * Elastic loads: the gradient of W. Stiffness-proportional damping (beta > 0): the gradient of
  * the dissipation function D = beta/2 d'^T K d' with d' = Jd w (Jd: the gradients of the local
  * deformations in the velocity coordinates, w: the port flows), i.e. beta Jd^T K Jd w. */
-static void beam_loads(const beam *b, const double *y, int order, double *g, double (*dg)[14],
-                       double (*dgw)[12])
+static void beam_loads(const beam *b, const double *y, int order, const double *dir, double *g,
+                       double (*dg)[14], double (*dgw)[12])
 {
     beam_work *k = b->work;
-    ad_ctx c = {order};
+    ad_ctx c = {.order = order, .dir = dir};
     beam_energy(b, y, &c, k);
     const double *qa = y + b->qa, *qb = y + b->qb;
-    velocity_gradient(&k->W, qa, qb, g, dg);
+    mech_beam_velocity_gradient_(&k->W, qa, qb, g, dg);
     if (dgw) memset(dgw, 0, 144 * sizeof(double));
     double beta = b->sec.beta;
     if (!(beta > 0)) return;
@@ -492,7 +480,7 @@ static void beam_loads(const beam *b, const double *y, int order, double *g, dou
     double Jd[7][12], (*dJ)[12][14] = k->dJ, w[12], dd[7] = {0}, z[7] = {0};
     const double(*K)[7] = b->K;
     for (int r = 0; r < 7; r++)
-        velocity_gradient(dl[r], qa, qb, Jd[r], dg ? dJ[r] : NULL);
+        mech_beam_velocity_gradient_(dl[r], qa, qb, Jd[r], dg ? dJ[r] : NULL);
     for (int m = 0; m < 6; m++) {
         w[m] = y[b->f[0] + m];
         w[6 + m] = y[b->f[1] + m];
@@ -547,6 +535,13 @@ static void beam_loads(const beam *b, const double *y, int order, double *g, dou
         }
 }
 
+/* The velocity unknowns of the nodes, in the port order (v_a, w_a, v_b, w_b): p = 0 .. 11. */
+static int node_rate_var(const beam *b, int p)
+{
+    const int base[4] = {b->va, b->wa, b->vb, b->wb};
+    return base[p / 3] + p % 3;
+}
+
 static int beam_declare(bgr_element *el, bgr_model *m)
 {
     beam *b = el->params;
@@ -559,6 +554,10 @@ static int beam_declare(bgr_element *el, bgr_model *m)
                               bgr_component_path(m, el->comp), el->name);
     b->xa = bgr_ref_var(m, ra);
     b->xb = bgr_ref_var(m, rb);
+    b->va = b->xa + 3; /* mech_body's states: x, v, w, q */
+    b->vb = b->xb + 3;
+    b->wa = b->xa + 6;
+    b->wb = b->xb + 6;
     b->qa = b->xa + 9;
     b->qb = b->xb + 9;
     for (int k = 0; k < 2; k++) {
@@ -576,6 +575,8 @@ static int beam_declare(bgr_element *el, bgr_model *m)
             st = bgr_declare_dep(el, m, r, config_var(b, cc), 0);
         for (int mm = 0; st == BG_OK && b->sec.beta > 0 && mm < 12; mm++)
             st = bgr_declare_dep(el, m, r, b->f[mm / 6] + mm % 6, 0);
+        for (int p = 0; st == BG_OK && b->sec.element == MECH_BEAM_CONSISTENT && p < 24; p++)
+            st = bgr_declare_dep(el, m, r, node_rate_var(b, p % 12), p / 12);
     }
     /* Nominal magnitudes of the port loads: the stated force (the chain builder states the
      * chain's weight; a section alone carries no load); moments: the stated moment, else that
@@ -592,8 +593,17 @@ static int beam_residual(const bgr_element *el, double t, const double *y, const
 {
     (void)t, (void)yp;
     const beam *b = el->params;
-    double g[12];
-    beam_loads_plain(b, y, g);
+    double g[12], gi[12];
+    if (b->sec.element == MECH_BEAM_CONSISTENT) { /* the inertia: Hessians along the motion */
+        double Xd[14]; /* the configuration's rate: the accelerations' direction */
+        mech_beam_config_rate_(b, y, Xd);
+        beam_loads(b, y, 3, Xd, g, NULL, NULL);
+        mech_beam_inertia_(b, y, yp, gi, NULL, NULL, NULL);
+        for (int r = 0; r < 12; r++)
+            g[r] += gi[r];
+    } else {
+        beam_loads_plain(b, y, g);
+    }
     for (int r = 0; r < 12; r++)
         F[r] = b->s[r / 6] * y[b->e[r / 6] + r % 6] - g[r];
     for (int r = 0; r < 12; r++)
@@ -606,15 +616,19 @@ static int beam_jacobian(const bgr_element *el, double t, const double *y, const
 {
     (void)t, (void)yp;
     const beam *b = el->params;
-    double g[12], dg[12][14], dgw[12][12];
-    beam_loads(b, y, 2, g, dg, dgw);
+    double g[12], dg[12][14], dgw[12][12], gi[12], dX[12][14], dV[12][12], dA[12][12];
+    int cons = b->sec.element == MECH_BEAM_CONSISTENT;
+    beam_loads(b, y, 2, NULL, g, dg, dgw);
+    if (cons) mech_beam_inertia_(b, y, yp, gi, dX, dV, dA);
     int n = 0;
     for (int r = 0; r < 12; r++) {
         v[n++] = b->s[r / 6];
         for (int cc = 0; cc < 14; cc++)
-            v[n++] = -dg[r][cc];
+            v[n++] = -dg[r][cc] - (cons ? dX[r][cc] : 0.0);
         for (int mm = 0; b->sec.beta > 0 && mm < 12; mm++)
             v[n++] = -dgw[r][mm];
+        for (int p = 0; cons && p < 24; p++)
+            v[n++] = -(p < 12 ? dV[r][p] : dA[r][p - 12]);
     }
     return 0;
 }
@@ -628,25 +642,6 @@ static const bgr_element_class beam_class = {.type = "beam",
 mech_scales *mech_beam_scales_(bgr_element *el)
 {
     return el && el->cls == &beam_class ? &((beam *)el->params)->sc : NULL;
-}
-
-/* BG_OK if the section obeys the rules of mech_beam.h (where: the constructor), else the
- * refusal naming the field. */
-int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const char *w,
-                           const mech_section *s)
-{
-    if (!s) return bgr_refuse(m, c, name, w, "the section is NULL");
-    if (bgr_check_value(m, c, name, w, "section.E", s->E, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.G", s->G, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.A", s->A, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.Iy", s->Iy, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.Iz", s->Iz, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.J", s->J, BGR_POSITIVE) ||
-        bgr_check_value(m, c, name, w, "section.rho", s->rho, BGR_NONNEGATIVE) ||
-        bgr_check_value(m, c, name, w, "section.kappa", s->kappa, BGR_NONNEGATIVE) ||
-        bgr_check_value(m, c, name, w, "section.beta", s->beta, BGR_NONNEGATIVE))
-        return BG_ERR_ARGUMENT;
-    return BG_OK;
 }
 
 /* BG_OK if the local stiffness of the section over the length L0 (and its damping beta K) is
@@ -670,47 +665,24 @@ int mech_beam_bad_stiffness_(bgr_model *m, bgr_comp c, const char *name, const c
     return BG_OK;
 }
 
-/* BG_OK if E0 is a finite right-handed orthonormal frame (to 1e-9), else the refusal. */
-static int bad_frame(bgr_model *m, bgr_comp c, const char *name, const char *w, const double *E0)
-{
-    if (!E0) return bgr_refuse(m, c, name, w, "the initial frame E0 is NULL");
-    if (bgr_check_values(m, c, name, w, "E0", E0, 9, BGR_FINITE)) return BG_ERR_ARGUMENT;
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double d = mech_dot(E0 + 3 * i, E0 + 3 * j) - (i == j);
-            if (!(fabs(d) <= 1e-9))
-                return bgr_refuse(m, c, name, w,
-                                  "E0's columns %d and %d have the product %g, expected an "
-                                  "orthonormal frame (column products 1 and 0 to 1e-9)",
-                                  i, j, d + (i == j));
-        }
-    double e3[3];
-    mech_cross(E0, E0 + 3, e3);
-    if (!(mech_dot(e3, E0 + 6) > 0))
-        return bgr_refuse(m, c, name, w, "E0 is left-handed, expected e3 = e1 x e2");
-    return BG_OK;
-}
-
-/* BG_OK if node is a rigid body (mech_body) of m, else the refusal naming param. */
-static int bad_node(bgr_model *m, bgr_comp c, const char *name, const char *w, const char *param,
-                    int node)
-{
-    bgr_element *b = bgr_element_get(m, node);
-    if (b && b->nstates == 13 && !strcmp(b->cls->type, "body")) return BG_OK;
-    return bgr_refuse(m, c, name, w, "%s = %d, expected the element id of a rigid body (mech_body)",
-                      param, node);
-}
-
 /* mech_beam with the scratch shared (NULL: its own). */
 int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
-                   const mech_section *sec, const double *E0, double L0, beam_work *shared)
+                   const mech_section *sec, const double *E0, double L0, beam_work *shared,
+                   const double *gravity)
 {
     const char *w = "mech_beam";
-    if (mech_beam_bad_section_(m, c, name, w, sec) || bad_frame(m, c, name, w, E0) ||
+    if (mech_beam_bad_section_(m, c, name, w, sec) || mech_beam_bad_frame_(m, c, name, w, E0) ||
         bgr_check_value(m, c, name, w, "L0", L0, BGR_POSITIVE) ||
-        bad_node(m, c, name, w, "node_a", node_a) || bad_node(m, c, name, w, "node_b", node_b) ||
-        mech_beam_bad_stiffness_(m, c, name, w, sec, L0))
+        mech_beam_bad_node_(m, c, name, w, "node_a", node_a) ||
+        mech_beam_bad_node_(m, c, name, w, "node_b", node_b) ||
+        mech_beam_bad_stiffness_(m, c, name, w, sec, L0) ||
+        bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE))
         return BG_ERR_ARGUMENT;
+    if (sec->element == MECH_BEAM_CONSISTENT && !(sec->rho > 0 && isfinite(sec->rho * sec->A * L0)))
+        return bgr_refuse(m, c, name, w,
+                          "section.rho = %g with element = MECH_BEAM_CONSISTENT, expected rho > 0 "
+                          "and a finite element mass rho A L0",
+                          sec->rho);
     if (node_a == node_b)
         return bgr_refuse(m, c, name, w, "node_a = node_b = %d, expected two different bodies",
                           node_a);
@@ -729,6 +701,7 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
     b->sec = *sec;
     memcpy(b->E0, E0, sizeof b->E0);
     b->L0 = L0;
+    if (gravity) memcpy(b->grav, gravity, sizeof b->grav);
     local_stiffness(b, b->K);
     b->node_a = node_a;
     b->node_b = node_b;
@@ -739,7 +712,7 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
 int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
               const mech_section *sec, const double *E0, double L0)
 {
-    return mech_beam_add_(m, c, name, node_a, node_b, sec, E0, L0, NULL);
+    return mech_beam_add_(m, c, name, node_a, node_b, sec, E0, L0, NULL, NULL);
 }
 
 double mech_beam_energy(const bgr_model *m, int elem, const double *y)
@@ -747,7 +720,7 @@ double mech_beam_energy(const bgr_model *m, int elem, const double *y)
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);
     if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
     const beam *b = el->params;
-    ad_ctx c = {1};
+    ad_ctx c = {.order = 1};
     beam_energy(b, y, &c, b->work);
     return b->work->W.v;
 }
@@ -772,6 +745,17 @@ double mech_beam_dissipation(const bgr_model *m, int elem, const double *y)
     return b->sec.beta * P;
 }
 
+double mech_beam_kinetic(const bgr_model *m, int elem, const double *y)
+{
+    bgr_element *el = bgr_element_get((bgr_model *)m, elem);
+    if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
+    const beam *b = el->params;
+    if (b->sec.element != MECH_BEAM_CONSISTENT) return 0.0;
+    ad_ctx c = {.order = 1};
+    beam_energy(b, y, &c, b->work);
+    return mech_beam_kinetic_(b, y);
+}
+
 int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, double g[12])
 {
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);
@@ -781,6 +765,6 @@ int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, dou
     if (path == 0)
         beam_loads_plain(b, y, g);
     else
-        beam_loads(b, y, 1, g, NULL, NULL);
+        beam_loads(b, y, 1, NULL, g, NULL, NULL);
     return BG_OK;
 }

@@ -23,8 +23,57 @@
  * Jacobian by second-order automatic differentiation (mech_ad.h). W is invariant under any rigid
  * motion, so a rigidly rotating element has no deformation energy, however large the rotation.
  * Ports 0 (node a) and 1 (node b) are 6D (conventions of mech_body.h).
- * Mass: none in the element; the chain builder (mech_beam_chain.h) lumps it into the node
- * bodies. No damping in the element unless beta > 0: stiffness-proportional (Rayleigh) damping,
+ * Two elements (section.element).
+ * MECH_BEAM_LUMPED (the default): the energy W above; no mass in the element: the chain builder
+ * (mech_beam_chain.h) lumps it into the node bodies. Second order in 1/n: at 8 elements the
+ * clamped-free bending frequencies are off by 7e-3, 2.4e-2, 3.9e-2, the tip of the elastica at
+ * P L^2 / (E I) = 10 by 8e-3 L (2e-3 L at 16).
+ * MECH_BEAM_CONSISTENT: fourth order in 1/n (at 8 elements: the frequencies off by 2.1e-6,
+ * 8.0e-5, 6.1e-4, the elastica's tip at k = 10 by 3.4e-5 L, 2.2e-6 L at 16; the tables are in
+ * docs/beam.md and tests/components/mechanics/test_beam_consistent.c), from three changes,
+ * each the local form of the cubic (Hermite) field across the chord that the local bending
+ * stiffness comes from:
+ *   1. Angles: theta of a node is the rotation vector of its triad relative to the element frame
+ *      (the logarithm phi n of E^T T, from its skew part sin(phi) n: theta = s asin|s| / |s|)
+ *      instead of the skew part itself, which is short by phi^3 / 6.
+ *   2. Bowing: the axial strain is that of the cubic field's arc, eps = u / L0 + (2 theta_a^2 -
+ *      theta_a theta_b + 2 theta_b^2) / 30 summed over both bending planes, in the energy
+ *      EA L0 eps^2 / 2 (the shallow-arch local element of Crisfield, Non-linear Finite Element
+ *      Analysis of Solids and Structures vol. 1, 1991; it gives the axial force its
+ *      consistent geometric stiffness 6 N / (5 L0) across, where the chord alone gives N / L0).
+ *   3. Inertia: the node bodies keep the lumped masses and rotary inertias, and the element adds
+ *      the kinetic energy of its distributed mass over the co-rotational field, less those
+ *      (Crisfield, Galvanetto and Jelenic, "Dynamics of 3-D co-rotational beams", Comput. Mech. 20
+ *      (1997); Le, Battini and Hjiaj, "A consistent 3D corotational beam element for nonlinear
+ *      dynamic analysis of flexible structures", CMAME 269 (2014): cubic local interpolation).
+ *      The fields, xi = s/L0 in [0, 1], H1 = xi (1 - xi)^2, H2 = -xi^2 (1 - xi):
+ *        r(xi)  = x_a + xi (x_b - x_a) + L0 [H1 P + H2 Q],  P = theta_z,a e2 - theta_y,a e3,
+ *                                                             Q = theta_z,b e2 - theta_y,b e3,
+ *        D2(xi) = e2 + psi_x e3 - psi_z e1,  D3(xi) = e3 - psi_x e2 + psi_y e1,
+ *        psi_x = (1 - xi) theta_x,a + xi theta_x,b,  psi_y,z = H1' theta_y,z,a + H2' theta_y,z,b
+ *      (D2, D3: the section's directors turned by its small local rotation psi); the kinetic
+ *      energy T = sum_g w_g L0 [rho A |r_g'|^2 + rho I_z |D2_g'|^2 + rho I_y |D3_g'|^2] / 2
+ *      at the 4 Gauss points xi_g (exact for the cubic field at small deformation; a section
+ *      with directors e2, e3 of "masses" I_z, I_y has the rotary inertia I_y + I_z, I_y, I_z
+ *      about e1, e2, e3), less the same of the node bodies (r = x, D = the triad's t2, t3, half
+ *      the element's mass and rotary inertia at each). Every point p of T moves with its field,
+ *      so d'Alembert's principle gives its inertia loads exactly, with r_p'' = G_p u'' + G_p' u'
+ *      (u' the nodes' velocities v, omega = R w; G_p = dr_p/du the velocity gradient, G_p' its
+ *      rate along the motion, the centrifugal and Coriolis terms):
+ *        f = sum_p mu_p G_p^T (r_p'' - g)   (g: the chain's gravity on the displacement points:
+ *                                            the distributed weight, with its end moments)
+ *      Linearised at a straight rest state this is the classical consistent mass (cubic across,
+ *      linear along, with the consistent rotary inertia). T is conserved with the rest of the
+ *      model's energy. The Jacobian is exact at rest (modes, static starts); in motion it
+ *      leaves out the derivatives of G_p' u' with respect to the configuration and of
+ *      omega = R w, R w' with respect to the nodes' orientations (terms of the size of the
+ *      inertia loads times the rotation rates, which the Newton iteration absorbs). The
+ *      residual of this element takes the automatic-differentiation path with the second
+ *      derivatives along the motion only (mech_ad.h, order 3: the points' accelerations need
+ *      the fields' Hessians times the configuration's rate), about 20 times the cost of the
+ *      lumped element's plain residual (docs/beam.md: the crane's boom at 4 consistent
+ *      elements costs 1.16 times its 16 lumped ones).
+ * No damping in the element unless beta > 0: stiffness-proportional (Rayleigh) damping,
  * the gradient with respect to the port velocities of D = beta/2 d'^T K d', d' the rates of the
  * local deformations and K the local stiffness, so that it acts on deformation only (a rigid
  * motion is not damped) and mode i of the linearised structure gets the damping ratio
@@ -39,8 +88,12 @@
 extern "C" {
 #endif
 
+/* The element (mech_section.element): see above. */
+enum { MECH_BEAM_LUMPED = 0, MECH_BEAM_CONSISTENT = 1 };
+
 /* Accepted: every field finite; E, G, A, Iy, Iz, J > 0; rho, kappa, beta >= 0 (the chain
- * builder needs rho > 0); the stiffnesses they give (EA/L0, GJ/L0, EI/L0, times beta) finite. */
+ * builder, and element = MECH_BEAM_CONSISTENT, need rho > 0); the stiffnesses they give (EA/L0,
+ * GJ/L0, EI/L0, times beta) finite; element one of the two values. */
 typedef struct mech_section {
     double E, G;      /* Young's and shear modulus (Pa), > 0 */
     double A, Iy, Iz; /* area (m^2); second moments about the local y (e2) and z (e3) axes (m^4),
@@ -49,6 +102,7 @@ typedef struct mech_section {
     double rho;       /* density (kg/m^3; for the chain builder's lumped masses), >= 0 (chain: > 0) */
     double kappa;     /* shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko */
     double beta;      /* stiffness-proportional damping (s), >= 0: modal damping ratio beta w/2 */
+    int element;      /* MECH_BEAM_LUMPED (0, masses in the node bodies) or MECH_BEAM_CONSISTENT */
 } mech_section;
 
 /* One element between node bodies node_a and node_b (element ids of mech_body instances whose
@@ -57,7 +111,11 @@ typedef struct mech_section {
  * Ports 0 and 1 must be bonded to ports of node_a and node_b at their mass centres.
  * Accepted: sec not NULL and as stated above; E0 not NULL, finite, orthonormal to 1e-9 and
  * right-handed (e3 = e1 x e2); L0 finite and > 0; node_a != node_b, both rigid bodies made
- * before. Anything else gives BG_ERR_ARGUMENT before anything is built, with a message naming
+ * before. With element = MECH_BEAM_CONSISTENT the node bodies must carry half of the
+ * element's mass rho A L0 and rotary inertia rho (I_y + I_z, I_y, I_z) L0 at their centres, as
+ * the chain builder's do; a single element has no gravity of its own (the nodes' weights are
+ * lumped).
+ * Anything else gives BG_ERR_ARGUMENT before anything is built, with a message naming
  * the element's path and the parameter (nothing is added to the model). */
 BG_API int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
                      const mech_section *sec, const double *E0, double L0);
@@ -69,6 +127,10 @@ BG_API double mech_beam_energy(const bgr_model *m, int elem, const double *y);
  * dissipation function, beta d'^T K d' >= 0 (0 without damping), d' the rates of the local
  * deformations from the node velocities in y; NaN as for the energy. */
 BG_API double mech_beam_dissipation(const bgr_model *m, int elem, const double *y);
+/* The kinetic energy the element adds to its node bodies' at a state vector y (after
+ * bgr_compile): the consistent element's T less the nodes' share (above); 0 for a lumped
+ * element; NaN as for the energy. */
+BG_API double mech_beam_kinetic(const bgr_model *m, int elem, const double *y);
 /* The 12 port loads (F_a, M_a, F_b, M_b) of a beam element at a state vector y, for tests:
  * path 0 as the residual computes them (plain arithmetic, one reverse pass), path 1 by the
  * automatic differentiation the Jacobian uses. BG_OK, or BG_ERR_ARGUMENT (not a beam element of

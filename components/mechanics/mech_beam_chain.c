@@ -140,7 +140,8 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
     for (int k = 0; k < n; k++) {
         char nm[32];
         snprintf(nm, sizeof nm, "el%02d", k);
-        elems[k] = mech_beam_add_(m, cc, nm, nodes[k], nodes[k + 1], sec, E0, Le, shared);
+        elems[k] =
+            mech_beam_add_(m, cc, nm, nodes[k], nodes[k + 1], sec, E0, Le, shared, gravity);
         if (elems[k] < 0) {
             mech_beam_work_release_(shared);
             return elems[k];

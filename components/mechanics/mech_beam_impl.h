@@ -1,32 +1,101 @@
-/* Internal to the beam (not installed, nothing here is exported): what the chain builder
- * (mech_beam_chain.c) takes from the element (mech_beam.c). The checks are the element's own,
- * so that a chain refuses a section, or a length that makes its stiffness overflow, with the
- * same messages as a single element, and before it builds anything. */
+/* Internal to the beam (not installed, nothing here is exported): the element's data, shared by
+ * the element (mech_beam.c), the consistent element's parts (mech_beam_consistent.c) and the
+ * chain builder (mech_beam_chain.c). The checks are the element's own, so that a chain refuses a section, or a
+ * length that makes its stiffness overflow, with the same messages as a single element, and
+ * before it builds anything. */
 #ifndef MECH_BEAM_IMPL_H
 #define MECH_BEAM_IMPL_H
 
+#include "mech_ad.h"
 #include "mech_beam.h"
+#include "mech_util.h"
 
-/* The AD scratch of an element's energy evaluations, reference counted: the elements of a chain
- * share one (they are evaluated one after another, so one scratch stays in cache). */
-typedef struct beam_work beam_work;
+/* AD scratch of one energy evaluation (about 130 kB with Hessians), allocated with the element
+ * so that residual and Jacobian evaluations allocate nothing. The elements of a chain share one
+ * (reference counted): they are evaluated one after another, and one scratch stays in cache
+ * where one per element (60 MB for 512 elements) made the residual's cost per element grow
+ * with their number. */
+typedef struct beam_work {
+    ad X[6], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6]; /* X: the nodes' positions */
+    ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
+    ad bow, eps;          /* consistent element: the bowing term and the axial strain */
+    ad B[16][3];          /* consistent inertia: the basis vectors of the fields (see
+                             mech_beam_consistent.c) */
+    double gv[16][3][12], dgv[16][3][12][14]; /* their velocity gradients and derivatives */
+    double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
+    int refs;             /* elements sharing it */
+} beam_work;
+
+typedef struct beam {
+    mech_section sec;
+    double E0[9], L0;
+    double K[7][7]; /* local stiffness of (u, theta_a, theta_b): W = d^T K d / 2 */
+    int node_a, node_b;
+    int xa, qa, xb, qb; /* configuration variable ids */
+    int va, wa, vb, wb; /* velocity ids of the nodes (consistent inertia) */
+    int e[2], s[2];     /* first effort id and orientation of each port */
+    int f[2];           /* first flow id of each port (damping) */
+    double grav[3];     /* gravity (consistent inertia: the distributed weight) */
+    beam_work *work;
+    mech_scales sc; /* stated nominal scales (the chain builder states its weight) */
+} beam;
 
 /* A scratch holding one reference (the caller's); NULL when out of memory. */
 beam_work *mech_beam_work_new_(void);
 /* Drops one reference to a scratch (NULL: nothing); the last frees it. */
 void mech_beam_work_release_(beam_work *w);
 
-/* mech_beam with the scratch shared (shared gets one more reference; NULL: the element's own). */
+/* mech_beam with the scratch shared (shared gets one more reference; NULL: the element's own)
+ * and the gravity of its distributed weight (consistent inertia; NULL: none). */
 int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
-                   const mech_section *sec, const double *E0, double L0, beam_work *shared);
+                   const mech_section *sec, const double *E0, double L0, beam_work *shared,
+                   const double *gravity);
 
 /* BG_OK if sec obeys the rules of mech_beam.h, else the refusal naming the field (w: the
  * constructor, for the message). */
 int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const char *w,
                            const mech_section *sec);
+/* BG_OK if E0 is a finite right-handed orthonormal frame (to 1e-9), else the refusal. */
+int mech_beam_bad_frame_(bgr_model *m, bgr_comp c, const char *name, const char *w,
+                         const double *E0);
+/* BG_OK if node is a rigid body (mech_body) of m, else the refusal naming param. */
+int mech_beam_bad_node_(bgr_model *m, bgr_comp c, const char *name, const char *w,
+                        const char *param, int node);
 /* BG_OK if the local stiffness of the section over the length L0 (and its damping beta K) is
  * finite, else the refusal. */
 int mech_beam_bad_stiffness_(bgr_model *m, bgr_comp c, const char *name, const char *w,
                              const mech_section *sec, double L0);
+
+/* J(q): dq = J(q) dphi for a global rotation increment dphi (rows: q, columns: dphi). */
+void mech_beam_quat_J_(const double *q, double J[4][3]);
+/* The gradient gv (12) of an AD scalar a in the port velocity coordinates (x_a, phi_a, x_b,
+ * phi_b) and, if dgv != NULL, its derivatives with respect to the 14 configuration unknowns. */
+void mech_beam_velocity_gradient_(const ad *a, const double *qa, const double *qb, double *gv,
+                                  double (*dgv)[14]);
+
+/* The consistent element (mech_beam_consistent.c). The rotation measure: the node angles th
+ * (3) of one node turned from the skew part into the rotation vector, in place. */
+void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th);
+/* The bowing term: k->W += EA L0 eps^2 / 2, eps = u / L0 + (2 ta^2 - ta tb + 2 tb^2) / 30 over
+ * both bending planes (k->u, k->th set). */
+void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0);
+/* The same on plain numbers: to z = dW/dd (7: u, theta_a, theta_b) of the quadratic energy
+ * without its EA u^2 / (2 L0), the rest of the axial energy's gradient at the deformations d. */
+void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z);
+/* X' (14) = B u': the configuration's rate from the nodes' velocities in y. */
+void mech_beam_config_rate_(const beam *b, const double *y, double *Xd);
+/* Inertia. After the element frame (e1, e2, e3), the node
+ * triads and the node angles th are in the scratch: the basis vectors of the displacement and
+ * director fields into k->B (Hessians mirrored at order 2). */
+void mech_beam_offsets_(const ad_ctx *c, beam_work *k);
+/* The inertial port loads g (12) of the element at (y, yp), after beam_energy at order 3 along
+ * X' (mech_beam_config_rate_; dX NULL) or at order 2 (the whole Hessians), and, if dX != NULL,
+ * their Jacobian: dX (12 x 14,
+ * configuration unknowns), dV (12 x 12: the node velocities v, w, body-frame w), dA (12 x 12:
+ * their rates v', w'). */
+void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[12],
+                        double (*dX)[14], double (*dV)[12], double (*dA)[12]);
+/* The kinetic energy the element adds to its node bodies' (consistent minus lumped). */
+double mech_beam_kinetic_(const beam *b, const double *y);
 
 #endif

@@ -1007,7 +1007,7 @@ static void test_constructors(void)
     const double g[3] = {0, 0, -9.81}, J[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, r3[3] = {0, 0, 0};
     const double E0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, p1[3] = {1, 0, 0}, up[3] = {0, 0, 1};
     const double tt[2] = {0, 1}, vv[2] = {0, 1}, one = 1.0;
-    const mech_section sec = {2e11, 8e10, 1e-2, 1e-5, 1e-5, 2e-5, 7800, 0, 0};
+    const mech_section sec = {2e11, 8e10, 1e-2, 1e-5, 1e-5, 2e-5, 7800, 0, 0, MECH_BEAM_LUMPED};
     ctl_pid_spec spec;
     memset(&spec, 0, sizeof spec);
     ctl_ff_spec ffs = {.ratio = 1, .motor_disp = 1, .pump_disp = 1, .pump_speed = 1};

@@ -1,0 +1,399 @@
+/* The consistent co-rotational beam element's own parts (equations in mech_beam.h): its rotation
+ * measure, the bowing term of its axial strain, and its inertia.
+ * Inertia: the kinetic energy is that of "points" moving with vector fields of the configuration:
+ * the displacement field r(xi) carries the mass rho A, the section's directors D2(xi), D3(xi)
+ * carry rho I_z and rho I_y (a rigid section with directors e2, e3 and the "masses" I_z, I_y has
+ * the inertia I_y + I_z, I_y, I_z about e1, e2, e3: sum_i m_i |e_i'|^2 = w^T sum_i m_i (1 - e_i
+ * e_i^T) w), at the 4 Gauss points, less the same points at the nodes (r = x, D = the node
+ * triad's t2, t3: the node bodies' lumped masses and rotary inertias, exactly). Every field is a
+ * combination sum_b c_b(xi) B_b of 18 basis vectors: 16 made here on the AD numbers of the
+ * element's energy (mech_beam.c), so that their velocity gradients and Hessians give the points'
+ * velocities and accelerations exactly, and the node positions x_a, x_b. The inertia loads
+ * follow by d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
+#include <math.h>
+#include <string.h>
+
+#include "mech_beam_impl.h"
+
+/* The rotation measure: the skew part s of E^T T is sin(phi) n for a
+ * relative rotation phi about n; th = s asin(|s|) / |s| is the rotation vector phi n itself
+ * (the logarithm of the relative rotation, phi < pi / 2), so that the local deformations are
+ * the angles the element's cubic field is written in. f(x) = asin(sqrt x) / sqrt x of x = |s|^2,
+ * by its series sum c_j x^j (c_j = (2j)! / (4^j j!^2 (2j + 1))) below x = 0.04 (truncation
+ * 3e-12), else in closed form. */
+void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th)
+{
+    ad_const(c, 0.0, &k->t1);
+    for (int i = 0; i < 3; i++) {
+        ad_mul(c, &th[i], &th[i], &k->t2);
+        ad_axpy(c, &k->t1, 1.0, &k->t2, &k->t1);
+    }
+    double x = k->t1.v, f, fp, fpp;
+    if (x < 0.04) {
+        static const double cj[7] = {1.0,         1.0 / 6,      3.0 / 40,      5.0 / 112,
+                                     35.0 / 1152, 63.0 / 2816, 231.0 / 13312};
+        f = fp = fpp = 0;
+        for (int j = 6; j >= 0; j--) {
+            f = f * x + cj[j];
+            if (j >= 1) fp = fp * x + j * cj[j];
+            if (j >= 2) fpp = fpp * x + j * (j - 1) * cj[j];
+        }
+    } else {
+        double sg = sqrt(x), A = asin(fmin(sg, 1.0)), r = sqrt(fmax(1 - x, 1e-300));
+        f = A / sg;
+        fp = 1 / (2 * x * r) - A / (2 * x * sg);
+        fpp = -3 / (4 * x * x * r) + 1 / (4 * x * r * r * r) + 3 * A / (4 * x * x * sg);
+    }
+    ad_apply(c, &k->t1, f, fp, fpp, &k->t2);
+    for (int i = 0; i < 3; i++) {
+        ad_mul(c, &th[i], &k->t2, &k->t1);
+        th[i] = k->t1;
+    }
+}
+
+/* The bowing term: W += EA L0 eps^2 / 2, eps = u / L0 + bow / 30 (k->u, k->th set). */
+void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0)
+{
+    ad_const(c, 0.0, &k->bow);
+    for (int a = 1; a <= 2; a++) { /* theta_y, theta_z */
+        const ad *ta = &k->th[a], *tb = &k->th[3 + a];
+        ad_mul(c, ta, ta, &k->t2);
+        ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
+        ad_mul(c, tb, tb, &k->t2);
+        ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
+        ad_mul(c, ta, tb, &k->t2);
+        ad_axpy(c, &k->bow, -1.0, &k->t2, &k->bow);
+    }
+    ad_scale(c, 1.0 / L0, &k->u, &k->eps);
+    ad_axpy(c, &k->eps, 1.0 / 30, &k->bow, &k->eps);
+    ad_mul(c, &k->eps, &k->eps, &k->t2);
+    ad_axpy(c, &k->W, 0.5 * EA * L0, &k->t2, &k->W);
+}
+
+void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z)
+{
+    double bow = 0;
+    for (int a = 2; a <= 3; a++)
+        bow += 2 * d[a] * d[a] - d[a] * d[a + 3] + 2 * d[a + 3] * d[a + 3];
+    double N = EA * (d[0] / L0 + bow / 30); /* the axial force EA eps */
+    z[0] += EA * bow / 30;
+    for (int a = 2; a <= 3; a++) {
+        z[a] += N * L0 * (4 * d[a] - d[a + 3]) / 30;
+        z[a + 3] += N * L0 * (4 * d[a + 3] - d[a]) / 30;
+    }
+}
+
+/* 4-point Gauss-Legendre rule on [0, 1]: points and weights */
+static const double GX[4] = {0.069431844202973712, 0.33000947820757187, 0.66999052179242813,
+                             0.93056815579702629};
+static const double GW[4] = {0.17392742256872693, 0.32607257743127307, 0.32607257743127307,
+                             0.17392742256872693};
+
+enum { NB = 18, XA = 16, XB = 17 };
+
+/* The basis: 0 P = th_z,a e2 - th_y,a e3, 1 Q = th_z,b e2 - th_y,b e3, 2 e2, 3 e3,
+ * 4 th_x,a e3, 5 th_x,b e3, 6 th_z,a e1, 7 th_z,b e1, 8 th_x,a e2, 9 th_x,b e2, 10 th_y,a e1,
+ * 11 th_y,b e1, 12 t2 of node a, 13 t2 of node b, 14 t3 of node a, 15 t3 of node b (16, 17: the
+ * node positions x_a, x_b). */
+void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
+{
+    const ad *th = k->th;
+    for (int i = 0; i < 3; i++) {
+        for (int n = 0; n < 2; n++) {
+            ad_mul(c, &th[3 * n + 2], &k->e2[i], &k->t1);
+            ad_mul(c, &th[3 * n + 1], &k->e3[i], &k->t2);
+            ad_axpy(c, &k->t1, -1.0, &k->t2, &k->B[n][i]);
+            ad_mul(c, &th[3 * n + 0], &k->e3[i], &k->B[4 + n][i]);
+            ad_mul(c, &th[3 * n + 2], &k->e1[i], &k->B[6 + n][i]);
+            ad_mul(c, &th[3 * n + 0], &k->e2[i], &k->B[8 + n][i]);
+            ad_mul(c, &th[3 * n + 1], &k->e1[i], &k->B[10 + n][i]);
+        }
+        k->B[2][i] = k->e2[i];
+        k->B[3][i] = k->e3[i];
+        k->B[12][i] = k->ta[3 + i];
+        k->B[13][i] = k->tb[3 + i];
+        k->B[14][i] = k->ta[6 + i];
+        k->B[15][i] = k->tb[6 + i];
+    }
+    if (c->order > 1)
+        for (int b = 0; b < 16; b++)
+            for (int i = 0; i < 3; i++)
+                ad_mirror(c, &k->B[b][i]);
+}
+
+/* The inertia points: coefficients over the basis, mass mu, and whether gravity acts on them.
+ * Returns the number of points (at most 18). */
+typedef struct point {
+    double c[NB], mu;
+    int weight;
+} point;
+
+static int inertia_points(const beam *b, point *p)
+{
+    const mech_section *S = &b->sec;
+    double L0 = b->L0, mA = S->rho * S->A * L0, mz = S->rho * S->Iz * L0, my = S->rho * S->Iy * L0;
+    int n = 0;
+    memset(p, 0, 18 * sizeof *p);
+    for (int g = 0; g < 4; g++) {
+        double xi = GX[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
+        double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi; /* H1', H2' */
+        /* r = (1 - xi) x_a + xi x_b + L0 (H1 P + H2 Q) */
+        p[n].c[XA] = 1 - xi, p[n].c[XB] = xi, p[n].c[0] = L0 * h1, p[n].c[1] = L0 * h2;
+        p[n].mu = mA * GW[g], p[n++].weight = 1;
+        /* D2 = e2 + psi_1 e3 - psi_3 e1, psi_1 = (1 - xi) th_x,a + xi th_x,b,
+         * psi_3 = H1' th_z,a + H2' th_z,b: the section's director e2 turned by its rotation */
+        p[n].c[2] = 1, p[n].c[4] = 1 - xi, p[n].c[5] = xi, p[n].c[6] = -d1, p[n].c[7] = -d2;
+        p[n++].mu = mz * GW[g];
+        /* D3 = e3 - psi_1 e2 + psi_2 e1, psi_2 = H1' th_y,a + H2' th_y,b */
+        p[n].c[3] = 1, p[n].c[8] = -(1 - xi), p[n].c[9] = -xi, p[n].c[10] = d1, p[n].c[11] = d2;
+        p[n++].mu = my * GW[g];
+    }
+    /* less the nodes' lumped masses and rotary inertias (half of the element's at each) */
+    p[n].c[XA] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[XB] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[12] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[13] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[14] = 1, p[n++].mu = -0.5 * my;
+    p[n].c[15] = 1, p[n++].mu = -0.5 * my;
+    return n;
+}
+
+/* The node velocities u' in the port coordinates (v_a, omega_a, v_b, omega_b; omega = R w
+ * global) from src = y, or their rates u'' = (v_a', R_a w_a', ...) from src = yp. */
+static void port_rates(const beam *b, const double *y, const double *src, double *u)
+{
+    double R[9];
+    const int q[2] = {b->qa, b->qb}, v[2] = {b->va, b->vb}, w[2] = {b->wa, b->wb};
+    for (int n = 0; n < 2; n++) {
+        mech_quat_R(y + q[n], R, NULL);
+        memcpy(u + 6 * n, src + v[n], 3 * sizeof *u);
+        mech_mv(R, src + w[n], u + 6 * n + 3);
+    }
+}
+
+/* B: the rates of the 14 configuration unknowns from the port velocities, X' = B u' (x' = v,
+ * q' = J(q) omega). */
+static void config_rates(const beam *b, const double *y, double B[14][12])
+{
+    memset(B, 0, 14 * 12 * sizeof(double));
+    double J[4][3];
+    for (int n = 0; n < 2; n++) {
+        for (int i = 0; i < 3; i++)
+            B[3 * n + i][6 * n + i] = 1.0;
+        mech_beam_quat_J_(y + (n ? b->qb : b->qa), J);
+        for (int j = 0; j < 4; j++)
+            for (int i = 0; i < 3; i++)
+                B[6 + 4 * n + j][6 * n + 3 + i] = J[j][i];
+    }
+}
+
+void mech_beam_config_rate_(const beam *b, const double *y, double *Xd)
+{
+    double ud[12], B[14][12];
+    port_rates(b, y, y, ud);
+    config_rates(b, y, B);
+    for (int c = 0; c < 14; c++) {
+        Xd[c] = 0;
+        for (int j = 0; j < 12; j++)
+            Xd[c] += B[c][j] * ud[j];
+    }
+}
+
+/* Cd = (dgv X') of an AD scalar a of order 3 along X' (h = H X'): the rate of its velocity
+ * gradient, from the positions' rows of H X' and, for the rotations, sum_m (H X')_q,m J(q)_m
+ * + g_q,m J(q')_m (J is linear in q). */
+static void gradient_rate(const ad *a, const double *y, const beam *b, const double *Xd,
+                          double *Cd)
+{
+    const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
+    for (int n = 0; n < 2; n++) {
+        double J[4][3], Jd[4][3];
+        mech_beam_quat_J_(y + (n ? b->qb : b->qa), J);
+        mech_beam_quat_J_(Xd + qoff[n], Jd);
+        for (int i = 0; i < 3; i++) {
+            Cd[6 * n + i] = a->h[xoff[n] + i];
+            double r = 0;
+            for (int m = 0; m < 4; m++)
+                r += a->h[qoff[n] + m] * J[m][i] + a->g[qoff[n] + m] * Jd[m][i];
+            Cd[6 * n + 3 + i] = r;
+        }
+    }
+}
+
+/* The basis' velocity gradients (and their derivatives if dgv is wanted) into the scratch. */
+static void basis_gradients(const beam *b, const double *y, beam_work *k, int with_dgv)
+{
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++)
+            mech_beam_velocity_gradient_(&k->B[bb][i], y + b->qa, y + b->qb, k->gv[bb][i],
+                                         with_dgv ? k->dgv[bb][i] : NULL);
+}
+
+/* G (12) of component i of a point: sum_b c_b gv_b,i, the node positions' unit gradients. */
+static void point_gradient(const beam_work *k, const point *p, int i, double *G)
+{
+    memset(G, 0, 12 * sizeof *G);
+    for (int bb = 0; bb < 16; bb++)
+        if (p->c[bb] != 0)
+            for (int j = 0; j < 12; j++)
+                G[j] += p->c[bb] * k->gv[bb][i][j];
+    G[i] += p->c[XA];
+    G[6 + i] += p->c[XB];
+}
+
+void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[12],
+                        double (*dX)[14], double (*dV)[12], double (*dA)[12])
+{
+    beam_work *k = b->work;
+    double ud[12], ua[12], B[14][12], Xd[14];
+    port_rates(b, y, y, ud);
+    port_rates(b, y, yp, ua);
+    config_rates(b, y, B);
+    for (int c = 0; c < 14; c++) {
+        Xd[c] = 0;
+        for (int j = 0; j < 12; j++)
+            Xd[c] += B[c][j] * ud[j];
+    }
+    /* the basis vectors' accelerations acc = gv . u'' + u' . (dgv X') (the second term: the
+     * rate of the gradient along the motion, centrifugal and Coriolis): with the Jacobian from
+     * the whole Hessians (order 2), for the residual from the Hessians along X' (order 3) */
+    basis_gradients(b, y, k, dX != NULL);
+    double Cd[16][3][12], acc[NB][3];
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++) {
+            if (dX)
+                for (int j = 0; j < 12; j++) {
+                    double cd = 0;
+                    for (int c = 0; c < 14; c++)
+                        cd += k->dgv[bb][i][j][c] * Xd[c];
+                    Cd[bb][i][j] = cd;
+                }
+            else
+                gradient_rate(&k->B[bb][i], y, b, Xd, Cd[bb][i]);
+            double s = 0;
+            for (int j = 0; j < 12; j++)
+                s += k->gv[bb][i][j] * ua[j] + ud[j] * Cd[bb][i][j];
+            acc[bb][i] = s;
+        }
+    for (int i = 0; i < 3; i++) {
+        acc[XA][i] = ua[i];
+        acc[XB][i] = ua[6 + i];
+    }
+    point P[18];
+    int np = inertia_points(b, P);
+    /* a_p = mu_p (r_p'' - g); f = sum_p G_p^T a_p = sum_b sum_i S_b,i gv_b,i (+ the x's) */
+    double S[NB][3];
+    memset(S, 0, sizeof S);
+    double a[18][3];
+    for (int p = 0; p < np; p++)
+        for (int i = 0; i < 3; i++) {
+            double rdd = 0;
+            for (int bb = 0; bb < NB; bb++)
+                rdd += P[p].c[bb] * acc[bb][i];
+            a[p][i] = P[p].mu * (rdd - (P[p].weight ? b->grav[i] : 0.0));
+            for (int bb = 0; bb < NB; bb++)
+                S[bb][i] += P[p].c[bb] * a[p][i];
+        }
+    memset(g, 0, 12 * sizeof *g);
+    for (int i = 0; i < 3; i++) {
+        g[i] += S[XA][i];
+        g[6 + i] += S[XB][i];
+    }
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++)
+            if (S[bb][i] != 0)
+                for (int j = 0; j < 12; j++)
+                    g[j] += S[bb][i] * k->gv[bb][i][j];
+    if (!dX) return;
+    /* d acc / d u' = Cd + (dgv B)^T u';  d acc / dX ~ u''^T dgv (the configuration derivative
+     * of the rate term left out: see mech_beam.h) */
+    double dacc_u[16][3][12], dacc_X[16][3][14];
+    for (int bb = 0; bb < 16; bb++)
+        for (int i = 0; i < 3; i++) {
+            const double(*D)[14] = (const double(*)[14])k->dgv[bb][i];
+            for (int j = 0; j < 12; j++) {
+                double sum = Cd[bb][i][j];
+                for (int l = 0; l < 12; l++) {
+                    if (ud[l] == 0) continue;
+                    double dB = 0;
+                    for (int c = 0; c < 14; c++)
+                        dB += D[l][c] * B[c][j];
+                    sum += ud[l] * dB;
+                }
+                dacc_u[bb][i][j] = sum;
+            }
+            for (int c = 0; c < 14; c++) {
+                double sum = 0;
+                for (int l = 0; l < 12; l++)
+                    sum += ua[l] * D[l][c];
+                dacc_X[bb][i][c] = sum;
+            }
+        }
+    memset(dX, 0, 12 * 14 * sizeof(double));
+    memset(dV, 0, 144 * sizeof(double));
+    memset(dA, 0, 144 * sizeof(double));
+    for (int bb = 0; bb < 16; bb++) /* the rate of G^T along X */
+        for (int i = 0; i < 3; i++)
+            if (S[bb][i] != 0)
+                for (int j = 0; j < 12; j++)
+                    for (int c = 0; c < 14; c++)
+                        dX[j][c] += S[bb][i] * k->dgv[bb][i][j][c];
+    for (int p = 0; p < np; p++)
+        for (int i = 0; i < 3; i++) {
+            double G[12], du[12] = {0}, dx[14] = {0};
+            point_gradient(k, &P[p], i, G);
+            for (int bb = 0; bb < 16; bb++) {
+                double cb = P[p].c[bb];
+                if (cb == 0) continue;
+                for (int j = 0; j < 12; j++)
+                    du[j] += cb * dacc_u[bb][i][j];
+                for (int c = 0; c < 14; c++)
+                    dx[c] += cb * dacc_X[bb][i][c];
+            }
+            for (int j = 0; j < 12; j++) {
+                double mg = P[p].mu * G[j];
+                for (int l = 0; l < 12; l++) {
+                    dA[j][l] += mg * G[l];
+                    dV[j][l] += mg * du[l];
+                }
+                for (int c = 0; c < 14; c++)
+                    dX[j][c] += mg * dx[c];
+            }
+        }
+    /* columns of omega = R w (and of its rate R w'): to the body-frame unknowns w */
+    for (int n = 0; n < 2; n++) {
+        double R[9];
+        mech_quat_R(y + (n ? b->qb : b->qa), R, NULL);
+        for (int j = 0; j < 12; j++) {
+            double tv[3], ta[3];
+            for (int i = 0; i < 3; i++) {
+                tv[i] = ta[i] = 0;
+                for (int l = 0; l < 3; l++) {
+                    tv[i] += dV[j][6 * n + 3 + l] * R[l + 3 * i];
+                    ta[i] += dA[j][6 * n + 3 + l] * R[l + 3 * i];
+                }
+            }
+            memcpy(&dV[j][6 * n + 3], tv, sizeof tv);
+            memcpy(&dA[j][6 * n + 3], ta, sizeof ta);
+        }
+    }
+}
+
+double mech_beam_kinetic_(const beam *b, const double *y)
+{
+    beam_work *k = b->work;
+    double ud[12], T = 0;
+    port_rates(b, y, y, ud);
+    basis_gradients(b, y, k, 0);
+    point P[18];
+    int np = inertia_points(b, P);
+    for (int p = 0; p < np; p++)
+        for (int i = 0; i < 3; i++) {
+            double G[12], v = 0;
+            point_gradient(k, &P[p], i, G);
+            for (int j = 0; j < 12; j++)
+                v += G[j] * ud[j];
+            T += 0.5 * P[p].mu * v * v;
+        }
+    return T;
+}
