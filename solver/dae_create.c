@@ -323,12 +323,16 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
                                "atol_vec[%d] = %g (%s) is below the smallest normal number "
                                "%g: give 0 or a normal number",
                                i, s->atol[i], bg_var_label(p, i, nb, sizeof nb), DBL_MIN);
-            else
+            else if (p->nominal)
                 bg_error_raise(err, BG_ERR_ARGUMENT, w,
                                "the nominal magnitude of %s is %g: atol * nominal = %g is below "
                                "the smallest normal number %g",
                                bg_var_label(p, i, nb, sizeof nb), p->nominal[i], s->atol[i],
                                DBL_MIN);
+            else
+                bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                               "atol = %g is below the smallest normal number %g: give 0 or a "
+                               "normal number", o->atol, DBL_MIN);
             dae_free(&s);
             return NULL;
         }

@@ -222,6 +222,11 @@ static void test_create_options(void)
         expect(create_run(&p, &o, m, sizeof m), BG_ERR_ARGUMENT, m,
                "nominal 1e-300 (atol * nominal underflows to a subnormal)", "spring.x", "1e-300");
         p.nominal = NULL;
+        /* a subnormal atol without nominals (the fuzzer's: the message read a NULL nominal) */
+        dae_options_default(&o);
+        o.atol = 1e-310;
+        expect(create_run(&p, &o, m, sizeof m), BG_ERR_ARGUMENT, m,
+               "atol = 1e-310 without nominals", "atol", "1e-310");
     }
     {
         double av[2] = {1e-8, 1e-310}, nv[2] = {NAN, 1};
