@@ -37,6 +37,14 @@ static int solver_settings(bs_run *r, const bs_options *o)
                 prog, r->solver.t_end, r->solver.output_step, r->solver.rtol, r->solver.atol);
         return RN_EXIT_USAGE;
     }
+    /* the modes at T: a time of the run, as the crane program's --modes T */
+    if (o->modes && !(o->modes_t <= r->solver.t_end)) {
+        fprintf(stderr,
+                "%s: --modes %g: the time must lie in the run, 0 .. t_end = %g s (a longer run: "
+                "--t-end)\n",
+                prog, o->modes_t, r->solver.t_end);
+        return RN_EXIT_USAGE;
+    }
     /* the number of output rows, in floating point before any conversion to an integer */
     double nout = ceil(r->solver.t_end / r->solver.output_step - 1e-9);
     if (!(nout >= 1)) nout = 1;

@@ -205,6 +205,9 @@ int bs_analyse(bs_run *r)
             dae_modes_options_default(&mo);
             mo.dense_max = 1200;
             mo.nev = 20;
+            /* at T > 0 the state moves: --modes T asks for the frozen linearisation at that
+             * instant (as the crane program's; bg_modes.h, frozen) */
+            mo.frozen = r->o->modes_t > 0;
             rc = bgr_modes(m, r->o->modes_t, y, yp, &mo, &M, &err);
         }
         free(y), free(yp), free(bk);

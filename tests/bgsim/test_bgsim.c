@@ -373,6 +373,23 @@ int main(int argc, char **argv)
     double fw = sqrt(800.0 / 2.0) / (2 * 3.14159265358979323846);
     tap_ok(r.exited && r.code == 0 && fabs(f - fw) < 1e-8 * fw && strstr(text, ",elastic,mass,"),
            "--modes mass-spring: %.10g Hz (sqrt(k/m)/(2 pi) = %.10g)", f, fw);
+    /* --modes T at a time of the run: the state moves, the frozen linearisation is asked for;
+     * the spring is linear, so its modes are those at rest; T beyond t_end refused */
+    snprintf(path, sizeof path, "%s/ms.yaml", tmp);
+    snprintf(dir, sizeof dir, "%s/msT", tmp);
+    run(tmp, (const char *[]){path, "--modes", "0.05", "--out", dir, "-q", NULL}, "msT", 60, &r);
+    snprintf(path, sizeof path, "%s/modes.csv", dir);
+    slurp(path, text, sizeof text);
+    m1 = strstr(text, "\n1,");
+    f = m1 ? strtod(m1 + 3, NULL) : NAN;
+    tap_ok(r.exited && r.code == 0 && fabs(f - fw) < 1e-8 * fw,
+           "--modes 0.05 mass-spring (in motion): %.10g Hz (sqrt(k/m)/(2 pi) = %.10g; exit %d: "
+           "%.200s)", f, fw, r.code, r.err);
+    snprintf(path, sizeof path, "%s/ms.yaml", tmp);
+    run(tmp, (const char *[]){path, "--modes", "1e300", "--out", "msbig", "-q", NULL}, "msbig", 60,
+        &r);
+    tap_ok(r.exited && r.code == 2 && strstr(r.err, "t_end") && !file_exists(tmp, "msbig"),
+           "--modes 1e300: beyond t_end, exit 2, nothing written (%d: %.200s)", r.code, r.err);
 
     /* --error-estimate against an independent truth: the mass-spring released from rest,
      * q(t) = q0 cos(w t) with w = sqrt(k/m) = 20 rad/s, over 2 s (201 rows, 6.4 periods) at
