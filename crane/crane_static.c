@@ -126,15 +126,25 @@ typedef struct start_ctx {
     const crane_scene *sc;
     const dae_static_options *o;
     crane_start_report *rep;
-    crane *cur;
+    crane *cur;        /* the crane of the last solve, built with cur_L0 and cur_I0 */
+    double cur_L0, cur_I0;
     double I0;
     int vI, vth;       /* the integral's and the platform angle's unknowns (-1: none) */
     int static_status; /* the last solve's */
 } start_ctx;
 
+/* the trim's bracket: the ties' unstretched length down to 1 % below the geometric one (a steel
+ * tie breaks at about 1 % strain) */
+#define TIE_STRAIN_MAX 1e-2
+
 static int solve_at(start_ctx *x, double L0, bg_error *serr)
 {
+    /* the same crane solved again gives the same state: the last solve's (the trim's first
+     * trial repeats the integral's last solve) */
+    if (x->cur && x->static_status == BG_OK && L0 == x->cur_L0 && x->I0 == x->cur_I0)
+        return BG_OK;
     crane_free(&x->cur);
+    x->cur_L0 = L0, x->cur_I0 = x->I0;
     bg_error berr = {0};
     x->cur = crane_build_ties(x->sc, L0, &berr);
     if (!x->cur) {
@@ -178,7 +188,7 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
     dae_static_options o;
     dae_static_options_default(&o);
     o.max_steps = 150; /* a crane that can stand needs 3 to 10; a failure is known by then */
-    start_ctx sx = {&sc, &o, rep, NULL, 0.0, -1, -1, BG_OK};
+    start_ctx sx = {&sc, &o, rep, NULL, 0.0, 0.0, 0.0, -1, -1, BG_OK};
     bg_error serr = {0};
     int st = BG_OK, tie_fail = 0;
     /* The drive holds the platform through the PID's integral, whose state and the platform's
@@ -201,11 +211,10 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
         sx.I0 = yc[sx.vI];
     }
     /* The ties' unstretched length until the tip stands at the radius: the trim of the model
-     * files (bg_trim.h: the secant from the geometric length, then Illinois on a bracket of
-     * 1 % below it: a steel tie breaks at about 1 % strain), each trial a static solve of the crane built with that length, the
-     * integral held at its value */
+     * files (bg_trim.h: the secant from the geometric length, then Illinois on the bracket),
+     * each trial a static solve of the crane built with that length, the integral held */
     if (st == BG_OK && sc.ties) {
-        dae_trim_options to = {Lg, (1 - 1e-2) * Lg, Lg, 1e-9 * fmax(R, 1.0)}; /* <= 1 % strain */
+        dae_trim_options to = {Lg, (1 - TIE_STRAIN_MAX) * Lg, Lg, 1e-9 * fmax(R, 1.0)};
         dae_trim_result tres;
         int tr = dae_trim_solve(trial, &sx, &to, &tres, &serr);
         if (tr != BG_OK && sx.static_status == BG_OK) tie_fail = 1; /* the radius not met */
@@ -320,7 +329,7 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
                 size_t l = strlen(rep->message);
                 snprintf(rep->message + l, sizeof rep->message - l,
                          " for any unstretched tie length from %.6g m to the geometric %.6g m",
-                         0.99 * rep->tie_L0_geometric, rep->tie_L0_geometric);
+                         (1 - TIE_STRAIN_MAX) * rep->tie_L0_geometric, rep->tie_L0_geometric);
             }
         }
         if (!rep->ok_boom) {

@@ -9,7 +9,7 @@
 #include "mdl_priv.h"
 
 static int build_leaf(mdl_model *mm, mdl_inode *leaf);
-static int join_ready(mdl_model *mm);
+static int join_bonds(mdl_model *mm, int all);
 
 static const char *kind_word(mdl_kind k)
 {
@@ -345,7 +345,7 @@ static int build_leaf(mdl_model *mm, mdl_inode *leaf)
         return mdl_fail(mm, leaf->key, leaf->dotpath, "%s", e.message[0] ? e.message : bg_status_message(r));
     leaf->state = 2;
     r = add_leaf(mm, leaf);
-    return r == BG_OK ? join_ready(mm) : r;
+    return r == BG_OK ? join_bonds(mm, 0) : r;
 }
 
 static int build_tree(mdl_model *mm, mdl_inode *n)
@@ -448,7 +448,7 @@ static int one_bond(mdl_model *mm, mdl_inode *scope, const mdl_y_node *b, const 
     return BG_OK;
 }
 
-/* A bond read: recorded with the elements its paths name, joined by join_ready in the file's
+/* A bond read: recorded with the elements its paths name, joined by join_bonds in the file's
  * order, each as soon as its elements and the bonds before it are in the graph. So the bonds'
  * unknowns are numbered in the file's order, with the inner bonds of an element that has them
  * (a beam chain) where that element is built, as a program creating the parts and bonds one by
@@ -496,11 +496,6 @@ static int join_bonds(mdl_model *mm, int all)
         if (r != BG_OK) return r;
     }
     return BG_OK;
-}
-
-static int join_ready(mdl_model *mm)
-{
-    return join_bonds(mm, 0);
 }
 
 /* "a.p -> b.q" or {from: a.p, to: b.q, name: ..., for: {k: [i, j]}} */

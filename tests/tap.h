@@ -58,24 +58,6 @@ TAP_UNUSED static void tap_point_(int cond, const char *name)
     if (!cond) printf("# Failed test %d: %s", tap_count_, name);
 }
 
-/* A known failure, documented where it is called: "not ok N - name # TODO why" when cond is
- * 0, not counted as failed (TAP's TODO directive); an ordinary point when cond holds. */
-TAP_PRINTF(3, 4) static int tap_todo(int cond, const char *why, const char *fmt, ...)
-{
-    char name[TAP_NAME_SIZE];
-    va_list ap;
-    va_start(ap, fmt);
-    tap_name_(name, fmt, ap);
-    va_end(ap);
-    if (cond) {
-        tap_point_(1, name);
-        return 1;
-    }
-    tap_count_++;
-    printf("not ok %d - %s # TODO %s\n", tap_count_, name, why);
-    return 0;
-}
-
 /* Returns cond != 0 so that callers can add details after a failure. */
 TAP_PRINTF(2, 3) static int tap_ok(int cond, const char *fmt, ...)
 {
