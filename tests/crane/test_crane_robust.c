@@ -37,11 +37,6 @@ static void write_text(const char *path, const char *text)
     }
 }
 
-static void path2(char *buf, size_t size, const char *a, const char *b)
-{
-    snprintf(buf, size, "%s/%s", a, b);
-}
-
 /* Waits until DIR/name exists with more than min bytes, or the child ends: 1 if it does. */
 static int wait_file(pid_t pid, const char *dir, const char *name, long min, double timeout)
 {
@@ -271,23 +266,6 @@ static void test_write_failures(void)
            "a run whose summary cannot be written: exit 1, status.txt failed (%.200s)", r.err);
 }
 
-/* A stand-in for gnuplot in its own folder: script is the shell script's body. Returns the
- * PATH that finds it first. */
-static const char *fake_gnuplot(const char *name, const char *script, char *path_env, size_t size)
-{
-    char dir[4200], exe_path[4300];
-    path2(dir, sizeof dir, tmp, name);
-    mkdir(dir, 0777);
-    snprintf(exe_path, sizeof exe_path, "%s/gnuplot", dir);
-    FILE *f = fopen(exe_path, "w");
-    if (f) {
-        fprintf(f, "#!/bin/sh\n%s\n", script);
-        fclose(f);
-    }
-    chmod(exe_path, 0755);
-    snprintf(path_env, size, "%s:/usr/local/bin:/usr/bin:/bin", dir);
-    return path_env;
-}
 
 static void test_figures(void)
 {

@@ -27,11 +27,6 @@
 
 static double g_bound = 2.0; /* seconds from a signal to the end of the program */
 
-static void path2(char *buf, size_t size, const char *a, const char *b)
-{
-    snprintf(buf, size, "%s/%s", a, b);
-}
-
 /* Lines of DIR/name that contain want. */
 static int count_lines(const char *dir, const char *name, const char *want)
 {
@@ -46,23 +41,6 @@ static int count_lines(const char *dir, const char *name, const char *want)
     return n;
 }
 
-/* A stand-in for gnuplot in its own folder: script is the shell script's body. Returns the
- * PATH that finds it first. */
-static const char *fake_gnuplot(const char *name, const char *script, char *path_env, size_t size)
-{
-    char dir[4200], exe_path[4300];
-    path2(dir, sizeof dir, tmp, name);
-    mkdir(dir, 0777);
-    snprintf(exe_path, sizeof exe_path, "%s/gnuplot", dir);
-    FILE *f = fopen(exe_path, "w");
-    if (f) {
-        fprintf(f, "#!/bin/sh\n%s\n", script);
-        fclose(f);
-    }
-    chmod(exe_path, 0755);
-    snprintf(path_env, size, "%s:/usr/local/bin:/usr/bin:/bin", dir);
-    return path_env;
-}
 
 /* ------------------------------------------------------------------ frames ---- */
 
