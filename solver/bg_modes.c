@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bg_frame.h"
 #include "bg_jaceval.h"
 #include "bg_modes_impl.h"
 
@@ -53,6 +54,7 @@ int dae_modes_options_default(dae_modes_options *o)
     o->inf_tol = 1e-9;
     o->linsol = LS_KLU;
     o->frozen = 0;
+    o->frame = NULL;
     return BG_OK;
 }
 
@@ -674,6 +676,81 @@ static int check_args(const dae_problem *p, const dae_modes_options *o, double t
  * difference's own error are about 1e-7) */
 #define MODES_STEADY_TOL 1e-4
 
+/* The fastest unknown of a moving state, |yp_i| / (|y_i| + nominal_i), for the messages. */
+static int fastest_unknown(const dae_problem *p, const double *y, const double *yp)
+{
+    int fast = 0;
+    double best = -1;
+    for (int i = 0; i < p->n; i++) {
+        double r = fabs(yp[i]) / (fabs(y[i]) + (p->nominal ? p->nominal[i] : 1.0));
+        if (r > best) best = r, fast = i;
+    }
+    return fast;
+}
+
+/* Modes in a co-moving frame (bg_modes.h, "Co-moving frames"): the state must be steady in the
+ * frame (bg_jaceval_steadiness along the frame's flow) unless o->frozen; then the modes of the
+ * problem in the frame, G(t, z, z') = F(t, z, S z + c + z') with c = yp - S y, at rest. */
+static int modes_in_frame(const dae_problem *p, double t, const double *y, const double *yp,
+                          const dae_modes_options *o, dae_modes **out, bg_error *err)
+{
+    const char *where = "dae_modes_compute";
+    int n = p->n, st;
+    double *ypz = yp ? NULL : calloc((size_t)n, sizeof *ypz), *c = malloc((size_t)n * sizeof *c);
+    bg_jaceval J;
+    memset(&J, 0, sizeof J);
+    bg_frame f;
+    memset(&f, 0, sizeof f);
+    if ((!yp && !ypz) || !c) {
+        st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+        goto done;
+    }
+    if (!yp) yp = ypz;
+    if ((st = bg_frame_init(&f, p, o->frame, NULL, where, err)) != BG_OK) goto done;
+    if (!o->frozen) {
+        if ((st = bg_jaceval_init(&J, p, err)) != BG_OK) goto done;
+        double ratio;
+        int row;
+        st = bg_jaceval_eval(&J, t, y, yp, NULL);
+        if (st == 0) st = bg_jaceval_steadiness(&J, t, y, yp, o->frame, &ratio, &row);
+        if (st != 0) {
+            st = bg_error_raise(err, st == BG_ERR_MEMORY ? st : BG_ERR_CALLBACK, where,
+                                "the residual or Jacobian could not be evaluated along the "
+                                "frame's motion (status %d)",
+                                st);
+            goto done;
+        }
+        if (ratio > MODES_STEADY_TOL) {
+            char eb[256], vb[256];
+            st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
+                                "the state is not steady in the co-moving frame: %s changes "
+                                "along the frame's motion (%.3g of its terms; the fastest unknown "
+                                "is %s), so the linearisation in that frame has no constant "
+                                "coefficients (a state that is not at rest in the frame, or "
+                                "unknowns whose kinds the frame's generator S does not follow; "
+                                "options.frozen = 1 gives the frame's pencil at this instant "
+                                "anyway)",
+                                bg_eq_label(p, row, eb, sizeof eb), ratio,
+                                bg_var_label(p, fastest_unknown(p, y, yp), vb, sizeof vb));
+            goto done;
+        }
+    }
+    /* c = yp - S y: the state is the frame's own motion */
+    memcpy(c, yp, (size_t)n * sizeof *c);
+    sp_matvec(o->frame, -1.0, y, 1.0, c);
+    memcpy(f.c, c, (size_t)n * sizeof *c);
+    dae_modes_options oi = *o;
+    oi.frame = NULL;
+    oi.frozen = 0;
+    st = dae_modes_compute(&f.q, t, y, NULL, &oi, out, err);
+done:
+    bg_frame_free(&f);
+    bg_jaceval_free(&J);
+    free(ypz);
+    free(c);
+    return st;
+}
+
 int dae_modes_compute(const dae_problem *p, double t, const double *y, const double *yp,
                       const dae_modes_options *opt, dae_modes **out, bg_error *err)
 {
@@ -689,6 +766,7 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     const dae_modes_options *o = opt ? opt : &od;
     int st = check_args(p, o, t, y, yp, err);
     if (st != BG_OK) return st;
+    if (o->frame && p->n >= 1 && p->res) return modes_in_frame(p, t, y, yp, o, out, err);
     mctx c;
     memset(&c, 0, sizeof c);
     c.p = p;
@@ -727,7 +805,7 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     if (yp && !o->frozen) { /* a moving state: its pencil must hold along the motion */
         double ratio;
         int row;
-        st = bg_jaceval_steadiness(&c.J, t, y, yp, &ratio, &row);
+        st = bg_jaceval_steadiness(&c.J, t, y, yp, NULL, &ratio, &row);
         if (st != 0) {
             st = bg_error_raise(err, BG_ERR_CALLBACK, where,
                                 "the residual could not be evaluated along the motion (status "

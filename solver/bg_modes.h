@@ -131,7 +131,12 @@ typedef struct dae_modes_options {
     int frozen;            /* 0 (default): a moving state (yp given, not zero) is linearised only
                               if it is steady, i.e. stays a solution along its own motion
                               (bg_jaceval_steadiness: a motion along ignorable coordinates);
-                              else BG_ERR_ARGUMENT. 1: the frozen pencil at that instant anyway */
+                              else BG_ERR_ARGUMENT. 1: the frozen pencil at that instant anyway
+                              (with a frame: the frame's pencil, steady or not) */
+    const sp_csc *frame;   /* NULL (default): the inertial frame. Else the generator S (n x n)
+                              of a co-moving frame (see "Co-moving frames" above; bgr_frame_rotation
+                              builds it for a steady rotation): the modes are those of small
+                              motions in that frame about a state steady in it, yp = S y + c */
 } dae_modes_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */

@@ -126,6 +126,10 @@ typedef struct dae_static_options {
                                 it stops the solve (BG_ERR_CALLBACK, naming it) */
     void *load_user;
     ls_kind linsol;          /* default LS_KLU */
+    const sp_csc *frame;     /* NULL (default): at rest or constant rates yp_steady. Else the
+                                generator S (n x n) of a co-moving frame (bg_modes.h): the state
+                                sought is at rest in that frame, y' = S y + yp_steady (see
+                                "Co-moving frames" above) */
 } dae_static_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */
