@@ -55,6 +55,7 @@ int dae_modes_options_default(dae_modes_options *o)
     o->linsol = LS_KLU;
     o->frozen = 0;
     o->frame = NULL;
+    o->jacobian = DAE_MODES_JAC_AUTO;
     return BG_OK;
 }
 
@@ -664,6 +665,9 @@ static int check_args(const dae_problem *p, const dae_modes_options *o, double t
                             "a linear solver: 0 (LS_KLU) or 1 (LS_DENSE)");
     if (o->frozen != 0 && o->frozen != 1)
         return out_of_range(err, "frozen", (double)o->frozen, "0 or 1");
+    if (o->jacobian < DAE_MODES_JAC_AUTO || o->jacobian > DAE_MODES_JAC_DIFFERENCES)
+        return out_of_range(err, "jacobian", (double)o->jacobian,
+                            "0 (AUTO), 1 (PROBLEM) or 2 (DIFFERENCES)");
     if (!isfinite(t)) return bg_error_raise(err, BG_ERR_ARGUMENT, w, "t is not finite");
     if (p->n < 1) return BG_OK; /* bg_jaceval_init refuses it */
     int st = bg_check_nominal(p, w, err);
@@ -686,6 +690,54 @@ static int fastest_unknown(const dae_problem *p, const double *y, const double *
         if (r > best) best = r, fast = i;
     }
     return fast;
+}
+
+/* The modes of the problem in the frame that are at rest in the inertial frame: s z = -S z (a
+ * displacement fixed in space, seen turning at the frame's rate: the invariants of velocity-level
+ * joints and members, the position of a driven hub, which are semisimple zeros, constraint
+ * modes, in the inertial frame) become constraint modes here too; by the residual
+ * |(s + S) z| / (|s| |z|) (weights 1 / nominal_i) below MODES_FRAME_REST (a motion of the
+ * structure has about 1 or more; the computed vectors of rest modes, a cluster of equal
+ * eigenvalues, 1e-5 to 2e-4 on a spinning cantilever). Sorted again. */
+#define MODES_FRAME_REST 1e-2
+static int frame_rest_modes(dae_modes *M, const sp_csc *S)
+{
+    int n = M->n, changed = 0;
+    double *a = malloc((size_t)n * sizeof *a), *b = malloc((size_t)n * sizeof *b);
+    if (!a || !b) {
+        free(a);
+        free(b);
+        return BG_ERR_MEMORY;
+    }
+    for (int k = 0; k < M->nmodes; k++) {
+        dae_mode *md = &M->modes[k];
+        if (md->kind != DAE_MODE_ELASTIC) continue;
+        const double *zr = M->vre + (size_t)k * n, *zi = M->vim + (size_t)k * n;
+        /* (s + S) z, real part a, imaginary part b */
+        for (int i = 0; i < n; i++) {
+            a[i] = md->re * zr[i] - md->im * zi[i];
+            b[i] = md->re * zi[i] + md->im * zr[i];
+        }
+        sp_matvec(S, 1.0, zr, 1.0, a);
+        sp_matvec(S, 1.0, zi, 1.0, b);
+        double num = 0, zz = 0;
+        for (int i = 0; i < n; i++) {
+            double w = mode_nominal(M, i);
+            num += (a[i] * a[i] + b[i] * b[i]) / (w * w);
+            zz += (zr[i] * zr[i] + zi[i] * zi[i]) / (w * w);
+        }
+        double mag = hypot(md->re, md->im);
+        if (mag > 0 && zz > 0 && sqrt(num / zz) <= MODES_FRAME_REST * mag) {
+            md->kind = DAE_MODE_CONSTRAINT;
+            M->counts[DAE_MODE_ELASTIC]--;
+            M->counts[DAE_MODE_CONSTRAINT]++;
+            changed = 1;
+        }
+    }
+    free(a);
+    free(b);
+    if (changed) mode_sort(M);
+    return BG_OK;
 }
 
 /* Modes in a co-moving frame (bg_modes.h, "Co-moving frames"): the state must be steady in the
@@ -739,10 +791,17 @@ static int modes_in_frame(const dae_problem *p, double t, const double *y, const
     memcpy(c, yp, (size_t)n * sizeof *c);
     sp_matvec(o->frame, -1.0, y, 1.0, c);
     memcpy(f.c, c, (size_t)n * sizeof *c);
+    /* the Jacobian of the problem in the frame: differences of its residual unless the
+     * problem's own is asked for (options.jacobian) */
+    if (o->jacobian != DAE_MODES_JAC_PROBLEM) f.q.jac = NULL;
     dae_modes_options oi = *o;
     oi.frame = NULL;
     oi.frozen = 0;
     st = dae_modes_compute(&f.q, t, y, NULL, &oi, out, err);
+    if ((st == BG_OK || st == DAE_CONV_FAIL) && frame_rest_modes(*out, o->frame) != BG_OK) {
+        dae_modes_free(out);
+        st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+    }
 done:
     bg_frame_free(&f);
     bg_jaceval_free(&J);
@@ -767,6 +826,12 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     int st = check_args(p, o, t, y, yp, err);
     if (st != BG_OK) return st;
     if (o->frame && p->n >= 1 && p->res) return modes_in_frame(p, t, y, yp, o, out, err);
+    dae_problem pdiff;
+    if (o->jacobian == DAE_MODES_JAC_DIFFERENCES && p->jac) { /* the residual's differences */
+        pdiff = *p;
+        pdiff.jac = NULL;
+        p = &pdiff;
+    }
     mctx c;
     memset(&c, 0, sizeof c);
     c.p = p;

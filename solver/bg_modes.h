@@ -112,6 +112,15 @@ typedef enum dae_modes_method {
     DAE_MODES_SPARSE = 2
 } dae_modes_method;
 
+/* Where the Jacobians of the linearisation come from (dae_modes_options.jacobian). */
+typedef enum dae_modes_jacobian {
+    DAE_MODES_JAC_AUTO = 0,       /* the problem's own (its analytic Jacobian, else differences),
+                                     except in a co-moving frame: differences (see there) */
+    DAE_MODES_JAC_PROBLEM = 1,    /* the problem's own, in a frame too */
+    DAE_MODES_JAC_DIFFERENCES = 2 /* coloured forward differences of the residual on the
+                                     problem's patterns (bg_fdjac.h), everywhere */
+} dae_modes_jacobian;
+
 typedef struct dae_modes_options {
     int method;            /* dae_modes_method, default DAE_MODES_AUTO */
     int dense_max;         /* the largest number of differential unknowns DAE_MODES_AUTO
@@ -137,6 +146,7 @@ typedef struct dae_modes_options {
                               of a co-moving frame (see "Co-moving frames" above; bgr_frame_rotation
                               builds it for a steady rotation): the modes are those of small
                               motions in that frame about a state steady in it, yp = S y + c */
+    int jacobian;          /* dae_modes_jacobian, default DAE_MODES_JAC_AUTO */
 } dae_modes_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */
