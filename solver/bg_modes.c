@@ -891,8 +891,8 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
                                 "linearisation has no constant coefficients and its modes are "
                                 "not those of small motions about the state (a structure "
                                 "spinning in the inertial frame: linearise it in a co-moving "
-                                "frame; options.frozen = 1 gives the frozen pencil's modes "
-                                "anyway)",
+                                "frame, options.frame; options.frozen = 1 gives the frozen "
+                                "pencil's modes anyway)",
                                 bg_eq_label(p, row, eb, sizeof eb), ratio,
                                 bg_var_label(p, fast, vb, sizeof vb));
             goto done;

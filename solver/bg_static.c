@@ -703,7 +703,8 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                                 "solves the equations at this instant, but %s changes along the "
                                 "motion (%.3g of its terms), so the motion does not keep it (a "
                                 "structure spinning in the inertial frame has no state of "
-                                "constant rates: model it in a co-moving frame)",
+                                "constant rates: find it at rest in a co-moving frame, "
+                                "options.frame)",
                                 bg_eq_label(p, row, eb, sizeof eb), ratio);
             goto out;
         }

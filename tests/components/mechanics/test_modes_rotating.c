@@ -367,9 +367,69 @@ static void test_southwell(void)
     }
 }
 
+/* What the frame cannot make steady stays refused: the cantilever spinning about z under
+ * gravity along -x (a load that does not turn with the frame), and bad arguments of
+ * bgr_frame_rotation. */
+static void test_refusals(void)
+{
+    const int n = 4;
+    const double p0[3] = {0, 0, 0}, p1[3] = {1, 0, 0}, up[3] = {0, 0, 1}, axis[3] = {0, 0, 1};
+    const double g[3] = {-9.81, 0, 0}, W = 3.0;
+    int nodes[5], elems[4], extra[5] = {1, 0, 0, 0, 0};
+    mech_section sec = blade;
+    bgr_model *m = bgr_model_create("rotor");
+    mech_beam_chain(m, 0, "blade", n, p0, p1, up, &sec, g, extra, NULL, nodes, elems);
+    int ground = mech_support(m, 0, "ground", 6);
+    int hub = mech_revolute(m, 0, "hub", -1, axis, 1);
+    int drive = bgr_Sf(m, 0, "drive", 1, &W);
+    bgr_bond(m, 0, "b_ground", 6, bgr_port_of(m, ground, 0), bgr_port_of(m, hub, 0), NULL, NULL);
+    bgr_bond(m, 0, "b_root", 6, bgr_port_of(m, hub, 1),
+             mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);
+    bgr_bond(m, 0, "b_drive", 1, bgr_port_of(m, drive, 0), bgr_port_of(m, hub, 2), NULL, NULL);
+    int st = bgr_compile(m);
+    mech_beam_chain_set(m, nodes, n, p0, p1);
+    sp_csc *S = NULL;
+    double *c = malloc((size_t)bgr_n(m) * sizeof *c);
+    if (st == BG_OK) st = bgr_frame_rotation(m, axis, W, NULL, &S, c);
+    dae_static_options so;
+    dae_static_options_default(&so);
+    so.frame = S;
+    so.yp_steady = c;
+    dae_static_result res;
+    bg_error err = {0};
+    if (st == BG_OK) st = bgr_static(m, &so, 0.0, &res, &err);
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(err.message, "no steady motion"),
+           "gravity across the axis: no state at rest in the frame, refused (status %d: %s)", st,
+           err.message);
+    /* the modes at the assembled state with the frame's rates: not steady, refused */
+    double *yp = bgr_yp0(m);
+    memcpy(yp, c, (size_t)bgr_n(m) * sizeof *yp);
+    sp_matvec(S, 1.0, bgr_y0(m), 1.0, yp);
+    dae_modes_options mo;
+    dae_modes_options_default(&mo);
+    mo.frame = S;
+    dae_modes *M = NULL;
+    st = bgr_modes(m, 0.0, NULL, yp, &mo, &M, &err);
+    tap_ok(st == BG_ERR_ARGUMENT && !M && strstr(err.message, "not steady in the co-moving frame"),
+           "its modes in the frame: refused (status %d: %s)", st, err.message);
+    const double zero[3] = {0, 0, 0};
+    sp_csc *S2 = NULL;
+    st = bgr_frame_rotation(m, zero, W, NULL, &S2, NULL);
+    tap_ok(st == BG_ERR_ARGUMENT && !S2 && strstr(bgr_model_error(m)->message, "axis"),
+           "bgr_frame_rotation with a zero axis: status %d: %s", st, bgr_model_error(m)->message);
+    mo.jacobian = 7;
+    st = bgr_modes(m, 0.0, NULL, yp, &mo, &M, &err);
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(err.message, "jacobian = 7"),
+           "options.jacobian out of range: status %d: %s", st, err.message);
+    sp_csc_free(&S);
+    free(c);
+    bgr_model_free(&m);
+}
+
 int main(void)
 {
     test_orbit_components();
     test_southwell();
+    test_refusals();
     return tap_done();
 }
