@@ -35,22 +35,19 @@ int bgr_declare_frame(bgr_element *el, bgr_model *m, int kind, const int *vars)
                              m->comp[el->comp].path, el->name, vars[i], m->n - 1);
     if (!m->fkind && !(m->fkind = calloc((size_t)m->n + 1, sizeof *m->fkind)))
         return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
-    /* the same group again: nothing to add; any overlap with another: refused */
-    for (int g = 0; g < m->nfgroup; g++) {
-        const int *G = m->fgroup[g];
-        int glen = G[0] == BGR_FRAME_QUATERNION ? 4 : 3, same = G[0] == kind, overlap = 0;
-        for (int i = 0; i < len; i++) {
-            same = same && glen == len && G[1 + i] == vars[i];
-            for (int j = 0; j < glen; j++)
-                overlap |= G[1 + j] == vars[i];
-        }
-        if (same) return BG_OK;
-        if (overlap)
-            return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile",
-                             "element %s/%s declares a frame kind for %s, which another "
-                             "declaration puts in a different group or kind",
-                             m->comp[el->comp].path, el->name, m->vname[vars[0]]);
+    /* the same group again: nothing to add; any overlap with another: refused (fkind: the
+     * group of each unknown, + 1) */
+    int g0 = m->fkind[vars[0]] - 1, same = g0 >= 0 && m->fgroup[g0][0] == kind, any = 0;
+    for (int i = 0; i < len; i++) {
+        any |= m->fkind[vars[i]] != 0;
+        same = same && m->fkind[vars[i]] == g0 + 1 && m->fgroup[g0][1 + i] == vars[i];
     }
+    if (same) return BG_OK;
+    if (any)
+        return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile",
+                         "element %s/%s declares a frame kind for %s, which another declaration "
+                         "puts in a different group or kind",
+                         m->comp[el->comp].path, el->name, m->vname[vars[0]]);
     if (m->nfgroup == m->capfgroup) {
         int cap = m->capfgroup ? 2 * m->capfgroup : 16;
         int(*ng)[5] = realloc(m->fgroup, (size_t)cap * sizeof *ng);
@@ -63,7 +60,7 @@ int bgr_declare_frame(bgr_element *el, bgr_model *m, int kind, const int *vars)
     G[4] = -1;
     for (int i = 0; i < len; i++) {
         G[1 + i] = vars[i];
-        m->fkind[vars[i]] = kind;
+        m->fkind[vars[i]] = m->nfgroup;
     }
     return BG_OK;
 }
