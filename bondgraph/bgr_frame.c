@@ -73,8 +73,7 @@ int bgr_frame_rotation(const bgr_model *m, const double *axis, double rate, cons
     if (!m) return BG_ERR_ARGUMENT;
     int st = bgri_need_compiled(m, w);
     if (st != BG_OK) return st;
-    if (!S || !axis)
-        return bgri_fail_c(m, BG_ERR_ARGUMENT, w, "%s is NULL", !S ? "S" : "axis");
+    if (!S || !axis) return bgri_fail_c(m, BG_ERR_ARGUMENT, w, "%s is NULL", !S ? "S" : "axis");
     double a = 0;
     for (int i = 0; i < 3; i++)
         a += axis[i] * axis[i];

@@ -12,17 +12,17 @@
 #include "bg_dae.h"
 
 typedef struct bg_frame {
-    dae_problem q;          /* G, with p's names, equation names, nominals, kinds and
-                               constraints (y = z: the positions' constraints are the same) */
-    const dae_problem *p;   /* F */
-    const sp_csc *S;        /* n x n */
-    double *c;              /* n: the affine part (copy; zeros when none is given) */
-    double *yp;             /* scratch: S z + c + z' */
-    sp_csc *Jy, *Jyp;       /* F's Jacobians (on p's patterns) */
-    sp_csc *pat_y;          /* the pattern of dF/dy + dF/dy' S */
-    int *slot_y;            /* Jy's entry k at pat_y->val[slot_y[k]] */
-    int *slot_prod;         /* the products Jyp(i, k) S(k, j), in the loop order of
-                               frame_jac, at pat_y->val[slot_prod[...]] */
+    dae_problem q;        /* G, with p's names, equation names, nominals, kinds and
+                             constraints (y = z: the positions' constraints are the same) */
+    const dae_problem *p; /* F */
+    const sp_csc *S;      /* n x n */
+    double *c;            /* n: the affine part (copy; zeros when none is given) */
+    double *yp;           /* scratch: S z + c + z' */
+    sp_csc *Jy, *Jyp;     /* F's Jacobians (on p's patterns) */
+    sp_csc *pat_y;        /* the pattern of dF/dy + dF/dy' S */
+    int *slot_y;          /* Jy's entry k at pat_y->val[slot_y[k]] */
+    int *slot_prod;       /* the products Jyp(i, k) S(k, j), in the loop order of
+                             frame_jac, at pat_y->val[slot_prod[...]] */
     long nprod;
 } bg_frame;
 

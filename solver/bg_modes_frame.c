@@ -72,7 +72,7 @@ static int frame_rest_modes(dae_modes *M, const sp_csc *S)
  * frame (bg_jaceval_steadiness along the frame's flow) unless o->frozen; then the modes of the
  * problem in the frame, G(t, z, z') = F(t, z, S z + c + z') with c = yp - S y, at rest. */
 int mode_in_frame(const dae_problem *p, double t, const double *y, const double *yp,
-                          const dae_modes_options *o, dae_modes **out, bg_error *err)
+                  const dae_modes_options *o, dae_modes **out, bg_error *err)
 {
     const char *where = "dae_modes_compute";
     int n = p->n, st;

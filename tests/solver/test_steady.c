@@ -76,8 +76,9 @@ static void test_orbit(void)
  * frame's radial and tangential coordinates (xi, eta),
  *     m (xi'' - 2 W eta' - W^2 xi) + k xi = 0,   m (eta'' + 2 W xi' - W^2 eta) + (f / r) eta = 0,
  * with the spring's tension f = k (r - L0) = m W^2 r, have m s^2 (m s^2 + k + 3 m W^2) = 0: the
- * epicyclic frequency omega^2 = k/m + 3 W^2 (Goldstein, Classical Mechanics, sec. 3.6, the
- * stability of circular orbits) and a double zero (the orbit's phase drifting in the frame). */
+ * epicyclic frequency omega^2 = k/m + 3 W^2 (the frequency of small radial oscillations about a
+ * circular orbit: Goldstein, Classical Mechanics, on the stability of circular orbits) and a
+ * double zero (the orbit's phase drifting in the frame). */
 static sp_csc *plane_rotation(double W)
 {
     /* (x, z)' = W (-z, x), (vx, vz)' = W (-vz, vx) */
