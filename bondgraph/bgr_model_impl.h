@@ -53,6 +53,11 @@ struct bgr_model {
     double *vals;
     /* per element own unknown names (kept until compile) */
     char ***el_state_names, ***el_alg_names;
+    /* kinds of unknowns under a frame's motion (bgr_declare_frame): groups of kind and up to
+     * four unknowns, and each unknown's group + 1 (0: none; NULL until the first declaration) */
+    int (*fgroup)[5];
+    int nfgroup, capfgroup;
+    int *fkind;
     /* for the Jacobian check */
     double ck_t;
     const double *ck_y, *ck_yp;

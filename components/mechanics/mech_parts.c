@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mech_frame.h"
 #include "mech_util.h"
 
 typedef struct part {
@@ -160,6 +161,17 @@ static void part_partials(const bgr_element *el, const double *y, mech_emit *E)
     }
 }
 
+/* Under a frame's motion (mech_frame.h): the ports' vectors, a point mass's x and v. */
+static int part_frame(bgr_element *el, bgr_model *m, const part *p)
+{
+    int st = mech_frame_ports(el, m);
+    if (st == BG_OK && p->kind == PART_MASS) {
+        st = mech_frame_group(el, m, BGR_FRAME_POSITION, p->x);
+        if (st == BG_OK) st = mech_frame_group(el, m, BGR_FRAME_VECTOR, p->v);
+    }
+    return st;
+}
+
 static int part_declare(bgr_element *el, bgr_model *m)
 {
     part *p = el->params;
@@ -224,6 +236,7 @@ static int part_declare(bgr_element *el, bgr_model *m)
         st = mech_nominal(el, m, p->e[2], p->sc.moment);
     for (int i = 0; p->kind == PART_MASS && i < 3 && st == BG_OK; i++)
         st = mech_nominal(el, m, p->x + i, p->sc.length);
+    if (st == BG_OK) st = part_frame(el, m, p);
     return st;
 }
 
