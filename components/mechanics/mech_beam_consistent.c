@@ -5,11 +5,12 @@
  * carry rho I_z and rho I_y (a rigid section with directors e2, e3 and the "masses" I_z, I_y has
  * the inertia I_y + I_z, I_y, I_z about e1, e2, e3: sum_i m_i |e_i'|^2 = w^T sum_i m_i (1 - e_i
  * e_i^T) w), at the 4 Gauss points, less the same points at the nodes (r = x, D = the node
- * triad's t2, t3: the node bodies' lumped masses and rotary inertias, exactly). Every field is a
- * combination sum_b c_b(xi) B_b of 18 basis vectors: 16 made here on the AD numbers of the
- * element's energy (mech_beam.c), so that their velocity gradients and Hessians give the points'
- * velocities and accelerations exactly, and the node positions x_a, x_b. The inertia loads
- * follow by d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
+ * triad's t2, t3: the node bodies' lumped masses and rotary inertias, exactly), and the bending
+ * mass template's three points over the rates of the chord e1 and the node axes t1 (mech_beam.h,
+ * change 4). Every field is a combination sum_b c_b(xi) B_b of 21 basis vectors: 19 made here
+ * on the AD numbers of the element's energy (mech_beam.c), so that their velocity gradients and
+ * Hessians give the points' velocities and accelerations exactly, and the node positions x_a,
+ * x_b. The inertia loads follow by d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
 #include <math.h>
 #include <string.h>
 

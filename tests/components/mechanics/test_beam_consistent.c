@@ -196,7 +196,8 @@ static void test_frequencies(void)
            "the closed form at 8 elements (target 1e-4), within %.2e at 16",
            w8, w16);
     tap_ok(ok[1] && omin > 7.5,
-           "consistent element: eighth order on the cantilever (smallest measured order %.2f)", omin);
+           "consistent element: eighth order on the cantilever (smallest measured order %.2f)",
+           omin);
     tap_ok(ok[0] && err[0][2][0] > 10 * err[1][2][0] && err[0][2][2] > 10 * err[1][2][2],
            "lumped element, 8 elements: errors %.2e and %.2e on modes 1 and 3, ten times the "
            "consistent ones at least",
@@ -238,7 +239,8 @@ static void test_kinetic(void)
                              {-477, -109, -993, 262}};
     double mA = sec.rho * sec.A * L, want = 0;
     /* plane z: w = z, slope rate s' = -omega_y; plane y: w = y, s' = omega_z */
-    const double u[2][4] = {{va[2], -L * wa[1], vb[2], -L * wb[1]}, {va[1], L * wa[2], vb[1], L * wb[2]}};
+    const double u[2][4] = {{va[2], -L * wa[1], vb[2], -L * wb[1]},
+                            {va[1], L * wa[2], vb[1], L * wb[2]}};
     for (int pl = 0; pl < 2; pl++)
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++) {
