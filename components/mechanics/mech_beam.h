@@ -71,8 +71,8 @@
  *      inertia loads times the rotation rates, which the Newton iteration absorbs). The
  *      residual of this element takes the automatic-differentiation path with the second
  *      derivatives along the motion only (mech_ad.h, order 3: the points' accelerations need
- *      the fields' Hessians times the configuration's rate), about 20 times the cost of the
- *      lumped element's plain residual (docs/beam.md: the crane's boom at 4 consistent
+ *      the fields' Hessians times the configuration's rate), over 20 times the cost of the
+ *      lumped element's plain residual (docs/beam.md: the crane's boom at 3 and 4 consistent
  *      elements against its 16 lumped ones).
  *   4. Bending mass: a mass template (Felippa, Guo and Park, "Mass matrix templates: general
  *      description and 1D examples", Arch. Comput. Methods Eng. 22 (2015) 1-65: a mass matrix
