@@ -29,7 +29,7 @@
  * clamped-free bending frequencies are off by 7e-3, 2.4e-2, 3.9e-2, the tip of the elastica at
  * P L^2 / (E I) = 10 by 8e-3 L (2e-3 L at 16).
  * MECH_BEAM_CONSISTENT: at 8 elements the clamped-free bending frequencies off by 1.4e-11,
- * 2.1e-8, 1.3e-6 (eighth order in 1/n on the cantilever, sixth at other supports), the
+ * 2.1e-8, 1.3e-6 (eighth order in 1/n, pinned-pinned too; sixth with other supports), the
  * elastica's tip at k = 10 by 3.4e-5 L, 2.2e-6 L at 16 (fourth order: the cubic field); the
  * tables are in docs/beam.md and tests/components/mechanics/test_beam_consistent.c. From four
  * changes, the first three the local form of the cubic (Hermite) field across the chord that
