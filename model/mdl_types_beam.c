@@ -29,7 +29,9 @@ static const mdl_param_def chain_params[] = {
      "density (the masses lumped into the nodes)"},
     {"element", MDL_CHOICE, 0, "-", "lumped", 0, 0, 0, "lumped|consistent",
      "the beam element: lumped (masses in the nodes, second order in 1/n) or consistent (the "
-     "elements' distributed inertia, rotation angles and bowing: fourth order; mech_beam.h)"},
+     "elements' distributed inertia with a higher-order bending mass, rotation angles and "
+     "bowing: a cantilever's bending frequencies of eighth order, statics of fourth; "
+     "mech_beam.h)"},
     {"kappa", MDL_NUMBER, 0, "1", "0", 0, INF, 0, NULL,
      "shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko"},
     {"beta", MDL_NUMBER, 0, "s", "0", 0, INF, 0, NULL,

@@ -28,11 +28,12 @@
  * (mech_beam_chain.h) lumps it into the node bodies. Second order in 1/n: at 8 elements the
  * clamped-free bending frequencies are off by 7e-3, 2.4e-2, 3.9e-2, the tip of the elastica at
  * P L^2 / (E I) = 10 by 8e-3 L (2e-3 L at 16).
- * MECH_BEAM_CONSISTENT: fourth order in 1/n (at 8 elements: the frequencies off by 2.1e-6,
- * 8.0e-5, 6.1e-4, the elastica's tip at k = 10 by 3.4e-5 L, 2.2e-6 L at 16; the tables are in
- * docs/beam.md and tests/components/mechanics/test_beam_consistent.c), from three changes,
- * each the local form of the cubic (Hermite) field across the chord that the local bending
- * stiffness comes from:
+ * MECH_BEAM_CONSISTENT: at 8 elements the clamped-free bending frequencies off by 1.4e-11,
+ * 2.1e-8, 1.3e-6 (eighth order in 1/n, pinned-pinned too; sixth with other supports), the
+ * elastica's tip at k = 10 by 3.4e-5 L, 2.2e-6 L at 16 (fourth order: the cubic field); the
+ * tables are in docs/beam.md and tests/components/mechanics/test_beam_consistent.c. From four
+ * changes, the first three the local form of the cubic (Hermite) field across the chord that
+ * the local bending stiffness comes from, the fourth a correction of its mass:
  *   1. Angles: theta of a node is the rotation vector of its triad relative to the element frame
  *      (the logarithm phi n of E^T T, from its skew part sin(phi) n: theta = s asin|s| / |s|)
  *      instead of the skew part itself, which is short by phi^3 / 6.
@@ -63,16 +64,57 @@
  *        f = sum_p mu_p G_p^T (r_p'' - g)   (g: the chain's gravity on the displacement points:
  *                                            the distributed weight, with its end moments)
  *      Linearised at a straight rest state this is the classical consistent mass (cubic across,
- *      linear along, with the consistent rotary inertia). T is conserved with the rest of the
- *      model's energy. The Jacobian is exact at rest (modes, static starts); in motion it
- *      leaves out the derivatives of G_p' u' with respect to the configuration and of
+ *      linear along, with the consistent rotary inertia), plus change 4. T is conserved with
+ *      the rest of the model's energy. The Jacobian is exact at rest (modes, static starts); in
+ *      motion it leaves out the derivatives of G_p' u' with respect to the configuration and of
  *      omega = R w, R w' with respect to the nodes' orientations (terms of the size of the
  *      inertia loads times the rotation rates, which the Newton iteration absorbs). The
  *      residual of this element takes the automatic-differentiation path with the second
  *      derivatives along the motion only (mech_ad.h, order 3: the points' accelerations need
- *      the fields' Hessians times the configuration's rate), about 20 times the cost of the
- *      lumped element's plain residual (docs/beam.md: the crane's boom at 4 consistent
- *      elements costs 1.16 times its 16 lumped ones).
+ *      the fields' Hessians times the configuration's rate), over 20 times the cost of the
+ *      lumped element's plain residual (docs/beam.md: the crane's boom at 3 and 4 consistent
+ *      elements against its 16 lumped ones).
+ *   4. Bending mass: a mass template (Felippa, Guo and Park, "Mass matrix templates: general
+ *      description and 1D examples", Arch. Comput. Methods Eng. 22 (2015) 1-65: a mass matrix
+ *      with free entries fixed by the dispersion of waves on a uniform mesh). The cubic field's
+ *      consistent mass gives the eigenvalues the error (k h)^4 / 720 (frequencies: / 1440;
+ *      6.1e-4 on the cantilever's third mode at 8 elements). T gets the further term
+ *        T_4 = rho A L0^3 / 35280 [54 |E|^2 - 138 E.(A + B) + 94 (|A|^2 + |B|^2) + 34 A.B],
+ *      E = e1', A = t1_a', B = t1_b' (the rates of the chord's and the node triads' first axes,
+ *      in each bending plane the rates of the chord's and the end slopes; A = B = E in any rigid
+ *      motion of the straight element, where T_4 = 0; no axial or torsional part), so that the
+ *      bending mass in each plane, u = (w_a, L0 s_a, w_b, L0 s_b) (w the transverse
+ *      displacement, s = dw/dx), is
+ *        M = rho A L0 / 17640 [6606 993 2214 -477; 993 262 477 -109; 2214 477 6606 -993;
+ *                              -477 -109 -993 262]
+ *      (consistent: rho A L0 / 420 [156 22 54 -13; 22 4 13 -3; 54 13 156 -22; -13 -3 -22 4];
+ *      both positive definite, the smallest eigenvalue 5.2e-3 and 4.9e-4 of rho A L0, so that
+ *      T stays a positive definite form in the velocities). T_4 is taken as three more points
+ *      of the kind above, 54 |E - 23/18 (A + B)|^2 - 98/3 |A + B|^2 + 77/2 |A - B|^2 for the
+ *      bracket (the vectors times L0, the "masses" times rho A L0 / 17640), with their inertia
+ *      loads by d'Alembert's principle as the others'.
+ *      Derivation: a symmetric element mass [a b c d; b e -d f; c -d a -b; d f -b e] in units
+ *      of rho A h, with a + c = 1/2 (the mass), has five free entries. On the uniform infinite
+ *      mesh of elements h with K = EI/h^3 [12 6 -12 6; 6 4 -6 2; ...], the Bloch waves
+ *      (w, h s)_j = (W, S) exp(i j phi), phi = k h, solve det(K(phi) - lambda M(phi)) = 0,
+ *      lambda = omega^2 rho A h^4 / EI; its acoustic root is lambda = phi^4 (1 + C1 phi^2 +
+ *      C2 phi^4 + C3 phi^6 + O(phi^8)) with C1 = -(2a - 8d + 4e + 4f - 1) / 2, then (C1 = 0)
+ *      C2 = -(240 d + 120 e - 600 f + 1) / 720, then (C2 = 0) C3 = -(907200 (e - f)^2
+ *      - 28560 e + 62160 f + 407) / 1209600 (b drops out: its terms cancel between the two
+ *      elements at a node). C1 = C2 = C3 = 0 (the frequencies' error of eighth order away from
+ *      the ends) and the exact kinetic energy of a rigid rotation (a + 2e - 2d + 2f - 2b = 1/3)
+ *      leave one parameter, u = e - f; the ends of a mesh add an error of sixth order, which
+ *      u = 53/2520 cancels on the clamped-free beam (found by measurement on the matrix
+ *      eigenproblem at 16 to 48 elements; any u in 0.017 .. 0.025 keeps its third frequency
+ *      within 4e-5 at 8 elements). The consistent mass has C2 = 1/720; its mean with the mass
+ *      of the nodal rule with end derivatives, h (f_a + f_b) / 2 + h^2 (f_a' - f_b') / 12
+ *      ("Block diagonal and higher order mass matrices for Hermite beam elements", Chinese J.
+ *      Comput. Mech. 2024) is C1 = C2 = 0 too, but keeps a larger end term: 1.8e-4 on the
+ *      cantilever's third frequency at 8 elements, and an indefinite element mass. Other
+ *      supports (the matrix eigenproblem), third mode at 8 elements: pinned-pinned 5.4e-6,
+ *      clamped-pinned 6.9e-5, clamped-clamped 2.1e-4, free-free 2.5e-4 (the consistent mass:
+ *      1.3e-3 .. 2.4e-3); at 4 elements the free-free third mode is worse (1.5e-2 against
+ *      7.9e-3).
  * No damping in the element unless beta > 0: stiffness-proportional (Rayleigh) damping,
  * the gradient with respect to the port velocities of D = beta/2 d'^T K d', d' the rates of the
  * local deformations and K the local stiffness, so that it acts on deformation only (a rigid

@@ -5,11 +5,12 @@
  * carry rho I_z and rho I_y (a rigid section with directors e2, e3 and the "masses" I_z, I_y has
  * the inertia I_y + I_z, I_y, I_z about e1, e2, e3: sum_i m_i |e_i'|^2 = w^T sum_i m_i (1 - e_i
  * e_i^T) w), at the 4 Gauss points, less the same points at the nodes (r = x, D = the node
- * triad's t2, t3: the node bodies' lumped masses and rotary inertias, exactly). Every field is a
- * combination sum_b c_b(xi) B_b of 18 basis vectors: 16 made here on the AD numbers of the
- * element's energy (mech_beam.c), so that their velocity gradients and Hessians give the points'
- * velocities and accelerations exactly, and the node positions x_a, x_b. The inertia loads
- * follow by d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
+ * triad's t2, t3: the node bodies' lumped masses and rotary inertias, exactly), and the bending
+ * mass template's three points over the rates of the chord e1 and the node axes t1 (mech_beam.h,
+ * change 4). Every field is a combination sum_b c_b(xi) B_b of 21 basis vectors: 19 made here
+ * on the AD numbers of the element's energy (mech_beam.c), so that their velocity gradients and
+ * Hessians give the points' velocities and accelerations exactly, and the node positions x_a,
+ * x_b. The inertia loads follow by d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
 #include <math.h>
 #include <string.h>
 
@@ -89,12 +90,12 @@ static const double GX[4] = {0.069431844202973712, 0.33000947820757187, 0.669990
 static const double GW[4] = {0.17392742256872693, 0.32607257743127307, 0.32607257743127307,
                              0.17392742256872693};
 
-enum { NB = 18, XA = 16, XB = 17 };
+enum { NV = MECH_BEAM_NBASIS, NB = NV + 2, XA = NV, XB = NV + 1, NP = 21 };
 
 /* The basis: 0 P = th_z,a e2 - th_y,a e3, 1 Q = th_z,b e2 - th_y,b e3, 2 e2, 3 e3,
  * 4 th_x,a e3, 5 th_x,b e3, 6 th_z,a e1, 7 th_z,b e1, 8 th_x,a e2, 9 th_x,b e2, 10 th_y,a e1,
- * 11 th_y,b e1, 12 t2 of node a, 13 t2 of node b, 14 t3 of node a, 15 t3 of node b (16, 17: the
- * node positions x_a, x_b). */
+ * 11 th_y,b e1, 12 t2 of node a, 13 t2 of node b, 14 t3 of node a, 15 t3 of node b, 16 the chord
+ * e1, 17 t1 of node a, 18 t1 of node b (19, 20: the node positions x_a, x_b). */
 void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
 {
     const ad *th = k->th;
@@ -114,15 +115,18 @@ void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
         k->B[13][i] = k->tb[3 + i];
         k->B[14][i] = k->ta[6 + i];
         k->B[15][i] = k->tb[6 + i];
+        k->B[16][i] = k->e1[i];
+        k->B[17][i] = k->ta[i];
+        k->B[18][i] = k->tb[i];
     }
     if (c->order > 1)
-        for (int b = 0; b < 16; b++)
+        for (int b = 0; b < NV; b++)
             for (int i = 0; i < 3; i++)
                 ad_mirror(c, &k->B[b][i]);
 }
 
 /* The inertia points: coefficients over the basis, mass mu, and whether gravity acts on them.
- * Returns the number of points (at most 18). */
+ * Returns the number of points (at most NP). */
 typedef struct point {
     double c[NB], mu;
     int weight;
@@ -133,7 +137,7 @@ static int inertia_points(const beam *b, point *p)
     const mech_section *S = &b->sec;
     double L0 = b->L0, mA = S->rho * S->A * L0, mz = S->rho * S->Iz * L0, my = S->rho * S->Iy * L0;
     int n = 0;
-    memset(p, 0, 18 * sizeof *p);
+    memset(p, 0, NP * sizeof *p);
     for (int g = 0; g < 4; g++) {
         double xi = GX[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
         double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi; /* H1', H2' */
@@ -155,6 +159,12 @@ static int inertia_points(const beam *b, point *p)
     p[n].c[13] = 1, p[n++].mu = -0.5 * mz;
     p[n].c[14] = 1, p[n++].mu = -0.5 * my;
     p[n].c[15] = 1, p[n++].mu = -0.5 * my;
+    /* the bending correction (mech_beam.h): mu0 L0^2 Q with E = e1', A = t1_a', B = t1_b',
+     * Q = 54 |E - 23/18 (A + B)|^2 - 98/3 |A + B|^2 + 77/2 |A - B|^2 */
+    double m0 = mA / 17640, l = L0;
+    p[n].c[16] = l, p[n].c[17] = p[n].c[18] = -23.0 / 18 * l, p[n++].mu = 54 * m0;
+    p[n].c[17] = p[n].c[18] = l, p[n++].mu = -98.0 / 3 * m0;
+    p[n].c[17] = l, p[n].c[18] = -l, p[n++].mu = 77.0 / 2 * m0;
     return n;
 }
 
@@ -223,7 +233,7 @@ static void gradient_rate(const ad *a, const double *y, const beam *b, const dou
 /* The basis' velocity gradients (and their derivatives if dgv is wanted) into the scratch. */
 static void basis_gradients(const beam *b, const double *y, beam_work *k, int with_dgv)
 {
-    for (int bb = 0; bb < 16; bb++)
+    for (int bb = 0; bb < NV; bb++)
         for (int i = 0; i < 3; i++)
             mech_beam_velocity_gradient_(&k->B[bb][i], y + b->qa, y + b->qb, k->gv[bb][i],
                                          with_dgv ? k->dgv[bb][i] : NULL);
@@ -233,7 +243,7 @@ static void basis_gradients(const beam *b, const double *y, beam_work *k, int wi
 static void point_gradient(const beam_work *k, const point *p, int i, double *G)
 {
     memset(G, 0, 12 * sizeof *G);
-    for (int bb = 0; bb < 16; bb++)
+    for (int bb = 0; bb < NV; bb++)
         if (p->c[bb] != 0)
             for (int j = 0; j < 12; j++)
                 G[j] += p->c[bb] * k->gv[bb][i][j];
@@ -258,8 +268,8 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
      * rate of the gradient along the motion, centrifugal and Coriolis): with the Jacobian from
      * the whole Hessians (order 2), for the residual from the Hessians along X' (order 3) */
     basis_gradients(b, y, k, dX != NULL);
-    double Cd[16][3][12], acc[NB][3];
-    for (int bb = 0; bb < 16; bb++)
+    double Cd[NV][3][12], acc[NB][3];
+    for (int bb = 0; bb < NV; bb++)
         for (int i = 0; i < 3; i++) {
             if (dX)
                 for (int j = 0; j < 12; j++) {
@@ -279,12 +289,12 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
         acc[XA][i] = ua[i];
         acc[XB][i] = ua[6 + i];
     }
-    point P[18];
+    point P[NP];
     int np = inertia_points(b, P);
     /* a_p = mu_p (r_p'' - g); f = sum_p G_p^T a_p = sum_b sum_i S_b,i gv_b,i (+ the x's) */
     double S[NB][3];
     memset(S, 0, sizeof S);
-    double a[18][3];
+    double a[NP][3];
     for (int p = 0; p < np; p++)
         for (int i = 0; i < 3; i++) {
             double rdd = 0;
@@ -299,7 +309,7 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
         g[i] += S[XA][i];
         g[6 + i] += S[XB][i];
     }
-    for (int bb = 0; bb < 16; bb++)
+    for (int bb = 0; bb < NV; bb++)
         for (int i = 0; i < 3; i++)
             if (S[bb][i] != 0)
                 for (int j = 0; j < 12; j++)
@@ -307,8 +317,8 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
     if (!dX) return;
     /* d acc / d u' = Cd + (dgv B)^T u';  d acc / dX ~ u''^T dgv (the configuration derivative
      * of the rate term left out: see mech_beam.h) */
-    double dacc_u[16][3][12], dacc_X[16][3][14];
-    for (int bb = 0; bb < 16; bb++)
+    double dacc_u[NV][3][12], dacc_X[NV][3][14];
+    for (int bb = 0; bb < NV; bb++)
         for (int i = 0; i < 3; i++) {
             const double(*D)[14] = (const double(*)[14])k->dgv[bb][i];
             for (int j = 0; j < 12; j++) {
@@ -332,7 +342,7 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
     memset(dX, 0, 12 * 14 * sizeof(double));
     memset(dV, 0, 144 * sizeof(double));
     memset(dA, 0, 144 * sizeof(double));
-    for (int bb = 0; bb < 16; bb++) /* the rate of G^T along X */
+    for (int bb = 0; bb < NV; bb++) /* the rate of G^T along X */
         for (int i = 0; i < 3; i++)
             if (S[bb][i] != 0)
                 for (int j = 0; j < 12; j++)
@@ -342,7 +352,7 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
         for (int i = 0; i < 3; i++) {
             double G[12], du[12] = {0}, dx[14] = {0};
             point_gradient(k, &P[p], i, G);
-            for (int bb = 0; bb < 16; bb++) {
+            for (int bb = 0; bb < NV; bb++) {
                 double cb = P[p].c[bb];
                 if (cb == 0) continue;
                 for (int j = 0; j < 12; j++)
@@ -385,7 +395,7 @@ double mech_beam_kinetic_(const beam *b, const double *y)
     double ud[12], T = 0;
     port_rates(b, y, y, ud);
     basis_gradients(b, y, k, 0);
-    point P[18];
+    point P[NP];
     int np = inertia_points(b, P);
     for (int p = 0; p < np; p++)
         for (int i = 0; i < 3; i++) {

@@ -10,6 +10,9 @@
 #include "mech_beam.h"
 #include "mech_util.h"
 
+/* The consistent inertia's basis vectors made on AD numbers (mech_beam_consistent.c). */
+#define MECH_BEAM_NBASIS 19
+
 /* AD scratch of one energy evaluation (about 130 kB with Hessians), allocated with the element
  * so that residual and Jacobian evaluations allocate nothing. The elements of a chain share one
  * (reference counted): they are evaluated one after another, and one scratch stays in cache
@@ -19,9 +22,10 @@ typedef struct beam_work {
     ad X[6], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6]; /* X: the nodes' positions */
     ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
     ad bow, eps;          /* consistent element: the bowing term and the axial strain */
-    ad B[16][3];          /* consistent inertia: the basis vectors of the fields (see
-                             mech_beam_consistent.c) */
-    double gv[16][3][12], dgv[16][3][12][14]; /* their velocity gradients and derivatives */
+    ad B[MECH_BEAM_NBASIS][3]; /* consistent inertia: the basis vectors of the fields (see
+                                  mech_beam_consistent.c) */
+    double gv[MECH_BEAM_NBASIS][3][12], dgv[MECH_BEAM_NBASIS][3][12][14]; /* their velocity
+                                  gradients and derivatives */
     double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
     int refs;             /* elements sharing it */
 } beam_work;
