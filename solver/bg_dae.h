@@ -194,7 +194,7 @@ typedef enum dae_mebdf_error {
     DAE_MEBDF_ERR_KP1 = 2   /* the local error of the MEBDF solution itself, of order k + 1:
                                its error constant times y - (the predictor of degree k + 1),
                                step ratios with exponent 1/(k+2), on Cash and Considine's rule:
-                               fewer steps, fewer correct digits than asked for */
+                               fewer steps and, at tight tolerances, fewer correct digits */
 } dae_mebdf_error;
 
 typedef struct dae_options {

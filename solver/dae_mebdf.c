@@ -75,10 +75,11 @@
  *   9.94; KP1 1.07, 1.02, 1.05, 1.17 and 4.74, 5.92, 7.29, 9.21 (MEBDFI: 4.58, 6.43, 7.59,
  *   10.12, with orders up to 8 where k <= 5 here). Work at equal accuracy on the collection (Newton
  *   iterations at equal scd against BDF's control, median over the scd range both reach): CASH 0.42
- *   (pump) to 2.51 (kinks), above 1.2 on ap102, kinks, lin2, pendulum2, robertson, smooth_ode; KP1
- *   0.80 to 2.79, above 1.4 on 9 of 16 problems. The step counts at a tolerance follow the
- *   estimate's constant; the work at equal accuracy does not improve on BDF's control: MEBDFI's
- *   fewer steps at tight tolerances come from its orders 7 and 8. (An earlier trial of the
+ *   (pump) to 2.51 (kinks), below 0.9 on chemakzo, osc_chain, pump, above 1.2 on ap102, crane,
+ *   kinks, lin2, pendulum2, robertson, smooth_ode; KP1 0.80 to 2.79, 1.4 or more on 8 of the 16
+ *   problems. The step counts at a tolerance follow the estimate's constant; the work at equal
+ *   accuracy does not improve on BDF's control: MEBDFI's fewer steps at tight tolerances come
+ *   from its orders 7 and 8. (An earlier trial of the
  *   order-(k+1) estimate inside BDF's step rule, which changes h at every step, failed the error
  *   test on a third of transamp's steps: the estimate needs the held steps.)
  * Stops: the second stage evaluates the residual at t_{n+2}. A step that ends on a stop (a
