@@ -180,8 +180,22 @@ typedef enum dae_method {
                      Newton matrix; A-stable up to order 4 (k = 3), stability angles 88.36 and
                      83.07 degrees at orders 5 and 6 (BDF: 73.35 and 51.84 at orders 4 and 5).
                      About three Newton iterations' cost per step for BDF's one. max_order
-                     bounds k; order, step, error test and statistics are BDF's of order k */
+                     bounds k; order, step and error test: dae_options.mebdf_error */
 } dae_method;
+
+/* The error control of DAE_MEBDF (dae_options.mebdf_error; solver/dae_mebdf.c gives the
+ * formulas and the measurements). */
+typedef enum dae_mebdf_error {
+    DAE_MEBDF_ERR_BDF = 0,  /* BDF's of order k (dae_err.c) on the MEBDF solution, whose order
+                               is k + 1: conservative (the default) */
+    DAE_MEBDF_ERR_CASH = 1, /* Cash and Considine's (their code MEBDFI): the order-k estimate
+                               in Gear's constants, tested on the first stage, and their order
+                               and step rule (h and k held k + 2 steps after a change) */
+    DAE_MEBDF_ERR_KP1 = 2   /* the local error of the MEBDF solution itself, of order k + 1:
+                               its error constant times y - (the predictor of degree k + 1),
+                               step ratios with exponent 1/(k+2), on Cash and Considine's rule:
+                               fewer steps and, at tight tolerances, fewer correct digits */
+} dae_mebdf_error;
 
 typedef struct dae_options {
     double rtol;              /* default 1e-6; 0 <= rtol < 1 (1e-100 is added to rtol |y| +
@@ -256,6 +270,8 @@ typedef struct dae_options {
                                   answer: flexible structures, stiff hydraulic lines); default 0:
                                   the order follows the error estimates alone (dae_stab.c) */
     dae_method method;         /* DAE_BDF (default) or DAE_MEBDF (dae_method above) */
+    dae_mebdf_error mebdf_error; /* DAE_MEBDF's error control (dae_mebdf_error above; default
+                                    DAE_MEBDF_ERR_BDF) */
 } dae_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. dae_create checks the options:

@@ -184,6 +184,9 @@ struct dae_solver {
     double ic_err;  /* and the weighted correction it calls for (1 = the tolerance) */
     dae_reduce *red; /* DAE_I2_REDUCE: the problem as given and the reduction (dae_reduce.c) */
     double *mb;      /* DAE_MEBDF: MB_NVEC vectors of n (dae_mebdf.c) */
+    double mb_psik;  /* DAE_MEBDF: psi[k] of the last accepted step, of order mb_k */
+    int mb_k;
+    int mb_kp1;      /* DAE_MEBDF: the step's error estimate is that of order k + 1 */
 };
 
 enum { ROW_DIFF = 0, ROW_ALG1 = 1, ROW_ALG2 = 2 };
@@ -281,6 +284,11 @@ int daei_newton(dae_solver *s, double t);
  * left-hand side); bdf_only: the step ends on (or its second stage would pass) a stop, BDF
  * alone. NL_* or a fatal status, as daei_newton. */
 int daei_mebdf_correct(dae_solver *s, double t, double teval, int bdf_only);
+/* The error test of a MEBDF step (in place of daei_error_test): 0 pass, 1 fail; sets err_k,
+ * err_km1 and knew as daei_error_test does, in Cash and Considine's constants. */
+int daei_mebdf_error_test(dae_solver *s);
+/* Order and step after an accepted MEBDF step (in place of daei_choose_next). */
+void daei_mebdf_choose_next(dae_solver *s, int kdiff);
 
 /* ---- dae_disc.c: discontinuities ---- */
 /* Whether the first Newton correction shows a jump the predictor missed (another iteration). */

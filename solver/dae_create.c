@@ -248,6 +248,11 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
                        "method must be DAE_BDF (0) or DAE_MEBDF (1) (got %d)", (int)o->method);
         return NULL;
     }
+    if (o->mebdf_error < DAE_MEBDF_ERR_BDF || o->mebdf_error > DAE_MEBDF_ERR_KP1) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w, "mebdf_error must be 0..2 (got %d)",
+                       (int)o->mebdf_error);
+        return NULL;
+    }
     if (o->newton_jac_age < 0 || (o->newton_jac_age > 0 && !(o->newton_dgmax > 0))) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w,
                        "newton_jac_age = %d: must be >= 0, and > 0 only with newton_dgmax > 0 "

@@ -157,7 +157,10 @@ static void complete_step(dae_solver *s)
     s->st.h_min_used = fmin(s->st.h_min_used, fabs(s->hh));
     s->st.h_max_used = fmax(s->st.h_max_used, fabs(s->hh));
     daei_stab_observe(s);
-    daei_choose_next(s, kdiff);
+    if (s->o.method == DAE_MEBDF)
+        daei_mebdf_choose_next(s, kdiff);
+    else
+        daei_choose_next(s, kdiff);
     daei_stab_decide(s);
     update_history(s);
 }
@@ -406,11 +409,13 @@ int daei_step(dae_solver *s)
          * round-off short), whichever side the model gives the jump to: the restart takes the
          * right-hand ones */
         double teval = landing && isb ? nextafter(ts, s->tn) : tnew;
-        int nl = s->o.method == DAE_MEBDF
-                     ? daei_mebdf_correct(s, tnew, teval,
-                                          !isnan(ts) && (tnew + s->hh - ts) * s->hh >= 0)
-                     : daei_newton(s, teval);
-        if (nl == NL_OK && (s->o.fixed_step || !daei_error_test(s))) {
+        int mebdf = s->o.method == DAE_MEBDF;
+        int nl = mebdf ? daei_mebdf_correct(s, tnew, teval,
+                                            !isnan(ts) && (tnew + s->hh - ts) * s->hh >= 0)
+                       : daei_newton(s, teval);
+        int fail = nl == NL_OK && !s->o.fixed_step &&
+                   (mebdf ? daei_mebdf_error_test(s) : daei_error_test(s));
+        if (nl == NL_OK && !fail) {
             complete_step(s);
             s->tn = tnew;
             return landing && isb ? STEP_ON_BREAKPOINT : STEP_TAKEN;
