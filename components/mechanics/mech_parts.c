@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "mech_util.h"
+#include "sig_sources.h"
 
 typedef struct part {
     int kind;                  /* PART_* */
@@ -15,8 +16,11 @@ typedef struct part {
     int drive;
     int angle;                 /* revolute with a prescribed angle (mech_revolute_angle) */
     int body_b;                /* its body B (-1: ground) */
-    mech_angle_fn fn;          /* the angle profile and its user data */
+    mech_angle_fn fn;          /* the angle profile and its user data, or */
     void *user;
+    int source;                /* a signal source's (sig_sources.h) output, */
+    int src_out;               /* SIG_VALUE or SIG_INTEGRAL, */
+    bgr_model *model;          /* of this model (set at declaration) */
     /* ids filled at declaration */
     int f[3], e[3], s[3]; /* first flow / effort id and orientation of each port */
     int x, v, q;          /* states (point mass), quaternion of body A (revolute) */
@@ -195,12 +199,23 @@ static double revolute_angle(const part *p, const double *y, double dA[4], doubl
     return atan2(Y, X);
 }
 
+/* theta_ref(t), and its rate into *rate: the profile function, or the signal source's output
+ * (value: u, u'; integral: the integral of u from 0, u). NaN if the source cannot be read. */
+static double angle_ref(const part *p, double t, double *rate)
+{
+    if (p->fn) return p->fn(p->user, t, rate);
+    double u, du, I;
+    if (sig_evaluate(p->model, p->source, t, &u, &du, &I) != BG_OK) return *rate = NAN;
+    *rate = p->src_out == SIG_INTEGRAL ? u : du;
+    return p->src_out == SIG_INTEGRAL ? I : u;
+}
+
 /* g = remainder(theta - theta_ref(t), 2 pi) and its gradient (q_A, then q_B). */
 static int part_invariant(const bgr_element *el, double t, const double *y, double *g, double *dg)
 {
     const part *p = el->params;
     double dA[4], dB[4], rate;
-    double th = revolute_angle(p, y, dA, dB), ref = p->fn(p->user, t, &rate);
+    double th = revolute_angle(p, y, dA, dB), ref = angle_ref(p, t, &rate);
     g[0] = remainder(th - ref, 6.283185307179586476925);
     if (!isfinite(g[0])) return 1;
     int k = 0;
@@ -213,7 +228,20 @@ static int part_invariant(const bgr_element *el, double t, const double *y, doub
 
 static int revolute_angle_declare(bgr_element *el, bgr_model *m)
 {
-    const part *p = el->params;
+    part *p = el->params;
+    if (!p->fn) {
+        p->model = m;
+        p->src_out = sig_source_output(m, p->source);
+        if (p->src_out != SIG_VALUE && p->src_out != SIG_INTEGRAL) {
+            bgr_element *src = bgr_element_get(m, p->source);
+            return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "bgr_compile",
+                                  "revolute joint %s: its angle profile %s (element %d) is not a "
+                                  "signal source (sig_sources.h) with the output value or "
+                                  "integral%s",
+                                  el->name, src ? src->name : "?", p->source,
+                                  p->src_out == SIG_RATE ? " (its output is the rate)" : "");
+        }
+    }
     static const char *const lab[1] = {"angle"};
     int st = bgr_declare_invariants(el, m, 1, lab);
     for (int j = 0; st == BG_OK && p->body_a >= 0 && j < 4; j++)
@@ -347,7 +375,7 @@ static int part_residual(const bgr_element *el, double t, const double *y, const
                    (p->angle ? y[p->tau] : 0);
         if (p->drive) F[row++] = y[p->f[2]] - mech_dot(dw, a);
         if (p->angle) { /* theta_ref'(t) - (wB - wA).a; a profile that fails gives NaN */
-            double rate = NAN, th = p->fn(p->user, t, &rate);
+            double rate = NAN, th = angle_ref(p, t, &rate);
             F[row++] = isfinite(th) ? rate - mech_dot(dw, a) : NAN;
         }
         break;
@@ -513,11 +541,10 @@ int mech_revolute(bgr_model *m, bgr_comp c, const char *name, int body_a, const 
     return bgr_element_add(m, c, name, &revolute_class, p, 2 + p->drive, dims, 0, NULL, 0, NULL);
 }
 
-int mech_revolute_angle(bgr_model *m, bgr_comp c, const char *name, int body_a,
-                        const double *axis_a, int body_b, mech_angle_fn theta, void *user)
+static int revolute_angle_add(bgr_model *m, bgr_comp c, const char *name, const char *w,
+                              int body_a, const double *axis_a, int body_b, mech_angle_fn theta,
+                              void *user, int source)
 {
-    const char *w = "mech_revolute_angle";
-    if (!theta) return bgr_refuse(m, c, name, w, "the angle profile theta is NULL");
     if (body_b < -1 || (body_b == -1 && body_a == -1) || (body_b >= 0 && body_b == body_a))
         return bgr_refuse(m, c, name, w,
                           "body_b = %d (body_a = %d), expected -1 (the ground) or a body's element "
@@ -530,7 +557,26 @@ int mech_revolute_angle(bgr_model *m, bgr_comp c, const char *name, int body_a,
     p->body_b = body_b;
     p->fn = theta;
     p->user = user;
+    p->source = source;
     const int dims[2] = {6, 6};
     static const char *const an[1] = {"torque"};
     return bgr_element_add(m, c, name, &revolute_class, p, 2, dims, 0, NULL, 1, an);
+}
+
+int mech_revolute_angle(bgr_model *m, bgr_comp c, const char *name, int body_a,
+                        const double *axis_a, int body_b, mech_angle_fn theta, void *user)
+{
+    const char *w = "mech_revolute_angle";
+    if (!theta) return bgr_refuse(m, c, name, w, "the angle profile theta is NULL");
+    return revolute_angle_add(m, c, name, w, body_a, axis_a, body_b, theta, user, -1);
+}
+
+int mech_revolute_angle_source(bgr_model *m, bgr_comp c, const char *name, int body_a,
+                               const double *axis_a, int body_b, int source)
+{
+    const char *w = "mech_revolute_angle_source";
+    if (source < 0)
+        return bgr_refuse(m, c, name, w, "source = %d, expected a signal source's element id",
+                          source);
+    return revolute_angle_add(m, c, name, w, body_a, axis_a, body_b, NULL, NULL, source);
 }

@@ -88,6 +88,14 @@ typedef double (*mech_angle_fn)(void *user, double t, double *rate);
  * naming the joint and the parameter. */
 BG_API int mech_revolute_angle(bgr_model *m, bgr_comp c, const char *name, int body_a,
                                const double *axis_a, int body_b, mech_angle_fn theta, void *user);
+/* The same with the profile of a signal source (sig_sources.h, element id source, evaluated in
+ * closed form by sig_evaluate; its breakpoints are the model's already): with the output value,
+ * theta_ref = u(t) and theta_ref' = u'(t); with the output integral, theta_ref = the integral of
+ * u from 0 to t and theta_ref' = u(t) (a trapezoid of the rate gives a point-to-point move).
+ * The output rate is refused by bgr_compile (its derivative u'' is not available), as is an
+ * element that is not a signal source. */
+BG_API int mech_revolute_angle_source(bgr_model *m, bgr_comp c, const char *name, int body_a,
+                                      const double *axis_a, int body_b, int source);
 
 #ifdef __cplusplus
 }
