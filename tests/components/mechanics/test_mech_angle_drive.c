@@ -9,6 +9,8 @@
  *     arm's orientation against the prescribed kinematics, the arm's torque against the closed
  *     form I_P phi'' + m l L (theta1'' cos theta2 + theta1'^2 sin theta2), the hub's against the
  *     rate of the angular momentum of the prescribed motion (central differences);
+ *   - a hub slewing a flexible beam (8 lumped elements, stability guard) for 15 s: the hub's
+ *     angle on the angle drive against the profile, and the rate drive's drift;
  *   - the gradient of the invariant against central differences, the joint's Jacobian against
  *     finite differences, and the refusals of bad arguments. */
 #include <math.h>
@@ -16,6 +18,7 @@
 #include <string.h>
 
 #include "bgr_elements.h"
+#include "mech_beam.h"
 #include "mech_body.h"
 #include "mech_parts.h"
 #include "tap.h"
@@ -268,6 +271,97 @@ static void test_hub_arm(void)
     bgr_model_free(&m);
 }
 
+/* ---- a hub slewing a flexible beam ---- */
+static int beam_nout = 150, beam_guard = 1;
+/* theta_ref = A (1 - cos(w t)): from rest */
+static double slew_theta(void *u, double t, double *rate)
+{
+    const sine *s = u;
+    *rate = s->A * s->w * sin(s->w * t);
+    return s->A * (1 - cos(s->w * t));
+}
+static double slew_rate(void *u, double t)
+{
+    double r;
+    slew_theta(u, t, &r);
+    return r;
+}
+
+/* The hub (the chain's node 0) on a hinge about z, driven by angle (rate = 0) or by rate; the
+ * hub's angle error at the end of 15 s, and the largest over the run. */
+static int run_beam_hub(int rate, double *err_end, double *err_max, dae_stats *st)
+{
+    enum { NE = 8 };
+    static const double z[3] = {0, 0, 1}, p0[3] = {0, 0, 0}, p1[3] = {5, 0, 0}, up[3] = {0, 0, 1};
+    const mech_section sec = {2.1e11, 8.1e10, 2e-3, 2e-6, 4e-6, 3e-6, 7850, 0, 1e-3, 0};
+    sine s = {0.5, 1.2};
+    int nodes[NE + 1], elems[NE], extra[NE + 1] = {1};
+    bgr_model *m = bgr_model_create("slew");
+    mech_beam_chain(m, 0, "beam", NE, p0, p1, up, &sec, NULL, extra, NULL, nodes, elems);
+    int gnd = mech_support(m, 0, "ground", 6), jnt, src = -1;
+    if (rate) {
+        jnt = mech_revolute(m, 0, "hinge", -1, z, 1);
+        src = bgr_Sf_fn(m, 0, "motor", slew_rate, &s);
+    } else {
+        jnt = mech_revolute_angle(m, 0, "hinge", -1, z, nodes[0], slew_theta, &s);
+    }
+    bgr_bond(m, 0, "b0", 6, bgr_port_of(m, gnd, 0), bgr_port_of(m, jnt, 0), NULL, NULL);
+    bgr_bond(m, 0, "b1", 6, bgr_port_of(m, jnt, 1), mech_beam_chain_port(m, nodes, NE, extra, 0, 0),
+             NULL, NULL);
+    if (src >= 0)
+        bgr_bond(m, 0, "bd", 1, bgr_port_of(m, src, 0), bgr_port_of(m, jnt, 2), NULL, NULL);
+    int r = bgr_compile(m);
+    if (r != BG_OK) {
+        tap_diag("beam hub: %s", bgr_model_error(m)->message);
+        bgr_model_free(&m);
+        return r;
+    }
+    mech_beam_chain_set(m, nodes, NE, p0, p1);
+    dae_problem p;
+    bgr_dae_problem(m, &p);
+    dae_options o;
+    dae_options_default(&o);
+    o.rtol = 1e-6;
+    o.atol = 1e-6;
+    o.stability_guard = beam_guard;
+    o.exclude_alg = 1;
+    o.projection = !rate;
+    bg_error err = {0};
+    dae_solver *S = dae_create(&p, &o, &err);
+    r = S ? dae_init(S, 0.0, bgr_y0(m), bgr_yp0(m)) : -1000;
+    if (r == 0) r = dae_consistent_init(S);
+    int n = bgr_n(m), qv = mech_body_var(m, nodes[0], 'q');
+    double *y = malloc((size_t)n * sizeof *y), t;
+    *err_max = 0;
+    for (int k = 1; r >= 0 && k <= beam_nout; k++) {
+        r = dae_solve_to(S, 0.1 * k, &t, y, NULL);
+        if (r < 0) break;
+        double ref, rr;
+        ref = slew_theta(&s, t, &rr);
+        *err_end = fabs(remainder(quat_angle_z(y + qv) - ref, 2 * PI));
+        *err_max = fmax(*err_max, *err_end);
+    }
+    if (r < 0 && S) tap_diag("beam hub: %s", dae_get_error(S)->message);
+    if (S) *st = *dae_get_stats(S);
+    free(y);
+    dae_free(&S);
+    bgr_model_free(&m);
+    return r;
+}
+
+static void test_beam_hub(void)
+{
+    double ea_end, ea_max, er_end, er_max;
+    dae_stats sa = {0}, sr = {0};
+    int ra = run_beam_hub(0, &ea_end, &ea_max, &sa), rr = run_beam_hub(1, &er_end, &er_max, &sr);
+    tap_diag("hub slewing a 5 m beam (8 elements), 15 s, rtol 1e-6, stability guard: angle drive "
+             "max err %.2e rad (%ld steps, drift before projection %.2e); rate drive %.2e at the "
+             "end, max %.2e (%ld steps)",
+             ea_max, sa.steps, sa.max_drift, er_end, er_max, sr.steps);
+    tap_ok(ra >= 0 && ea_max < 1e-9, "beam hub on the angle drive: angle err %.2e rad", ea_max);
+    tap_ok(rr >= 0 && er_end > 100 * ea_max, "the rate drive's hub drifts by %.2e rad", er_end);
+}
+
 /* ---- the gradient, the Jacobian and the refusals ---- */
 static void test_gradient(void)
 {
@@ -341,6 +435,63 @@ static void test_gradient(void)
     bgr_model_free(&m);
 }
 
+/* An element class that declares invariants without the hook, and the layer's own checks. */
+static int noinv_declare(bgr_element *el, bgr_model *m)
+{
+    int st = bgr_declare_equations(el, m, 1, NULL);
+    if (st == BG_OK) st = bgr_declare_dep(el, m, 0, bgr_av(el, 0), 0);
+    if (st == BG_OK) st = bgr_declare_invariants(el, m, 1, NULL);
+    return st;
+}
+static int noinv_residual(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *F)
+{
+    (void)t, (void)yp;
+    F[0] = y[bgr_av(el, 0)];
+    return 0;
+}
+static int noinv_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
+                          double *v)
+{
+    (void)el, (void)t, (void)y, (void)yp;
+    v[0] = 1;
+    return 0;
+}
+
+static void test_layer(void)
+{
+    static const bgr_element_class cls = {.type = "noinv", .declare = noinv_declare,
+                                          .residual = noinv_residual,
+                                          .jacobian = noinv_jacobian};
+    bgr_model *m = bgr_model_create("layer");
+    bgr_element_add(m, 0, "x", &cls, NULL, 0, NULL, 0, NULL, 1, NULL);
+    int st = bgr_compile(m);
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "layer/x") &&
+               strstr(bgr_model_error(m)->message, "no invariant() function"),
+           "invariants declared by a class without the hook: %s", bgr_model_error(m)->message);
+    bgr_model_free(&m);
+    /* a model without invariants gives a problem without constraints, as before */
+    sine s = {0.8, PI};
+    int body, tau;
+    m = build_pendulum(RATE_DRIVE, &s, &body, &tau);
+    dae_problem p;
+    int ok = m && bgr_dae_problem(m, &p) == BG_OK && p.ncons == 0 && !p.cons &&
+             bgr_ninvariants(m) == 0 && !bgr_invariant_pattern(m) && !bgr_invariant_name(m, 0);
+    tap_ok(ok, "no invariants: ncons = 0, no constraint function");
+    bgr_model_free(&m);
+    m = build_pendulum(ANGLE_PROJECT, &s, &body, &tau);
+    ok = m && bgr_dae_problem(m, &p) == BG_OK && p.ncons == 1 && p.cons == bgr_invariants &&
+         p.cons_pattern == bgr_invariant_pattern(m) && p.cons_pattern->nnz == 4;
+    tap_ok(ok, "the angle joint's invariant is the problem's constraint (1 row, 4 entries)");
+    double g;
+    sp_csc *G = m ? sp_csc_alloc(1, bgr_n(m), 1) : NULL;
+    st = m ? bgr_invariants(m, 0, bgr_y0(m), &g, G) : -1;
+    tap_ok(st == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "pattern"),
+           "bgr_invariants refuses a G of another pattern: %s", m ? bgr_model_error(m)->message : "");
+    sp_csc_free(&G);
+    bgr_model_free(&m);
+}
+
 static void test_refusals(void)
 {
     static const double z[3] = {0, 0, 1};
@@ -376,7 +527,9 @@ int main(void)
 {
     test_pendulum();
     test_hub_arm();
+    test_beam_hub();
     test_gradient();
+    test_layer();
     test_refusals();
     return tap_done();
 }
