@@ -38,9 +38,12 @@ int bgr_declare_invariants(bgr_element *el, bgr_model *m, int ninv, const char *
             free(path);
             return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
         }
-        char buf[32], *name = malloc(strlen(path) + 40);
+        char buf[32];
         snprintf(buf, sizeof buf, "inv%d", k);
-        if (name) sprintf(name, "%s/%.30s", path, labels && labels[k] ? labels[k] : buf);
+        const char *lab = labels && labels[k] ? labels[k] : buf;
+        size_t size = strlen(path) + strlen(lab) + 2;
+        char *name = malloc(size);
+        if (name) snprintf(name, size, "%s/%s", path, lab);
         if (!name) {
             free(path);
             return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");

@@ -228,7 +228,12 @@ BG_API int bgr_declare_nominal(bgr_element *el, bgr_model *m, int var, double no
  * Runge-Kutta Methods, Springer LNM 1409, 1989) and of Eich (SIAM J. Numer. Anal. 30 (1993)
  * 1467-1482), who shows that BDF on the index-2 (velocity-level) formulation followed by the
  * projection onto the position constraints keeps the order of the method and removes the drift
- * of the positions. bgr_static keeps the invariants at their values at its start. The
+ * of the positions. The alternative, the stabilised index-2 formulation of Gear, Gupta and
+ * Leimkuhler (J. Comput. Appl. Math. 12/13 (1985) 77-90), holds both levels by a second
+ * multiplier mu in the kinematic equations (q' = ... - G^T mu): those are other elements'
+ * equations (a body's), which an element of this layer cannot write into; the projection needs
+ * nothing of them and costs one factorisation of G G^T (of the invariants' size) per step.
+ * bgr_static keeps the invariants at their values at its start. The
  * invariants are not equations of the DAE: the system stays square and of index 2, and
  * dae_options.index2 = DAE_I2_REDUCE (which projects onto constraints of its own) refuses a
  * problem that has them (set dae_problem.ncons = 0 there to go without them).
