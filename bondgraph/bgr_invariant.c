@@ -27,9 +27,9 @@ int bgr_declare_invariants(bgr_element *el, bgr_model *m, int ninv, const char *
         return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile",
                          "element %s/%s (%s) declares %d invariants%s", m->comp[el->comp].path,
                          el->name, el->cls->type, ninv,
-                         ninv < 0           ? ""
-                         : el->ninv > 0     ? " a second time"
-                                            : " but its class has no invariant() function");
+                         ninv < 0       ? ""
+                         : el->ninv > 0 ? " a second time"
+                                        : " but its class has no invariant() function");
     char *path = bgri_elem_path(m, el);
     if (!path) return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
     el->inv0 = m->ninv;

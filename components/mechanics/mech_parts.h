@@ -39,9 +39,9 @@
  * Cost (tests/components/mechanics/test_mech_angle_drive.c): none on rigid bodies (the pendulum:
  * 6 489 steps, the rate drive 6 653), 1.7 times the rate drive's steps on the flexible hub (the
  * correction of the hub's orientation at each step, up to 4e-7 rad, is not shared by the beam's
- * nodes and shows in their error estimates). Set the bodies' initial orientations and angular velocities so that
- * theta(0) = theta_ref(0) (dae_consistent_init does not move the orientations for an
- * invariant; the projection moves them at the first step). */
+ * nodes and shows in their error estimates). Set the bodies' initial orientations and angular
+ * velocities so that theta(0) = theta_ref(0) and the rate holds (dae_consistent_init does not
+ * move the orientations for an invariant; the projection moves them at the first step). */
 #ifndef MECH_PARTS_H
 #define MECH_PARTS_H
 

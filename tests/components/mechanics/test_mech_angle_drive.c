@@ -158,8 +158,7 @@ static void test_pendulum(void)
              P.tau_max);
     tap_diag("  without projection: max %.2e, at the end %.2e (%ld steps); rate drive: max "
              "%.2e, at the end %.2e (%ld steps), torque err %.2e",
-             F.angle_err, F.angle_end, F.st.steps, D.angle_err, D.angle_end, D.st.steps,
-             D.tau_err);
+             F.angle_err, F.angle_end, F.st.steps, D.angle_err, D.angle_end, D.st.steps, D.tau_err);
     tap_ok(P.status == 0 && P.angle_err < 1e-9,
            "angle drive: the geometric angle follows theta_ref over 50 periods (max err %.2e rad)",
            P.angle_err);
@@ -193,7 +192,8 @@ static double hub_H(const sine *s1, const sine *s2, double t)
     double r1, r2, th1 = sine_theta((void *)s1, t, &r1), th2 = sine_theta((void *)s2, t, &r2);
     double phi = th1 + th2, dphi = r1 + r2;
     double c[2] = {hL * cos(th1) + al * cos(phi), hL * sin(th1) + al * sin(phi)};
-    double v[2] = {-hL * r1 * sin(th1) - al * dphi * sin(phi), hL * r1 * cos(th1) + al * dphi * cos(phi)};
+    double v[2] = {-hL * r1 * sin(th1) - al * dphi * sin(phi),
+                   hL * r1 * cos(th1) + al * dphi * cos(phi)};
     return hJ[8] * r1 + aJ[8] * dphi + am * (c[0] * v[1] - c[1] * v[0]);
 }
 
@@ -213,8 +213,8 @@ static void test_hub_arm(void)
     bgr_bond(m, 0, "b2", 6, bgr_port_of(m, hub, 1), bgr_port_of(m, j2, 0), NULL, NULL);
     bgr_bond(m, 0, "b3", 6, bgr_port_of(m, j2, 1), bgr_port_of(m, arm, 0), NULL, NULL);
     int st = bgr_compile(m);
-    tap_ok(st == BG_OK && bgr_ninvariants(m) == 2,
-           "hub and arm: compiles with two invariants (%s)", bgr_model_error(m)->message);
+    tap_ok(st == BG_OK && bgr_ninvariants(m) == 2, "hub and arm: compiles with two invariants (%s)",
+           bgr_model_error(m)->message);
     if (st != BG_OK) {
         bgr_model_free(&m);
         return;
@@ -237,7 +237,8 @@ static void test_hub_arm(void)
     double *y = malloc((size_t)n * sizeof *y), t, eh = 0, ea = 0, et1 = 0, et2 = 0, tm1 = 0,
            tm2 = 0;
     int qh = mech_body_var(m, hub, 'q'), qa = mech_body_var(m, arm, 'q');
-    int t1 = bgr_ref_var(m, (bgr_ref){BGR_OWN, j1, 0}), t2 = bgr_ref_var(m, (bgr_ref){BGR_OWN, j2, 0});
+    int t1 = bgr_ref_var(m, (bgr_ref){BGR_OWN, j1, 0}),
+        t2 = bgr_ref_var(m, (bgr_ref){BGR_OWN, j2, 0});
     double IP = aJ[8] + am * al * al;
     for (int k = 1; r == 0 && k <= 400; k++) {
         r = dae_solve_to(S, 0.05 * k, &t, y, NULL);
@@ -264,8 +265,8 @@ static void test_hub_arm(void)
     tap_ok(r == 0 && et2 < 2e-4 * tm2,
            "arm torque = I_P phi'' + m l L (theta1'' cos theta2 + theta1'^2 sin theta2) (err %.2e)",
            et2 / tm2);
-    tap_ok(r == 0 && et1 < 2e-4 * tm1,
-           "hub torque = dH/dt of the prescribed motion (err %.2e)", et1 / tm1);
+    tap_ok(r == 0 && et1 < 2e-4 * tm1, "hub torque = dH/dt of the prescribed motion (err %.2e)",
+           et1 / tm1);
     free(y);
     dae_free(&S);
     bgr_model_free(&m);
@@ -460,7 +461,8 @@ static int noinv_jacobian(const bgr_element *el, double t, const double *y, cons
 
 static void test_layer(void)
 {
-    static const bgr_element_class cls = {.type = "noinv", .declare = noinv_declare,
+    static const bgr_element_class cls = {.type = "noinv",
+                                          .declare = noinv_declare,
                                           .residual = noinv_residual,
                                           .jacobian = noinv_jacobian};
     bgr_model *m = bgr_model_create("layer");
@@ -487,7 +489,8 @@ static void test_layer(void)
     sp_csc *G = m ? sp_csc_alloc(1, bgr_n(m), 1) : NULL;
     st = m ? bgr_invariants(m, 0, bgr_y0(m), &g, G) : -1;
     tap_ok(st == BG_ERR_ARGUMENT && strstr(bgr_model_error(m)->message, "pattern"),
-           "bgr_invariants refuses a G of another pattern: %s", m ? bgr_model_error(m)->message : "");
+           "bgr_invariants refuses a G of another pattern: %s",
+           m ? bgr_model_error(m)->message : "");
     sp_csc_free(&G);
     bgr_model_free(&m);
 }
