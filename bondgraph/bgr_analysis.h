@@ -17,7 +17,21 @@
  * it.
  *
  * Both return BG_ERR_ARGUMENT for a NULL model, BG_ERR_STATE before bgr_compile, else the
- * statuses of dae_static_solve and dae_modes_compute. */
+ * statuses of dae_static_solve and dae_modes_compute.
+ *
+ * A structure in steady rotation (bg_modes.h, "Co-moving frames"): bgr_frame_rotation builds
+ * the generator S of the frame that turns at rate (rad per time unit) about the axis through
+ * point, from the kinds of unknowns the elements declare (bgr_declare_frame: the mechanical
+ * components declare their global vectors, positions and quaternions), and the affine part c
+ * of the frame's motion (x' = Omega x (x - point) for the positions: c = -Omega x point there,
+ * zero elsewhere; a user adds the constant rates of ignorable unknowns, an angle that grows at
+ * a driven rate). Then, with options.frame = S in both: bgr_static with options.yp_steady = c
+ * finds the state at rest in the frame (the centrifugal stretch and the tension that stiffens
+ * the structure) and writes y' = S y + c into bgr_yp0; bgr_modes at (bgr_y0, bgr_yp0) gives the
+ * modes in the frame, with their Coriolis and centrifugal terms. S is the caller's (free it with
+ * sp_csc_free); c may be NULL, point NULL is the origin. BG_OK, BG_ERR_ARGUMENT (a NULL model,
+ * S or axis; an axis that is not finite and nonzero, a rate or point not finite), BG_ERR_STATE
+ * (not compiled), BG_ERR_MEMORY; the message in bgr_model_error. */
 #ifndef BGR_ANALYSIS_H
 #define BGR_ANALYSIS_H
 
@@ -34,6 +48,8 @@ BG_API int bgr_static(bgr_model *m, const dae_static_options *o, double t, dae_s
                       bg_error *err);
 BG_API int bgr_modes(bgr_model *m, double t, const double *y, const double *yp,
                      const dae_modes_options *o, dae_modes **out, bg_error *err);
+BG_API int bgr_frame_rotation(const bgr_model *m, const double *axis, double rate,
+                              const double *point, sp_csc **S, double *c);
 
 #ifdef __cplusplus
 }

@@ -140,6 +140,8 @@ void bgr_model_free(bgr_model **mp)
     free(m->y0);
     free(m->yp0);
     free(m->dep);
+    free(m->fgroup);
+    free(m->fkind);
     sp_csc_free(&m->Jy);
     sp_csc_free(&m->Jyp);
     free(m->slot);

@@ -259,6 +259,19 @@ BG_API const sp_csc *bgr_invariant_pattern(const bgr_model *m);
  * (a NULL argument, G of another shape), BG_ERR_STATE (not compiled). */
 BG_API int bgr_invariants(void *model, double t, const double *y, double *g, sp_csc *G);
 
+/* Declare the kind of a group of unknowns under the rigid motion of a co-moving frame (a
+ * steady rotation: bgr_frame_rotation in bgr_analysis.h builds the frame's generator from these
+ * declarations): BGR_FRAME_VECTOR, 3 unknowns, the global components of a vector (a velocity,
+ * an angular velocity, a force, a moment, the vector between two points); BGR_FRAME_POSITION,
+ * 3, the global coordinates of a point; BGR_FRAME_QUATERNION, 4, an orientation body to global
+ * (q0 the scalar part; R(q) v = q v q*). Unknowns that no element declares do not change under
+ * the frame's motion (scalars, components in a body's own frame). Several declarations of one
+ * group (a bond's unknowns seen from both of its ends) are one; an unknown declared in two
+ * different groups or kinds gives BG_ERR_ARGUMENT naming it. Besides the errors of the
+ * bgr_declare_* functions above: BG_ERR_ARGUMENT for another kind or a NULL vars. */
+enum { BGR_FRAME_VECTOR = 1, BGR_FRAME_POSITION = 2, BGR_FRAME_QUATERNION = 3 };
+BG_API int bgr_declare_frame(bgr_element *el, bgr_model *m, int kind, const int *vars);
+
 /* ---- compiling and solving ---- */
 /* Checks that every port is connected with the dimension it needs, numbers unknowns and
  * equations, classifies the unknowns, builds the patterns and slots. BG_OK or an error whose

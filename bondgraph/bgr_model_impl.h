@@ -61,6 +61,11 @@ struct bgr_model {
     sp_csc *G;
     int *islot;
     double *ivals;
+    /* kinds of unknowns under a frame's motion (bgr_declare_frame): groups of kind and up to
+     * four unknowns, and each unknown's group + 1 (0: none; NULL until the first declaration) */
+    int (*fgroup)[5];
+    int nfgroup, capfgroup;
+    int *fkind;
     /* for the Jacobian check */
     double ck_t;
     const double *ck_y, *ck_yp;

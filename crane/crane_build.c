@@ -4,6 +4,7 @@
  * ties, rope and load, counterweight, reference, drive (held, prescribed, or the hydraulic
  * drive with its controller and valves); then the initial values and the unknowns' nominal
  * scales. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -114,7 +115,8 @@ static int build_geometry(build_ctx *b)
      * the moment of that weight about the hinge (the ties balance it). Bodies and point masses
      * declare their own weights; a zero gravity states nothing (0 keeps the components' own). */
     const double gg = fabs(s->g);
-    b->W_load = s->rope ? s->load_mass * gg : 0.0;
+    /* a weightless load (crane_load_weightless) states no force scale for the rope */
+    b->W_load = s->rope && !crane_load_weightless(s) ? s->load_mass * gg : 0.0;
     b->W_boom = s->boom_rho * s->boom_A * s->boom_length * gg + b->W_load;
     const double W_cw = s->counterweight ? s->cw_mass * gg : 0.0;
     b->W_all = b->W_boom + W_cw + s->platform_mass * gg;
@@ -722,4 +724,10 @@ static int state_scales(crane *c)
         }
     }
     return BG_OK;
+}
+
+int crane_load_weightless(const crane_scene *s)
+{
+    double W = s->load_mass * fabs(s->g), fs = s->rope_E * s->rope_A * 1e-4 * log(2.0);
+    return s->rope && !(W > DBL_EPSILON * fs);
 }

@@ -136,6 +136,11 @@ void crane_replace(crane *c, crane **from);
 void crane_tip_foot(const crane *c, const double *y, double *tip, double *foot);
 void crane_set_reference_tip(crane *c);
 const crane_scene *crane_get_scene(const crane *c);
+/* 1 if the scene's load hangs on the rope and weighs no more than the rounding of the rope's
+ * force at its rest length, DBL_EPSILON k eps ln 2 (the tension-only rope is smoothed at slack,
+ * mech_axial.h; eps = 1e-4 L0): g = 0, or a load of, say, 1e-300 kg. Such a load carries
+ * nothing; crane_static_start hangs it at rest after the crane's static solve. */
+int crane_load_weightless(const crane_scene *s);
 /* Unstretched length of the ties (geometric until crane_settle corrects it); 0 without ties. */
 double crane_tie_length(const crane *c);
 

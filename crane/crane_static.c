@@ -9,6 +9,9 @@
 #include <time.h>
 
 #include "bgr_analysis.h"
+#include "mech_axial.h"
+#include "mech_parts.h"
+#include "crane_model_impl.h"
 #include "crane_setup.h"
 
 /* ------------------------------------------------------------------ helpers ---- */
@@ -171,6 +174,43 @@ static int trial(void *ctx, double L0, double *f, bg_error *serr)
     return BG_OK;
 }
 
+/* A weightless load (crane_load_weightless, crane_static_start): the crane with the rope and
+ * the load, in the state of the crane without them (every unknown the two share, by name), the
+ * load at rest below the tip where the rope's smoothed force k eps log(1 + e^(x / eps)) equals
+ * its weight W (x = eps log(expm1(W / (k eps))): a 1e-300 kg load hangs on a rope slack by
+ * about 700 eps), or, weightless (g = 0), where that force is the rounding of the rope's force
+ * at rest length, DBL_EPSILON k eps (slack by eps log(1 / DBL_EPSILON), about 36 eps). NULL if
+ * the crane cannot be built (err says why). */
+static crane *hang_weightless_load(const crane_scene *sc, double tie_L0, const crane *bare,
+                                   bg_error *err)
+{
+    crane *full = crane_build_ties(sc, tie_L0, err);
+    if (!full) return NULL;
+    bgr_model *mf = crane_model(full);
+    const bgr_model *mb = crane_model((crane *)bare);
+    const double *yb = bgr_y0((bgr_model *)mb), *ypb = bgr_yp0((bgr_model *)mb);
+    double *yf = bgr_y0(mf), *ypf = bgr_yp0(mf);
+    for (int i = 0; i < bgr_n(mb); i++) {
+        int j = bgr_find_var(mf, bgr_var_name(mb, i));
+        if (j >= 0) yf[j] = yb[i], ypf[j] = ypb[i];
+    }
+    double tip[3], foot[3], load[3];
+    crane_tip_foot(full, yf, tip, foot);
+    const double eps = 1e-4 * sc->rope_length; /* mech_rope's default width */
+    const double keps = sc->rope_E * sc->rope_A * 1e-4, W = sc->load_mass * fabs(sc->g);
+    double x = W > 0 ? eps * log(expm1(W / keps)) : -INFINITY;
+    if (!isfinite(x)) x = eps * log(DBL_EPSILON); /* g = 0 (or W / (k eps) underflows) */
+    memcpy(load, tip, sizeof load);
+    load[2] -= sc->rope_length + x;
+    if (mech_axial_set(mf, full->rope, tip, load) != BG_OK ||
+        mech_point_mass_set(mf, full->load, load, NULL) != BG_OK) {
+        crane_free(&full);
+        bg_error_raise(err, BG_ERR_ARGUMENT, "crane_static_start", "the load could not be hung");
+        return NULL;
+    }
+    return full;
+}
+
 int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
 {
     crane_start_report rl;
@@ -180,6 +220,15 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
     const crane_scene *s = crane_get_scene(c);
     crane_scene sc = *s; /* c is replaced below */
     const double R = sc.boom_tip_radius;
+    /* A load whose weight is below the rounding of the rope's force at its rest length
+     * (crane_load_weightless: the tension-only rope is smoothed at slack, mech_axial.h: k eps
+     * ln 2 there, eps = 1e-4 L0, decaying as k eps e^(x / eps) when slack by x) hangs where that
+     * force equals its weight, at a stiffness lost in the rounding, or (g = 0) nowhere: no
+     * static solve finds it. It carries nothing, so the crane is brought to rest without the
+     * rope and the load, which are then hung on it at rest (hang_weightless_load). */
+    const int weightless = crane_load_weightless(&sc);
+    crane_scene bare = sc;
+    if (weightless) bare.rope = 0;
     rep->radius_want = R;
     rep->radius_tol = 1e-6 * fmax(R, 1.0);
     rep->tie_L0_geometric = rep->tie_L0 = crane_tie_length(c);
@@ -188,7 +237,7 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
     dae_static_options o;
     dae_static_options_default(&o);
     o.max_steps = 150; /* a crane that can stand needs 3 to 10; a failure is known by then */
-    start_ctx sx = {&sc, &o, rep, NULL, 0.0, 0.0, 0.0, -1, -1, BG_OK};
+    start_ctx sx = {&bare, &o, rep, NULL, 0.0, 0.0, 0.0, -1, -1, BG_OK};
     bg_error serr = {0};
     int st = BG_OK, tie_fail = 0;
     /* The drive holds the platform through the PID's integral, whose state and the platform's
@@ -223,6 +272,11 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
     }
     rep->pid_integral0 = sx.I0;
     crane *cur = sx.cur;
+    if (weightless && st == BG_OK) {
+        cur = hang_weightless_load(&sc, sx.cur_L0, sx.cur, &serr);
+        crane_free(&sx.cur);
+        if (!cur) st = serr.status < 0 ? serr.status : BG_ERR_ARGUMENT;
+    }
     if (st != BG_OK && st != DAE_CONV_FAIL && st != DAE_TOO_MUCH_WORK && st != BG_ERR_SINGULAR) {
         crane_free(&cur);
         return bg_error_raise(err, st, "crane_static_start", "static equilibrium: %s",
@@ -281,36 +335,16 @@ int crane_static_start(crane *c, crane_start_report *rep_out, bg_error *err)
          * is mostly whatever moves most, the load or the drive) */
         const char *e = rep->solve.residual_eq >= 0 ? bgr_eq_name(m, rep->solve.residual_eq)
                                                     : NULL;
-        /* a load whose weight is below the rounding of the rope's force at slack: the rope is
-         * tension only, smoothed at slack (mech_axial.h: k eps ln 2 at its rest length, eps =
-         * 1e-4 L0, decaying as k eps e^(x / eps) when slack by x), so the load would hang where
-         * that force equals its weight, at a stiffness that much below the rope's: lost in
-         * its rounding, and a weightless load has no equilibrium on it at all */
-        double W = sc.load_mass * fabs(sc.g), fs = sc.rope_E * sc.rope_A * 1e-4 * log(2.0);
-        int weightless = sc.rope && !(W > DBL_EPSILON * fs);
-        if (weightless) {
-            if (!rep->message[0]) rep->keys[0] = '\0'; /* the structure is not to blame */
-            add_key(rep, "[environment] g");
-            add_key(rep, "[load] mass");
-            add_key(rep, "[rope] enabled");
-            say(rep, "the load weighs %.3g N, below the rounding of the rope's force at slack "
-                     "(%.4g N, the tension-only rope smoothed there: mech_axial.h): hanging on "
-                     "the rope it has no static equilibrium the solve can resolve (a weightless "
-                     "load none at all); give it a weight, or no rope",
-                W, fs, 0);
-        } else {
-            keys_of_path(rep, &sc, e);
-            add_key(rep, "[environment] g");
-            if (sc.rope) add_key(rep, "[load] mass");
-            if (rep->solve.lambda >= 1)
-                say(rep, "no static equilibrium: the solve reached the full load but did not "
-                         "converge there",
-                    0, 0, 0);
-            else
-                say(rep, "no static equilibrium: the structure carries only %.3g of the scene's "
-                         "loads",
-                    rep->solve.lambda, 0, 0);
-        }
+        keys_of_path(rep, &sc, e);
+        add_key(rep, "[environment] g");
+        if (sc.rope) add_key(rep, "[load] mass");
+        if (rep->solve.lambda >= 1)
+            say(rep, "no static equilibrium: the solve reached the full load but did not "
+                     "converge there",
+                0, 0, 0);
+        else
+            say(rep, "no static equilibrium: the structure carries only %.3g of the scene's loads",
+                rep->solve.lambda, 0, 0);
         size_t l = strlen(rep->message);
         snprintf(rep->message + l, sizeof rep->message - l, " (%s)", serr.message);
     } else {

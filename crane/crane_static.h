@@ -30,10 +30,12 @@
  *     their force, E A DBL_EPSILON (an unloaded crane);
  *   - every body at rest: the kinetic energy of platform, boom, load and counterweight at most
  *     1e-6 J.
- * A static solve that fails with a load whose weight is below the rounding of the rope's force
- * at slack (DBL_EPSILON k eps ln 2, mech_axial.h; a weightless load: g = 0) is said as such,
- * naming [environment] g, [load] mass, [rope] enabled: the tension-only rope, smoothed at slack,
- * holds it at no equilibrium the solve can resolve.
+ * A load whose weight is below the rounding of the rope's force at its rest length
+ * (crane_load_weightless: DBL_EPSILON k eps ln 2, mech_axial.h; g = 0, a 1e-300 kg load) has no
+ * equilibrium on the tension-only rope, smoothed at slack, that a solve can resolve, and
+ * carries nothing: the procedure above runs on the crane without rope and load, which are then
+ * hung at rest on it (the rope's force equal to the load's weight, or with g = 0 to the rounding
+ * of its force at rest length: the rope slack).
  * A check that fails gives CRANE_ERR_START with a message naming the scene keys that cannot be
  * met together ("[ties] gantry_top, [boom] tip_radius, [load] mass") and what was found; the
  * state reached stays in the model (for equilibrium.csv). */

@@ -68,6 +68,7 @@ typedef struct trial_ctx {
     const dae_static_options *o;
     mdl_model *last;
     mdl_trim_report *rep;
+    int status; /* the last trial's */
 } trial_ctx;
 
 static int trial(void *ctx, double p, double *f, bg_error *err)
@@ -79,7 +80,7 @@ static int trial(void *ctx, double p, double *f, bg_error *err)
     int r = equilibrium(c->last, c->o, c->col, &v, &c->rep->last, err);
     c->rep->solves++;
     *f = v - c->want;
-    return r;
+    return c->status = r;
 }
 
 int mdl_static(mdl_model **pmm, const dae_static_options *o, mdl_trim_report *rep, bg_error *err)
@@ -99,7 +100,7 @@ int mdl_static(mdl_model **pmm, const dae_static_options *o, mdl_trim_report *re
     snprintf(rep->parameter, sizeof rep->parameter, "%s", param);
     snprintf(rep->output, sizeof rep->output, "%s", outname);
     rep->target = mm->trim_value;
-    trial_ctx c = {mm, param, output_col(mm, outname), mm->trim_value, o, NULL, rep};
+    trial_ctx c = {mm, param, output_col(mm, outname), mm->trim_value, o, NULL, rep, BG_OK};
     dae_trim_options to = {NAN, mm->trim_lo, mm->trim_hi, mm->trim_tol};
     double v;
     if (mdl_parameter(mm, param, &v) == BG_OK) to.p0 = v;
@@ -114,6 +115,13 @@ int mdl_static(mdl_model **pmm, const dae_static_options *o, mdl_trim_report *re
         return BG_OK;
     }
     mdl_free(&c.last);
+    if (c.status != BG_OK && err) { /* the static solve of the last trial failed: say that */
+        char why[sizeof err->message];
+        snprintf(why, sizeof why, "%s", err->message);
+        return bg_error_raise(err, c.status, "mdl_static",
+                              "trim: the static solve with %s = %.12g failed: %s", param, res.p,
+                              why);
+    }
     if (r != DAE_CONV_FAIL) return r;
     if (res.f_lo * res.f_hi > 0)
         return bg_error_raise(err, DAE_CONV_FAIL, "mdl_static",

@@ -173,8 +173,8 @@ int bg_check_state(const dae_problem *p, const double *v, const char *what, int 
     return BG_OK;
 }
 
-int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp, double *ratio,
-                          int *row)
+int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp,
+                          const sp_csc *S, double *ratio, int *row)
 {
     const int n = J->n;
     const double *nom = J->p->nominal;
@@ -184,19 +184,47 @@ int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double
     for (int i = 0; i < n; i++)
         rmax = fmax(rmax, fabs(yp[i]) / (fabs(y[i]) + (nom ? nom[i] : 1.0)));
     if (!(rmax > 0)) return 0; /* at rest */
+    /* the rates' own rate along the frame's flow: y'' = S y' */
+    double *acc = NULL;
+    if (S) {
+        acc = calloc((size_t)n, sizeof *acc);
+        if (!acc) return BG_ERR_MEMORY;
+        sp_matvec(S, 1.0, yp, 0.0, acc);
+        for (int i = 0; i < n; i++)
+            rmax = fmax(rmax, fabs(acc[i]) / (fabs(yp[i]) + (nom ? nom[i] : 1.0)));
+    }
     double h = 1e-7 / rmax, *F0 = J->F0, *F1 = J->F1, *ys = J->ycopy;
     int st = bg_jaceval_res(J, t, y, yp, F0);
-    if (st) return st;
+    if (st) goto out;
     for (int i = 0; i < n; i++)
         ys[i] = y[i] + h * yp[i];
-    if ((st = bg_jaceval_res(J, t + h, ys, yp, F1)) != 0) return st;
-    /* the terms: sum_j |dF/dy_ij yp_j| into ys */
+    if (acc) { /* F1 as the rates' scratch, then the residual over it */
+        double *yps = malloc((size_t)n * sizeof *yps);
+        if (!yps) {
+            st = BG_ERR_MEMORY;
+            goto out;
+        }
+        for (int i = 0; i < n; i++)
+            yps[i] = yp[i] + h * acc[i];
+        st = bg_jaceval_res(J, t + h, ys, yps, F1);
+        free(yps);
+    } else {
+        st = bg_jaceval_res(J, t + h, ys, yp, F1);
+    }
+    if (st) goto out;
+    /* the terms: sum_j |dF/dy_ij yp_j| (+ sum_j |dF/dy'_ij (S yp)_j|) into ys */
     memset(ys, 0, (size_t)n * sizeof *ys);
     const sp_csc *A = J->Jy;
     double big = 0;
     for (int j = 0; j < n; j++)
         for (int q = A->colptr[j]; q < A->colptr[j + 1]; q++)
             ys[A->rowind[q]] += fabs(A->val[q] * yp[j]);
+    if (acc) {
+        const sp_csc *B = J->Jyp;
+        for (int j = 0; j < n; j++)
+            for (int q = B->colptr[j]; q < B->colptr[j + 1]; q++)
+                ys[B->rowind[q]] += fabs(B->val[q] * acc[j]);
+    }
     for (int i = 0; i < n; i++)
         big = fmax(big, ys[i]);
     for (int i = 0; i < n; i++) {
@@ -207,5 +235,7 @@ int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double
             *row = i;
         }
     }
-    return 0;
+out:
+    free(acc);
+    return st;
 }

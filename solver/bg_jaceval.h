@@ -40,10 +40,13 @@ int bg_jaceval_eval(bg_jaceval *J, double t, const double *y, const double *yp, 
  * speed through a linear spring) keeps every equation; a structure spinning in the inertial
  * frame does not (its positions move along directions that rotate). *ratio receives the largest
  * |dF/dt_i| / sum_j |dF/dy_ij yp_j| over the equations whose terms are above rounding, *row its
- * equation (-1: yp zero, or none). 0, or the residual's status; scratch: J->F0, J->F1, J->ycopy
- * (J->Jy, J->Jyp are left as they were). */
-int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp, double *ratio,
-                          int *row);
+ * equation (-1: yp zero, or none). 0, or the residual's status (BG_ERR_MEMORY); scratch: J->F0,
+ * J->F1, J->ycopy (J->Jy, J->Jyp are left as they were).
+ * With a co-moving frame's generator S (bg_modes.h; NULL: none) the motion is that frame's
+ * flow: y moves along yp and yp itself turns along S yp (a state steady in the frame), so the
+ * difference is taken along (1, yp, S yp) and the terms include sum_j |dF/dy'_ij (S yp)_j|. */
+int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double *yp,
+                          const sp_csc *S, double *ratio, int *row);
 
 /* The name of unknown i / equation i: the problem's, else "y[i]" / "equation i" written into buf. */
 const char *bg_var_label(const dae_problem *p, int i, char *buf, size_t size);

@@ -53,6 +53,8 @@ int dae_modes_options_default(dae_modes_options *o)
     o->inf_tol = 1e-9;
     o->linsol = LS_KLU;
     o->frozen = 0;
+    o->frame = NULL;
+    o->jacobian = DAE_MODES_JAC_AUTO;
     return BG_OK;
 }
 
@@ -662,6 +664,9 @@ static int check_args(const dae_problem *p, const dae_modes_options *o, double t
                             "a linear solver: 0 (LS_KLU) or 1 (LS_DENSE)");
     if (o->frozen != 0 && o->frozen != 1)
         return out_of_range(err, "frozen", (double)o->frozen, "0 or 1");
+    if (o->jacobian < DAE_MODES_JAC_AUTO || o->jacobian > DAE_MODES_JAC_DIFFERENCES)
+        return out_of_range(err, "jacobian", (double)o->jacobian,
+                            "0 (AUTO), 1 (PROBLEM) or 2 (DIFFERENCES)");
     if (!isfinite(t)) return bg_error_raise(err, BG_ERR_ARGUMENT, w, "t is not finite");
     if (p->n < 1) return BG_OK; /* bg_jaceval_init refuses it */
     int st = bg_check_nominal(p, w, err);
@@ -670,9 +675,6 @@ static int check_args(const dae_problem *p, const dae_modes_options *o, double t
     return st;
 }
 
-/* bg_jaceval_steadiness's ratio above which a moving state is refused (rounding and the
- * difference's own error are about 1e-7) */
-#define MODES_STEADY_TOL 1e-4
 
 int dae_modes_compute(const dae_problem *p, double t, const double *y, const double *yp,
                       const dae_modes_options *opt, dae_modes **out, bg_error *err)
@@ -689,6 +691,13 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     const dae_modes_options *o = opt ? opt : &od;
     int st = check_args(p, o, t, y, yp, err);
     if (st != BG_OK) return st;
+    if (o->frame && p->n >= 1 && p->res) return mode_in_frame(p, t, y, yp, o, out, err);
+    dae_problem pdiff;
+    if (o->jacobian == DAE_MODES_JAC_DIFFERENCES && p->jac) { /* the residual's differences */
+        pdiff = *p;
+        pdiff.jac = NULL;
+        p = &pdiff;
+    }
     mctx c;
     memset(&c, 0, sizeof c);
     c.p = p;
@@ -727,7 +736,7 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
     if (yp && !o->frozen) { /* a moving state: its pencil must hold along the motion */
         double ratio;
         int row;
-        st = bg_jaceval_steadiness(&c.J, t, y, yp, &ratio, &row);
+        st = bg_jaceval_steadiness(&c.J, t, y, yp, NULL, &ratio, &row);
         if (st != 0) {
             st = bg_error_raise(err, BG_ERR_CALLBACK, where,
                                 "the residual could not be evaluated along the motion (status "
@@ -737,19 +746,15 @@ int dae_modes_compute(const dae_problem *p, double t, const double *y, const dou
         }
         if (ratio > MODES_STEADY_TOL) {
             char eb[256], vb[256];
-            int fast = 0;
-            for (int i = 1; i < n; i++)
-                if (fabs(yp[i]) / (fabs(y[i]) + mode_nominal(M, i)) >
-                    fabs(yp[fast]) / (fabs(y[fast]) + mode_nominal(M, fast)))
-                    fast = i;
+            int fast = mode_fastest(p, y, yp);
             st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
                                 "the state is moving and not steady: %s changes along the motion "
                                 "(%.3g of its terms; the fastest unknown is %s), so the "
                                 "linearisation has no constant coefficients and its modes are "
                                 "not those of small motions about the state (a structure "
                                 "spinning in the inertial frame: linearise it in a co-moving "
-                                "frame; options.frozen = 1 gives the frozen pencil's modes "
-                                "anyway)",
+                                "frame, options.frame; options.frozen = 1 gives the frozen "
+                                "pencil's modes anyway)",
                                 bg_eq_label(p, row, eb, sizeof eb), ratio,
                                 bg_var_label(p, fast, vb, sizeof vb));
             goto done;

@@ -67,14 +67,50 @@
  * along ignorable coordinates: a shaft turning at a constant rate, a mass dragged at constant
  * speed). A structure spinning steadily in the inertial frame is not such a state (its positions
  * move along directions that rotate, and the pencil with them): its frozen pencil gives spurious
- * modes at Omega/2 and in-plane frequencies equal to the flapwise ones; the right ones need the
- * co-moving frame's gyroscopic and centrifugal terms (Southwell's coefficients), which this
- * analysis does not form. A moving state that is not steady is therefore refused
- * (BG_ERR_ARGUMENT, naming the equation that changes along the motion and the fastest unknown)
- * unless options.frozen asks for the frozen pencil's modes. yp NULL or zero: at rest, accepted.
+ * modes at Omega/2 and in-plane frequencies equal to the flapwise ones. Such a moving state is
+ * refused (BG_ERR_ARGUMENT, naming the equation that changes along the motion and the fastest
+ * unknown) unless a co-moving frame is given (options.frame, below) or options.frozen asks for
+ * the frozen pencil's modes. yp NULL or zero: at rest, accepted.
+ *
+ * Co-moving frames (options.frame). A frame that moves by a linear flow: unknowns y = Phi_t(z),
+ * Phi_t the flow of y' = S y + c with a constant generator S (n x n) and a constant c, so that
+ * y' = S y + c + Q(t) z' (Q = e^(S t)). For a frame turning at the constant angular velocity
+ * Omega (bgr_frame_rotation builds S from the kinds of unknowns the components declare): a
+ * global vector u (a velocity, a force, a moment, a relative position) has u' = Omega x u, a
+ * position x' = Omega x (x - p) (p on the axis: the affine part c = -Omega x p), an orientation
+ * quaternion (body to global) q' = (0, Omega/2) (x) q, and what is measured in a body's own frame
+ * (its angular velocity) or is a scalar does not change (0 in S). Substituted into F, the problem
+ * in the frame at the instant the frame passes the state (y = z) is
+ *     G(t, z, z') = F(t, z, S z + c + z'),
+ * whose state at rest (z' = 0, that is y' = S y + c) is a steady motion in the frame, and whose
+ * pencil there, (dF/dy + dF/dy' S, dF/dy'), has constant coefficients (those at a later instant
+ * are the same rotated: equations whose rows turn with the frame keep their solutions): the
+ * Coriolis (gyroscopic) and centrifugal terms come out of dF/dy' S by themselves, and its
+ * eigenvalues are the modes in the frame (the linearisation of the equations of motion relative
+ * to a rotating frame about a relative equilibrium: L. Meirovitch, Methods of Analytical
+ * Dynamics, 1970, gyroscopic systems; M. Geradin and A. Cardona, Flexible Multibody Dynamics,
+ * 2001, rotating structures). The state given must be at rest in the frame: yp = S y + c for some
+ * constant c (c = yp - S y is taken from it), and it must stay a solution along the frame's flow
+ * (bg_jaceval_steadiness along (1, yp, S yp): y moves along yp, yp turns along S yp), else
+ * BG_ERR_ARGUMENT naming the equation (a load that does not turn with the frame, gravity across
+ * the axis; unknowns whose kinds S does not follow); options.frozen = 1 skips that check. The
+ * static solver finds such states (bg_static.h, options.frame). Modes at rest in the inertial
+ * frame, s z = -S z (weighted residual |(s + S) z| / (|s| |z|) below 1e-2, where a motion of the
+ * structure has about 1): the invariants of velocity-level joints (a driven hub's position, a
+ * joint's two bodies drifting apart), which are semisimple zeros in the inertial frame, seen
+ * turning at the frame's rate: constraint modes. Jacobians: the pencil needs dF/dy exact at the
+ * moving state; by default (options.jacobian = DAE_MODES_JAC_AUTO) the problem in the frame is
+ * differentiated by coloured differences of its residual (about 1e-7 on the frequencies), since
+ * an analytic Jacobian may be exact only at rest (mech_beam.h: the consistent beam element leaves
+ * out terms of its inertia loads in motion, 3.5e-3 on the frequencies of a cantilever at
+ * gamma = 12); DAE_MODES_JAC_PROBLEM uses the problem's own when it is known to be exact in
+ * motion. Southwell's rotating cantilever (flapwise and lead-lag, gamma up to 12) and the orbit
+ * of a mass on a spring are checked against independent references in
+ * tests/components/mechanics/test_modes_rotating.c and tests/solver/test_steady.c.
  *
  * Errors: BG_ERR_ARGUMENT (NULL problem, state or result; a moving state that is not steady (see
- * above); an option out of range: the message
+ * above), or not steady in the given frame; a frame's S that is not a well-formed n x n matrix of
+ * finite values; an option out of range: the message
  * names the field, its value and its range; a nominal magnitude that is not finite and > 0: the
  * message names the unknown and the value), BG_ERR_NONFINITE (a value of y or yp not finite: the
  * message names the unknown), BG_ERR_PATTERN,
@@ -112,6 +148,15 @@ typedef enum dae_modes_method {
     DAE_MODES_SPARSE = 2
 } dae_modes_method;
 
+/* Where the Jacobians of the linearisation come from (dae_modes_options.jacobian). */
+typedef enum dae_modes_jacobian {
+    DAE_MODES_JAC_AUTO = 0,       /* the problem's own (its analytic Jacobian, else differences),
+                                     except in a co-moving frame: differences (see there) */
+    DAE_MODES_JAC_PROBLEM = 1,    /* the problem's own, in a frame too */
+    DAE_MODES_JAC_DIFFERENCES = 2 /* coloured forward differences of the residual on the
+                                     problem's patterns (bg_fdjac.h), everywhere */
+} dae_modes_jacobian;
+
 typedef struct dae_modes_options {
     int method;            /* dae_modes_method, default DAE_MODES_AUTO */
     int dense_max;         /* the largest number of differential unknowns DAE_MODES_AUTO
@@ -131,7 +176,13 @@ typedef struct dae_modes_options {
     int frozen;            /* 0 (default): a moving state (yp given, not zero) is linearised only
                               if it is steady, i.e. stays a solution along its own motion
                               (bg_jaceval_steadiness: a motion along ignorable coordinates);
-                              else BG_ERR_ARGUMENT. 1: the frozen pencil at that instant anyway */
+                              else BG_ERR_ARGUMENT. 1: the frozen pencil at that instant anyway
+                              (with a frame: the frame's pencil, steady or not) */
+    const sp_csc *frame;   /* NULL (default): the inertial frame. Else the generator S (n x n)
+                              of a co-moving frame (see "Co-moving frames" above; bgr_frame_rotation
+                              builds it for a steady rotation): the modes are those of small
+                              motions in that frame about a state steady in it, yp = S y + c */
+    int jacobian;          /* dae_modes_jacobian, default DAE_MODES_JAC_AUTO */
 } dae_modes_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */

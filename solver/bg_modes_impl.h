@@ -45,5 +45,13 @@ void mode_sort(dae_modes *M);
 double mode_nominal(const dae_modes *m, int i);
 /* The lowest or a window of modes of a large model by ARPACK (bg_modes_sparse.c). */
 int mode_sparse(mctx *c);
+/* bg_jaceval_steadiness's ratio above which a moving state is refused (rounding and the
+ * difference's own error are about 1e-7) */
+#define MODES_STEADY_TOL 1e-4
+/* The fastest unknown of a moving state, largest |yp_i| / (|y_i| + nominal_i), for messages. */
+int mode_fastest(const dae_problem *p, const double *y, const double *yp);
+/* dae_modes_compute with o->frame (bg_modes_frame.c): the arguments checked already. */
+int mode_in_frame(const dae_problem *p, double t, const double *y, const double *yp,
+                  const dae_modes_options *o, dae_modes **out, bg_error *err);
 
 #endif

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bg_frame.h"
 #include "bg_jaceval.h"
 
 int dae_static_options_default(dae_static_options *o)
@@ -364,6 +365,64 @@ static int check_options(const dae_problem *p, const dae_static_options *o, cons
     return st;
 }
 
+/* A steady state in a co-moving frame (bg_static.h, "Co-moving frames"): the state at rest of
+ * the problem in the frame, G(t, z, z') = F(t, z, S z + c + z') with c = yp_steady, then the
+ * check that it stays a solution along the frame's flow. */
+static int static_in_frame(const dae_problem *p, const dae_static_options *o, double t, double *y,
+                           double *yp, dae_static_result *r, bg_error *err)
+{
+    const char *where = "dae_static_solve";
+    bg_frame f;
+    int st = bg_frame_init(&f, p, o->frame, o->yp_steady, where, err);
+    if (st != BG_OK) return r->status = st;
+    dae_static_options oi = *o;
+    oi.frame = NULL;
+    oi.yp_steady = NULL;
+    st = dae_static_solve(&f.q, &oi, t, y, NULL, r, err);
+    double *ys = NULL;
+    bg_jaceval J;
+    memset(&J, 0, sizeof J);
+    if (st == BG_OK) { /* y' = S y + c, steady along the frame's flow? */
+        ys = malloc((size_t)p->n * sizeof *ys);
+        if (!ys) {
+            st = bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+            goto done;
+        }
+        memcpy(ys, f.c, (size_t)p->n * sizeof *ys);
+        sp_matvec(o->frame, 1.0, y, 1.0, ys);
+        double ratio = 0;
+        int row = -1;
+        if ((st = bg_jaceval_init(&J, p, err)) != BG_OK) goto done;
+        st = bg_jaceval_eval(&J, t, y, ys, NULL);
+        if (st == 0) st = bg_jaceval_steadiness(&J, t, y, ys, o->frame, &ratio, &row);
+        if (st != 0) {
+            st = bg_error_raise(err, st == BG_ERR_MEMORY ? st : BG_ERR_CALLBACK, where,
+                                "the residual or Jacobian could not be evaluated along the "
+                                "frame's motion (status %d)",
+                                st);
+            goto done;
+        }
+        if (ratio > STATIC_STEADY_TOL) {
+            char eb[256];
+            st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
+                                "the frame gives no steady motion: the state found is at rest in "
+                                "the frame at this instant, but %s changes along the frame's "
+                                "motion (%.3g of its terms): the model is not invariant under "
+                                "the frame's motion (a load or a support that does not turn "
+                                "with it), or the generator S does not follow the kinds of its "
+                                "unknowns",
+                                bg_eq_label(p, row, eb, sizeof eb), ratio);
+            goto done;
+        }
+        if (yp) memcpy(yp, ys, (size_t)p->n * sizeof *yp);
+    }
+done:
+    bg_jaceval_free(&J);
+    free(ys);
+    bg_frame_free(&f);
+    return r->status = st;
+}
+
 int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double t, double *y,
                      double *yp, dae_static_result *res, bg_error *err)
 {
@@ -387,6 +446,7 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
     const dae_static_options *o = opt ? opt : &od;
     int st = check_options(p, o, y, err);
     if (st) return r->status = st;
+    if (o->frame) return static_in_frame(p, o, t, y, yp, r, err);
     const int n = p->n;
 
     st_ctx c;
@@ -634,7 +694,7 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
     if (ok && o->yp_steady) { /* constant rates: a steady motion only if it stays a solution */
         double ratio;
         int row;
-        if (bg_jaceval_steadiness(&c.J, t, y, c.yps, &ratio, &row) == 0 &&
+        if (bg_jaceval_steadiness(&c.J, t, y, c.yps, NULL, &ratio, &row) == 0 &&
             ratio > STATIC_STEADY_TOL) {
             char eb[256];
             ok = 0;
@@ -643,7 +703,8 @@ int dae_static_solve(const dae_problem *p, const dae_static_options *opt, double
                                 "solves the equations at this instant, but %s changes along the "
                                 "motion (%.3g of its terms), so the motion does not keep it (a "
                                 "structure spinning in the inertial frame has no state of "
-                                "constant rates: model it in a co-moving frame)",
+                                "constant rates: find it at rest in a co-moving frame, "
+                                "options.frame)",
                                 bg_eq_label(p, row, eb, sizeof eb), ratio);
             goto out;
         }

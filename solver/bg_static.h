@@ -78,6 +78,19 @@
  * F(t, y, yp_s) = 0 at one instant only, and is refused (BG_ERR_ARGUMENT naming the equation
  * that changes along the motion; bg_jaceval_steadiness, ratio above 1e-4; y holds it).
  *
+ * Co-moving frames (options.frame = S, bg_modes.h "Co-moving frames"). The state sought is at
+ * rest in the frame: y' = S y + c with c = options.yp_steady (NULL: 0), found as the state at rest
+ * of the problem in the frame, G(t, z, z') = F(t, z, S z + c + z'), by the method above (its
+ * pseudo-time steps are backward-Euler steps in the frame, its load factor ramps the centrifugal
+ * loads with the others), then checked to stay a solution along the frame's flow (refused as
+ * above, "the frame gives no steady motion": a load or support that does not turn with the
+ * frame). yp receives S y + c. A spinning cantilever on a driven hub: the tension that stiffens it
+ * and the root's centripetal force rho A Omega^2 L^2 / 2 (to the stretch, 1e-7;
+ * tests/components/mechanics/test_modes_rotating.c). A relative equilibrium that is neutral along
+ * the frame's motion (a free orbit: its phase drifts when its radius is perturbed) may not come
+ * to rest in the pseudo-time steps when the model has algebraic unknowns: give its state
+ * directly.
+ *
  * Errors: BG_ERR_ARGUMENT (a NULL problem, y or result, n < 1, no residual, options out of
  * range, constant rates that give no steady motion (above), a nominal magnitude that is not finite
  * and > 0 (dae_create's rule): the message names them, the unknown by dae_problem.names),
@@ -126,6 +139,10 @@ typedef struct dae_static_options {
                                 it stops the solve (BG_ERR_CALLBACK, naming it) */
     void *load_user;
     ls_kind linsol;          /* default LS_KLU */
+    const sp_csc *frame;     /* NULL (default): at rest or constant rates yp_steady. Else the
+                                generator S (n x n) of a co-moving frame (bg_modes.h): the state
+                                sought is at rest in that frame, y' = S y + yp_steady (see
+                                "Co-moving frames" above) */
 } dae_static_options;
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. */

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cmp_internal.h"
+#include "mech_frame.h"
 #include "mech_util.h"
 
 typedef struct axial {
@@ -107,6 +108,9 @@ static int axial_declare(bgr_element *el, bgr_model *m)
         st2 = mech_nominal(el, m, a->d + i, a->sc.length > 0 ? a->sc.length : a->L0);
     for (int k = 0; k < 2 && st2 == BG_OK; k++)
         st2 = mech_nominal_port(el, m, a->e[k], 3, a->sc.force, 0.0);
+    /* under a frame's motion (mech_frame.h): d and the ports' vectors */
+    if (st2 == BG_OK) st2 = mech_frame_group(el, m, BGR_FRAME_VECTOR, a->d);
+    if (st2 == BG_OK) st2 = mech_frame_ports(el, m);
     return st2;
 }
 

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mech_frame.h"
 #include "mech_util.h"
 
 #define MAXPORTS MECH_MAXPORTS
@@ -165,6 +166,16 @@ static void body_partials(const bgr_element *el, const double *y, mech_emit *E)
     }
 }
 
+/* Under a frame's motion (mech_frame.h): x a point, v a vector, q an orientation, the ports'
+ * vectors; w (body frame) keeps its values. */
+static int body_frame(bgr_element *el, bgr_model *m, const body *b)
+{
+    int st = mech_frame_group(el, m, BGR_FRAME_POSITION, b->x);
+    if (st == BG_OK) st = mech_frame_group(el, m, BGR_FRAME_VECTOR, b->v);
+    if (st == BG_OK) st = mech_frame_group(el, m, BGR_FRAME_QUATERNION, b->q);
+    return st == BG_OK ? mech_frame_ports(el, m) : st;
+}
+
 static int body_declare(bgr_element *el, bgr_model *m)
 {
     body *b = el->params;
@@ -226,6 +237,7 @@ static int body_declare(bgr_element *el, bgr_model *m)
         st2 = mech_nominal_port(el, m, b->ev[k], b->dim[k], F, M);
     for (int i = 0; i < 3 && st2 == BG_OK; i++)
         st2 = mech_nominal(el, m, b->x + i, b->sc.length);
+    if (st2 == BG_OK) st2 = body_frame(el, m, b);
     return st2;
 }
 

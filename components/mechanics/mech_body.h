@@ -9,7 +9,9 @@
  *
  * Unknowns (states): mass-centre position x and velocity v (global), angular velocity w in the
  * body frame, orientation quaternion q = (q0, q1, q2, q3) (body to global: R(q), see
- * mech_util.h for the homogeneous form that makes the drift of |q| harmless).
+ * mech_util.h for the homogeneous form that makes the drift of |q| harmless). Under a co-moving
+ * frame's motion (bgr_declare_frame, bgr_frame_rotation) x is a point, v and every port quantity
+ * a global vector, q an orientation; w, in the body frame, does not change (mech_frame.h).
  * Equations, for ports k at body-frame points r_k (mass-centre origin):
  *     x' = v
  *     m v' = sum_k s_k F_k + m g                                       (translation, global)

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mech_frame.h"
 #include "mech_util.h"
 #include "sig_sources.h"
 
@@ -251,6 +252,17 @@ static int revolute_angle_declare(bgr_element *el, bgr_model *m)
     return st;
 }
 
+/* Under a frame's motion (mech_frame.h): the ports' vectors, a point mass's x and v. */
+static int part_frame(bgr_element *el, bgr_model *m, const part *p)
+{
+    int st = mech_frame_ports(el, m);
+    if (st == BG_OK && p->kind == PART_MASS) {
+        st = mech_frame_group(el, m, BGR_FRAME_POSITION, p->x);
+        if (st == BG_OK) st = mech_frame_group(el, m, BGR_FRAME_VECTOR, p->v);
+    }
+    return st;
+}
+
 static int part_declare(bgr_element *el, bgr_model *m)
 {
     part *p = el->params;
@@ -326,6 +338,7 @@ static int part_declare(bgr_element *el, bgr_model *m)
         st = mech_nominal(el, m, p->tau, p->sc.moment);
     for (int i = 0; p->kind == PART_MASS && i < 3 && st == BG_OK; i++)
         st = mech_nominal(el, m, p->x + i, p->sc.length);
+    if (st == BG_OK) st = part_frame(el, m, p);
     return st;
 }
 

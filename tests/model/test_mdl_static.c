@@ -177,6 +177,24 @@ int main(void)
            "a bracket without the condition is refused, naming L0 and z (%s)", e.message);
     mdl_free(&mm);
 
+    /* a trim whose static solves fail (no stiffness: the mass has no equilibrium) says so with
+     * the solve's reason, not the trim's condition (it gave "nan") */
+    {
+        char text[4096];
+        snprintf(text, sizeof text, "%s",
+                 model_text("trim: {adjust: L0, until: z, equals: -1, between: [0.5, 1]}\n"));
+        char *kk = strstr(text, "k: 400");
+        if (kk) memcpy(kk, "k: 0  ", 6);
+        mm = mdl_load_string(text, "hanging.yaml", NULL, 0, &e);
+        r = mm ? mdl_static(&mm, NULL, &rep, &e) : BG_ERR_ARGUMENT;
+        tap_ok(mm && r != BG_OK &&
+                   strstr(e.message, "the static solve with L0 = ") &&
+                   strstr(e.message, "failed: ") && !strstr(e.message, "nan"),
+               "a trim whose static solve fails gives the solve's reason (status %d: %s)", r,
+               e.message);
+        mdl_free(&mm);
+    }
+
     mm = mdl_load_string(model_text("trim: {adjust: L1, until: z, equals: -1, between: [0.1, 0.5]}\n"),
                          "hanging.yaml", NULL, 0, &e);
     tap_ok(!mm && strstr(e.message, "hanging.yaml:14:") && strstr(e.message, "'L1'"),

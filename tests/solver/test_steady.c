@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "bg_modes.h"
+#include "bg_sparse.h"
 #include "bg_static.h"
 #include "tap.h"
 
@@ -70,6 +71,69 @@ static void test_orbit(void)
            st, err.message);
 }
 
+/* The orbit in the frame that turns with it (options.frame): the state is at rest there, and
+ * the small motions about the circular orbit of a mass on a central spring, in the rotating
+ * frame's radial and tangential coordinates (xi, eta),
+ *     m (xi'' - 2 W eta' - W^2 xi) + k xi = 0,   m (eta'' + 2 W xi' - W^2 eta) + (f / r) eta = 0,
+ * with the spring's tension f = k (r - L0) = m W^2 r, have m s^2 (m s^2 + k + 3 m W^2) = 0: the
+ * epicyclic frequency omega^2 = k/m + 3 W^2 (the frequency of small radial oscillations about a
+ * circular orbit: Goldstein, Classical Mechanics, on the stability of circular orbits) and a
+ * double zero (the orbit's phase drifting in the frame). */
+static sp_csc *plane_rotation(double W)
+{
+    /* (x, z)' = W (-z, x), (vx, vz)' = W (-vz, vx) */
+    double D[16] = {0};
+    D[0 + 4 * 1] = -W, D[1 + 4 * 0] = W;
+    D[2 + 4 * 3] = -W, D[3 + 4 * 2] = W;
+    return sp_csc_from_dense(4, 4, D, 0.0);
+}
+
+static void test_orbit_frame(void)
+{
+    orbit O = {.m = 2.0, .k = 800.0, .L0 = 1.0};
+    const double W = 10.0, r = O.k * O.L0 / (O.k - O.m * W * W);
+    double y[4] = {r, 0, 0, W * r}, yp[4] = {0, W * r, -W * W * r, 0};
+    dae_problem p = {.n = 4, .res = orbit_res, .user = &O};
+    sp_csc *S = plane_rotation(W);
+    dae_modes_options mo;
+    dae_modes_options_default(&mo);
+    mo.frame = S;
+    dae_modes *M = NULL;
+    bg_error err = {0};
+    int st = dae_modes_compute(&p, 0.0, y, yp, &mo, &M, &err);
+    if (st != BG_OK) tap_diag("%s", err.message);
+    double want = sqrt(O.k / O.m + 3 * W * W), got = NAN;
+    int ne = -1, nr = -1, nc = -1;
+    dae_modes_info(M, &ne, &nr, &nc, NULL, NULL, NULL);
+    if (M && ne == 1) got = 2 * 3.14159265358979323846 * dae_modes_get(M, 0)->freq_hz;
+    tap_ok(st == BG_OK && ne == 1 && fabs(got - want) < 1e-8 * want,
+           "orbit in the co-moving frame: the epicyclic mode %.12g rad/s (sqrt(k/m + 3 W^2) = "
+           "%.12g), %d elastic, %d rigid, %d constraint",
+           got, want, ne, nr, nc);
+    dae_modes_free(&M);
+    /* a radius off the orbit: not at rest in the frame, refused */
+    double y2[4] = {1.1 * r, 0, 0, 1.1 * W * r}, yp2[4] = {0, 1.1 * W * r, -1.1 * W * W * r, 0};
+    st = dae_modes_compute(&p, 0.0, y2, yp2, &mo, &M, &err);
+    tap_ok(st == BG_ERR_ARGUMENT && !M && strstr(err.message, "not steady in the co-moving frame"),
+           "a radius 10 %% off the orbit: refused in the frame, status %d: \"%s\"", st,
+           err.message);
+    /* the static solver in the frame finds the orbit from the spring's rest, at rest */
+    dae_static_options so;
+    dae_static_options_default(&so);
+    so.frame = S;
+    double ys[4] = {O.L0, 0, 0, 0}, yps[4];
+    dae_static_result res;
+    st = dae_static_solve(&p, &so, 0.0, ys, yps, &res, &err);
+    if (st != BG_OK) tap_diag("%s", err.message);
+    double rr = hypot(ys[0], ys[1]), vv = hypot(ys[2], ys[3]);
+    tap_ok(st == BG_OK && fabs(rr - r) < 1e-9 * r && fabs(vv - W * r) < 1e-9 * W * r &&
+               fabs(yps[2] + W * W * ys[0]) < 1e-9 * W * W * r,
+           "static in the frame: radius %.12g (k L0 / (k - m W^2) = %.12g), speed %.12g (W r = "
+           "%.12g), y' = S y",
+           rr, r, vv, W * r);
+    sp_csc_free(&S);
+}
+
 /* ---- driven rotor: y = (phi_d, phi, w) ---- */
 typedef struct rotor {
     double J, k, c, W;
@@ -119,6 +183,7 @@ static void test_rotor(void)
 int main(void)
 {
     test_orbit();
+    test_orbit_frame();
     test_rotor();
     return tap_done();
 }
