@@ -87,6 +87,11 @@ int bgr_dae_problem(bgr_model *m, dae_problem *p)
     p->eq_names = (const char *const *)m->ename;
     p->nominal = m->nominal;
     p->user = m;
+    if (m->ninv > 0) {
+        p->ncons = m->ninv;
+        p->cons = bgr_invariants;
+        p->cons_pattern = m->G;
+    }
     p->nregimes = bgr_regimes(m, NULL, NULL);
     if (p->nregimes > 0) p->regimes = model_regimes;
     return BG_OK;

@@ -146,6 +146,7 @@ void bgr_model_free(bgr_model **mp)
     sp_csc_free(&m->Jyp);
     free(m->slot);
     free(m->vals);
+    bgri_invariants_free(m);
     free(m);
     *mp = NULL;
 }
@@ -317,7 +318,7 @@ bgr_element *bgr_element_get(bgr_model *m, int elem)
     return m && elem >= 0 && elem < m->nel ? m->el[elem] : NULL;
 }
 
-static char *elem_path(const bgr_model *m, const bgr_element *el)
+char *bgri_elem_path(const bgr_model *m, const bgr_element *el)
 {
     return join(m->comp[el->comp].path, el->name);
 }
@@ -481,7 +482,7 @@ int bgr_port_dim(const bgr_element *el, const bgr_model *m, int k)
 }
 
 /* The checks of the bgr_declare_* functions: a model in compilation and one of its elements. */
-static int check_declare(const bgr_element *el, bgr_model *m, const char *what)
+int bgri_check_declare(const bgr_element *el, bgr_model *m, const char *what)
 {
     if (!m) return BG_ERR_ARGUMENT;
     if (!el || el->id < 0 || el->id >= m->nel || m->el[el->id] != el)
@@ -497,12 +498,12 @@ static int check_declare(const bgr_element *el, bgr_model *m, const char *what)
 
 int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *const *labels)
 {
-    int st = check_declare(el, m, "bgr_declare_equations");
+    int st = bgri_check_declare(el, m, "bgr_declare_equations");
     if (st) return st;
     if (neq < 0)
         return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile", "element %s/%s declares %d equations",
                          m->comp[el->comp].path, el->name, neq);
-    char *path = elem_path(m, el);
+    char *path = bgri_elem_path(m, el);
     if (!path) return bgri_fail(m, BG_ERR_MEMORY, "bgr_compile", "out of memory");
     el->neq = neq;
     el->eq0 = m->neq_declared;
@@ -530,7 +531,7 @@ int bgr_declare_equations(bgr_element *el, bgr_model *m, int neq, const char *co
 
 int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp)
 {
-    int st = check_declare(el, m, "bgr_declare_dep");
+    int st = bgri_check_declare(el, m, "bgr_declare_dep");
     if (st) return st;
     if (k < 0 || k >= el->neq || var < 0 || var >= m->n)
         return bgri_fail(
@@ -550,7 +551,7 @@ int bgr_declare_dep(bgr_element *el, bgr_model *m, int k, int var, int wrt_yp)
 
 int bgr_declare_index2(bgr_element *el, bgr_model *m, int var)
 {
-    int st = check_declare(el, m, "bgr_declare_index2");
+    int st = bgri_check_declare(el, m, "bgr_declare_index2");
     if (st) return st;
     if (var < el->alg0 || var >= el->alg0 + el->nalg)
         return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile",
@@ -562,7 +563,7 @@ int bgr_declare_index2(bgr_element *el, bgr_model *m, int var)
 
 int bgr_declare_nominal(bgr_element *el, bgr_model *m, int var, double nominal)
 {
-    int st = check_declare(el, m, "bgr_declare_nominal");
+    int st = bgri_check_declare(el, m, "bgr_declare_nominal");
     if (st) return st;
     if (var < 0 || var >= m->n)
         return bgri_fail(m, BG_ERR_ARGUMENT, "bgr_compile",
@@ -615,7 +616,7 @@ static int name_variables(bgr_model *m)
     }
     for (int e = 0; e < m->nel; e++) {
         bgr_element *el = m->el[e];
-        char *ep = elem_path(m, el);
+        char *ep = bgri_elem_path(m, el);
         if (!ep) return 0;
         for (int i = 0; i < el->nstates; i++)
             if (!(m->vname[el->state0 + i] = join(ep, m->el_state_names[e][i]))) {
@@ -685,6 +686,7 @@ static int compile(bgr_model *m)
             expect += bgr_port_dim(el, m, k);
         el->dep0 = m->ndep;
         el->ndep = 0;
+        el->idep0 = m->nidep;
         m->compiling = 1;
         int st = el->cls->declare(el, m);
         m->compiling = 0;
@@ -697,6 +699,8 @@ static int compile(bgr_model *m)
     }
     if (m->neq_declared != n)
         return bgri_fail(m, BG_ERR_PATTERN, w, "%d equations for %d unknowns", m->neq_declared, n);
+    int sti = bgri_invariants_finish(m);
+    if (sti != BG_OK) return sti;
     for (int v = 0; v < n; v++) /* undeclared nominal magnitudes: 1 (SI units) */
         if (m->nominal[v] == 0) m->nominal[v] = 1.0;
     /* patterns and slots */

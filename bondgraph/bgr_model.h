@@ -79,6 +79,12 @@ typedef struct bgr_element_class {
      * from the slope of its smooth switch). bgr_regimes collects them; the solver evaluates a
      * fresh Jacobian when one changes (bg_dae.h, dae_problem.regimes). */
     int (*regime)(const bgr_element *el, const double *y);
+    /* Optional: the element's position invariants (declared in declare() with
+     * bgr_declare_invariants): their values g(t, y) into g and, when dg is not NULL, their
+     * partial derivatives with respect to the unknowns declared by bgr_declare_invariant_dep, in
+     * declaration order, into dg. Returns 0, or a status (nonzero: the solver stops with
+     * DAE_CALLBACK_FAIL). See "Position invariants" below. */
+    int (*invariant)(const bgr_element *el, double t, const double *y, double *g, double *dg);
 } bgr_element_class;
 
 /* Orientation of a bond at a port, as the element sees it. */
@@ -97,6 +103,8 @@ struct bgr_element {
     int neq, eq0;        /* equations, first global row */
     int ndep, dep0;      /* declared partial derivatives, first slot index */
     char *name;
+    int ninv, inv0;   /* position invariants, first row (bgr_declare_invariants) */
+    int nidep, idep0; /* their declared partial derivatives, first slot */
 };
 
 /* ---- building ---- */
@@ -208,6 +216,49 @@ BG_API int bgr_declare_index2(bgr_element *el, bgr_model *m, int var);
  * physical scale declare nothing. */
 BG_API int bgr_declare_nominal(bgr_element *el, bgr_model *m, int var, double nominal);
 
+/* Position invariants. An element whose equations hold a quantity only through its rate (a
+ * drive that prescribes a joint's rate so that its angle follows a profile, a constraint written
+ * on velocities) may state the position-level relation as an invariant g(t, y) = 0 with its
+ * gradient G = dg/dy. bgr_dae_problem passes the model's invariants to the solver as its
+ * position constraints (dae_problem.ncons, cons, cons_pattern): the solver records their largest
+ * value after each step (dae_stats.max_drift) and, with dae_options.projection = 1, projects
+ * every accepted step and every interpolated output back onto g = 0 by the minimum-norm
+ * Gauss-Newton correction y -= G^T (G G^T)^-1 g (dae_out.c). This is the coordinate projection
+ * of Hairer, Lubich and Roche (The Numerical Solution of Differential-Algebraic Systems by
+ * Runge-Kutta Methods, Springer LNM 1409, 1989) and of Eich (SIAM J. Numer. Anal. 30 (1993)
+ * 1467-1482), who shows that BDF on the index-2 (velocity-level) formulation followed by the
+ * projection onto the position constraints keeps the order of the method and removes the drift
+ * of the positions. The alternative, the stabilised index-2 formulation of Gear, Gupta and
+ * Leimkuhler (J. Comput. Appl. Math. 12/13 (1985) 77-90), holds both levels by a second
+ * multiplier mu in the kinematic equations (q' = ... - G^T mu): those are other elements'
+ * equations (a body's), which an element of this layer cannot write into; the projection needs
+ * nothing of them and costs one factorisation of G G^T (of the invariants' size) per step.
+ * bgr_static keeps the invariants at their values at its start. The
+ * invariants are not equations of the DAE: the system stays square and of index 2, and
+ * dae_options.index2 = DAE_I2_REDUCE (which projects onto constraints of its own) refuses a
+ * problem that has them (set dae_problem.ncons = 0 there to go without them).
+ * The gradient an element declares is that with respect to the coordinates the projection may
+ * move (orientations, positions): the solver corrects those only.
+ *
+ * In declare(): ninv invariants, labelled (suffixes of their names; NULL: "inv0", ...). Statuses
+ * as for bgr_declare_equations; BG_ERR_ARGUMENT when the class has no invariant() hook or the
+ * element declares its invariants twice. */
+BG_API int bgr_declare_invariants(bgr_element *el, bgr_model *m, int ninv,
+                                  const char *const *labels);
+/* In declare(): invariant k depends on variable var (the order of these calls is the order
+ * invariant() writes its partial derivatives in). */
+BG_API int bgr_declare_invariant_dep(bgr_element *el, bgr_model *m, int k, int var);
+/* The number of invariants of a compiled model (0: none, or not compiled, or m NULL). */
+BG_API int bgr_ninvariants(const bgr_model *m);
+/* Name of invariant k ("model/.../element/label"); NULL for k out of range or not compiled. */
+BG_API const char *bgr_invariant_name(const bgr_model *m, int k);
+/* The ncons x n pattern of their gradient; NULL when there are none or not compiled. */
+BG_API const sp_csc *bgr_invariant_pattern(const bgr_model *m);
+/* The invariants as a dae_cons_fn (user = the model): g (bgr_ninvariants values) and, if G is not
+ * NULL, the values of dg/dy on bgr_invariant_pattern. BG_OK, an element's status, BG_ERR_ARGUMENT
+ * (a NULL argument, G of another shape), BG_ERR_STATE (not compiled). */
+BG_API int bgr_invariants(void *model, double t, const double *y, double *g, sp_csc *G);
+
 /* Declare the kind of a group of unknowns under the rigid motion of a co-moving frame (a
  * steady rotation: bgr_frame_rotation in bgr_analysis.h builds the frame's generator from these
  * declarations): BGR_FRAME_VECTOR, 3 unknowns, the global components of a vector (a velocity,
@@ -244,8 +295,10 @@ BG_API int bgr_get_stats(const bgr_model *m, bgr_stats *st);
 BG_API int bgr_stats_print(const bgr_model *m, FILE *f);
 
 /* A dae_problem for the compiled model (user = the model; the model must outlive the solver),
- * with the names of the unknowns and of the equations and the nominal magnitudes of the unknowns
- * (p->nominal = bgr_nominals(m); set it to NULL for the absolute tolerance in SI units). BG_OK,
+ * with the names of the unknowns and of the equations, the nominal magnitudes of the unknowns
+ * (p->nominal = bgr_nominals(m); set it to NULL for the absolute tolerance in SI units) and the
+ * position invariants as its constraints (ncons = bgr_ninvariants(m), cons = bgr_invariants;
+ * projection onto them is the caller's choice: dae_options.projection). BG_OK,
  * BG_ERR_ARGUMENT (p NULL) or BG_ERR_STATE (not compiled). */
 BG_API int bgr_dae_problem(bgr_model *m, dae_problem *p);
 /* The regimes of the elements that have one (bgr_element_class.regime), in element order, into

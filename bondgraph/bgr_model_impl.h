@@ -53,6 +53,14 @@ struct bgr_model {
     double *vals;
     /* per element own unknown names (kept until compile) */
     char ***el_state_names, ***el_alg_names;
+    /* position invariants (bgr_invariant.c) */
+    int ninv, capinv;
+    char **iname;
+    dep_rec *idep; /* eq: the invariant's row */
+    int nidep, capidep;
+    sp_csc *G;
+    int *islot;
+    double *ivals;
     /* kinds of unknowns under a frame's motion (bgr_declare_frame): groups of kind and up to
      * four unknowns, and each unknown's group + 1 (0: none; NULL until the first declaration) */
     int (*fgroup)[5];
@@ -70,5 +78,13 @@ int bgri_fail(bgr_model *m, int status, const char *where, const char *fmt, ...)
 int bgri_fail_c(const bgr_model *m, int status, const char *where, const char *fmt, ...);
 /* BG_OK if the model is compiled, else BG_ERR_STATE with a message. */
 int bgri_need_compiled(const bgr_model *m, const char *where);
+/* The checks of the bgr_declare_* functions (bgr_model.c). */
+int bgri_check_declare(const bgr_element *el, bgr_model *m, const char *what);
+/* Full path of an element (malloc'd; NULL when out of memory). */
+char *bgri_elem_path(const bgr_model *m, const bgr_element *el);
+/* Invariants (bgr_invariant.c): after the declare() hooks, the pattern of their gradient and its
+ * slots; and their records freed. */
+int bgri_invariants_finish(bgr_model *m);
+void bgri_invariants_free(bgr_model *m);
 
 #endif

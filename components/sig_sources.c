@@ -355,6 +355,15 @@ int sig_sine(bgr_model *m, bgr_comp c, const char *name, double amplitude, doubl
     return add_param_source(m, c, name, SHAPE_SINE, out, "sine", p, pn, 4, "sig_sine");
 }
 
+int sig_source_output(bgr_model *m, int id)
+{
+    bgr_element *el = bgr_element_get(m, id);
+    if (!el || el->cls != &sig_class_source)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "sig_source_output",
+                              "element %d is not a signal source", id);
+    return (int)((const source *)el->params)->out;
+}
+
 int sig_evaluate(bgr_model *m, int id, double t, double *value, double *rate, double *integral)
 {
     bgr_element *el = bgr_element_get(m, id);

@@ -74,6 +74,10 @@ BG_API int sig_constant(bgr_model *m, bgr_comp c, const char *name, double value
 BG_API int sig_evaluate(bgr_model *m, int id, double t, double *value, double *rate,
                         double *integral);
 
+/* The output (SIG_VALUE, SIG_RATE, SIG_INTEGRAL) of signal element id; BG_ERR_ARGUMENT if id
+ * is not a signal source. */
+BG_API int sig_source_output(bgr_model *m, int id);
+
 BG_API extern const bgr_element_class sig_class_source;
 
 #ifdef __cplusplus

@@ -198,6 +198,7 @@ int mdl_dae_options(const mdl_model *mm, dae_options *o, double **breakpoints)
     o->has_t_stop = 1;
     o->t_stop = s->t_end;
     o->exclude_alg = 1;
+    o->projection = bgr_ninvariants(mm->m) > 0; /* the position invariants held (mech_parts.h) */
     o->stability_guard = s->stability_guard;
     o->newton_dgmax = s->newton_dgmax;
     o->newton_jac_age = s->newton_dgmax > 0 ? s->newton_jac_age : 0;

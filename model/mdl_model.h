@@ -79,7 +79,9 @@ BG_API int mdl_outputs(const mdl_model *mm, double t, const double *y, double *o
 /* The solver options of the file's settings: tolerances, stop time t_end, the breakpoints of
  * the model's sources in (0, t_end] (allocated into *breakpoints, free() it; NULL when none),
  * the error test on the differential unknowns only (exclude_alg), the stability guard and the
- * Newton settings. dae_default_options is applied first. BG_OK or BG_ERR_MEMORY. */
+ * Newton settings, and the projection onto the model's position invariants when it has any
+ * (bgr_model.h: a mech.revolute_angle's angle). dae_default_options is applied first. BG_OK or
+ * BG_ERR_MEMORY. */
 BG_API int mdl_dae_options(const mdl_model *mm, dae_options *o, double **breakpoints);
 /* A dae_problem of the compiled model, with the nominal magnitudes when nominal_scales is on. */
 BG_API int mdl_dae_problem(mdl_model *mm, dae_problem *p);

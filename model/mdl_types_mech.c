@@ -294,6 +294,46 @@ static const mdl_type revolute_type = {
     revolute_params, COUNT(revolute_params), revolute_ports, COUNT(revolute_ports), NULL, 0,
     MDL_PASS_POSITION, revolute_build, NULL, NULL};
 
+static const mdl_param_def revolute_angle_params[] = {
+    {"axis", MDL_VECTOR, 3, "1", NULL, -INF, INF, MDL_FINITE, NULL,
+     "the joint's axis, nonzero: in the frame of axis_body, or global"},
+    {"axis_body", MDL_ELEMENT, 0, "-", NULL, 0, 0, MDL_OPTIONAL, NULL,
+     "the body (mech.body) at a, whose frame carries the axis; left out: the ground"},
+    {"body", MDL_ELEMENT, 0, "-", NULL, 0, 0, MDL_OPTIONAL, NULL,
+     "the body (mech.body) at b; left out: the ground"},
+    {"angle", MDL_SIGNAL, 0, "rad", NULL, 0, 0, 0, NULL,
+     "theta_ref: a sig.* source's output, value (theta_ref = u) or integral (theta_ref' = u)"},
+    NOMINALS,
+};
+static const mdl_signal_def revolute_angle_signals[] = {
+    {"torque", "N m", "the drive torque tau on b about the axis"},
+};
+
+static int revolute_angle_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
+                                mdl_instance *out, bg_error *err)
+{
+    static const char *const names[] = {"a", "b"};
+    bgr_ref src = mdl_arg_signal(a, "angle");
+    int id = mech_revolute_angle_source(
+        m, c, name, mdl_arg_has(a, "axis_body") ? mdl_arg_element(a, "axis_body") : -1,
+        mdl_arg_vec(a, "axis", NULL), mdl_arg_has(a, "body") ? mdl_arg_element(a, "body") : -1,
+        src.type == BGR_OWN ? src.id : -1);
+    int r = single(m, id, out, names, (const int[]){6, 6}, MDL_MECH6, 2, err);
+    if (r == BG_OK) r = mdl_instance_signal(out, "torque", (bgr_ref){BGR_OWN, id, 0});
+    return r == BG_OK ? nominals(m, id, a, err) : r;
+}
+
+static const mdl_type revolute_angle_type = {
+    "mech.revolute_angle",
+    "revolute joint whose angle follows a profile, held by projection (mech_parts.h)",
+    "v_a = v_b,  (w_b - w_a).e1 = 0,  (w_b - w_a).e2 = 0   (e1, e2 _|_ the axis)\n"
+    "s_a F_a + s_b F_b = 0,  s_a M_a + s_b M_b = 0,  (s_b M_b).axis + tau = 0\n"
+    "(w_b - w_a).axis = theta_ref'(t)\n"
+    "invariant: angle of b's frame from a's about the axis = theta_ref(t) (projected)",
+    revolute_angle_params, COUNT(revolute_angle_params), revolute_ports, 2,
+    revolute_angle_signals, COUNT(revolute_angle_signals), MDL_PASS_POSITION,
+    revolute_angle_build, NULL, NULL};
+
 /* ---- axial elements ---- */
 
 static const mdl_port_def axial_ports[] = {
@@ -441,6 +481,7 @@ static const mdl_type rsensor_type = {
 
 const mdl_type *const mdl_types_mech[] = {
     &body_type,  &pm_type,    &support_type, &spherical_type, &revolute_type,
+    &revolute_angle_type,
     &spring_type, &truss_type, &rope_type,   &rsensor_type,   &free_type,
 };
 const int mdl_types_mech_count = COUNT(mdl_types_mech);

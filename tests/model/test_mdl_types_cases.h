@@ -6,7 +6,7 @@
  * the number of equations the instance contributes, from its component's header: one per
  * port component plus one per state and per own algebraic unknown (bgr_model.h):
  *   mech.body 13 states + the points' dims; point mass 6 + 3; support dim; spherical 2 dim;
- *   revolute 12 (+ 1 with the drive port); axial elements 3 (d) + 3 + 3; rotation sensor 2
+ *   revolute 12 (+ 1 with the drive port), revolute_angle 13; axial elements 3 (d) + 3 + 3; rotation sensor 2
  *   (theta, omega); free dim;
  *   hyd.pump 3 (torque, flow, continuity), with the servo + 1 (swash); motor 3; volume
  *   nports + 1 (p); sources 1; leakage and relief valve 2 (flow, continuity);
@@ -50,6 +50,11 @@ static const build_case builds[] = {
      "s: {type: mech.support}; b: {type: mech.body, mass: 1, " BODY_INERTIA
      ", points: {a: {r: [0, 0, 0]}}}",
      "s.p -> dut.a; dut.b -> b.a", 12, ""},
+    /* the prescribed angle: 12 joint equations + the rate, one own unknown (the torque) */
+    {"mech.revolute_angle", "axis: [0, 0, 1], body: b, angle: p.y",
+     "s: {type: mech.support}; b: {type: mech.body, mass: 1, " BODY_INERTIA
+     ", points: {a: {r: [0, 0, 0]}}}; p: {type: sig.sine, amplitude: 0.5, omega: 2}",
+     "s.p -> dut.a; dut.b -> b.a", 13, ""},
     {"mech.spring", "k: 100, L0: 0.9", AXIAL_FIX, "s.p -> dut.a; dut.b -> s2.p", 9, ""},
     {"mech.truss", "E: 2e11, A: 1e-4, L0: 1", AXIAL_FIX, "s.p -> dut.a; dut.b -> s2.p", 9, ""},
     {"mech.rope", "k: 1e5, L0: 1.1", AXIAL_FIX, "s.p -> dut.a; dut.b -> s2.p", 9, ""},
