@@ -32,33 +32,78 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
     return BG_OK;
 }
 
+/* The interpolant at one unknown, its terms in the order of the difference: y = phi_0 + c_1
+ * phi_1 + ... + c_K phi_K, y' = 0 + d_1 phi_1 + ... + d_K phi_K (the 0 kept: -0 + 0 = +0, as
+ * the sum started from zero gives). K is a constant where it is inlined: one pass over the
+ * unknowns, each difference read once, no sweep of y or y' per order. */
+_Static_assert(MAXORD == 5, "interp_pass holds the differences up to order 5");
+#if defined(__GNUC__)
+#define DAE_INLINE static inline __attribute__((always_inline))
+#else
+#define DAE_INLINE static inline
+#endif
+DAE_INLINE void interp_pass(int K, int n, const double *const *phi, const double *cc,
+                            const double *dd, double *restrict y, double *restrict yp)
+{
+    const double *restrict p0 = phi[0], *restrict p1 = phi[1], *restrict p2 = phi[2],
+                           *restrict p3 = phi[3], *restrict p4 = phi[4], *restrict p5 = phi[5];
+    const double c1 = cc[1], c2 = cc[2], c3 = cc[3], c4 = cc[4], c5 = cc[5];
+    const double d1 = dd[1], d2 = dd[2], d3 = dd[3], d4 = dd[4], d5 = dd[5];
+    for (int i = 0; i < n; i++) {
+        double a = p0[i], b = 0.0;
+        if (y) a += c1 * p1[i];
+        if (yp) b += d1 * p1[i];
+        if (K >= 2 && y) a += c2 * p2[i];
+        if (K >= 2 && yp) b += d2 * p2[i];
+        if (K >= 3 && y) a += c3 * p3[i];
+        if (K >= 3 && yp) b += d3 * p3[i];
+        if (K >= 4 && y) a += c4 * p4[i];
+        if (K >= 4 && yp) b += d4 * p4[i];
+        if (K >= 5 && y) a += c5 * p5[i];
+        if (K >= 5 && yp) b += d5 * p5[i];
+        if (y) y[i] = a;
+        if (yp) yp[i] = b;
+    }
+}
+
+/* interp_pass for y and y' (both given), y alone or y' alone, with K a constant. */
+DAE_INLINE void interp_order(int K, int n, const double *const *phi, const double *cc,
+                             const double *dd, double *y, double *yp)
+{
+    if (y && yp)
+        interp_pass(K, n, phi, cc, dd, y, yp);
+    else if (y)
+        interp_pass(K, n, phi, cc, dd, y, NULL);
+    else
+        interp_pass(K, n, phi, cc, dd, NULL, yp);
+}
+
 void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
 {
     int n = s->n;
     double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
     int kord = s->kused > 0 ? s->kused : 1;
-    if (y) memcpy(y, s->phi[0], (size_t)n * sizeof *y);
-    if (yp) memset(yp, 0, (size_t)n * sizeof *yp);
+    /* the coefficients of the differences (Brenan et al. sec. 5.2: DASSL's DDATRP) */
+    double cc[MAXORD + 1] = {0}, dd[MAXORD + 1] = {0};
     for (int j = 1; j <= kord; j++) {
         d = d * gam + c / s->psi[j - 1];
         c = c * gam;
         gam = (delt + s->psi[j - 1]) / s->psi[j];
-        /* branch-free loops that vectorise (the tests for y and yp kept out of them): dense
-         * output runs at every output time, often several per step */
-        const double *restrict pj = s->phi[j];
-        if (y && yp) {
-            double *restrict a = y, *restrict b = yp;
-            for (int i = 0; i < n; i++) {
-                a[i] += c * pj[i];
-                b[i] += d * pj[i];
-            }
-        } else if (y) {
-            for (int i = 0; i < n; i++)
-                y[i] += c * pj[i];
-        } else if (yp) {
-            for (int i = 0; i < n; i++)
-                yp[i] += d * pj[i];
-        }
+        cc[j] = c;
+        dd[j] = d;
+    }
+    if (!y && !yp) return;
+    const double *phi[MAXORD + 1];
+    for (int j = 0; j <= MAXORD; j++)
+        phi[j] = j <= kord ? s->phi[j] : NULL;
+    /* dense output runs at every output time, often several per step: the loops with the order
+     * a constant, branch-free, vectorise */
+    switch (kord) {
+    case 1: interp_order(1, n, phi, cc, dd, y, yp); break;
+    case 2: interp_order(2, n, phi, cc, dd, y, yp); break;
+    case 3: interp_order(3, n, phi, cc, dd, y, yp); break;
+    case 4: interp_order(4, n, phi, cc, dd, y, yp); break;
+    default: interp_order(5, n, phi, cc, dd, y, yp); break;
     }
 }
 
