@@ -389,8 +389,9 @@ BG_API int dae_set_history(dae_solver *s, double t0, double h, int k, const doub
  * and the unknown or equation at fault, see above), after which the solver refuses to step with
  * BG_ERR_STATE until dae_reinit or dae_init. */
 BG_API int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp);
-/* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret. The
- * statuses of dae_solve_to. */
+/* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret (y or yp
+ * may be NULL: a loop that interpolates its own output times asks for none). The statuses of
+ * dae_solve_to. */
 BG_API int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp);
 /* y and yp at any t in the last step [tn - h_last, tn] (y or yp may be NULL). BG_OK,
  * BG_ERR_ARGUMENT (s NULL, or t outside the last step: y, yp then hold the values at tn) or
