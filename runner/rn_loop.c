@@ -58,6 +58,11 @@ int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp)
     double *out = malloc((size_t)sp->ncols * sizeof *out);
     if (!out) return rn_fail_run(r, "memory", "out of memory");
     int code = 0, rc = 0;
+    if (sp->unknowns && sp->nunknowns > 0 &&
+        dae_set_output_unknowns(r->s, sp->unknowns, sp->nunknowns) != BG_OK) {
+        free(out);
+        return rn_fail_run(r, "outputs", dae_get_error(r->s)->message);
+    }
     dae_dense(r->s, 0.0, y, yp);
     if ((code = row(r, sp, 0.0, y, yp, out)) != 0 || (code = rn_csv_flush(r)) != 0) goto done;
     if (sp->row) sp->row(sp->ctx, 0, 0.0, y, yp, out);

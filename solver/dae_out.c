@@ -4,9 +4,19 @@
  * onto them by the minimum-norm correction. */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bg_dae_impl.h"
+
+/* t within the last step [tn - hused, tn] up to round-off (hused != 0). */
+static int in_last_step(const dae_solver *s, double t)
+{
+    double tfuzz = 100 * DBL_EPSILON * (fabs(s->tn) + fabs(s->hh));
+    if (s->hused < 0) tfuzz = -tfuzz;
+    return !((t - (s->tn - s->hused - tfuzz)) * s->hused < 0 ||
+             (t - (s->tn + tfuzz)) * s->hused > 0);
+}
 
 int dae_dense(const dae_solver *s, double t, double *y, double *yp)
 {
@@ -24,10 +34,7 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
                 yp[i] = s->phi[1][i] / s->psi[0];
         return t == s->tn ? BG_OK : BG_ERR_ARGUMENT;
     }
-    double tfuzz = 100 * DBL_EPSILON * (fabs(s->tn) + fabs(s->hh));
-    if (s->hused < 0) tfuzz = -tfuzz;
-    if ((t - (s->tn - s->hused - tfuzz)) * s->hused < 0 || (t - (s->tn + tfuzz)) * s->hused > 0)
-        return BG_ERR_ARGUMENT;
+    if (!in_last_step(s, t)) return BG_ERR_ARGUMENT;
     daei_interpolate(s, t, y, yp);
     return BG_OK;
 }
@@ -107,6 +114,54 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
     }
 }
 
+void daei_interpolate_some(const dae_solver *s, double t, const int *idx, int m, double *y,
+                           double *yp)
+{
+    double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
+    int kord = s->kused > 0 ? s->kused : 1;
+    double cc[MAXORD + 1], dd[MAXORD + 1];
+    for (int j = 1; j <= kord; j++) { /* as daei_interpolate */
+        d = d * gam + c / s->psi[j - 1];
+        c = c * gam;
+        gam = (delt + s->psi[j - 1]) / s->psi[j];
+        cc[j] = c;
+        dd[j] = d;
+    }
+    for (int k = 0; k < m; k++) { /* each term in interp_pass's order */
+        int i = idx[k];
+        double a = s->phi[0][i], b = 0.0;
+        for (int j = 1; j <= kord; j++) {
+            a += cc[j] * s->phi[j][i];
+            b += dd[j] * s->phi[j][i];
+        }
+        if (y) y[i] = a;
+        if (yp) yp[i] = b;
+    }
+}
+
+int dae_set_output_unknowns(dae_solver *s, const int *idx, int m)
+{
+    if (!s) return BG_ERR_ARGUMENT;
+    if (m < 0 || (m > 0 && !idx))
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_set_output_unknowns",
+                              "%d unknowns given%s", m, m > 0 ? " without their indices" : "");
+    for (int k = 0; k < m; k++)
+        if (idx[k] < 0 || idx[k] >= s->n)
+            return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_set_output_unknowns",
+                                  "unknown %d (entry %d) is outside 0 .. %d", idx[k], k, s->n - 1);
+    int *c = NULL;
+    if (m > 0) {
+        c = malloc((size_t)m * sizeof *c);
+        if (!c) return bg_error_raise(&s->err, BG_ERR_MEMORY, "dae_set_output_unknowns",
+                                      "out of memory");
+        memcpy(c, idx, (size_t)m * sizeof *c);
+    }
+    free(s->out_idx);
+    s->out_idx = c;
+    s->nout_idx = m;
+    return BG_OK;
+}
+
 /* Minimum-norm Gauss-Newton correction of y onto g(t, y) = 0 (at most 3 iterations). */
 int daei_project_vec(dae_solver *s, double t, double *y)
 {
@@ -150,6 +205,11 @@ int daei_project_step(dae_solver *s)
 void daei_output_state(dae_solver *s, double t, double *tret, double *y, double *yp)
 {
     *tret = t;
+    if (s->nout_idx > 0 && !s->o.projection && s->initialized && !s->first && s->hused != 0 &&
+        in_last_step(s, t)) { /* the unknowns asked for (dae_set_output_unknowns) */
+        daei_interpolate_some(s, t, s->out_idx, s->nout_idx, y, yp);
+        return;
+    }
     if (dae_dense(s, t, y, yp) != BG_OK) {
         if (y) memcpy(y, s->phi[0], (size_t)s->n * sizeof *y);
         if (yp) dae_dense(s, s->tn, NULL, yp);
