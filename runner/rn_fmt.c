@@ -54,6 +54,12 @@ static const rn_u128 POW10[23] = {1ULL,
                                   (rn_u128)P10_19 * 100,
                                   (rn_u128)P10_19 * 1000};
 
+/* 10^k for k = -12 .. 22 as doubles (POW10D[k + 12]) */
+static const double POW10D[35] = {1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4,
+                                  1e-3,  1e-2,  1e-1,  1e0,  1e1,  1e2,  1e3,  1e4,  1e5,
+                                  1e6,   1e7,   1e8,   1e9,  1e10, 1e11, 1e12, 1e13, 1e14,
+                                  1e15,  1e16,  1e17,  1e18, 1e19, 1e20, 1e21, 1e22};
+
 static const char DIGITS2[201] = "00010203040506070809"
                                  "10111213141516171819"
                                  "20212223242526272829"
@@ -115,25 +121,30 @@ int rn_fmt_g12(char *buf, double x)
     if (eb == 0 || eb == 0x7ff) return snprintf(buf, RN_FMT_SIZE, "%.12g", x);
     uint64_t m = frac | 1ULL << 52;
     int e = eb - 1075, E2 = eb - 1023; /* |x| = m 2^e, 2^E2 <= |x| < 2^(E2 + 1) */
-    /* floor(E2 log10 2): X or X - 1 */
+    /* floor(E2 log10 2): X or X - 1; one up where |x| reaches the next power of ten (the
+     * doubles nearest 10^k: a miss at the boundary is corrected below) */
     int X = E2 >= 0 ? (E2 * 78913) >> 18 : -((-E2 * 78913 + (1 << 18) - 1) >> 18);
+    if (X >= -12 && X <= 21 && fabs(x) >= POW10D[X + 13]) X++;
     uint64_t N = 0;
     for (int tries = 0;; tries++) {
         if (tries == 3 || scaled(m, e, 11 - X, &N) != 0)
             return snprintf(buf, RN_FMT_SIZE, "%.12g", x);
         if (N >= 1000000000000ULL) /* 13 digits: X one too low, or rounded up to 10^12 */
             X++;
-        else if (N < 100000000000ULL) /* X one too high (not met from the estimate) */
+        else if (N < 100000000000ULL) /* X one too high */
             X--;
         else
             break;
     }
     char d[12];
-    for (int i = 10; i >= 0; i -= 2) {
-        unsigned two = (unsigned)(N % 100);
-        N /= 100;
-        d[i] = DIGITS2[2 * two];
-        d[i + 1] = DIGITS2[2 * two + 1];
+    uint32_t half[2] = {(uint32_t)(N / 1000000), (uint32_t)(N % 1000000)};
+    for (int h = 0; h < 2; h++) {
+        uint32_t v = half[h];
+        for (int i = 6 * h + 4; i >= 6 * h; i -= 2) {
+            uint32_t two = v % 100;
+            v /= 100;
+            memcpy(d + i, DIGITS2 + 2 * two, 2);
+        }
     }
     int nd = 12;
     while (nd > 1 && d[nd - 1] == '0')
