@@ -166,24 +166,6 @@ static void compare(dae_solver *s)
 static int fit(int n, double *const *e, int m, double *theta, double *r)
 {
     double xx = 0, yy = 0, xy = 0, cx = 0, cy = 0, cc = 0;
-#if defined(__GNUC__)
-    /* the six sums in three two-lane vectors, each lane one sum in the order of the portable
-     * loop below (the same bits): (xx, yy) += (x, y) (x, y), (xy, cx) += (x, c) (y, x),
-     * (cy, cc) += (c, c) (y, c) */
-    typedef double v2 __attribute__((vector_size(2 * sizeof(double))));
-    v2 s1 = {0, 0}, s2 = {0, 0}, s3 = {0, 0};
-    for (int j = 0; j < m; j++) {
-        const double *restrict c = e[j], *restrict x = e[j + 1], *restrict y = e[j + 2];
-        for (int i = 0; i < n; i++) {
-            v2 xy_ = {x[i], y[i]}, xc = {x[i], c[i]}, yx = {y[i], x[i]}, cc_ = {c[i], c[i]},
-               yc = {y[i], c[i]};
-            s1 += xy_ * xy_;
-            s2 += xc * yx;
-            s3 += cc_ * yc;
-        }
-    }
-    xx = s1[0], yy = s1[1], xy = s2[0], cx = s2[1], cy = s3[0], cc = s3[1];
-#else
     for (int j = 0; j < m; j++) {
         const double *restrict c = e[j], *restrict x = e[j + 1], *restrict y = e[j + 2];
         for (int i = 0; i < n; i++) {
@@ -195,7 +177,6 @@ static int fit(int n, double *const *e, int m, double *theta, double *r)
             cc += c[i] * c[i];
         }
     }
-#endif
     double det = xx * yy - xy * xy;
     if (!(cc > 0) || !(det > 1e-12 * xx * yy)) return 0;
     double a = (cx * yy - cy * xy) / det, b = (cy * xx - cx * xy) / det;
