@@ -85,13 +85,14 @@ DAE_INLINE void interp_order(int K, int n, const double *const *phi, const doubl
         interp_pass(K, n, phi, cc, dd, NULL, yp);
 }
 
-void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
+/* The coefficients of the differences at t: y(t) = phi_0 + sum c_j phi_j, y'(t) = sum d_j phi_j,
+ * j = 1 .. K (Brenan et al. sec. 5.2: DASSL's DDATRP). K, the order of the last step. */
+static int coefficients(const dae_solver *s, double t, double *cc, double *dd)
 {
-    int n = s->n;
     double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
     int kord = s->kused > 0 ? s->kused : 1;
-    /* the coefficients of the differences (Brenan et al. sec. 5.2: DASSL's DDATRP) */
-    double cc[MAXORD + 1] = {0}, dd[MAXORD + 1] = {0};
+    for (int j = 1; j <= MAXORD; j++)
+        cc[j] = dd[j] = 0;
     for (int j = 1; j <= kord; j++) {
         d = d * gam + c / s->psi[j - 1];
         c = c * gam;
@@ -99,6 +100,14 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
         cc[j] = c;
         dd[j] = d;
     }
+    return kord;
+}
+
+void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
+{
+    int n = s->n;
+    double cc[MAXORD + 1], dd[MAXORD + 1];
+    int kord = coefficients(s, t, cc, dd);
     if (!y && !yp) return;
     const double *phi[MAXORD + 1];
     for (int j = 0; j <= MAXORD; j++)
@@ -117,16 +126,8 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
 void daei_interpolate_some(const dae_solver *s, double t, const int *idx, int m, double *y,
                            double *yp)
 {
-    double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
-    int kord = s->kused > 0 ? s->kused : 1;
     double cc[MAXORD + 1], dd[MAXORD + 1];
-    for (int j = 1; j <= kord; j++) { /* as daei_interpolate */
-        d = d * gam + c / s->psi[j - 1];
-        c = c * gam;
-        gam = (delt + s->psi[j - 1]) / s->psi[j];
-        cc[j] = c;
-        dd[j] = d;
-    }
+    int kord = coefficients(s, t, cc, dd);
     for (int k = 0; k < m; k++) { /* each term in interp_pass's order */
         int i = idx[k];
         double a = s->phi[0][i], b = 0.0;
