@@ -79,6 +79,9 @@ static int rt_measure(const crane_scene *s0, rt_run *o)
     bg_error err = {0};
     dae_solver *sv = y && yp ? dae_create(&dp, &opt, &err) : NULL;
     r = sv ? dae_init(sv, 0.0, bc.ys, bc.yps) : BG_ERR_MEMORY;
+    /* the rows interpolate the unknowns the outputs read, as the crane program's */
+    int ounk[CRANE_MAX_OUTPUT_UNKNOWNS];
+    if (r == BG_OK) r = dae_set_output_unknowns(sv, ounk, crane_output_unknowns(bc.ext, ounk));
     double out[CRANE_NOUT], t = 0;
     long nout = (long)ceil(s.t_end / s.output_step - 1e-9), last = 0;
     if (nout < 1) nout = 1;

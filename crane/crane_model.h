@@ -159,6 +159,14 @@ extern const char *const crane_output_names[CRANE_NOUT]; /* "t [s]", "theta [rad
  * -1 if none or key is NULL. */
 int crane_output_index(const char *key);
 void crane_outputs(const crane *c, double t, const double *y, const double *yp, double *out);
+/* The unknowns crane_outputs reads of y and yp (CRANE_MAX_OUTPUT_UNKNOWNS at most) into idx,
+ * some more than once: the angles, rates and references, the boom's tip and foot, the
+ * platform's position and orientation, the load, the rope's stretch vector and the velocities
+ * of its ends (mech_axial.h: the tension is T(L, L')), the pump and the pressures. Their count,
+ * 0 for c or idx NULL. A loop that writes only the outputs interpolates these alone
+ * (dae_set_output_unknowns). */
+#define CRANE_MAX_OUTPUT_UNKNOWNS 64
+int crane_output_unknowns(const crane *c, int *idx);
 
 /* Mechanical energies at a state y: kinetic (platform, boom nodes or rigid boom, load,
  * counterweight), potential of gravity, elastic (beam elements, ties, rope). The hydraulic

@@ -156,6 +156,39 @@ void crane_outputs(const crane *c, double t, const double *y, const double *yp, 
     out[19] = sqrt(mech_dot(d, d));
 }
 
+/* i .. i + k - 1 into idx at *m (i < 0: the part is missing, nothing). */
+static void add_run(int *idx, int *m, int i, int k)
+{
+    for (int j = 0; i >= 0 && j < k && *m < CRANE_MAX_OUTPUT_UNKNOWNS; j++)
+        idx[(*m)++] = i + j;
+}
+
+int crane_output_unknowns(const crane *c, int *idx)
+{
+    if (!c || !idx) return 0;
+    int m = 0;
+    const int one[] = {c->v_theta, c->v_theta_ref, c->v_omega, c->v_omega_ref, c->v_alpha_ref,
+                       c->v_alpha,  c->v_x,         c->v_ph,    c->v_pl};
+    for (size_t k = 0; k < sizeof one / sizeof *one; k++)
+        add_run(idx, &m, one[k], 1);
+    /* boom_ends: the tip and foot nodes, or the rigid boom's position and orientation */
+    add_run(idx, &m, c->v_tip, 3);
+    if (c->n > 0)
+        add_run(idx, &m, c->v_node0, 3);
+    else
+        add_run(idx, &m, c->v_tipq, 4);
+    add_run(idx, &m, c->v_plat_x, 3);
+    add_run(idx, &m, c->v_plat_q, 4);
+    add_run(idx, &m, c->v_load, 3);
+    if (c->s.rope) { /* T(L, L'): the stretch vector d, the velocities at A and B */
+        const bgr_element *el = bgr_element_get(c->m, c->rope);
+        add_run(idx, &m, bgr_sv(el, 0), 3);
+        for (int k = 0; k < 2; k++)
+            add_run(idx, &m, bgr_fv(el, c->m, k, 0), 3);
+    }
+    return m;
+}
+
 int crane_stats_print(const crane *c, FILE *f)
 {
     bgr_stats st;

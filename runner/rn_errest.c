@@ -132,7 +132,7 @@ int rn_errest_add(rn_errest *e, double t, const double *out1)
     double tret = t;
     while (dae_current_time(e->s) < t) {
         if (e->stop && *e->stop) return RN_ERREST_STOPPED;
-        int rc = dae_step(e->s, t, &tret, e->y, e->yp);
+        int rc = dae_step(e->s, t, &tret, NULL, NULL); /* the state: state_at */
         if (rc < 0) {
             char msg[BG_MESSAGE_SIZE + 64];
             snprintf(msg, sizeof msg, "%.*s (%s)", BG_MESSAGE_SIZE, dae_get_error(e->s)->message,

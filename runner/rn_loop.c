@@ -58,6 +58,11 @@ int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp)
     double *out = malloc((size_t)sp->ncols * sizeof *out);
     if (!out) return rn_fail_run(r, "memory", "out of memory");
     int code = 0, rc = 0;
+    if (sp->unknowns && sp->nunknowns > 0 &&
+        dae_set_output_unknowns(r->s, sp->unknowns, sp->nunknowns) != BG_OK) {
+        free(out);
+        return rn_fail_run(r, "outputs", dae_get_error(r->s)->message);
+    }
     dae_dense(r->s, 0.0, y, yp);
     if ((code = row(r, sp, 0.0, y, yp, out)) != 0 || (code = rn_csv_flush(r)) != 0) goto done;
     if (sp->row) sp->row(sp->ctx, 0, 0.0, y, yp, out);
@@ -66,7 +71,8 @@ int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp)
     /* Output times k dt (k < nout) and t_end. The solver steps one step at a time up to each
      * (dae_step), with a look at the signal flag between two steps, so that a signal stops the run
      * within a step whatever the output step; the row is then interpolated in the last step
-     * (dae_solve_to without a step: the values dae_solve_to alone would give). */
+     * (dae_solve_to without a step: the values dae_solve_to alone would give). The steps return
+     * no state (y, yp NULL): only the rows' states are used, and each costs an interpolation. */
     double dt = sp->output_step, tend = sp->t_end, last = 0, tret = 0;
     long nout = r->nout, k;
     r->t_start = rn_wall_now();
@@ -76,7 +82,7 @@ int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp)
         if (tout > tend) tout = tend;
         while (dae_current_time(r->s) < tout) {
             if (rn_signal()) goto stopped;
-            rc = dae_step(r->s, tout, &tret, y, yp);
+            rc = dae_step(r->s, tout, &tret, NULL, NULL);
             if (rc < 0) goto solver_failed;
             r->t = tret;
             if (sp->progress) progress(r, &last);

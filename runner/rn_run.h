@@ -206,6 +206,10 @@ typedef struct rn_loop_spec {
     int (*row)(void *ctx, long k, double t, const double *y, const double *yp, const double *out);
     void *ctx;
     int progress; /* the progress line on stderr (a terminal, not --quiet) */
+    /* optional: the unknowns outputs (and row) read of y and yp, nunknowns of them: the rows
+     * after t = 0 then interpolate these alone (dae_set_output_unknowns); NULL: all */
+    const int *unknowns;
+    int nunknowns;
 } rn_loop_spec;
 
 /* The t = 0 row and the loop over the output times: r->s steps one step at a time up to each
@@ -214,7 +218,7 @@ typedef struct rn_loop_spec {
  * hook, then the error estimate's companion to the same time (rn_estimate_row: a signal that
  * stops it on its way ends the run interrupted after the row). results.csv must be open. Sets
  * r->status (completed, interrupted with the reason, failed). 0, 128 + N, or RN_EXIT_RUN. y, yp: n
- * values each, the state of the last row. */
+ * values each, the state of the last row (sp->unknowns given: at those unknowns). */
 int rn_loop(rn_run *r, const rn_loop_spec *sp, double *y, double *yp);
 /* After the loop (or a failure before it): results.csv written whole and closed, the handler's
  * status.txt for what follows, and with --error-estimate error_estimate.csv (when results.csv

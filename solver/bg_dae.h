@@ -405,9 +405,18 @@ BG_API int dae_set_history(dae_solver *s, double t0, double h, int k, const doub
  * and the unknown or equation at fault, see above), after which the solver refuses to step with
  * BG_ERR_STATE until dae_reinit or dae_init. */
 BG_API int dae_solve_to(dae_solver *s, double tout, double *tret, double *y, double *yp);
-/* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret. The
- * statuses of dae_solve_to. */
+/* One internal step towards tout (not beyond a breakpoint or t_stop); state at *tret (y or yp
+ * may be NULL: a loop that interpolates its own output times asks for none). The statuses of
+ * dae_solve_to. */
 BG_API int dae_step(dae_solver *s, double tout, double *tret, double *y, double *yp);
+/* The unknowns the caller reads of the states dae_solve_to and dae_step return: idx[0 .. m-1]
+ * (copied); the other entries of y and yp are then left as they are, not interpolated. An output
+ * that reads a few unknowns of a large system at every output time saves the interpolation of
+ * the rest; the values written are those of the whole state. idx NULL or m = 0: all (the
+ * default). Ignored while options.projection is on (the projection needs the whole state);
+ * dae_dense always writes the whole state. BG_OK, BG_ERR_ARGUMENT (s NULL, m < 0, an index
+ * outside 0 .. n-1) or BG_ERR_MEMORY. */
+BG_API int dae_set_output_unknowns(dae_solver *s, const int *idx, int m);
 /* y and yp at any t in the last step [tn - h_last, tn] (y or yp may be NULL). BG_OK,
  * BG_ERR_ARGUMENT (s NULL, or t outside the last step: y, yp then hold the values at tn) or
  * BG_ERR_STATE (before dae_init). No message (s is const). */

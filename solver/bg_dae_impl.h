@@ -104,6 +104,9 @@ struct dae_solver {
     int *kkt_diag, *kkt_b, *kkt_bt; /* slots: diagonal j, entry p of Jy in B and in B^T */
     ls_solver *kktls;
     double *kkt_rhs; /* n + nalg_rows */
+    /* the unknowns the caller reads of the states returned (dae_set_output_unknowns): out_idx[0 ..
+     * nout_idx - 1]; nout_idx 0: all */
+    int *out_idx, nout_idx;
     /* drift and projection */
     sp_csc *G;
     aat_solver *aat_proj;
@@ -320,6 +323,9 @@ void daei_stab_reset(dae_solver *s);
 /* ---- dae_out.c: output ---- */
 /* The history's interpolating polynomial at t (after a step), without dae_dense's check. */
 void daei_interpolate(const dae_solver *s, double t, double *y, double *yp);
+/* daei_interpolate at the unknowns idx[0 .. m-1] only (the others untouched): the same values. */
+void daei_interpolate_some(const dae_solver *s, double t, const int *idx, int m, double *y,
+                           double *yp);
 /* Interpolated output at t (projected with options.projection), or the last step's values. */
 void daei_output_state(dae_solver *s, double t, double *tret, double *y, double *yp);
 /* Earliest sign change of the event functions in (tlo, tn]: 1 found, 0 none, < 0 failure. */

@@ -73,6 +73,7 @@ void dae_free(dae_solver **sp)
 {
     if (!sp || !*sp) return;
     dae_solver *s = *sp;
+    free(s->out_idx);
     free(s->kind);
     if (s->names) {
         for (int i = 0; i < s->n; i++)

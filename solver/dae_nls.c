@@ -250,6 +250,31 @@ int daei_newton(dae_solver *s, double t)
             const double *restrict d = s->delta, *restrict w = s->wnewt, *restrict wd = s->wdiff;
             double q0 = 0, q1 = 0, r0 = 0, r1 = 0;
             int i = 0;
+#if defined(__GNUC__)
+            /* the pairs below as two-lane vectors, lane l summing the unknowns i = l (mod 2) as
+             * q0/q1 and r0/r1 do: the same operations in the same order, the same bits */
+            typedef double v2 __attribute__((vector_size(2 * sizeof(double))));
+            v2 q = {0, 0}, r = {0, 0}, vcj = {cj, cj};
+            for (; i + 2 <= n; i += 2) {
+                v2 dv, wv, wdv, yv, ypv, ev;
+                memcpy(&dv, d + i, sizeof dv);
+                memcpy(&wv, w + i, sizeof wv);
+                memcpy(&wdv, wd + i, sizeof wdv);
+                memcpy(&yv, y + i, sizeof yv);
+                memcpy(&ypv, yp + i, sizeof ypv);
+                memcpy(&ev, ee + i, sizeof ev);
+                v2 a = dv * wv, b = dv * wdv;
+                q += a * a;
+                r += b * b;
+                yv -= dv;
+                ypv -= vcj * dv;
+                ev -= dv;
+                memcpy(y + i, &yv, sizeof yv);
+                memcpy(yp + i, &ypv, sizeof ypv);
+                memcpy(ee + i, &ev, sizeof ev);
+            }
+            q0 = q[0], q1 = q[1], r0 = r[0], r1 = r[1];
+#endif
             for (; i + 2 <= n; i += 2) {
                 double a0 = d[i] * w[i], a1 = d[i + 1] * w[i + 1];
                 double b0 = d[i] * wd[i], b1 = d[i + 1] * wd[i + 1];

@@ -4,9 +4,19 @@
  * onto them by the minimum-norm correction. */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bg_dae_impl.h"
+
+/* t within the last step [tn - hused, tn] up to round-off (hused != 0). */
+static int in_last_step(const dae_solver *s, double t)
+{
+    double tfuzz = 100 * DBL_EPSILON * (fabs(s->tn) + fabs(s->hh));
+    if (s->hused < 0) tfuzz = -tfuzz;
+    return !((t - (s->tn - s->hused - tfuzz)) * s->hused < 0 ||
+             (t - (s->tn + tfuzz)) * s->hused > 0);
+}
 
 int dae_dense(const dae_solver *s, double t, double *y, double *yp)
 {
@@ -24,42 +34,133 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
                 yp[i] = s->phi[1][i] / s->psi[0];
         return t == s->tn ? BG_OK : BG_ERR_ARGUMENT;
     }
-    double tfuzz = 100 * DBL_EPSILON * (fabs(s->tn) + fabs(s->hh));
-    if (s->hused < 0) tfuzz = -tfuzz;
-    if ((t - (s->tn - s->hused - tfuzz)) * s->hused < 0 || (t - (s->tn + tfuzz)) * s->hused > 0)
-        return BG_ERR_ARGUMENT;
+    if (!in_last_step(s, t)) return BG_ERR_ARGUMENT;
     daei_interpolate(s, t, y, yp);
     return BG_OK;
+}
+
+/* The interpolant at one unknown, its terms in the order of the difference: y = phi_0 + c_1
+ * phi_1 + ... + c_K phi_K, y' = 0 + d_1 phi_1 + ... + d_K phi_K (the 0 kept: -0 + 0 = +0, as
+ * the sum started from zero gives). K is a constant where it is inlined: one pass over the
+ * unknowns, each difference read once, no sweep of y or y' per order. */
+_Static_assert(MAXORD == 5, "interp_pass holds the differences up to order 5");
+#if defined(__GNUC__)
+#define DAE_INLINE static inline __attribute__((always_inline))
+#else
+#define DAE_INLINE static inline
+#endif
+DAE_INLINE void interp_pass(int K, int n, const double *const *phi, const double *cc,
+                            const double *dd, double *restrict y, double *restrict yp)
+{
+    const double *restrict p0 = phi[0], *restrict p1 = phi[1], *restrict p2 = phi[2],
+                           *restrict p3 = phi[3], *restrict p4 = phi[4], *restrict p5 = phi[5];
+    const double c1 = cc[1], c2 = cc[2], c3 = cc[3], c4 = cc[4], c5 = cc[5];
+    const double d1 = dd[1], d2 = dd[2], d3 = dd[3], d4 = dd[4], d5 = dd[5];
+    for (int i = 0; i < n; i++) {
+        double a = p0[i], b = 0.0;
+        if (y) a += c1 * p1[i];
+        if (yp) b += d1 * p1[i];
+        if (K >= 2 && y) a += c2 * p2[i];
+        if (K >= 2 && yp) b += d2 * p2[i];
+        if (K >= 3 && y) a += c3 * p3[i];
+        if (K >= 3 && yp) b += d3 * p3[i];
+        if (K >= 4 && y) a += c4 * p4[i];
+        if (K >= 4 && yp) b += d4 * p4[i];
+        if (K >= 5 && y) a += c5 * p5[i];
+        if (K >= 5 && yp) b += d5 * p5[i];
+        if (y) y[i] = a;
+        if (yp) yp[i] = b;
+    }
+}
+
+/* interp_pass for y and y' (both given), y alone or y' alone, with K a constant. */
+DAE_INLINE void interp_order(int K, int n, const double *const *phi, const double *cc,
+                             const double *dd, double *y, double *yp)
+{
+    if (y && yp)
+        interp_pass(K, n, phi, cc, dd, y, yp);
+    else if (y)
+        interp_pass(K, n, phi, cc, dd, y, NULL);
+    else
+        interp_pass(K, n, phi, cc, dd, NULL, yp);
+}
+
+/* The coefficients of the differences at t: y(t) = phi_0 + sum c_j phi_j, y'(t) = sum d_j phi_j,
+ * j = 1 .. K (Brenan et al. sec. 5.2: DASSL's DDATRP). K, the order of the last step. */
+static int coefficients(const dae_solver *s, double t, double *cc, double *dd)
+{
+    double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
+    int kord = s->kused > 0 ? s->kused : 1;
+    for (int j = 1; j <= MAXORD; j++)
+        cc[j] = dd[j] = 0;
+    for (int j = 1; j <= kord; j++) {
+        d = d * gam + c / s->psi[j - 1];
+        c = c * gam;
+        gam = (delt + s->psi[j - 1]) / s->psi[j];
+        cc[j] = c;
+        dd[j] = d;
+    }
+    return kord;
 }
 
 void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
 {
     int n = s->n;
-    double delt = t - s->tn, c = 1, d = 0, gam = delt / s->psi[0];
-    int kord = s->kused > 0 ? s->kused : 1;
-    if (y) memcpy(y, s->phi[0], (size_t)n * sizeof *y);
-    if (yp) memset(yp, 0, (size_t)n * sizeof *yp);
-    for (int j = 1; j <= kord; j++) {
-        d = d * gam + c / s->psi[j - 1];
-        c = c * gam;
-        gam = (delt + s->psi[j - 1]) / s->psi[j];
-        /* branch-free loops that vectorise (the tests for y and yp kept out of them): dense
-         * output runs at every output time, often several per step */
-        const double *restrict pj = s->phi[j];
-        if (y && yp) {
-            double *restrict a = y, *restrict b = yp;
-            for (int i = 0; i < n; i++) {
-                a[i] += c * pj[i];
-                b[i] += d * pj[i];
-            }
-        } else if (y) {
-            for (int i = 0; i < n; i++)
-                y[i] += c * pj[i];
-        } else if (yp) {
-            for (int i = 0; i < n; i++)
-                yp[i] += d * pj[i];
-        }
+    double cc[MAXORD + 1], dd[MAXORD + 1];
+    int kord = coefficients(s, t, cc, dd);
+    if (!y && !yp) return;
+    const double *phi[MAXORD + 1];
+    for (int j = 0; j <= MAXORD; j++)
+        phi[j] = j <= kord ? s->phi[j] : NULL;
+    /* dense output runs at every output time, often several per step: the loops with the order
+     * a constant, branch-free, vectorise */
+    switch (kord) {
+    case 1: interp_order(1, n, phi, cc, dd, y, yp); break;
+    case 2: interp_order(2, n, phi, cc, dd, y, yp); break;
+    case 3: interp_order(3, n, phi, cc, dd, y, yp); break;
+    case 4: interp_order(4, n, phi, cc, dd, y, yp); break;
+    default: interp_order(5, n, phi, cc, dd, y, yp); break;
     }
+}
+
+void daei_interpolate_some(const dae_solver *s, double t, const int *idx, int m, double *y,
+                           double *yp)
+{
+    double cc[MAXORD + 1], dd[MAXORD + 1];
+    int kord = coefficients(s, t, cc, dd);
+    for (int k = 0; k < m; k++) { /* each term in interp_pass's order */
+        int i = idx[k];
+        double a = s->phi[0][i], b = 0.0;
+        for (int j = 1; j <= kord; j++) {
+            a += cc[j] * s->phi[j][i];
+            b += dd[j] * s->phi[j][i];
+        }
+        if (y) y[i] = a;
+        if (yp) yp[i] = b;
+    }
+}
+
+int dae_set_output_unknowns(dae_solver *s, const int *idx, int m)
+{
+    if (!s) return BG_ERR_ARGUMENT;
+    if (m < 0 || (m > 0 && !idx))
+        return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_set_output_unknowns",
+                              "%d unknowns given%s", m, m > 0 ? " without their indices" : "");
+    for (int k = 0; k < m; k++)
+        if (idx[k] < 0 || idx[k] >= s->n)
+            return bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_set_output_unknowns",
+                                  "unknown %d (entry %d) is outside 0 .. %d", idx[k], k, s->n - 1);
+    int *c = NULL;
+    if (m > 0) {
+        c = malloc((size_t)m * sizeof *c);
+        if (!c) return bg_error_raise(&s->err, BG_ERR_MEMORY, "dae_set_output_unknowns",
+                                      "out of memory");
+        memcpy(c, idx, (size_t)m * sizeof *c);
+    }
+    free(s->out_idx);
+    s->out_idx = c;
+    s->nout_idx = m;
+    return BG_OK;
 }
 
 /* Minimum-norm Gauss-Newton correction of y onto g(t, y) = 0 (at most 3 iterations). */
@@ -105,6 +206,11 @@ int daei_project_step(dae_solver *s)
 void daei_output_state(dae_solver *s, double t, double *tret, double *y, double *yp)
 {
     *tret = t;
+    if (s->nout_idx > 0 && !s->o.projection && s->initialized && !s->first && s->hused != 0 &&
+        in_last_step(s, t)) { /* the unknowns asked for (dae_set_output_unknowns) */
+        daei_interpolate_some(s, t, s->out_idx, s->nout_idx, y, yp);
+        return;
+    }
     if (dae_dense(s, t, y, yp) != BG_OK) {
         if (y) memcpy(y, s->phi[0], (size_t)s->n * sizeof *y);
         if (yp) dae_dense(s, s->tn, NULL, yp);

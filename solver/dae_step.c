@@ -262,7 +262,10 @@ static int check_before(dae_solver *s)
     char nb[32];
     daei_clip_to_stop(s);
     daei_set_weights(s, s->phi[0]);
-    double tolsf = DBL_EPSILON * daei_wrms(s, s->phi[0], s->ewt);
+    /* |y_i| ewt_i <= 1 / rtol, so tolsf <= eps / rtol (times 1 + a few eps): the norm is needed
+     * only where rtol < 2 eps */
+    double tolsf = s->o.rtol >= 2 * DBL_EPSILON ? 0.0
+                                                : DBL_EPSILON * daei_wrms(s, s->phi[0], s->ewt);
     if (tolsf > 1) {
         int i = daei_largest_weighted(s, s->phi[0], s->ewt);
         return bg_error_raise(&s->err, DAE_TOO_MUCH_ACC, "dae_solve_to",
@@ -394,13 +397,15 @@ int daei_step(dae_solver *s)
     step_attempt a = {0, 0, 0};
     int r = check_before(s);
     if (r != BG_OK) return r;
-    for (;;) {
+    for (int attempt = 0;; attempt++) {
         int isb;
         double ts = daei_next_stop(s, s->hh > 0 ? 1 : -1, &isb);
         int landing = !isnan(ts) && s->tn + s->hh == ts;
         if ((r = check_floor(s, &a, landing)) != 0) return r;
-        /* the weights change with h only through the index-2 unknowns' scaling by |h| */
-        if (s->has_alg2 && (s->o.index2 == DAE_I2_SCALE_H || s->o.newton_index2_scale_h))
+        /* the weights change with h only through the index-2 unknowns' scaling by |h|: for a
+         * retry (the first attempt has check_before's, at this h) */
+        if (attempt > 0 && s->has_alg2 &&
+            (s->o.index2 == DAE_I2_SCALE_H || s->o.newton_index2_scale_h))
             daei_set_weights(s, s->phi[0]);
         set_coeffs(s);
         predict(s);

@@ -249,6 +249,13 @@ int cp_simulate(cp_run *r)
                        .row = row,
                        .ctx = r,
                        .progress = tty};
+    /* the rows interpolate the unknowns the outputs read, unless the viz's frames need the
+     * whole state */
+    int ounk[CRANE_MAX_OUTPUT_UNKNOWNS];
+    if (!r->viz) {
+        sp.unknowns = ounk;
+        sp.nunknowns = crane_output_unknowns(r->c, ounk);
+    }
     code = rn_loop(&r->rn, &sp, y, yp);
 
 done:
