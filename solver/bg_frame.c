@@ -1,5 +1,6 @@
 /* A problem in a co-moving frame of the linear kind (bg_frame.h, bg_modes.h). */
 #include "bg_frame.h"
+#include "bg_jaceval.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -135,4 +136,23 @@ int bg_frame_init(bg_frame *f, const dae_problem *p, const sp_csc *S, const doub
 nomem:
     bg_frame_free(f);
     return bg_error_raise(err, BG_ERR_MEMORY, where, "out of memory");
+}
+
+int bg_frame_steadiness(const dae_problem *p, const sp_csc *S, double t, const double *y,
+                        const double *yp, double *ratio, int *row, const char *where,
+                        bg_error *err)
+{
+    bg_jaceval J;
+    memset(&J, 0, sizeof J);
+    int st = bg_jaceval_init(&J, p, err);
+    if (st != BG_OK) return st;
+    st = bg_jaceval_eval(&J, t, y, yp, NULL);
+    if (st == 0) st = bg_jaceval_steadiness(&J, t, y, yp, S, ratio, row);
+    if (st != 0)
+        st = bg_error_raise(err, st == BG_ERR_MEMORY ? st : BG_ERR_CALLBACK, where,
+                            "the residual or Jacobian could not be evaluated along the frame's "
+                            "motion (status %d)",
+                            st);
+    bg_jaceval_free(&J);
+    return st;
 }

@@ -31,5 +31,11 @@ typedef struct bg_frame {
 int bg_frame_init(bg_frame *f, const dae_problem *p, const sp_csc *S, const double *c,
                   const char *where, bg_error *err);
 void bg_frame_free(bg_frame *f);
+/* How far (t, y, yp) is from steady along the flow of y' = S y + c (bg_jaceval_steadiness: the
+ * largest relative change of an equation, *ratio, and its row, *row). BG_OK, or BG_ERR_MEMORY /
+ * BG_ERR_CALLBACK (the residual or Jacobian failed) with a message from where. */
+int bg_frame_steadiness(const dae_problem *p, const sp_csc *S, double t, const double *y,
+                        const double *yp, double *ratio, int *row, const char *where,
+                        bg_error *err);
 
 #endif

@@ -77,8 +77,6 @@ int mode_in_frame(const dae_problem *p, double t, const double *y, const double 
     const char *where = "dae_modes_compute";
     int n = p->n, st;
     double *ypz = yp ? NULL : calloc((size_t)n, sizeof *ypz), *c = malloc((size_t)n * sizeof *c);
-    bg_jaceval J;
-    memset(&J, 0, sizeof J);
     bg_frame f;
     memset(&f, 0, sizeof f);
     if ((!yp && !ypz) || !c) {
@@ -88,18 +86,10 @@ int mode_in_frame(const dae_problem *p, double t, const double *y, const double 
     if (!yp) yp = ypz;
     if ((st = bg_frame_init(&f, p, o->frame, NULL, where, err)) != BG_OK) goto done;
     if (!o->frozen) {
-        if ((st = bg_jaceval_init(&J, p, err)) != BG_OK) goto done;
         double ratio;
         int row;
-        st = bg_jaceval_eval(&J, t, y, yp, NULL);
-        if (st == 0) st = bg_jaceval_steadiness(&J, t, y, yp, o->frame, &ratio, &row);
-        if (st != 0) {
-            st = bg_error_raise(err, st == BG_ERR_MEMORY ? st : BG_ERR_CALLBACK, where,
-                                "the residual or Jacobian could not be evaluated along the "
-                                "frame's motion (status %d)",
-                                st);
-            goto done;
-        }
+        st = bg_frame_steadiness(p, o->frame, t, y, yp, &ratio, &row, where, err);
+        if (st != BG_OK) goto done;
         if (ratio > MODES_STEADY_TOL) {
             char eb[256], vb[256];
             st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
@@ -132,7 +122,6 @@ int mode_in_frame(const dae_problem *p, double t, const double *y, const double 
     }
 done:
     bg_frame_free(&f);
-    bg_jaceval_free(&J);
     free(ypz);
     free(c);
     return st;

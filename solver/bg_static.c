@@ -380,8 +380,6 @@ static int static_in_frame(const dae_problem *p, const dae_static_options *o, do
     oi.yp_steady = NULL;
     st = dae_static_solve(&f.q, &oi, t, y, NULL, r, err);
     double *ys = NULL;
-    bg_jaceval J;
-    memset(&J, 0, sizeof J);
     if (st == BG_OK) { /* y' = S y + c, steady along the frame's flow? */
         ys = malloc((size_t)p->n * sizeof *ys);
         if (!ys) {
@@ -392,16 +390,8 @@ static int static_in_frame(const dae_problem *p, const dae_static_options *o, do
         sp_matvec(o->frame, 1.0, y, 1.0, ys);
         double ratio = 0;
         int row = -1;
-        if ((st = bg_jaceval_init(&J, p, err)) != BG_OK) goto done;
-        st = bg_jaceval_eval(&J, t, y, ys, NULL);
-        if (st == 0) st = bg_jaceval_steadiness(&J, t, y, ys, o->frame, &ratio, &row);
-        if (st != 0) {
-            st = bg_error_raise(err, st == BG_ERR_MEMORY ? st : BG_ERR_CALLBACK, where,
-                                "the residual or Jacobian could not be evaluated along the "
-                                "frame's motion (status %d)",
-                                st);
-            goto done;
-        }
+        st = bg_frame_steadiness(p, o->frame, t, y, ys, &ratio, &row, where, err);
+        if (st != BG_OK) goto done;
         if (ratio > STATIC_STEADY_TOL) {
             char eb[256];
             st = bg_error_raise(err, BG_ERR_ARGUMENT, where,
@@ -417,7 +407,6 @@ static int static_in_frame(const dae_problem *p, const dae_static_options *o, do
         if (yp) memcpy(yp, ys, (size_t)p->n * sizeof *yp);
     }
 done:
-    bg_jaceval_free(&J);
     free(ys);
     bg_frame_free(&f);
     return r->status = st;
