@@ -7,7 +7,7 @@
  * e_i^T) w), at the 4 Gauss points, less the same points at the nodes (r = x, D = the node
  * triad's t2, t3: the node bodies' lumped masses and rotary inertias, exactly), and the bending
  * mass template's three points over the rates of the chord e1 and the node axes t1 (mech_beam.h,
- * change 4). Every field is a combination sum_b c_b(xi) B_b of 21 basis vectors: 19 made here
+ * change 4). Every field is a combination sum_b c_b(xi) B_b of 24 basis vectors: 22 made here
  * on the AD numbers of the element's energy (mech_beam.c), so that their velocity gradients and
  * Hessians give the points' velocities and accelerations exactly, and the node positions x_a,
  * x_b. The inertia loads follow by d'Alembert's principle, f = sum_p mu_p G_p^T (r_p'' - g). */
@@ -95,10 +95,21 @@ enum { NV = MECH_BEAM_NBASIS, NB = NV + 2, XA = NV, XB = NV + 1, NP = 21 };
 /* The basis: 0 P = th_z,a e2 - th_y,a e3, 1 Q = th_z,b e2 - th_y,b e3, 2 e2, 3 e3,
  * 4 th_x,a e3, 5 th_x,b e3, 6 th_z,a e1, 7 th_z,b e1, 8 th_x,a e2, 9 th_x,b e2, 10 th_y,a e1,
  * 11 th_y,b e1, 12 t2 of node a, 13 t2 of node b, 14 t3 of node a, 15 t3 of node b, 16 the chord
- * e1, 17 t1 of node a, 18 t1 of node b (19, 20: the node positions x_a, x_b). */
+ * e1, 17 t1 of node a, 18 t1 of node b, 19 (th_y,a^2 + th_z,a^2) e1, 20 (th_y,a th_y,b + th_z,a
+ * th_z,b) e1, 21 (th_y,b^2 + th_z,b^2) e1 (22, 23: the node positions x_a, x_b). */
 void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
 {
     const ad *th = k->th;
+    for (int j = 0; j < 3; j++)
+        ad_const(c, 0.0, &k->sq[j]);
+    for (int a = 1; a <= 2; a++) { /* theta_y, theta_z */
+        ad_mul(c, &th[a], &th[a], &k->t1);
+        ad_axpy(c, &k->sq[0], 1.0, &k->t1, &k->sq[0]);
+        ad_mul(c, &th[a], &th[3 + a], &k->t1);
+        ad_axpy(c, &k->sq[1], 1.0, &k->t1, &k->sq[1]);
+        ad_mul(c, &th[3 + a], &th[3 + a], &k->t1);
+        ad_axpy(c, &k->sq[2], 1.0, &k->t1, &k->sq[2]);
+    }
     for (int i = 0; i < 3; i++) {
         for (int n = 0; n < 2; n++) {
             ad_mul(c, &th[3 * n + 2], &k->e2[i], &k->t1);
@@ -118,6 +129,8 @@ void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
         k->B[16][i] = k->e1[i];
         k->B[17][i] = k->ta[i];
         k->B[18][i] = k->tb[i];
+        for (int j = 0; j < 3; j++)
+            ad_mul(c, &k->sq[j], &k->e1[i], &k->B[19 + j][i]);
     }
     if (c->order > 1)
         for (int b = 0; b < NV; b++)
@@ -141,8 +154,18 @@ static int inertia_points(const beam *b, point *p)
     for (int g = 0; g < 4; g++) {
         double xi = GX[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
         double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi; /* H1', H2' */
-        /* r = (1 - xi) x_a + xi x_b + L0 (H1 P + H2 Q) */
+        /* r = (1 - xi) x_a + xi x_b + L0 (H1 P + H2 Q) - L0 (F(xi) - xi F(1)) e1, the
+         * foreshortening F(xi) = int_0^xi (psi_y^2 + psi_z^2) / 2 of the cubic field's slopes
+         * psi = H1' th_a + H2' th_b: with F_ij = int_0^xi Hi' Hj' (F_11(1) = F_22(1) = 2/15,
+         * F_12(1) = -1/30) the coefficients of the basis' quadratic forms 19, 20, 21 */
+        double x2 = xi * xi, x3 = x2 * xi, x4 = x3 * xi, x5 = x4 * xi;
+        double F11 = xi - 4 * x2 + 22.0 / 3 * x3 - 6 * x4 + 9.0 / 5 * x5;
+        double F12 = -x2 + 11.0 / 3 * x3 - 4.5 * x4 + 9.0 / 5 * x5;
+        double F22 = 4.0 / 3 * x3 - 3 * x4 + 9.0 / 5 * x5;
         p[n].c[XA] = 1 - xi, p[n].c[XB] = xi, p[n].c[0] = L0 * h1, p[n].c[1] = L0 * h2;
+        p[n].c[19] = -0.5 * L0 * (F11 - 2.0 / 15 * xi);
+        p[n].c[20] = -L0 * (F12 + xi / 30);
+        p[n].c[21] = -0.5 * L0 * (F22 - 2.0 / 15 * xi);
         p[n].mu = mA * GW[g], p[n++].weight = 1;
         /* D2 = e2 + psi_1 e3 - psi_3 e1, psi_1 = (1 - xi) th_x,a + xi th_x,b,
          * psi_3 = H1' th_z,a + H2' th_z,b: the section's director e2 turned by its rotation */

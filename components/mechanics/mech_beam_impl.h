@@ -1,8 +1,8 @@
 /* Internal to the beam (not installed, nothing here is exported): the element's data, shared by
  * the element (mech_beam.c), the consistent element's parts (mech_beam_consistent.c) and the
- * chain builder (mech_beam_chain.c). The checks are the element's own, so that a chain refuses a section, or a
- * length that makes its stiffness overflow, with the same messages as a single element, and
- * before it builds anything. */
+ * chain builder (mech_beam_chain.c). The checks are the element's own, so that a chain refuses a
+ * section, or a length that makes its stiffness overflow, with the same messages as a single
+ * element, and before it builds anything. */
 #ifndef MECH_BEAM_IMPL_H
 #define MECH_BEAM_IMPL_H
 
@@ -11,7 +11,7 @@
 #include "mech_util.h"
 
 /* The consistent inertia's basis vectors made on AD numbers (mech_beam_consistent.c). */
-#define MECH_BEAM_NBASIS 19
+#define MECH_BEAM_NBASIS 22
 
 /* AD scratch of one energy evaluation (about 130 kB with Hessians), allocated with the element
  * so that residual and Jacobian evaluations allocate nothing. The elements of a chain share one
@@ -21,7 +21,8 @@
 typedef struct beam_work {
     ad X[6], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6]; /* X: the nodes' positions */
     ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
-    ad bow, eps;          /* consistent element: the bowing term and the axial strain */
+    ad bow, eps;               /* consistent element: the bowing term and the axial strain */
+    ad sq[3];                  /* consistent inertia: the foreshortening's quadratic forms */
     ad B[MECH_BEAM_NBASIS][3]; /* consistent inertia: the basis vectors of the fields (see
                                   mech_beam_consistent.c) */
     double gv[MECH_BEAM_NBASIS][3][12], dgv[MECH_BEAM_NBASIS][3][12][14]; /* their velocity
