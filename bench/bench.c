@@ -118,6 +118,8 @@ typedef struct harness {
     crane_scene scene; /* the paper scene, or --crane-scene */
     crane_scene full;  /* --crane-full's */
     char full_name[600];
+    crane_scene full2; /* --crane-full's second scene, the damped paper.ini (have_full2) */
+    int have_full2;
     bench_case *cases[BENCH_MAXPROB];
     int nc;
     bench_row *rows; /* nc * ns * nr at most */
@@ -142,11 +144,20 @@ static int load_scene(harness *b)
     return BENCH_CLI_RUN;
 }
 
-/* --crane-full's scene: --crane-full-scene FILE or paper-undamped.ini, and its name for the
- * report. BENCH_CLI_RUN, or the exit status (said). */
+/* --crane-full's scenes: --crane-full-scene FILE, or paper-undamped.ini and the damped
+ * paper.ini, and the first one's name for the report. BENCH_CLI_RUN, or the exit status
+ * (said). */
 static int load_full_scene(harness *b)
 {
     if (!b->cli.crane_full) return BENCH_CLI_RUN;
+    if (!b->cli.full_scene) {
+        bg_error e2 = {0};
+        if (crane_scene_load(&b->full2, BENCH_SCENES_DIR "/paper.ini", &e2) != BG_OK) {
+            fprintf(stderr, "bench: --crane-full: %s\n", e2.message);
+            return 2;
+        }
+        b->have_full2 = 1;
+    }
     const char *file =
         b->cli.full_scene ? b->cli.full_scene : BENCH_SCENES_DIR "/paper-undamped.ini";
     bg_error err = {0};
@@ -321,8 +332,11 @@ static void more_series(harness *b, const bench_results *res)
         b->stab_bad = bench_stability(c->out, b->tail.f, &sc, &b->crashed);
     }
     if (c->crane_full)
-        b->failures += bench_crane_full(c->out, b->tail.f, &b->full, b->full_name, c->full_rtols,
-                                        c->full_nr, 1e-10);
+        b->failures += bench_crane_full(c->out, "crane_wp.csv", b->tail.f, &b->full,
+                                        b->full_name, c->full_rtols, c->full_nr, 1e-10);
+    if (c->crane_full && b->have_full2)
+        b->failures += bench_crane_full(c->out, "crane_wp_paper.csv", b->tail.f, &b->full2,
+                                        "paper.ini", c->full_rtols, c->full_nr, 1e-10);
     if (b->n > 0) bench_report_steps_vs_tol(c->out, b->mid.f, res);
     if (b->nc > 0)
         b->failures += bench_mebdfi_compare(c->out, b->mid.f, b->cases, b->nc, c->rtols, c->nr);
