@@ -44,7 +44,8 @@
  * crane scene crane/scenes/paper-undamped.ini, or --crane-full-scene FILE, over its full 20 s:
  * ours and IDA at rtol 1e-4 .. 1e-9, or --crane-full-rtols LIST, against ours at 1e-10, IDA
  * restarted at each breakpoint from consistent values; bench_crane.h; tools/run.sh asks for
- * it, minutes per run) and, with --error-estimate (and --quick), error_estimate.csv (the estimate
+ * it, minutes per run), crane_wp_paper.csv (the same on the damped paper.ini, unless
+ * --crane-full-scene is given) and, with --error-estimate (and --quick), error_estimate.csv (the estimate
  * of crane --error-estimate against the true error on the problems and tolerances of the run,
  * bench_errest.h). --newton-dgmax G runs ours on the collection with options.newton_dgmax = G
  * (the crane keeps its scene's setting), for comparing the Newton matrix refresh.
@@ -62,7 +63,8 @@
  * median, the CSV has the minimum beside it; accuracy as scd (scored
  * components) and mescd, index-2 components apart. IDA runs as its guide recommends for index 2:
  * id vector, algebraic variables suppressed from the error test, fed the same residual and
- * Jacobian code (dense, or sparse CSC for KLU); ours with exclude_alg on the crane as
+ * Jacobian code (dense, or sparse CSC for KLU, whose failed refactorizations are redone with
+ * fresh pivots as ours are: bench_ida_klu, bench_util.h); ours with exclude_alg on the crane as
  * crane/crane.c runs it. Problems with breakpoints are integrated segment by segment (IDA is
  * re-initialised at each; its counters are summed).
  *
