@@ -422,6 +422,59 @@ static void full_csv_row(bench_file *bf, const full_row *w, double atol)
     bench_file_flush(bf);
 }
 
+/* The CPU of solver name at accuracy scd: log CPU interpolated linearly in scd between its two
+ * completed runs that bracket scd; *above = 1 (and its loosest run's CPU) when that run is
+ * already more accurate. NAN when none brackets it. */
+static double cpu_at(const full_row *rows, int nrow, const char *name, double scd, int *above)
+{
+    const full_row *lo = NULL, *hi = NULL, *loosest = NULL;
+    *above = 0;
+    for (int i = 0; i < nrow; i++) {
+        const full_row *w = &rows[i];
+        if (strcmp(w->solver, name) || w->r.status < 0 || !isfinite(w->sc.scd) || w->r.cpu <= 0)
+            continue;
+        if (!loosest || w->rtol > loosest->rtol) loosest = w;
+        if (w->sc.scd <= scd && (!lo || w->sc.scd > lo->sc.scd)) lo = w;
+        if (w->sc.scd >= scd && (!hi || w->sc.scd < hi->sc.scd)) hi = w;
+    }
+    if (lo && hi) {
+        if (hi->sc.scd == lo->sc.scd) return lo->r.cpu;
+        double f = (scd - lo->sc.scd) / (hi->sc.scd - lo->sc.scd);
+        return exp(log(lo->r.cpu) + f * (log(hi->r.cpu) - log(lo->r.cpu)));
+    }
+    if (hi && loosest && loosest->sc.scd >= scd) {
+        *above = 1;
+        return loosest->r.cpu;
+    }
+    return NAN;
+}
+
+/* CPU ratios of ours (BDF, MEBDF) to IDA at the accuracy of each completed IDA run. */
+static void equal_accuracy(FILE *rep, const full_row *rows, int nrow)
+{
+    static const char *const ours[] = {"bgdae-klu", "bgdae-mebdf", "bgdae-mebdf4"};
+    int any = 0;
+    for (int i = 0; i < nrow; i++) {
+        const full_row *id = &rows[i];
+        if (!id->ida || id->r.status < 0 || !isfinite(id->sc.scd) || id->r.cpu <= 0) continue;
+        if (!any++)
+            fprintf(rep, "CPU at equal accuracy, ours / IDA at the scd of each completed IDA run "
+                         "(log CPU interpolated in scd between the two runs of ours around it; "
+                         "\"<=\": ours' loosest run is already more accurate, its CPU used):\n\n");
+        fprintf(rep, "- IDA at rtol %g, scd %.2f, %.2f s:", id->rtol, id->sc.scd, id->r.cpu);
+        for (int k = 0; k < 3; k++) {
+            int above = 0;
+            double c = cpu_at(rows, nrow, ours[k], id->sc.scd, &above);
+            if (isfinite(c))
+                fprintf(rep, " %s %s%.2f", ours[k], above ? "<= " : "", c / id->r.cpu);
+            else
+                fprintf(rep, " %s not reached", ours[k]);
+            fprintf(rep, k < 2 ? ";" : "\n");
+        }
+    }
+    if (any) fprintf(rep, "\n");
+}
+
 int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_scene *s,
                      const char *scene_name, const double *rtols, int nr, double rtol_ref)
 {
@@ -536,7 +589,9 @@ int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_sc
             "breakpoints; atol = %g rtol at each tolerance below; one run each (%s): "
             "bgdae-klu without the stability guard (every mode resolved: the hard case)%s, "
             "IDA-KLU, bgdae-mebdf (Cash's modified extended BDF in our code, orders up to 6, no "
-            "guard) and bgdae-mebdf4 (orders up to 4, where it is A-stable). IDA-KLU has the "
+            "guard) and bgdae-mebdf4 (orders up to 4, where it is A-stable). IDA-KLU, its steps "
+            "in each segment between breakpoints capped at those ours took over the run (at least "
+            "10 000), has the "
             "Jacobian of ours, its algebraic unknowns out of the error test (IDASetId, "
             "IDASetSuppressAlg), at most %d Newton iterations per attempt (IDASetMaxNonlinIters; "
             "ours takes up to that many; with IDA's default 4 it stalled at h = 3e-6 s on the "
@@ -598,6 +653,7 @@ int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_sc
                 flag);
     }
     fprintf(rep, "\n");
+    equal_accuracy(rep, rows, nrow);
     for (int i = 0; i < nrow; i++)
         if (rows[i].ida && rows[i].r.ls_fallback > 0)
             fprintf(rep, "- %s at rtol %g: %ld refactorizations redone with fresh pivots\n",
