@@ -44,7 +44,8 @@
  * crane scene crane/scenes/paper-undamped.ini, or --crane-full-scene FILE, over its full 20 s:
  * ours and IDA at rtol 1e-4 .. 1e-9, or --crane-full-rtols LIST, against ours at 1e-10, IDA
  * restarted at each breakpoint from consistent values; bench_crane.h; tools/run.sh asks for
- * it, minutes per run) and, with --error-estimate (and --quick), error_estimate.csv (the estimate
+ * it, minutes per run), crane_wp_paper.csv (the same on the damped paper.ini, unless
+ * --crane-full-scene is given) and, with --error-estimate (and --quick), error_estimate.csv (the estimate
  * of crane --error-estimate against the true error on the problems and tolerances of the run,
  * bench_errest.h). --newton-dgmax G runs ours on the collection with options.newton_dgmax = G
  * (the crane keeps its scene's setting), for comparing the Newton matrix refresh.
@@ -62,7 +63,8 @@
  * median, the CSV has the minimum beside it; accuracy as scd (scored
  * components) and mescd, index-2 components apart. IDA runs as its guide recommends for index 2:
  * id vector, algebraic variables suppressed from the error test, fed the same residual and
- * Jacobian code (dense, or sparse CSC for KLU); ours with exclude_alg on the crane as
+ * Jacobian code (dense, or sparse CSC for KLU, whose failed refactorizations are redone with
+ * fresh pivots as ours are: bench_ida_klu, bench_util.h); ours with exclude_alg on the crane as
  * crane/crane.c runs it. Problems with breakpoints are integrated segment by segment (IDA is
  * re-initialised at each; its counters are summed).
  *
@@ -118,6 +120,8 @@ typedef struct harness {
     crane_scene scene; /* the paper scene, or --crane-scene */
     crane_scene full;  /* --crane-full's */
     char full_name[600];
+    crane_scene full2; /* --crane-full's second scene, the damped paper.ini (have_full2) */
+    int have_full2;
     bench_case *cases[BENCH_MAXPROB];
     int nc;
     bench_row *rows; /* nc * ns * nr at most */
@@ -142,11 +146,20 @@ static int load_scene(harness *b)
     return BENCH_CLI_RUN;
 }
 
-/* --crane-full's scene: --crane-full-scene FILE or paper-undamped.ini, and its name for the
- * report. BENCH_CLI_RUN, or the exit status (said). */
+/* --crane-full's scenes: --crane-full-scene FILE, or paper-undamped.ini and the damped
+ * paper.ini, and the first one's name for the report. BENCH_CLI_RUN, or the exit status
+ * (said). */
 static int load_full_scene(harness *b)
 {
     if (!b->cli.crane_full) return BENCH_CLI_RUN;
+    if (!b->cli.full_scene) {
+        bg_error e2 = {0};
+        if (crane_scene_load(&b->full2, BENCH_SCENES_DIR "/paper.ini", &e2) != BG_OK) {
+            fprintf(stderr, "bench: --crane-full: %s\n", e2.message);
+            return 2;
+        }
+        b->have_full2 = 1;
+    }
     const char *file =
         b->cli.full_scene ? b->cli.full_scene : BENCH_SCENES_DIR "/paper-undamped.ini";
     bg_error err = {0};
@@ -321,8 +334,11 @@ static void more_series(harness *b, const bench_results *res)
         b->stab_bad = bench_stability(c->out, b->tail.f, &sc, &b->crashed);
     }
     if (c->crane_full)
-        b->failures += bench_crane_full(c->out, b->tail.f, &b->full, b->full_name, c->full_rtols,
-                                        c->full_nr, 1e-10);
+        b->failures += bench_crane_full(c->out, "crane_wp.csv", b->tail.f, &b->full,
+                                        b->full_name, c->full_rtols, c->full_nr, 1e-10);
+    if (c->crane_full && b->have_full2)
+        b->failures += bench_crane_full(c->out, "crane_wp_paper.csv", b->tail.f, &b->full2,
+                                        "paper.ini", c->full_rtols, c->full_nr, 1e-10);
     if (b->n > 0) bench_report_steps_vs_tol(c->out, b->mid.f, res);
     if (b->nc > 0)
         b->failures += bench_mebdfi_compare(c->out, b->mid.f, b->cases, b->nc, c->rtols, c->nr);

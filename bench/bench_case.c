@@ -218,6 +218,7 @@ static void clear_counts(run_out *o)
     o->status = -1;
     o->msg[0] = '\0';
     o->steps = o->rejected = o->newton = o->conv_fail = o->res = o->jac = o->fact = o->solves = 0;
+    o->ls_fallback = 0;
     o->max_order = 0;
     o->cpu = o->wall = o->t_res = o->t_jac = o->t_lin = o->drift = 0;
 }
@@ -393,7 +394,7 @@ static void run_ida(const bench_case *bc, const solver_def *sd, const run_opts *
     if (ci == 0 && yy && yp && id && av) {
         A = sd->ls == LS_KLU ? SUNSparseMatrix(n, n, c.u->M->nnz, CSC_MAT, ctx)
                              : SUNDenseMatrix(n, n, ctx);
-        if (A) LS = sd->ls == LS_KLU ? SUNLinSol_KLU(yy, A, ctx) : SUNLinSol_Dense(yy, A, ctx);
+        if (A) LS = sd->ls == LS_KLU ? bench_ida_klu(yy, A, ctx, &c) : SUNLinSol_Dense(yy, A, ctx);
     }
     void *mem = LS ? IDACreate(ctx) : NULL;
     dae_solver *cs = NULL; /* consistent restarts (ro->ida_consistent_restart) */
@@ -425,6 +426,7 @@ static void run_ida(const bench_case *bc, const solver_def *sd, const run_opts *
         IDASetJacFn(mem, bench_ida_jac) || IDASetId(mem, id) || IDASetSuppressAlg(mem, SUNTRUE) ||
         IDASetMaxNumSteps(mem, ro->max_steps > 0 ? ro->max_steps : 1000000) ||
         IDASetErrHandlerFn(mem, ida_err_handler, out) ||
+        (ro->ida_max_newton > 0 && IDASetMaxNonlinIters(mem, ro->ida_max_newton)) ||
         (ro->h_max > 0 && IDASetMaxStep(mem, ro->h_max))) {
         snprintf(out->msg, sizeof out->msg, "IDA set-up failed");
         goto done;
@@ -491,6 +493,7 @@ done:
     out->jac = acc[5];
     out->fact = acc[6];
     out->solves = acc[2];
+    out->ls_fallback = c.klu_fallback;
     if (ro->profile) {
         out->t_res = c.t_res;
         out->t_jac = c.t_jac;

@@ -99,6 +99,8 @@ typedef struct run_opts {
      * before the jump), and its first step there the last one before it (IDASetInitStep); the
      * CPU time includes the consistent values, IDA's counters do not */
     int ida_consistent_restart;
+    /* IDA: IDASetMaxNonlinIters, the Newton iterations per attempt (0: IDA's default, 4) */
+    int ida_max_newton;
     int max_order; /* ours: options.max_order (0: the default) */
     int guard;     /* ours: 0 the case's stability guard setting, 1 on, -1 off */
     int reduce;    /* ours: options.index2 = DAE_I2_REDUCE (the case's position constraints
@@ -111,6 +113,7 @@ typedef struct run_out {
     double t;       /* time reached */
     double *y, *yp; /* n values at t (allocated by bench_run_alloc) */
     long steps, rejected, newton, conv_fail, res, jac, fact, solves;
+    long ls_fallback; /* IDA-KLU: refactorizations redone with fresh pivots (bench_ida_klu) */
     int max_order;
     double cpu;                 /* CPU seconds of the integration (creation to end) */
     double wall;                /* wall seconds, same span */

@@ -78,10 +78,10 @@ static const pu_cli_option options[] = {
      .help = "exit status 1 also when a run of ours or of the crane failed or a stability case "
              "ended wrong, at its time limit or without its set-up"},
     {.name = "--crane-full", .kind = PU_CLI_FLAG, .at = AT(crane_full),
-     .help = "paper-undamped.ini over 20 s, ours and IDA at rtol 1e-4..1e-9 (--crane-full-rtols) "
-             "against ours at 1e-10 (crane_wp.csv)"},
+     .help = "paper-undamped.ini and paper.ini over 20 s, ours and IDA at rtol 1e-4..1e-9 "
+             "(--crane-full-rtols) against ours at 1e-10 (crane_wp.csv, crane_wp_paper.csv)"},
     {.name = "--crane-full-scene", .kind = PU_CLI_STRING, .arg = "FILE", .at = AT(full_scene),
-     .seen = AT(crane_full), .help = "the scene of --crane-full (implies it)"},
+     .seen = AT(crane_full), .help = "the one scene of --crane-full (implies it)"},
     {.name = "--crane-full-rtols", .kind = PU_CLI_STRING, .arg = "LIST",
      .at = AT(full_rtols_text), .seen = AT(crane_full),
      .help = "the tolerances of --crane-full, numbers in (0, 1) (implies it)"},

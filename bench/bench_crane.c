@@ -422,16 +422,69 @@ static void full_csv_row(bench_file *bf, const full_row *w, double atol)
     bench_file_flush(bf);
 }
 
-int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const char *scene_name,
-                     const double *rtols, int nr, double rtol_ref)
+/* The CPU of solver name at accuracy scd: log CPU interpolated linearly in scd between its two
+ * completed runs that bracket scd; *above = 1 (and its loosest run's CPU) when that run is
+ * already more accurate. NAN when none brackets it. */
+static double cpu_at(const full_row *rows, int nrow, const char *name, double scd, int *above)
+{
+    const full_row *lo = NULL, *hi = NULL, *loosest = NULL;
+    *above = 0;
+    for (int i = 0; i < nrow; i++) {
+        const full_row *w = &rows[i];
+        if (strcmp(w->solver, name) || w->r.status < 0 || !isfinite(w->sc.scd) || w->r.cpu <= 0)
+            continue;
+        if (!loosest || w->rtol > loosest->rtol) loosest = w;
+        if (w->sc.scd <= scd && (!lo || w->sc.scd > lo->sc.scd)) lo = w;
+        if (w->sc.scd >= scd && (!hi || w->sc.scd < hi->sc.scd)) hi = w;
+    }
+    if (lo && hi) {
+        if (hi->sc.scd == lo->sc.scd) return lo->r.cpu;
+        double f = (scd - lo->sc.scd) / (hi->sc.scd - lo->sc.scd);
+        return exp(log(lo->r.cpu) + f * (log(hi->r.cpu) - log(lo->r.cpu)));
+    }
+    if (hi && loosest && loosest->sc.scd >= scd) {
+        *above = 1;
+        return loosest->r.cpu;
+    }
+    return NAN;
+}
+
+/* CPU ratios of ours (BDF, MEBDF) to IDA at the accuracy of each completed IDA run. */
+static void equal_accuracy(FILE *rep, const full_row *rows, int nrow)
+{
+    static const char *const ours[] = {"bgdae-klu", "bgdae-mebdf", "bgdae-mebdf4"};
+    int any = 0;
+    for (int i = 0; i < nrow; i++) {
+        const full_row *id = &rows[i];
+        if (!id->ida || id->r.status < 0 || !isfinite(id->sc.scd) || id->r.cpu <= 0) continue;
+        if (!any++)
+            fprintf(rep, "CPU at equal accuracy, ours / IDA at the scd of each completed IDA run "
+                         "(log CPU interpolated in scd between the two runs of ours around it; "
+                         "\"<=\": ours' loosest run is already more accurate, its CPU used):\n\n");
+        fprintf(rep, "- IDA at rtol %g, scd %.2f, %.2f s:", id->rtol, id->sc.scd, id->r.cpu);
+        for (int k = 0; k < 3; k++) {
+            int above = 0;
+            double c = cpu_at(rows, nrow, ours[k], id->sc.scd, &above);
+            if (isfinite(c))
+                fprintf(rep, " %s %s%.2f", ours[k], above ? "<= " : "", c / id->r.cpu);
+            else
+                fprintf(rep, " %s not reached", ours[k]);
+            fprintf(rep, k < 2 ? ";" : "\n");
+        }
+    }
+    if (any) fprintf(rep, "\n");
+}
+
+int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_scene *s,
+                     const char *scene_name, const double *rtols, int nr, double rtol_ref)
 {
     char msg[BG_MESSAGE_SIZE] = "";
     bench_file bf;
-    FILE *f = bench_file_open(&bf, dir, "crane_wp.csv") == 0 ? bf.f : NULL;
+    FILE *f = bench_file_open(&bf, dir, csv) == 0 ? bf.f : NULL;
     if (f)
         fprintf(f, "solver,rtol,atol,status,t_reached,steps,rejected,newton,jacobians,res_evals,"
                    "cpu_s,scd,mescd,scd_index2,message\n");
-    fprintf(rep, "## Crane over its full %g s against IDA\n\n", s->t_end);
+    fprintf(rep, "## Crane over its full %g s against IDA: %s\n\n", s->t_end, scene_name);
     bench_case bc;
     int fails = 0;
     int r = bench_crane_case(&bc, s, s->static_start, s->t_end, "crane_full", msg, sizeof msg);
@@ -500,7 +553,16 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
             run_opts o = {0};
             o.rtol = rtols[k];
             o.max_steps = 100000000;
+            /* IDA: in each segment between breakpoints at most as many steps as ours took over
+             * the whole run at this tolerance (at least 10 000): on the damped scene from rtol
+             * 1e-5 on it is held at h = 3.5e-6 s (millions of steps over the 20 s, 2.3 ms of
+             * CPU each) */
+            for (int j = 0; q == 2 && j < nrow - 1; j++)
+                if (!strcmp(rows[j].solver, "bgdae-klu") && rows[j].rtol == rtols[k] &&
+                    rows[j].r.status >= 0)
+                    o.max_steps = rows[j].r.steps > 10000 ? rows[j].r.steps : 10000;
             o.ida_consistent_restart = 1;
+            o.ida_max_newton = BENCH_IDA_MAX_NEWTON;
             bench_case bg = bc;
             bg.stability_guard = w->guard;
             bench_run(&bg, sd, &o, &w->r);
@@ -524,10 +586,18 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
     /* the report */
     fprintf(rep,
             "Scene %s (%d boom elements, %d unknowns) over [0, %g] s from its %s start, %d "
-            "breakpoints; atol = %g rtol at each tolerance below; one run each (crane_wp.csv): "
+            "breakpoints; atol = %g rtol at each tolerance below; one run each (%s): "
             "bgdae-klu without the stability guard (every mode resolved: the hard case)%s, "
             "IDA-KLU, bgdae-mebdf (Cash's modified extended BDF in our code, orders up to 6, no "
-            "guard) and bgdae-mebdf4 (orders up to 4, where it is A-stable). "
+            "guard) and bgdae-mebdf4 (orders up to 4, where it is A-stable). IDA-KLU, its steps "
+            "in each segment between breakpoints capped at those ours took over the run (at least "
+            "10 000), has the "
+            "Jacobian of ours, its algebraic unknowns out of the error test (IDASetId, "
+            "IDASetSuppressAlg), at most %d Newton iterations per attempt (IDASetMaxNonlinIters; "
+            "ours takes up to that many; with IDA's default 4 it stalled at h = 3e-6 s on the "
+            "damped scene) and KLU with our fallback: a refactorization that meets a zero pivot "
+            "is redone with fresh pivoting (without it, IDA stopped on the damped scene at 0.55 "
+            "ms at every tolerance; bench_util.h, bench_ida_klu). "
             "Reference: bgdae-klu at rtol %g without the guard: %s (%ld steps, %.1f s "
             "CPU). IDA-KLU is restarted "
             "at every breakpoint from values made consistent by our dae_consistent_init (as our "
@@ -541,11 +611,11 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
             "series %.0f s.\n\n",
             scene_name, s->boom_elements, bc.n, s->t_end,
             s->static_start ? "static-equilibrium" : "geometric", bc.nbreakpoints,
-            bc.atol_factor,
+            bc.atol_factor, csv,
             s->stability_guard ? ", bgdae-klu with the guard as the scene asks (stability_guard "
                                  "= true: order 2 where fast modes hold orders 3..5)"
                                : "",
-            rtol_ref, ref.r.status < 0 ? ref.r.msg : "completed", ref.r.steps,
+            BENCH_IDA_MAX_NEWTON, rtol_ref, ref.r.status < 0 ? ref.r.msg : "completed", ref.r.steps,
             ref.r.cpu, s->t_end, total);
     fprintf(rep, "MORE STEPS: more than 5 %% more steps than the same solver took at a tighter "
                  "tolerance.\n\n");
@@ -583,6 +653,11 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
                 flag);
     }
     fprintf(rep, "\n");
+    equal_accuracy(rep, rows, nrow);
+    for (int i = 0; i < nrow; i++)
+        if (rows[i].ida && rows[i].r.ls_fallback > 0)
+            fprintf(rep, "- %s at rtol %g: %ld refactorizations redone with fresh pivots\n",
+                    rows[i].solver, rows[i].rtol, rows[i].r.ls_fallback);
     for (int i = 0; i < nrow; i++)
         if (rows[i].r.status < 0)
             fprintf(rep, "- %s at rtol %g stopped at t = %.9g: %s\n", rows[i].solver,

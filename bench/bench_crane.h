@@ -54,9 +54,19 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
  * each breakpoint from values made consistent by dae_consistent_init (run_opts
  * ida_consistent_restart), one run each: status, time reached, steps, rejected steps, Newton
  * iterations, Jacobians, CPU time, scd over the outputs and mescd over the differential
- * unknowns against the reference. Rows go to crane_wp.csv in dir as each run ends (flushed), a
+ * unknowns against the reference. Rows go to the file csv in dir as each run ends (flushed), a
  * report section into rep. Returns the number of failed runs of ours (the reference included). */
-int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const char *scene_name,
+/* IDA's Newton iterations per attempt in the full-horizon series (IDASetMaxNonlinIters; IDA's
+ * default is 4): the most ours takes (solver/dae_nls.c: options.max_newton, 4, and up to twice
+ * that on a matrix of the step itself while the rate, 0.5 or better, says it converges; IDA
+ * has no such extension). With 4, IDA on the damped paper scene cut its step to 3e-6 s after a
+ * first correction of 1e13 tolerances at 0.57 ms and stayed there with a Newton failure every
+ * second step (14 000 steps in the first 0.066 s at rtol 1e-4); with 8 it takes 1 682 steps
+ * over the 20 s. */
+#define BENCH_IDA_MAX_NEWTON 8
+
+int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_scene *s,
+                     const char *scene_name,
                      const double *rtols, int nr, double rtol_ref);
 
 #endif

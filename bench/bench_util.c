@@ -14,6 +14,12 @@
 #ifdef BENCH_HAVE_IDA
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#if defined(SUNDIALS_INT64_T)
+typedef SuiteSparse_long KLU_INDEXTYPE; /* as sunlinsol_klu.c: klu_l_* */
+#else
+typedef int KLU_INDEXTYPE;
+#endif
 #endif
 
 double bench_cpu_now(void)
@@ -220,6 +226,33 @@ int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr
     }
     if (c->profile) c->t_jac += bench_wall_now() - w0;
     return 0;
+}
+
+/* SUNLinSolSetup_KLU, then a full factorization where its refactorization failed (the content
+ * struct and the sun_klu_* names are those of sunlinsol_klu.h; KLU's common.user_data, read by
+ * a user ordering only, which SUNLinSol_KLU does not use, holds the context). */
+static int klu_setup_pivoting(SUNLinearSolver S, SUNMatrix A)
+{
+    SUNLinearSolverContent_KLU k = S->content;
+    int r = SUNLinSolSetup_KLU(S, A);
+    if (r != SUNLS_PACKAGE_FAIL_REC || !k->symbolic) return r;
+    bench_ida_ctx *c = k->common.user_data;
+    if (k->numeric) sun_klu_free_numeric(&k->numeric, &k->common);
+    k->numeric = sun_klu_factor((KLU_INDEXTYPE *)SUNSparseMatrix_IndexPointers(A),
+                                (KLU_INDEXTYPE *)SUNSparseMatrix_IndexValues(A),
+                                SUNSparseMatrix_Data(A), k->symbolic, &k->common);
+    if (c) c->klu_fallback++;
+    k->last_flag = k->numeric ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_REC;
+    return k->last_flag;
+}
+
+SUNLinearSolver bench_ida_klu(N_Vector y, SUNMatrix A, SUNContext ctx, bench_ida_ctx *c)
+{
+    SUNLinearSolver LS = SUNLinSol_KLU(y, A, ctx);
+    if (!LS) return NULL;
+    ((SUNLinearSolverContent_KLU)LS->content)->common.user_data = c;
+    LS->ops->setup = klu_setup_pivoting;
+    return LS;
 }
 
 /* The wrapped linear solver's original operations and the context that receives the times. */
