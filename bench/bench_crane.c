@@ -526,7 +526,7 @@ int bench_crane_full(const char *dir, FILE *rep, const crane_scene *s, const cha
             "Scene %s (%d boom elements, %d unknowns) over [0, %g] s from its %s start, %d "
             "breakpoints; atol = %g rtol at each tolerance below; one run each (crane_wp.csv): "
             "bgdae-klu without the stability guard (every mode resolved: the hard case)%s, "
-            "IDA-KLU, bgdae-mebdf (Cash's modified extended BDF in our code, orders up to 6, no "
+            "IDA-KLU, bgdae-mebdf (Cash's modified extended BDF in our code, orders up to 8, no "
             "guard) and bgdae-mebdf4 (orders up to 4, where it is A-stable). "
             "Reference: bgdae-klu at rtol %g without the guard: %s (%ld steps, %.1f s "
             "CPU). IDA-KLU is restarted "
