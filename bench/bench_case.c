@@ -22,8 +22,9 @@ const solver_def bench_solvers[] = {
     {"bgdae-klu-scaleh", 0, LS_KLU, DAE_I2_SCALE_H, DAE_BDF, 0},
     {"bgdae-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF, 0},
     {"bgdae-dense-scaleh", 0, LS_DENSE, DAE_I2_SCALE_H, DAE_BDF, 0},
-    {"bgdae-mebdf", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF, 0},
-    {"bgdae-mebdf-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_MEBDF, 0},
+    /* MEBDF with orders up to 8 (max_order 7), as MEBDFI's drivers; and up to 4, A-stable */
+    {"bgdae-mebdf", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF, 7},
+    {"bgdae-mebdf-dense", 0, LS_DENSE, DAE_I2_EXCLUDE, DAE_MEBDF, 7},
     {"bgdae-mebdf4", 0, LS_KLU, DAE_I2_EXCLUDE, DAE_MEBDF, 3},
     {"ida-klu", 1, LS_KLU, DAE_I2_EXCLUDE, DAE_BDF, 0},
     {"ida-dense", 1, LS_DENSE, DAE_I2_EXCLUDE, DAE_BDF, 0},
@@ -332,7 +333,7 @@ static void run_ours(const bench_case *bc, const solver_def *sd, const run_opts 
     out->jac = st->jac_evals;
     out->fact = st->factor_full + st->factor_refactor;
     out->solves = st->linear_solves;
-    for (int k = 1; k <= 5; k++)
+    for (int k = 1; k < (int)(sizeof st->steps_at_order / sizeof *st->steps_at_order); k++)
         if (st->steps_at_order[k]) out->max_order = k;
     if (ro->profile) {
         out->t_res = pw.t_res;

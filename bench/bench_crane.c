@@ -588,7 +588,7 @@ int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_sc
             "Scene %s (%d boom elements, %d unknowns) over [0, %g] s from its %s start, %d "
             "breakpoints; atol = %g rtol at each tolerance below; one run each (%s): "
             "bgdae-klu without the stability guard (every mode resolved: the hard case)%s, "
-            "IDA-KLU, bgdae-mebdf (Cash's modified extended BDF in our code, orders up to 6, no "
+            "IDA-KLU, bgdae-mebdf (Cash's modified extended BDF in our code, orders up to 8, no "
             "guard) and bgdae-mebdf4 (orders up to 4, where it is A-stable). IDA-KLU, its steps "
             "in each segment between breakpoints capped at those ours took over the run (at least "
             "10 000), has the "

@@ -15,7 +15,7 @@
  * Properties checked besides "no crash, no leak, no undefined behaviour" (the documented
  * contract of dae_create, bg_dae.h):
  *   - a refusal returns NULL with a negative status and a message in err;
- *   - n < 1, no residual, max_order outside 1..5, rtol not in [0, 1), a kind that is not a
+ *   - n < 1, no residual, max_order outside 0..5 (MEBDF 0..7), rtol not in [0, 1), a kind that is not a
  *     dae_var_kind, and a Jacobian pattern that sp_csc_check refuses or that is not n x n are
  *     refused;
  *   - functions called with a solver return a status, never something undocumented:
@@ -354,7 +354,8 @@ static void run(reader *r)
     }
     /* the contract: these must have been refused */
     if (n < 1 || !p.res) fail("dae_create accepted n < 1 or no residual", NULL);
-    if (o.max_order < 1 || o.max_order > 5) fail("dae_create accepted max_order", NULL);
+    if (o.max_order < 0 || o.max_order > (o.method == DAE_MEBDF ? 7 : 5))
+        fail("dae_create accepted max_order", NULL);
     if (!(o.rtol >= 0 && o.rtol < 1)) fail("dae_create accepted rtol", NULL);
     if (bad_kind) fail("dae_create accepted a kind that is not a dae_var_kind", NULL);
     if (bad_pattern) fail("dae_create accepted a malformed or misshapen pattern", NULL);

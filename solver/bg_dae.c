@@ -140,9 +140,10 @@ int dae_reinit(dae_solver *s, double t, const double *y, const double *yp)
 
 int dae_set_history(dae_solver *s, double t0, double h, int k, const double *Y)
 {
-    if (!s || !Y || k < 1 || k > MAXORD || !(h > 0))
+    int kmax = s && s->o.method == DAE_MEBDF ? MAXORD : BDF_MAXORD;
+    if (!s || !Y || k < 1 || k > kmax || !(h > 0))
         return s ? bg_error_raise(&s->err, BG_ERR_ARGUMENT, "dae_set_history",
-                                  "needs 1 <= k <= 5 and h > 0 (k = %d, h = %g)", k, h)
+                                  "needs 1 <= k <= %d and h > 0 (k = %d, h = %g)", kmax, k, h)
                  : BG_ERR_ARGUMENT;
     int n = s->n;
     for (size_t i = 0; i < (size_t)(k + 1) * n; i++)

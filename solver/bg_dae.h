@@ -177,10 +177,11 @@ typedef enum dae_method {
     DAE_BDF = 0,  /* variable-order variable-step BDF (the default; see above) */
     DAE_MEBDF = 1 /* Cash's modified extended BDF (solver/dae_mebdf.c): each step solves BDF of
                      order k at t+h and at t+2h, then a formula of order k+1 at t+h with the same
-                     Newton matrix; A-stable up to order 4 (k = 3), stability angles 88.36 and
-                     83.07 degrees at orders 5 and 6 (BDF: 73.35 and 51.84 at orders 4 and 5).
-                     About three Newton iterations' cost per step for BDF's one. max_order
-                     bounds k; order, step and error test: dae_options.mebdf_error */
+                     Newton matrix; A-stable up to order 4 (k = 3), stability angles 88.36,
+                     83.07, 74.48, 61.98 degrees at orders 5 to 8 (BDF: 73.35 and 51.84 at
+                     orders 4 and 5). About three Newton iterations' cost per step for BDF's
+                     one. max_order bounds k (up to 7: order 8, as MEBDFI's drivers); order,
+                     step and error test: dae_options.mebdf_error */
 } dae_method;
 
 /* The error control of DAE_MEBDF (dae_options.mebdf_error; solver/dae_mebdf.c gives the
@@ -203,7 +204,10 @@ typedef struct dae_options {
     double atol;              /* default 1e-8, used when atol_vec is NULL (times the problem's
                                  nominal magnitudes, when it has them) */
     const double *atol_vec;   /* n values or NULL */
-    int max_order;            /* 1..5, default 5 */
+    int max_order;            /* the largest k: 0 (default) the method's largest, 5 for BDF
+                                 (order 5), 7 for MEBDF (order 8, as MEBDFI's drivers; 5 with
+                                 DAE_MEBDF_ERR_KP1); else 1..5 for BDF (its order k), 1..7 for
+                                 MEBDF (its order k + 1) */
     double h_init;            /* 0: chosen by the solver */
     double h_min;             /* default 0: limited by round-off only */
     double h_max;             /* 0: no limit */
@@ -276,8 +280,8 @@ typedef struct dae_options {
 
 /* The defaults above; BG_OK, or BG_ERR_ARGUMENT if o is NULL. dae_create checks the options:
  * tolerances as stated, h_init, h_min, h_max finite and >= 0 with h_min <= h_max when h_max > 0,
- * max_order 1..5, a known index2 policy and linear solver, a finite t_stop, nbreakpoints >= 0
- * with finite breakpoints, projection only with constraints, stability_guard 0 or 1,
+ * max_order 0 or 1..5 (MEBDF: 0 or 1..7; with DAE_MEBDF_ERR_KP1 0 or 1..5), a known index2 policy and linear
+ * solver, a finite t_stop, nbreakpoints >= 0 with finite breakpoints, projection only with constraints, stability_guard 0 or 1,
  * check_jacobian -1, 0 or 1, and absolute tolerances (atol times a nominal magnitude, or
  * atol_vec) that are 0 or normal numbers (not below DBL_MIN = 2.2e-308). */
 BG_API int dae_options_default(dae_options *o);
@@ -286,7 +290,7 @@ typedef struct dae_stats {
     long steps, rejected_error, newton_iters, newton_fails;
     long res_evals, res_evals_fd, jac_evals;
     long factor_symbolic, factor_full, factor_refactor, linear_solves;
-    long steps_at_order[6];
+    long steps_at_order[8]; /* by k: BDF 1..5, MEBDF 1..7 (its order k + 1) */
     long projections;
     double h_min_used, h_max_used, h_last;
     int order_last;

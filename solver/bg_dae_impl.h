@@ -44,7 +44,8 @@
 #include "bg_dae.h"
 #include "bg_fdjac.h"
 
-#define MAXORD 5
+#define MAXORD 7     /* the largest k: MEBDF (order k + 1); BDF stops at BDF_MAXORD */
+#define BDF_MAXORD 5
 #define STAB_WIN 5 /* error estimates kept by the stability guard (dae_stab.c) */
 #define NPHI (MAXORD + 2)
 #define MAX_NEF 10 /* error-test failures in one step */

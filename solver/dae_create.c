@@ -17,7 +17,7 @@ int dae_options_default(dae_options *o)
     memset(o, 0, sizeof *o);
     o->rtol = 1e-6;
     o->atol = 1e-8;
-    o->max_order = 5;
+    o->max_order = 0; /* the method's largest (dae_create) */
     o->max_steps = 100000;
     o->index2 = DAE_I2_EXCLUDE;
     o->linsol = LS_KLU;
@@ -240,8 +240,11 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
                        "rtol must be below 1 and atol finite (rtol %g, atol %g)", o->rtol, o->atol);
         return NULL;
     }
-    if (o->max_order < 1 || o->max_order > MAXORD) {
-        bg_error_raise(err, BG_ERR_ARGUMENT, w, "max_order must be 1..5 (got %d)", o->max_order);
+    if (o->max_order < 0 || o->max_order > (o->method == DAE_MEBDF ? MAXORD : BDF_MAXORD)) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "max_order must be 0 (the method's largest) or 1..%d for %s (got %d)",
+                       o->method == DAE_MEBDF ? MAXORD : BDF_MAXORD,
+                       o->method == DAE_MEBDF ? "DAE_MEBDF" : "DAE_BDF", o->max_order);
         return NULL;
     }
     if (o->method != DAE_BDF && o->method != DAE_MEBDF) {
@@ -252,6 +255,13 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     if (o->mebdf_error < DAE_MEBDF_ERR_BDF || o->mebdf_error > DAE_MEBDF_ERR_KP1) {
         bg_error_raise(err, BG_ERR_ARGUMENT, w, "mebdf_error must be 0..2 (got %d)",
                        (int)o->mebdf_error);
+        return NULL;
+    }
+    if (o->method == DAE_MEBDF && o->mebdf_error == DAE_MEBDF_ERR_KP1 && o->max_order > 5) {
+        bg_error_raise(err, BG_ERR_ARGUMENT, w,
+                       "mebdf_error = DAE_MEBDF_ERR_KP1 needs max_order <= 5 (got %d): its "
+                       "error constants are known to k = 5",
+                       o->max_order);
         return NULL;
     }
     if (o->newton_jac_age < 0 || (o->newton_jac_age > 0 && !(o->newton_dgmax > 0))) {
@@ -299,6 +309,10 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     s->o.atol_vec = NULL;
     s->o.breakpoints = NULL;
     if (s->o.max_newton < 1) s->o.max_newton = 4;
+    if (s->o.max_order == 0) /* the method's largest: MEBDF's as MEBDFI's drivers */
+        s->o.max_order = s->o.method != DAE_MEBDF ? BDF_MAXORD
+                         : s->o.mebdf_error == DAE_MEBDF_ERR_KP1 ? 5
+                                                                 : MAXORD;
     if (s->o.max_steps < 1) s->o.max_steps = 100000;
     s->kind = malloc((size_t)n * sizeof *s->kind);
     s->atol = malloc((size_t)n * sizeof *s->atol);

@@ -26,17 +26,28 @@
  *   stage 3  y_pred = ybar_{n+1},
  *            yp_pred = cj (ybar_{n+1} + sum ah_j y_{n+1-j}) - ((b1 - beta) ybar'_{n+1}
  *                      + b2 ybar'_{n+2}) / beta.
- * Coefficients (k = 1..5; mebdf_coeffs solves the order conditions, constant step):
+ * Coefficients (k = 1..7, options.max_order; mebdf_coeffs solves the order conditions, constant
+ * step):
  *   k  beta        b1          b2           order  stability angle
  *   1  1           1.5         -0.5         2      90 (A-stable)
  *   2  2/3         0.95652174  -0.17391304  3      90 (A-stable)
  *   3  6/11        0.76142132  -0.09137056  4      90 (A-stable)
  *   4  12/25       0.65733707  -0.05757697  5      88.36
  *   5  60/137      0.59119244  -0.04021717  6      83.07
+ *   6  20/49       0.54475876  -0.03001426  7      74.48
+ *   7  140/363     0.50999746  -0.02345586  8      61.98
+ * (BDF stages of orders 6 and 7 are not zero-stable as methods of their own; MEBDF built on them
+ * is, with the principal root alone on the unit circle at h lambda = 0, as Cash's analysis has
+ * it: his codes use k up to 7 as well, MEBDFI's drivers with orders up to 8.)
  * The angles were computed here (the A(alpha) angle: the largest alpha for which the spectral
  * radius of the step's k x k amplification matrix on y' = lambda y stays <= 1 on the rays
  * h lambda = -r exp(+-i alpha), 1e-3 <= r <= 1e6, and on the imaginary axis for k <= 3) and
  * agree with Cash's table (1983, 2000); BDF of orders 2..6: 90, 86.03, 73.35, 51.84, 17.84.
+ * The orders up to 8 serve tight tolerances on problems without undamped fast modes: on
+ * transamp (max_order 7) 1.13, 1.14, 1.17, 1.24 times MEBDFI's published steps at rtol 1e-4,
+ * 1e-6, 1e-8, 1e-10 with 4.63, 6.44, 9.38, 10.33 correct digits (k <= 5: 1.07, 1.18, 1.37, 1.76;
+ * orders 7 and 8 take 57 % of the steps at 1e-10); on undamped oscillations their stability
+ * angles make them worse than orders up to 4.
  * tests/solver/test_dae_mebdf.c measures the amplification on the imaginary axis.
  * Variable step: as in BDF's fixed-leading-coefficient form (dae_step.c), the past values are
  * those of the history's predictor polynomial of degree k at t_{n+1} - j h (j = 1..k): the
@@ -201,7 +212,8 @@ static double gear_const(int k)
 
 /* |C| of MEBDF's local error y_{n+1} - y(t_{n+1}) = C h^{k+2} y^{(k+2)} (order k + 1), k =
  * 1..5: the larger of its values on y' = lambda y (lambda h -> 0) and on y' = f(t), computed
- * from mebdf_coeffs' coefficients with exact past values (k = 1: -0.667 and -0.417). */
+ * from mebdf_coeffs' coefficients with exact past values (k = 1: -0.667 and -0.417); KP1
+ * therefore needs max_order <= 5 (dae_create). */
 static const double lte_c[MAXORD + 1] = {0, 0.667, 0.149, 0.0598, 0.0315, 0.0199};
 
 /* The weighted RMS norm of a - c b (b NULL: of a) in the error test's weights. */

@@ -43,7 +43,7 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
  * phi_1 + ... + c_K phi_K, y' = 0 + d_1 phi_1 + ... + d_K phi_K (the 0 kept: -0 + 0 = +0, as
  * the sum started from zero gives). K is a constant where it is inlined: one pass over the
  * unknowns, each difference read once, no sweep of y or y' per order. */
-_Static_assert(MAXORD == 5, "interp_pass holds the differences up to order 5");
+/* (orders above 5, MEBDF only, take the generic loop of daei_interpolate) */
 #if defined(__GNUC__)
 #define DAE_INLINE static inline __attribute__((always_inline))
 #else
@@ -119,7 +119,18 @@ void daei_interpolate(const dae_solver *s, double t, double *y, double *yp)
     case 2: interp_order(2, n, phi, cc, dd, y, yp); break;
     case 3: interp_order(3, n, phi, cc, dd, y, yp); break;
     case 4: interp_order(4, n, phi, cc, dd, y, yp); break;
-    default: interp_order(5, n, phi, cc, dd, y, yp); break;
+    case 5: interp_order(5, n, phi, cc, dd, y, yp); break;
+    default: /* MEBDF's k = 6, 7: the same terms in the same order, unknown by unknown */
+        for (int i = 0; i < n; i++) {
+            double a = s->phi[0][i], b = 0.0;
+            for (int j = 1; j <= kord; j++) {
+                a += cc[j] * s->phi[j][i];
+                b += dd[j] * s->phi[j][i];
+            }
+            if (y) y[i] = a;
+            if (yp) yp[i] = b;
+        }
+        break;
     }
 }
 

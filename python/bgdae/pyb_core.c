@@ -79,9 +79,9 @@ PyObject *pyb_stats_dict(const dae_stats *st)
 #undef L
 #undef D
     SET_ITEM(d, "steps_at_order",
-             Py_BuildValue("(llllll)", st->steps_at_order[0], st->steps_at_order[1],
+             Py_BuildValue("(llllllll)", st->steps_at_order[0], st->steps_at_order[1],
                            st->steps_at_order[2], st->steps_at_order[3], st->steps_at_order[4],
-                           st->steps_at_order[5]));
+                           st->steps_at_order[5], st->steps_at_order[6], st->steps_at_order[7]));
     return d;
 }
 

@@ -548,7 +548,7 @@ static void test_dae_create(void)
         if (!strcmp(f, "h_min")) o.h_min = NAN;
         if (!strcmp(f, "h_max")) o.h_max = INFINITY;
         if (!strcmp(f, "h_order")) o.h_min = 1, o.h_max = 0.5;
-        if (!strcmp(f, "max_order")) o.max_order = 0;
+        if (!strcmp(f, "max_order")) o.max_order = -1;
         if (!strcmp(f, "index2")) o.index2 = (dae_index2_policy)5;
         if (!strcmp(f, "linsol")) o.linsol = (ls_kind)9;
         if (!strcmp(f, "t_stop")) o.has_t_stop = 1, o.t_stop = NAN;

@@ -2,7 +2,8 @@
  * independent truths:
  *   1. order of convergence at fixed step on smooth_ode (closed form y1 = e^-t + sin t,
  *      y2 = cos 2t + e^-2t) started from the exact history: MEBDF with BDF stages of order k
- *      converges with order k + 1 (k = 1..5), BDF with order k (the same measurement);
+ *      converges with order k + 1 (k = 1..7), BDF with order k (k = 1..5, the same
+ *      measurement);
  *   2. an undamped stiff oscillator driven slowly (closed form, the problem of test_dae_stab.c):
  *      BDF of orders up to 5 sits at the edge of BDF5's unstable band for the fast mode
  *      (h omega ~ 0.7) whatever the tolerance; MEBDF of order 4 (k = 3, A-stable) takes steps
@@ -10,19 +11,21 @@
  *   2b. an undamped oscillator at fixed steps h omega = 1 and 2 (h lambda on the imaginary
  *      axis): the amplitude's growth per step equals the spectral radius of each method's
  *      amplification matrix, which the analysis of the formulas gives (MEBDF of orders 2..4
- *      contracts, as A-stable methods do; of orders 5 and 6, and BDF of orders 3..5, grow at
- *      h omega = 1);
+ *      contracts, as A-stable methods do; of orders 5 .. 7, and BDF of orders 3..5, grow at
+ *      h omega = 1; of order 8 contracts there and grows at h omega = 2);
  *   3. the index-2 pendulum against its 30-digit reference;
  *   4. the IVP Test Set's transistor amplifier (transamp) against its published reference:
  *      no failure from rtol 1e-4 to 1e-10 (BDF fails at 1e-10), correct digits (scd) within one
  *      of the tolerance, at rtol 1e-8 and 1e-10 at least those of Cash's MEBDFI minus 0.5, and
- *      at most twice MEBDFI's steps (docs/mebdfi_stats.md);
+ *      at most twice MEBDFI's steps (docs/mebdfi_stats.md); with orders up to 8 (max_order = 7,
+ *      as MEBDFI's driver) within 1.5 times MEBDFI's steps and at least its digits minus 0.5
+ *      at every one of those tolerances;
  *   4b. the other error controls (options.mebdf_error): the estimate of order k + 1 (KP1) takes
  *      at most 1.5 times MEBDFI's published steps on transamp from rtol 1e-4 to 1e-10 with
  *      digits within one of the tolerance; Cash and Considine's (CASH) meets what 4 asks of the
  *      default; both keep the index-2 pendulum's digits (KP1 at 1e-9 only reported: 7.85);
- *   5. a method or an error control that does not exist is refused by dae_create with a
- *      message naming it. */
+ *   5. a method, an error control or a max_order that does not exist for the method is refused
+ *      by dae_create with a message naming it. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -101,7 +104,7 @@ static double fixed_run(const bp_problem *p, dae_method m, int k, double h)
     o.max_steps = 1000000;
     double err = NAN;
     dae_solver *s = start(&in, p, &o);
-    double Y[(5 + 1) * 2], e[2], ep[2];
+    double Y[(7 + 1) * 2], e[2], ep[2];
     for (int i = 0; i <= k; i++)
         p->exact(p->t0 - i * h, Y + 2 * i, NULL);
     if (s && dae_set_history(s, p->t0, h, k, Y) == BG_OK) {
@@ -122,8 +125,10 @@ static void test_order(void)
 {
     const bp_problem *p = bp_find("smooth_ode");
     for (int m = 0; m < 2; m++) {
-        for (int k = 1; k <= 5; k++) {
-            double h = k <= 2 ? 0.02 : 0.0125; /* landing on t = 1 */
+        for (int k = 1; k <= (m ? 7 : 5); k++) {
+            /* landing on t = 1; orders 7 and 8 at longer steps, their errors above the
+             * rounding (1e-13) at h / 2 */
+            double h = k <= 2 ? 0.02 : k <= 5 ? 0.0125 : k == 6 ? 0.05 : 0.1;
             double e1 = fixed_run(p, m ? DAE_MEBDF : DAE_BDF, k, h);
             double e2 = fixed_run(p, m ? DAE_MEBDF : DAE_BDF, k, h / 2);
             double ord = log2(e1 / e2), want = m ? k + 1 : k;
@@ -315,6 +320,47 @@ static void test_transamp(void)
     }
 }
 
+/* ---- 4c. orders up to 8 (max_order = 7, as MEBDFI's driver) on transamp ---- */
+
+static void test_transamp_order8(void)
+{
+    const bp_problem *p = bp_find("transamp");
+    static const double rtols[4] = {1e-4, 1e-6, 1e-8, 1e-10};
+    static const double mebdfi_scd[4] = {4.58, 6.43, 7.59, 10.12};
+    static const long mebdfi_steps[4] = {1481, 2748, 4592, 7767};
+    double yref[MAXN];
+    bp_reference(p, yref);
+    for (int ir = 0; ir < 4; ir++) {
+        bp_instance in;
+        dae_options o;
+        dae_options_default(&o);
+        o.method = DAE_MEBDF;
+        o.max_order = 7;
+        o.rtol = rtols[ir];
+        o.atol = rtols[ir];
+        o.h_init = 1e-2 * rtols[ir];
+        o.max_steps = 1000000;
+        dae_solver *s = start(&in, p, &o);
+        int ret = -1000;
+        double t, y[MAXN], yp[MAXN];
+        if (s && (ret = dae_init(s, p->t0, p->y0, p->yp0)) == BG_OK)
+            ret = dae_solve_to(s, p->tend, &t, y, yp);
+        bp_score sc = {0};
+        if (ret >= 0) bp_score_compute(p, y, yref, o.rtol, o.atol, &sc);
+        const dae_stats *st = s ? dae_get_stats(s) : NULL;
+        long steps = st ? st->steps : 0;
+        tap_ok(ret == DAE_SUCCESS && sc.scd >= mebdfi_scd[ir] - 0.5 &&
+                   steps <= 1.5 * mebdfi_steps[ir],
+               "transamp MEBDF max_order 7, rtol %g: scd %.2f >= MEBDFI's %.2f - 0.5, %ld steps "
+               "<= 1.5 MEBDFI's %ld (ratio %.2f; steps at k = 6, 7: %ld, %ld)",
+               rtols[ir], sc.scd, mebdfi_scd[ir], steps, mebdfi_steps[ir],
+               (double)steps / (double)mebdfi_steps[ir], st ? st->steps_at_order[6] : 0L,
+               st ? st->steps_at_order[7] : 0L);
+        dae_free(&s);
+        bp_instance_free(&in);
+    }
+}
+
 /* ---- 4b. the other error controls on transamp and the pendulum ---- */
 
 static void test_controls(void)
@@ -414,15 +460,14 @@ static void test_imaginary_axis(void)
      * its characteristic polynomial (the analysis of dae_mebdf.c's header): MEBDF with BDF
      * stages of order k = 1..5, then BDF of orders 3..5, at h = 1 and 2. */
     static const double hs[2] = {1.0, 2.0};
-    static const double rho_mebdf[5][2] = {{0.728869, 0.368782},
-                                           {0.916242, 0.655028},
-                                           {0.985810, 0.844211},
-                                           {1.016496, 0.989075},
-                                           {1.021965, 1.111961}};
+    static const double rho_mebdf[7][2] = {{0.728869, 0.368782}, {0.916242, 0.655028},
+                                           {0.985810, 0.844211}, {1.016496, 0.989075},
+                                           {1.021965, 1.111961}, {1.007054, 1.224009},
+                                           {0.991532, 1.331932}};
     static const double rho_bdf[3][2] = {
         {1.043587, 0.993959}, {1.105568, 1.189646}, {1.134673, 1.368620}};
     for (int ih = 0; ih < 2; ih++) {
-        for (int k = 1; k <= 5; k++) {
+        for (int k = 1; k <= 7; k++) {
             double g = growth(DAE_MEBDF, k, hs[ih]), want = rho_mebdf[k - 1][ih];
             tap_ok(fabs(g / want - 1) <= 1e-4,
                    "MEBDF k = %d (order %d) at h omega = %g: growth per step %.6f, the "
@@ -464,6 +509,30 @@ static void test_bad_method(void)
     dae_free(&s);
     tap_ok(dae_options_default(&o) == BG_OK && o.mebdf_error == DAE_MEBDF_ERR_BDF,
            "the default error control of MEBDF is BDF's");
+    /* max_order: 1..5 for BDF, 1..7 for MEBDF (its orders up to 8), not 7 with KP1 */
+    static const struct {
+        dae_method m;
+        dae_mebdf_error e;
+        int k, ok;
+    } mo[5] = {{DAE_BDF, DAE_MEBDF_ERR_BDF, 6, 0},
+               {DAE_MEBDF, DAE_MEBDF_ERR_BDF, 7, 1},
+               {DAE_MEBDF, DAE_MEBDF_ERR_BDF, 8, 0},
+               {DAE_MEBDF, DAE_MEBDF_ERR_CASH, 7, 1},
+               {DAE_MEBDF, DAE_MEBDF_ERR_KP1, 6, 0}};
+    for (int i = 0; i < 5; i++) {
+        dae_options_default(&o);
+        o.method = mo[i].m;
+        o.mebdf_error = mo[i].e;
+        o.max_order = mo[i].k;
+        memset(&err, 0, sizeof err);
+        s = dae_create(&p, &o, &err);
+        tap_ok(mo[i].ok ? s != NULL
+                        : !s && err.status == BG_ERR_ARGUMENT && strstr(err.message, "max_order"),
+               "%s, mebdf_error %d, max_order %d: %s (%s)", mo[i].m ? "MEBDF" : "BDF",
+               (int)mo[i].e, mo[i].k, mo[i].ok ? "accepted" : "refused naming max_order",
+               s ? "ok" : err.message);
+        dae_free(&s);
+    }
 }
 
 int main(void)
@@ -474,6 +543,7 @@ int main(void)
     test_imaginary_axis();
     test_pendulum();
     test_transamp();
+    test_transamp_order8();
     test_controls();
     return tap_done();
 }
