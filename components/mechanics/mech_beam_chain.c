@@ -1,7 +1,8 @@
 /* The chain builder of the co-rotational beam (declared in mech_beam_chain.h): a straight chain
- * of n elements (mech_beam.c) between n + 1 node bodies (mech_body) that carry the lumped mass,
- * half of each element's mass rho A l and the rotary inertia of its section rho I l at either
- * end. The chain's elements share one AD scratch (mech_beam_impl.h). */
+ * of n elements (mech_beam.c), of equal lengths or between given stations (graded), between
+ * n + 1 node bodies (mech_body) that carry the lumped mass, half of each element's mass
+ * rho A l and the rotary inertia of its section rho I l at either end. The chain's elements
+ * share one AD scratch (mech_beam_impl.h). */
 #include "mech_beam_chain.h"
 
 #include <math.h>
@@ -59,14 +60,43 @@ static double node_inertia(const mech_section *sec, const double *E0, double l, 
     return mass > 0 ? mass : 1e-12;
 }
 
-int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
-                    const double *p1, const double *up, const mech_section *sec,
-                    const double *gravity, const int *extra, const int *extra3, int *nodes,
-                    int *elems)
+/* The length of element k of a chain of length L. */
+static double element_length(const double *xi, int k, int n, double L)
+{
+    return xi ? (xi[k + 1] - xi[k]) * L : L / n;
+}
+
+/* The length of rod node k stands for: half of each adjacent element. */
+static double node_length(const double *xi, int k, int n, double L)
+{
+    double a = k > 0 ? element_length(xi, k - 1, n, L) : 0.0;
+    double b = k < n ? element_length(xi, k, n, L) : 0.0;
+    return 0.5 * (a + b);
+}
+
+/* The stations of a graded chain: n + 1 finite numbers rising strictly from 0 to 1. */
+static int bad_stations(bgr_model *m, bgr_comp c, const char *name, const char *w, int n,
+                        const double *xi)
+{
+    if (!xi) return bgr_refuse(m, c, name, w, "the stations xi are NULL");
+    if (bgr_check_values(m, c, name, w, "xi", xi, n + 1, BGR_FINITE)) return 1;
+    if (xi[0] != 0.0 || xi[n] != 1.0)
+        return bgr_refuse(m, c, name, w, "xi[0] = %g, xi[%d] = %g: expected 0 and 1 (the ends)",
+                          xi[0], n, xi[n]);
+    for (int k = 0; k < n; k++)
+        if (!(xi[k + 1] > xi[k]))
+            return bgr_refuse(m, c, name, w,
+                              "xi[%d] = %g, xi[%d] = %g: expected strictly increasing stations", k,
+                              xi[k], k + 1, xi[k + 1]);
+    return 0;
+}
+
+static int chain(bgr_model *m, bgr_comp c, const char *name, const char *w, int n, const double *xi,
+                 const double *p0, const double *p1, const double *up, const mech_section *sec,
+                 const double *gravity, const int *extra, const int *extra3, int *nodes, int *elems)
 {
     bg_error *err = bgr_model_error_mut(m);
     /* everything is checked before the component is made: a refused chain leaves nothing */
-    const char *w = "mech_beam_chain";
     if (mech_beam_bad_section_(m, c, name, w, sec)) return BG_ERR_ARGUMENT;
     if (!(sec->rho > 0))
         return bgr_refuse(m, c, name, w,
@@ -92,17 +122,18 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
         return bgr_refuse(m, c, name, w, "the arrays for the node and element ids are NULL");
     for (int k = 0; k <= n; k++) {
         if ((extra && extra[k] < 0) || (extra3 && extra3[k] < 0))
-            return bgr_refuse(m, c, name, w, "node %d has a negative number of extra ports (%d)",
-                              k, extra && extra[k] < 0 ? extra[k] : extra3[k]);
+            return bgr_refuse(m, c, name, w, "node %d has a negative number of extra ports (%d)", k,
+                              extra && extra[k] < 0 ? extra[k] : extra3[k]);
         int np = node_ports(k, n, extra, extra3);
         if (np > MECH_MAXPORTS)
             return bgr_refuse(m, c, name, w, "node %d has %d ports, expected at most %d", k, np,
                               MECH_MAXPORTS);
     }
-    double Le = L / n;
-    if (mech_beam_bad_stiffness_(m, c, name, w, sec, Le)) return BG_ERR_ARGUMENT;
-    for (int end = 0; end < 2; end++) { /* the lumped inertias of the end and inner nodes */
-        double J[9], l = end ? 0.5 * Le : Le;
+    for (int k = 0; k < n; k++)
+        if (mech_beam_bad_stiffness_(m, c, name, w, sec, element_length(xi, k, n, L)))
+            return BG_ERR_ARGUMENT;
+    for (int k = 0; k <= n; k++) { /* the lumped inertias of the nodes */
+        double J[9], l = node_length(xi, k, n, L);
         double mass = node_inertia(sec, E0, l, J);
         if (!isfinite(mass) || bgr_check_spd(m, c, name, w, "the lumped inertia of a node", J, 3))
             return bgr_refuse(m, c, name, w,
@@ -115,7 +146,7 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
     bgr_comp cc = bgr_component(m, c, name);
     if (cc < 0) return cc;
     for (int k = 0; k <= n; k++) {
-        double l = (k == 0 || k == n) ? 0.5 * Le : Le; /* length of rod the node stands for */
+        double l = node_length(xi, k, n, L); /* length of rod the node stands for */
         double J[9], mass = node_inertia(sec, E0, l, J);
         int np = node_ports(k, n, extra, extra3);
         double *r = calloc((size_t)3 * np + 3, sizeof *r);
@@ -140,8 +171,8 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
     for (int k = 0; k < n; k++) {
         char nm[32];
         snprintf(nm, sizeof nm, "el%02d", k);
-        elems[k] =
-            mech_beam_add_(m, cc, nm, nodes[k], nodes[k + 1], sec, E0, Le, shared, gravity);
+        double Le = element_length(xi, k, n, L);
+        elems[k] = mech_beam_add_(m, cc, nm, nodes[k], nodes[k + 1], sec, E0, Le, shared, gravity);
         if (elems[k] < 0) {
             mech_beam_work_release_(shared);
             return elems[k];
@@ -170,6 +201,25 @@ int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const dou
     return cc;
 }
 
+int mech_beam_chain(bgr_model *m, bgr_comp c, const char *name, int n, const double *p0,
+                    const double *p1, const double *up, const mech_section *sec,
+                    const double *gravity, const int *extra, const int *extra3, int *nodes,
+                    int *elems)
+{
+    return chain(m, c, name, "mech_beam_chain", n, NULL, p0, p1, up, sec, gravity, extra, extra3,
+                 nodes, elems);
+}
+
+int mech_beam_chain_at(bgr_model *m, bgr_comp c, const char *name, int n, const double *xi,
+                       const double *p0, const double *p1, const double *up,
+                       const mech_section *sec, const double *gravity, const int *extra,
+                       const int *extra3, int *nodes, int *elems)
+{
+    const char *w = "mech_beam_chain_at";
+    if (n >= 1 && bad_stations(m, c, name, w, n, xi)) return BG_ERR_ARGUMENT;
+    return chain(m, c, name, w, n, xi, p0, p1, up, sec, gravity, extra, extra3, nodes, elems);
+}
+
 bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const int *extra, int k,
                               int j)
 {
@@ -179,17 +229,32 @@ bgr_port mech_beam_chain_port(const bgr_model *m, const int *nodes, int n, const
     return bgr_port_of(m, nodes[k], (k > 0) + (k < n) + j); /* 6D extras, then 3D ones */
 }
 
-int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1)
+static int chain_set(bgr_model *m, const char *w, const int *nodes, int n, const double *xi,
+                     const double *p0, const double *p1)
 {
     if (!nodes || n < 1 || !p0 || !p1)
-        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam_chain_set",
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, w,
                               "needs the node ids, n >= 1 and both end points");
     for (int k = 0; k <= n; k++) {
         double x[3];
         for (int i = 0; i < 3; i++)
-            x[i] = p0[i] + (p1[i] - p0[i]) * k / n;
+            x[i] = xi ? p0[i] + (p1[i] - p0[i]) * xi[k] : p0[i] + (p1[i] - p0[i]) * k / n;
         int st = mech_body_set(m, nodes[k], x, NULL, NULL, NULL);
         if (st != BG_OK) return st;
     }
     return BG_OK;
+}
+
+int mech_beam_chain_set(bgr_model *m, const int *nodes, int n, const double *p0, const double *p1)
+{
+    return chain_set(m, "mech_beam_chain_set", nodes, n, NULL, p0, p1);
+}
+
+int mech_beam_chain_set_at(bgr_model *m, const int *nodes, int n, const double *xi,
+                           const double *p0, const double *p1)
+{
+    if (!xi)
+        return bg_error_raise(bgr_model_error_mut(m), BG_ERR_ARGUMENT, "mech_beam_chain_set_at",
+                              "the stations xi are NULL");
+    return chain_set(m, "mech_beam_chain_set_at", nodes, n, xi, p0, p1);
 }
