@@ -456,7 +456,7 @@ static void test_graded(void)
     for (int k = 0; k <= n; k++)
         xi[k] = pow((double)k / n, 1.1);
     for (int g = 0; g < 3; g++) {
-        double w2[3], w2d[3], f[2][3], root, er[2][3], dmax = 0, worst = 0;
+        double w2[3] = {0}, w2d[3] = {0}, f[2][3], root, er[2][3], dmax = 0, worst = 0;
         int ok = southwell_reference(gammas[g], 200, NULL, 3, w2, 0) == 0 &&
                  southwell_reference(gammas[g], n, xi, 3, w2d, 1) == 0;
         bg_error err = {0};
