@@ -1,6 +1,7 @@
 /* Jacobians of a dae_problem at a point, analytic or by coloured differences (bg_jaceval.h). */
 #include "bg_jaceval.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -185,7 +186,7 @@ int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double
         rmax = fmax(rmax, fabs(yp[i]) / (fabs(y[i]) + (nom ? nom[i] : 1.0)));
     if (!(rmax > 0)) return 0; /* at rest */
     /* the rates' own rate along the frame's flow: y'' = S y' */
-    double *acc = NULL;
+    double *acc = NULL, *sz = NULL;
     if (S) {
         acc = calloc((size_t)n, sizeof *acc);
         if (!acc) return BG_ERR_MEMORY;
@@ -212,24 +213,40 @@ int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double
         st = bg_jaceval_res(J, t + h, ys, yp, F1);
     }
     if (st) goto out;
-    /* the terms: sum_j |dF/dy_ij yp_j| (+ sum_j |dF/dy'_ij (S yp)_j|) into ys */
+    /* the terms: sum_j |dF/dy_ij yp_j| (+ sum_j |dF/dy'_ij (S yp)_j|) into ys; the size of
+     * the equation's own terms, sum_j |dF/dy_ij y_j| + |dF/dy'_ij yp_j| + |F_i|, into sz */
+    sz = malloc((size_t)n * sizeof *sz);
+    if (!sz) {
+        st = BG_ERR_MEMORY;
+        goto out;
+    }
     memset(ys, 0, (size_t)n * sizeof *ys);
-    const sp_csc *A = J->Jy;
+    const sp_csc *A = J->Jy, *B = J->Jyp;
     double big = 0;
     for (int j = 0; j < n; j++)
         for (int q = A->colptr[j]; q < A->colptr[j + 1]; q++)
             ys[A->rowind[q]] += fabs(A->val[q] * yp[j]);
     if (acc) {
-        const sp_csc *B = J->Jyp;
         for (int j = 0; j < n; j++)
             for (int q = B->colptr[j]; q < B->colptr[j + 1]; q++)
                 ys[B->rowind[q]] += fabs(B->val[q] * acc[j]);
     }
     for (int i = 0; i < n; i++)
+        sz[i] = fabs(F0[i]);
+    for (int j = 0; j < n; j++) {
+        for (int q = A->colptr[j]; q < A->colptr[j + 1]; q++)
+            sz[A->rowind[q]] += fabs(A->val[q] * y[j]);
+        for (int q = B->colptr[j]; q < B->colptr[j + 1]; q++)
+            sz[B->rowind[q]] += fabs(B->val[q] * yp[j]);
+    }
+    for (int i = 0; i < n; i++)
         big = fmax(big, ys[i]);
     for (int i = 0; i < n; i++) {
         if (!(ys[i] > 1e-9 * big)) continue; /* nothing moves in this equation */
-        double r = fabs(F1[i] - F0[i]) / h / ys[i];
+        /* the change less the rounding of the two residuals (64 units of their terms' size):
+         * an equation the motion leaves all but unchanged shows its rounding over h */
+        double dF = fmax(fabs(F1[i] - F0[i]) - 128 * DBL_EPSILON * sz[i], 0.0);
+        double r = dF / h / ys[i];
         if (!(r <= *ratio)) {
             *ratio = r;
             *row = i;
@@ -237,5 +254,6 @@ int bg_jaceval_steadiness(bg_jaceval *J, double t, const double *y, const double
     }
 out:
     free(acc);
+    free(sz);
     return st;
 }

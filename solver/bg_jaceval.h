@@ -38,7 +38,11 @@ int bg_jaceval_eval(bg_jaceval *J, double t, const double *y, const double *yp, 
  * sum_j |dF/dy_ij yp_j| (J->Jy as evaluated at this state, before the call). A motion along
  * ignorable coordinates (a shaft angle growing under a constant rate, a mass dragged at constant
  * speed through a linear spring) keeps every equation; a structure spinning in the inertial
- * frame does not (its positions move along directions that rotate). *ratio receives the largest
+ * frame does not (its positions move along directions that rotate). The difference of an
+ * equation counts beyond its rounding only, 128 DBL_EPSILON times the size of its terms,
+ * |F_i| + sum_j |dF/dy_ij y_j| + |dF/dy'_ij yp_j|: an equation the motion leaves all but
+ * unchanged would otherwise show that rounding over h as a rate (a stiff element's force,
+ * 4e-9 of rounding over h = 6e-9). *ratio receives the largest
  * |dF/dt_i| / sum_j |dF/dy_ij yp_j| over the equations whose terms are above rounding, *row its
  * equation (-1: yp zero, or none). 0, or the residual's status (BG_ERR_MEMORY); scratch: J->F0,
  * J->F1, J->ycopy (J->Jy, J->Jyp are left as they were).

@@ -451,11 +451,11 @@ static void test_southwell(void)
 static void test_graded(void)
 {
     const int n = 8;
-    const double gammas[3] = {0, 3, 12};
+    const double gammas[4] = {0, 3, 6, 12};
     double xi[9];
     for (int k = 0; k <= n; k++)
         xi[k] = pow((double)k / n, 1.1);
-    for (int g = 0; g < 3; g++) {
+    for (int g = 0; g < 4; g++) {
         double w2[3] = {0}, w2d[3] = {0}, f[2][3], root, er[2][3], dmax = 0, worst = 0;
         int ok = southwell_reference(gammas[g], 200, NULL, 3, w2, 0) == 0 &&
                  southwell_reference(gammas[g], n, xi, 3, w2d, 1) == 0;
