@@ -37,7 +37,7 @@ typedef struct bench_rt_result {
     double rt_factor, rt_factor_cpu, rt_factor_all; /* medians: simulated / wall, / CPU time of
                                                       the integration, / wall with the set-up */
     double peak_mb, bookkeeping, wall_int, cpu_int;  /* largest peak RSS; medians */
-    double res_s_med, jac_s_med, lin_s_med;          /* parts of the run nearest the median */
+    double res_s_med, jac_s_med, lin_s_med, out_s_med; /* parts of the run nearest the median */
     long steps, newton, jac, steps_corners;          /* of the last completed run */
     int runs, n;
 } bench_rt_result;

@@ -322,7 +322,8 @@ static void write_report_head(FILE *f, const bench_row *rows, int n, bench_case 
         fprintf(f, "| crane %s: peak memory < 64 MB | %.1f MB | %s |\n", sc->label, r->peak_mb,
                 r->peak_mb < 64 ? "met" : "MISSED");
         fprintf(f,
-                "| crane %s: bookkeeping outside residual, Jacobian and linear algebra < 10 %% | "
+                "| crane %s: the integrator's bookkeeping (outside residual, Jacobian, linear "
+                "algebra and the output rows' crane_outputs) < 10 %% | "
                 "%.1f %% | %s |\n",
                 sc->label, 100 * r->bookkeeping, r->bookkeeping < 0.1 ? "met" : "MISSED");
     }
