@@ -437,7 +437,7 @@ static double growth(dae_method m, int k, double h)
     o.max_steps = 10 * N;
     bg_error err;
     dae_solver *s = dae_create(&p, &o, &err);
-    double Y[12], a_half = NAN, a_end = NAN;
+    double Y[(7 + 1) * 2], a_half = NAN, a_end = NAN;
     for (int i = 0; i <= k; i++) {
         Y[2 * i] = cos(-i * h);
         Y[2 * i + 1] = -sin(-i * h);
