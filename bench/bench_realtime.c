@@ -204,7 +204,7 @@ static int rt_child(const char *exe, const char *scene_file, rt_run *o)
                      &o->theta, &o->n, &o->corners, &kb, &hwm, &o->out_s);
     o->maxrss_mb = (double)kb / 1024.0;
     o->hwm_mb = hwm >= 0 ? (double)hwm / 1024.0 : NAN;
-    if (got != 17 || !WIFEXITED(wst) || WEXITSTATUS(wst) != 0) {
+    if (got != 18 || !WIFEXITED(wst) || WEXITSTATUS(wst) != 0) {
         snprintf(o->msg, sizeof o->msg, "%.400s (exit status %d)", len ? buf : "no output",
                  WIFEXITED(wst) ? WEXITSTATUS(wst) : -1);
         if (o->status == 0) o->status = -1;

@@ -7,9 +7,12 @@
  * ignored) ends with exit status 1, names each file with the system's error, leaves no part of
  * those files and says in its summary that the results are incomplete; a file that cannot be
  * written (/dev/full in its place) leaves the others written and the report listing it; --help
- * into /dev/full ends with exit status 1. Each run: one small problem, --quick, no scaling. */
+ * into /dev/full ends with exit status 1. Each run: one small problem, --quick, no scaling.
+ * Then one real-time run of each crane scene (--crane-realtime 1): each completes (the child's
+ * line read back whole) and its parts add up to its wall time. */
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -252,6 +255,37 @@ int main(int argc, char **argv)
         run(&r, args, 0, "/dev/full");
         tap_ok(r.status == 1 && strstr(r.err, "cannot write the standard output"),
                "--help into /dev/full: exit status %d (want 1), said", r.status);
+    }
+
+    /* 6. the real-time runs: each child's line read back whole (a field added to the child's
+     * line and not to the parent's reading failed every run): one run of each scene completes,
+     * and its parts (residual, Jacobian, linear algebra, the rest) add up to its wall time */
+    {
+        snprintf(dir, sizeof dir, "%s/realtime", base);
+        const char *args[] = {"--problems", "none", "--scaling", "none", "--crane-realtime", "1",
+                              "--out", dir, NULL};
+        run(&r, args, 0, NULL);
+        char text[16384];
+        int rows = 0, good = 0;
+        if (slurp(dir, "realtime.csv", text, sizeof text) == 0)
+            for (char *line = strstr(text, "\nscene,"); line; line = strstr(line + 1, "\nscene,")) {
+                char sc[64];
+                int el, run_no, st, n;
+                double tend, sw, iw, ic, rs, js, ls, os;
+                long steps, corners, rej, newton, jac;
+                rows++;
+                if (sscanf(line + 1,
+                           "scene,%63[^,],%d,%lf,%d,%d,%d,%lf,%lf,%lf,%ld,%ld,%ld,%ld,%ld,%lf,%lf,"
+                           "%lf,%lf",
+                           sc, &el, &tend, &run_no, &st, &n, &sw, &iw, &ic, &steps, &corners, &rej,
+                           &newton, &jac, &rs, &js, &ls, &os) == 18 &&
+                    st == 0 && steps > 0 && fabs(rs + js + ls + os - iw) <= 1e-3 * iw + 2e-4)
+                    good++;
+            }
+        tap_ok(r.status == 0 && good == 2,
+               "--crane-realtime 1: %d runs of the two scenes completed with their parts adding "
+               "up to the wall time (want 2; %d scene rows with the medians; exit status %d)",
+               good, rows, r.status);
     }
     return tap_done();
 }
