@@ -276,6 +276,38 @@ static void test_pendulum(void)
     }
 }
 
+/* One transamp run with MEBDF at rtol = atol (h_init as MEBDFI's driver), max_order k (0: the
+ * default): the status, the scd against the reference and the stats' steps (and at k = 6, 7). */
+static int transamp_run(const bp_problem *p, const double *yref, double rtol, int k, double *scd,
+                        long steps[3])
+{
+    bp_instance in;
+    dae_options o;
+    dae_options_default(&o);
+    o.method = DAE_MEBDF;
+    o.max_order = k;
+    o.rtol = rtol;
+    o.atol = rtol;
+    o.h_init = 1e-2 * rtol;
+    o.max_steps = 1000000;
+    dae_solver *s = start(&in, p, &o);
+    int ret = -1000;
+    double t, y[MAXN], yp[MAXN];
+    if (s && (ret = dae_init(s, p->t0, p->y0, p->yp0)) == BG_OK)
+        ret = dae_solve_to(s, p->tend, &t, y, yp);
+    bp_score sc = {0};
+    sc.scd = NAN;
+    if (ret >= 0) bp_score_compute(p, y, yref, o.rtol, o.atol, &sc);
+    const dae_stats *st = s ? dae_get_stats(s) : NULL;
+    steps[0] = st ? st->steps : 0;
+    steps[1] = st ? st->steps_at_order[6] : 0;
+    steps[2] = st ? st->steps_at_order[7] : 0;
+    *scd = sc.scd;
+    dae_free(&s);
+    bp_instance_free(&in);
+    return ret;
+}
+
 /* ---- 4. transamp ---- */
 
 static void test_transamp(void)
@@ -288,35 +320,20 @@ static void test_transamp(void)
     double yref[MAXN];
     bp_reference(p, yref);
     for (int ir = 0; ir < 4; ir++) {
-        bp_instance in;
-        dae_options o;
-        dae_options_default(&o);
-        o.method = DAE_MEBDF;
-        o.rtol = rtols[ir];
-        o.atol = rtols[ir];
-        o.h_init = 1e-2 * rtols[ir]; /* as MEBDFI's driver */
-        o.max_steps = 1000000;
-        dae_solver *s = start(&in, p, &o);
-        int ret = -1000;
-        double t, y[MAXN], yp[MAXN];
-        if (s && (ret = dae_init(s, p->t0, p->y0, p->yp0)) == BG_OK)
-            ret = dae_solve_to(s, p->tend, &t, y, yp);
-        bp_score sc = {0};
-        if (ret >= 0) bp_score_compute(p, y, yref, o.rtol, o.atol, &sc);
-        long steps = s ? dae_get_stats(s)->steps : 0;
+        double scd;
+        long steps[3];
+        int ret = transamp_run(p, yref, rtols[ir], 0, &scd, steps);
         double want = -log10(rtols[ir]) - 1.0;
-        tap_ok(ret == DAE_SUCCESS && sc.scd >= want,
+        tap_ok(ret == DAE_SUCCESS && scd >= want,
                "transamp MEBDF rtol %g: %s, scd %.2f >= %.0f (MEBDFI %.2f)", rtols[ir],
-               dae_return_name(ret), sc.scd, want, mebdfi_scd[ir]);
+               dae_return_name(ret), scd, want, mebdfi_scd[ir]);
         if (ir >= 2)
-            tap_ok(ret == DAE_SUCCESS && sc.scd >= mebdfi_scd[ir] - 0.5,
-                   "transamp MEBDF rtol %g: scd %.2f >= MEBDFI's %.2f - 0.5", rtols[ir], sc.scd,
+            tap_ok(ret == DAE_SUCCESS && scd >= mebdfi_scd[ir] - 0.5,
+                   "transamp MEBDF rtol %g: scd %.2f >= MEBDFI's %.2f - 0.5", rtols[ir], scd,
                    mebdfi_scd[ir]);
-        tap_ok(ret == DAE_SUCCESS && steps <= 2 * mebdfi_steps[ir],
+        tap_ok(ret == DAE_SUCCESS && steps[0] <= 2 * mebdfi_steps[ir],
                "transamp MEBDF rtol %g: %ld steps <= twice MEBDFI's %ld (ratio %.2f)", rtols[ir],
-               steps, mebdfi_steps[ir], (double)steps / (double)mebdfi_steps[ir]);
-        dae_free(&s);
-        bp_instance_free(&in);
+               steps[0], mebdfi_steps[ir], (double)steps[0] / (double)mebdfi_steps[ir]);
     }
 }
 
@@ -331,33 +348,14 @@ static void test_transamp_order8(void)
     double yref[MAXN];
     bp_reference(p, yref);
     for (int ir = 0; ir < 4; ir++) {
-        bp_instance in;
-        dae_options o;
-        dae_options_default(&o);
-        o.method = DAE_MEBDF;
-        o.max_order = 7;
-        o.rtol = rtols[ir];
-        o.atol = rtols[ir];
-        o.h_init = 1e-2 * rtols[ir];
-        o.max_steps = 1000000;
-        dae_solver *s = start(&in, p, &o);
-        int ret = -1000;
-        double t, y[MAXN], yp[MAXN];
-        if (s && (ret = dae_init(s, p->t0, p->y0, p->yp0)) == BG_OK)
-            ret = dae_solve_to(s, p->tend, &t, y, yp);
-        bp_score sc = {0};
-        if (ret >= 0) bp_score_compute(p, y, yref, o.rtol, o.atol, &sc);
-        const dae_stats *st = s ? dae_get_stats(s) : NULL;
-        long steps = st ? st->steps : 0;
-        tap_ok(ret == DAE_SUCCESS && sc.scd >= mebdfi_scd[ir] - 0.5 &&
-                   steps <= 1.5 * mebdfi_steps[ir],
+        double scd;
+        long st[3];
+        int ret = transamp_run(p, yref, rtols[ir], 7, &scd, st);
+        tap_ok(ret == DAE_SUCCESS && scd >= mebdfi_scd[ir] - 0.5 && st[0] <= 1.5 * mebdfi_steps[ir],
                "transamp MEBDF max_order 7, rtol %g: scd %.2f >= MEBDFI's %.2f - 0.5, %ld steps "
                "<= 1.5 MEBDFI's %ld (ratio %.2f; steps at k = 6, 7: %ld, %ld)",
-               rtols[ir], sc.scd, mebdfi_scd[ir], steps, mebdfi_steps[ir],
-               (double)steps / (double)mebdfi_steps[ir], st ? st->steps_at_order[6] : 0L,
-               st ? st->steps_at_order[7] : 0L);
-        dae_free(&s);
-        bp_instance_free(&in);
+               rtols[ir], scd, mebdfi_scd[ir], st[0], mebdfi_steps[ir],
+               (double)st[0] / (double)mebdfi_steps[ir], st[1], st[2]);
     }
 }
 
