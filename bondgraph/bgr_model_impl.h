@@ -1,5 +1,5 @@
-/* The bond-graph model's records, shared by bgr_model.c (building, compilation) and bgr_eval.c
- * (evaluation, statistics, check). Private: not installed. */
+/* The bond-graph model's records, shared by bgr_model.c (building), bgr_compile.c (compilation)
+ * and bgr_eval.c (evaluation, statistics, check). Private: not installed. */
 #ifndef BGR_MODEL_IMPL_H
 #define BGR_MODEL_IMPL_H
 
@@ -80,6 +80,10 @@ int bgri_fail_c(const bgr_model *m, int status, const char *where, const char *f
 int bgri_need_compiled(const bgr_model *m, const char *where);
 /* The checks of the bgr_declare_* functions (bgr_model.c). */
 int bgri_check_declare(const bgr_element *el, bgr_model *m, const char *what);
+/* a "/" b, or b when a is empty (malloc'd; NULL when out of memory). */
+char *bgri_join(const char *a, const char *b);
+/* "component/element port k" of a port, into buf, for messages. */
+const char *bgri_port_desc(const bgr_model *m, bgr_port p, char *buf, size_t size);
 /* Full path of an element (malloc'd; NULL when out of memory). */
 char *bgri_elem_path(const bgr_model *m, const bgr_element *el);
 /* Invariants (bgr_invariant.c): after the declare() hooks, the pattern of their gradient and its

@@ -30,9 +30,9 @@
  *   dae_mebdf.c       the modified extended BDF step (options.method = DAE_MEBDF): two BDF
  *                     stages and Cash's formula with the same Newton matrix
  * The rest of solver/ has interfaces of its own: what the integrator builds on (bg_status,
- * bg_sparse, bg_linsol, bg_fdjac), what builds on its problem form (bg_static, and bg_modes with
- * bg_modes_sparse.c, bg_modes_frame.c and bg_modes_impl.h, both through bg_jaceval and, in a
- * co-moving frame, bg_frame), bg_trim (the trim's root finder of model files and the crane's
+ * bg_sparse, bg_linsol, bg_fdjac), what builds on its problem form (bg_static, and bg_modes
+ * with bg_modes_dense.c, bg_modes_sparse.c, bg_modes_frame.c and bg_modes_impl.h, both through
+ * bg_jaceval and, in a co-moving frame, bg_frame), bg_trim (the trim's root finder of model files and the crane's
  * static start), and bg_api.h, the export mark. */
 #ifndef BG_DAE_IMPL_H
 #define BG_DAE_IMPL_H

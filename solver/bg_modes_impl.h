@@ -43,6 +43,8 @@ double mode_pencil_residual(mctx *c, double complex s, const double *zr, const d
 void mode_sort(dae_modes *M);
 /* The nominal magnitude of unknown i (1 when the problem has none). */
 double mode_nominal(const dae_modes *m, int i);
+/* All modes by the reduced dense eigenproblem (bg_modes_dense.c). */
+int mode_dense(mctx *c);
 /* The lowest or a window of modes of a large model by ARPACK (bg_modes_sparse.c). */
 int mode_sparse(mctx *c);
 /* bg_jaceval_steadiness's ratio above which a moving state is refused (rounding and the
