@@ -458,7 +458,9 @@ BG_API double dae_current_time(const dae_solver *s);
 /* Statistics, NULL if s is NULL. */
 BG_API const dae_stats *dae_get_stats(const dae_solver *s);
 /* One line "steps=... rejected=... ..." / a CSV header and a CSV row: the snprintf count, or
- * BG_ERR_ARGUMENT (st NULL, or buf NULL with size > 0). */
+ * BG_ERR_ARGUMENT (st NULL, or buf NULL with size > 0). The line's "orders=" lists the steps at
+ * k = 1 .. 5 and on to the highest k taken (MEBDF's 6, 7); the CSV has the columns order1 ..
+ * order5 in their places and order6, order7 last. */
 BG_API int dae_stats_line(const dae_stats *st, char *buf, size_t size);
 BG_API int dae_stats_csv_header(char *buf, size_t size);
 BG_API int dae_stats_csv(const dae_stats *st, char *buf, size_t size);

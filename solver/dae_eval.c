@@ -11,7 +11,6 @@
 
 #include "bg_dae_impl.h"
 
-
 #include "bg_fdjac.h"
 
 #include "bg_dae_impl.h"
@@ -281,7 +280,8 @@ int daei_largest_weighted(const dae_solver *s, const double *v, const double *w)
 
 /* ------------------------------------------------------------- statistics ---- */
 
-/* The fields of dae_stats in the order of the line and CSV formats below. */
+/* The fields of dae_stats in the order of the CSV format below (MEBDF's orders 6, 7 last, so
+ * that the earlier columns keep their places). */
 #define DAE_STATS_FIELDS(st)                                                                       \
     (st)->steps, (st)->rejected_error, (st)->newton_iters, (st)->newton_fails, (st)->res_evals,    \
         (st)->res_evals_fd, (st)->jac_evals, (st)->factor_symbolic, (st)->factor_full,             \
@@ -289,18 +289,33 @@ int daei_largest_weighted(const dae_solver *s, const double *v, const double *w)
         (st)->steps_at_order[2], (st)->steps_at_order[3], (st)->steps_at_order[4],                 \
         (st)->steps_at_order[5], (st)->steps ? (st)->h_min_used : 0.0, (st)->h_max_used,           \
         (st)->max_drift, (st)->init_residual, (st)->rcond_min, (st)->t_res, (st)->t_jac,           \
-        (st)->t_linalg, (st)->restarts, (st)->newton_fails_stale, (st)->stab_lowered
+        (st)->t_linalg, (st)->restarts, (st)->newton_fails_stale, (st)->stab_lowered,              \
+        (st)->steps_at_order[6], (st)->steps_at_order[7]
 
 int dae_stats_line(const dae_stats *st, char *buf, size_t size)
 {
     if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
+    /* the orders 1 .. 5 always, then up to the highest one used (MEBDF's k = 6, 7), so that the
+     * steps at the orders add up to the steps (with those at k = 0 of a run that took none) */
+    char ord[160];
+    int kmax = 5, nk = (int)(sizeof st->steps_at_order / sizeof *st->steps_at_order);
+    for (int k = 6; k < nk; k++)
+        if (st->steps_at_order[k]) kmax = k;
+    size_t len = 0;
+    for (int k = 1; k <= kmax && len < sizeof ord; k++)
+        len += (size_t)snprintf(ord + len, sizeof ord - len, "%s%ld", k > 1 ? "/" : "",
+                                st->steps_at_order[k]);
     return snprintf(
         buf, size,
         "steps=%ld rejected=%ld newton=%ld conv_fails=%ld res=%ld res_fd=%ld jac=%ld "
-        "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%ld/%ld/%ld/%ld/%ld "
+        "symbolic=%ld factor=%ld refactor=%ld solves=%ld orders=%s "
         "h=[%.3g,%.3g] drift=%.3g init_res=%.3g rcond_min=%.3g t_res=%.3fs t_jac=%.3fs t_lin=%.3fs "
         "restarts=%ld stale_fails=%ld stab_lowered=%ld",
-        DAE_STATS_FIELDS(st));
+        st->steps, st->rejected_error, st->newton_iters, st->newton_fails, st->res_evals,
+        st->res_evals_fd, st->jac_evals, st->factor_symbolic, st->factor_full, st->factor_refactor,
+        st->linear_solves, ord, st->steps ? st->h_min_used : 0.0, st->h_max_used, st->max_drift,
+        st->init_residual, st->rcond_min, st->t_res, st->t_jac, st->t_linalg, st->restarts,
+        st->newton_fails_stale, st->stab_lowered);
 }
 
 int dae_stats_csv_header(char *buf, size_t size)
@@ -310,7 +325,7 @@ int dae_stats_csv_header(char *buf, size_t size)
                     "steps,rejected,newton,conv_fails,res,res_fd,jac,symbolic,factor,refactor,"
                     "solves,order1,order2,order3,order4,order5,h_min,h_max,max_drift,"
                     "init_residual,rcond_min,t_res,t_jac,t_linalg,restarts,stale_fails,"
-                    "stab_lowered");
+                    "stab_lowered,order6,order7");
 }
 
 int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
@@ -318,7 +333,7 @@ int dae_stats_csv(const dae_stats *st, char *buf, size_t size)
     if (!st || (!buf && size > 0)) return BG_ERR_ARGUMENT;
     return snprintf(buf, size,
                     "%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,"
-                    "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%ld,%ld",
+                    "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%ld,%ld,%ld,%ld",
                     DAE_STATS_FIELDS(st));
 }
 

@@ -1060,6 +1060,32 @@ static void test_stats_output(void)
                        st.steps_at_order[3] + st.steps_at_order[4] + st.steps_at_order[5] ==
                    st.steps,
            "stats: steps at each order add up to the steps (%ld)", st.steps);
+    /* MEBDF runs to k = 7: the line's and the CSV's orders still add up to the steps */
+    o.method = DAE_MEBDF;
+    o.rtol = 1e-10;
+    o.atol = 1e-14;
+    ret = run_to(p, &o, p->tend, y, NULL, &st);
+    r1 = dae_stats_line(&st, line, sizeof line);
+    long sum_line = 0, sum_csv = 0;
+    const char *ord = strstr(line, "orders=");
+    for (const char *c = ord ? ord + 7 : ""; *c && *c != ' ';) {
+        char *end;
+        sum_line += strtol(c, &end, 10);
+        c = *end == '/' ? end + 1 : end;
+    }
+    r2 = dae_stats_csv_header(hdr, sizeof hdr);
+    r3 = dae_stats_csv(&st, row, sizeof row);
+    /* the CSV's columns named order<k> */
+    char *hs = NULL, *rs = NULL;
+    for (char *hf = strtok_r(hdr, ",", &hs), *rf = strtok_r(row, ",", &rs); hf && rf;
+         hf = strtok_r(NULL, ",", &hs), rf = strtok_r(NULL, ",", &rs))
+        if (!strncmp(hf, "order", 5)) sum_csv += strtol(rf, NULL, 10);
+    tap_ok(ret == DAE_SUCCESS && r1 >= 0 && r2 >= 0 && r3 >= 0 &&
+               st.steps_at_order[6] + st.steps_at_order[7] > 0 && sum_line == st.steps &&
+               sum_csv == st.steps,
+           "stats: MEBDF at rtol 1e-10 takes steps at k = 6, 7 (%ld, %ld) and the line's orders "
+           "(%ld) and the CSV's (%ld) add up to its %ld steps",
+           st.steps_at_order[6], st.steps_at_order[7], sum_line, sum_csv, st.steps);
 }
 
 /* ---- event location ----
