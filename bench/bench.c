@@ -267,6 +267,8 @@ static int run_row(harness *b, bench_row *r, int c, const solver_def *sd, double
     b->n++;
     run_opts ro = {0};
     ro.rtol = r->rtol;
+    ro.ida_klu_tol = b->cli.ida_klu_tol;
+    ro.ida_scalar_atol = b->cli.ida_scalar_atol;
     /* IDA on a large case (the crane) is capped at twice our steps at this tolerance (those of
      * the row of bgdae-klu before it) plus 1 000: with KLU's refactorization redone on fresh
      * pivots it no longer fails at once where it stalls (h = 3.5e-6 s at order 1 on the crane
@@ -345,12 +347,14 @@ static void more_series(harness *b, const bench_results *res)
         sc.filter = c->stab_filter;
         b->stab_bad = bench_stability(c->out, b->tail.f, &sc, &b->crashed);
     }
+    bench_full_opts fo = {c->full_rtols, c->full_nr, 1e-10, c->full_repeat, c->ida_klu_tol,
+                          c->ida_scalar_atol, c->ida_newton_diag};
     if (c->crane_full)
-        b->failures += bench_crane_full(c->out, "crane_wp.csv", b->tail.f, &b->full,
-                                        b->full_name, c->full_rtols, c->full_nr, 1e-10);
+        b->failures +=
+            bench_crane_full(c->out, "crane_wp.csv", b->tail.f, &b->full, b->full_name, &fo);
     if (c->crane_full && b->have_full2)
         b->failures += bench_crane_full(c->out, "crane_wp_paper.csv", b->tail.f, &b->full2,
-                                        "paper.ini", c->full_rtols, c->full_nr, 1e-10);
+                                        "paper.ini", &fo);
     if (b->n > 0) bench_report_steps_vs_tol(c->out, b->mid.f, res);
     if (b->nc > 0)
         b->failures += bench_mebdfi_compare(c->out, b->mid.f, b->cases, b->nc, c->rtols, c->nr);

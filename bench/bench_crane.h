@@ -65,8 +65,21 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
  * over the 20 s. */
 #define BENCH_IDA_MAX_NEWTON 8
 
+/* The series' settings: the tolerances (nr of them), the reference's, the runs of each solver
+ * and tolerance (reps >= 1: the CPU time their median; the counts are those of one run, the
+ * same in each), and IDA's run_opts ida_klu_tol, ida_scalar_atol and ida_newton_diag
+ * (bench_case.h; the diagnosis costs IDA time: not for timing). */
+typedef struct bench_full_opts {
+    const double *rtols;
+    int nr;
+    double rtol_ref;
+    int reps;
+    double ida_klu_tol;
+    int ida_scalar_atol;
+    int ida_newton_diag; /* run_opts.ida_newton_diag: a report line per IDA run */
+} bench_full_opts;
+
 int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_scene *s,
-                     const char *scene_name,
-                     const double *rtols, int nr, double rtol_ref);
+                     const char *scene_name, const bench_full_opts *fo);
 
 #endif
