@@ -418,9 +418,9 @@ static void run_ida(const bench_case *bc, const solver_def *sd, const run_opts *
         goto done;
     }
     if (ro->profile) bench_ida_profile_ls(LS, &c);
+    c.mem = mem;
     if (ro->ida_newton_diag && sd->ls == LS_KLU) {
         c.newton_diag = 1;
-        c.mem = mem;
         c.ewt = N_VNew_Serial(n, ctx);
     }
     double atol, *avp = N_VGetArrayPointer(av);
@@ -430,13 +430,18 @@ static void run_ida(const bench_case *bc, const solver_def *sd, const run_opts *
             avp[i] = atol * bc->dp.nominal[i];
         vec = 1;
     }
+    c.ewt_rtol = ro->rtol;
+    c.ewt_atol = atol;
+    c.ewt_atolv = vec ? avp : NULL;
     for (int i = 0; i < n; i++) {
         NV_Ith_S(yy, i) = y0[i];
         NV_Ith_S(yp, i) = yp0[i];
         NV_Ith_S(id, i) = bc->dp.kind[i] == DAE_DIFF ? 1.0 : 0.0;
     }
     if (IDAInit(mem, bench_ida_res, bc->t0, yy, yp) ||
-        (vec ? IDASVtolerances(mem, ro->rtol, av) : IDASStolerances(mem, ro->rtol, atol)) ||
+        (ro->ida_index2_h ? IDAWFtolerances(mem, bench_ida_ewt)
+         : vec            ? IDASVtolerances(mem, ro->rtol, av)
+                          : IDASStolerances(mem, ro->rtol, atol)) ||
         IDASetUserData(mem, &c) || IDASetLinearSolver(mem, LS, A) ||
         IDASetJacFn(mem, bench_ida_jac) || IDASetId(mem, id) || IDASetSuppressAlg(mem, SUNTRUE) ||
         IDASetMaxNumSteps(mem, ro->max_steps > 0 ? ro->max_steps : 1000000) ||

@@ -5,7 +5,9 @@
  *
  * IDA is configured as its guide recommends for index 2: the id vector marks the differential
  * unknowns, the algebraic ones are suppressed from the error test (IDASetSuppressAlg), the
- * analytic Jacobian dF/dy + cj dF/dy' comes from the problem's callbacks; breakpoints are
+ * analytic Jacobian dF/dy + cj dF/dy' comes from the problem's callbacks, the absolute
+ * tolerances are ours (atol times the problem's nominal magnitudes where it declares them,
+ * IDASVtolerances), KLU factors with partial pivoting (bench_ida_klu); breakpoints are
  * crossed by stopping there and re-initialising (IDAReInit; the counters are summed). Ours gets
  * the breakpoints as options and, where the case asks (the crane, as crane/crane.c does),
  * exclude_alg: index-1 algebraic unknowns out of the error test, which is what IDA's
@@ -110,6 +112,8 @@ typedef struct run_opts {
     /* IDA-KLU: KLU's pivot tolerance (bench_ida_klu); 0: BENCH_IDA_KLU_TOL (1, true partial
        pivoting); 0.001 is KLU's default, the bench's setting before */
     double ida_klu_tol;
+    /* IDA: its index-2 unknowns' weights times |h| (bench_ida_ewt, IDAWFtolerances) */
+    int ida_index2_h;
     int max_order; /* ours: options.max_order (0: the default) */
     int guard;     /* ours: 0 the case's stability guard setting, 1 on, -1 off */
     int reduce;    /* ours: options.index2 = DAE_I2_REDUCE (the case's position constraints

@@ -97,6 +97,9 @@ static const pu_cli_option options[] = {
      .help = "IDA gets the scalar atol also where the problem declares nominal magnitudes (the "
              "bench's setting before; default: atol times each unknown's nominal magnitude, as "
              "ours)"},
+    {.name = "--ida-index2-h", .kind = PU_CLI_FLAG, .at = AT(ida_index2_h),
+     .help = "IDA's weights of the index-2 unknowns times |h| (IDAWFtolerances; ours' "
+             "newton_index2_scale_h)"},
     {.name = "--ida-newton-diag", .kind = PU_CLI_FLAG, .at = AT(ida_newton_diag),
      .help = "--crane-full: each IDA run's Newton corrections weighed by kind of unknown, in the "
              "report (slows IDA: not for timing)"},

@@ -556,9 +556,9 @@ int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_sc
             o.rtol = rtols[k];
             o.max_steps = 100000000;
             /* IDA: in each segment between breakpoints at most as many steps as ours took over
-             * the whole run at this tolerance (at least 10 000): on the damped scene from rtol
-             * 1e-5 on it is held at h = 3.5e-6 s (millions of steps over the 20 s, 2.3 ms of
-             * CPU each) */
+             * the whole run at this tolerance (at least 10 000): with KLU's default pivot
+             * tolerance (--ida-klu-pivot-tol 0.001) it was held on the damped scene from rtol
+             * 1e-5 on at h = 3.5e-6 s (millions of steps over the 20 s, 2.3 ms of CPU each) */
             for (int j = 0; q == 2 && j < nrow - 1; j++)
                 if (!strcmp(rows[j].solver, "bgdae-klu") && rows[j].rtol == rtols[k] &&
                     rows[j].r.status >= 0)
@@ -568,6 +568,7 @@ int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_sc
             o.ida_klu_tol = fo->ida_klu_tol;
             o.ida_scalar_atol = fo->ida_scalar_atol;
             o.ida_newton_diag = fo->ida_newton_diag;
+            o.ida_index2_h = fo->ida_index2_h;
             bench_case bg = bc;
             bg.stability_guard = w->guard;
             double cpus[99];
@@ -625,7 +626,9 @@ int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_sc
             scene_name, s->boom_elements, bc.n, s->t_end,
             s->static_start ? "static-equilibrium" : "geometric", bc.nbreakpoints,
             bc.atol_factor,
-            fo->ida_scalar_atol ? "not (--ida-scalar-atol)" : "as IDASVtolerances",
+            fo->ida_scalar_atol ? "not (--ida-scalar-atol)"
+            : fo->ida_index2_h  ? "its index-2 weights times |h| (--ida-index2-h)"
+                                : "as IDASVtolerances",
             reps, reps > 1 ? "s" : "", csv,
             s->stability_guard ? ", bgdae-klu with the guard as the scene asks (stability_guard "
                                  "= true: order 2 where fast modes hold orders 3..5)"

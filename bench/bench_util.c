@@ -192,6 +192,24 @@ int bench_ida_res(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *user)
     return r;
 }
 
+int bench_ida_ewt(N_Vector y, N_Vector ewt, void *user)
+{
+    bench_ida_ctx *c = user;
+    realtype h = 0;
+    if (c->mem) IDAGetCurrentStep(c->mem, &h);
+    double hs = h != 0 ? fabs(h) : 1.0;
+    const double *yv = N_VGetArrayPointer(y);
+    double *w = N_VGetArrayPointer(ewt);
+    for (int i = 0; i < c->dp->n; i++) {
+        double tol = c->ewt_rtol * fabs(yv[i]) + (c->ewt_atolv ? c->ewt_atolv[i] : c->ewt_atol);
+        if (!(tol > 0)) return -1;
+        w[i] = 1.0 / tol;
+        if (c->dp->kind && c->dp->kind[i] == DAE_ALG2) w[i] *= hs;
+        if (!(w[i] > 0) || !isfinite(w[i])) return -1;
+    }
+    return 0;
+}
+
 int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
                   void *user, N_Vector t1, N_Vector t2, N_Vector t3)
 {

@@ -83,6 +83,9 @@ typedef struct bench_ida_ctx {
      * current error weights w (IDAGetErrWeights), as IDA's Newton test weighs it
      * (||x||_WRMS), and its squares are added up by the problem's kinds of unknowns. */
     double klu_tol; /* bench_ida_klu's pivot tolerance; 0: BENCH_IDA_KLU_TOL */
+    /* bench_ida_ewt: the tolerances (atolv: n values, or NULL for atol) and ida_mem (mem) */
+    double ewt_rtol, ewt_atol;
+    const double *ewt_atolv;
     int newton_diag;
     void *mem;
     N_Vector ewt;            /* scratch for the weights */
@@ -101,6 +104,14 @@ void bench_ida_ctx_free(bench_ida_ctx *c);
 
 /* IDAResFn: the problem's residual. */
 int bench_ida_res(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *user);
+
+/* IDAEwtFn (IDAWFtolerances; user data the context, c->mem IDA's memory): IDA's weights
+ * W_i = 1 / (rtol |y_i| + atol_i), those of the index-2 unknowns (dae_problem.kind DAE_ALG2)
+ * times |h|, h IDA's current step (1 before the first): our newton_index2_scale_h (bg_dae.h).
+ * With the index-2 unknowns out of the error test (IDASetSuppressAlg) the weights act on IDA's
+ * Newton test alone, where a correction of an index-2 unknown scales as 1/h (its BDF Jacobian's
+ * blocks: cj dF/dy' against dF/dlambda). 0, or -1 for a weight that is not finite and > 0. */
+int bench_ida_ewt(N_Vector y, N_Vector ewt, void *user);
 
 /* IDALsJacFn: the analytic dF/dy + cj dF/dy', into a sparse CSC (KLU) or a dense matrix. */
 int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
