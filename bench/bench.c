@@ -49,6 +49,10 @@
  * of crane --error-estimate against the true error on the problems and tolerances of the run,
  * bench_errest.h). --newton-dgmax G runs ours on the collection with options.newton_dgmax = G
  * (the crane keeps its scene's setting), for comparing the Newton matrix refresh.
+ * --crane-full-repeat K: the series' CPU times as medians of K runs. IDA's settings (bench_case.h
+ * run_opts, docs/bench.md): --ida-klu-pivot-tol T (KLU's pivot tolerance in ida-klu, default 1),
+ * --ida-scalar-atol (no nominal magnitudes in IDA's atol), --ida-index2-h (IDA's index-2
+ * weights times |h|), --ida-newton-diag (the series' report: IDA's Newton corrections by kind).
  * --problems none skips the work-precision runs (and, unless asked for, the crane's scaling and
  * real-time runs).
  *
@@ -267,11 +271,14 @@ static int run_row(harness *b, bench_row *r, int c, const solver_def *sd, double
     b->n++;
     run_opts ro = {0};
     ro.rtol = r->rtol;
+    ro.ida_klu_tol = b->cli.ida_klu_tol;
+    ro.ida_scalar_atol = b->cli.ida_scalar_atol;
+    ro.ida_index2_h = b->cli.ida_index2_h;
     /* IDA on a large case (the crane) is capped at twice our steps at this tolerance (those of
-     * the row of bgdae-klu before it) plus 1 000: with KLU's refactorization redone on fresh
-     * pivots it no longer fails at once where it stalls (h = 3.5e-6 s at order 1 on the crane
-     * from rtol 1e-5 on, 2.3 ms a step), and a run beyond that count has lost; the small cases
-     * keep the 10^6 of every run (IDA took up to 41 times our steps there and completed) */
+     * the row of bgdae-klu before it) plus 1 000: a run beyond that count has lost (with KLU's
+     * default pivot tolerance, --ida-klu-pivot-tol 0.001, it was held at h = 3.5e-6 s at order 1
+     * on the crane, 2.3 ms a step; bench_util.h, bench_ida_klu); the small cases keep the 10^6
+     * of every run (IDA took up to 41 times our steps there and completed) */
     if (sd->ida && bc->large)
         for (int k = b->n - 2; k >= 0; k--)
             if (b->rows[k].ci == c && b->rows[k].rtol == rtol &&
@@ -345,12 +352,14 @@ static void more_series(harness *b, const bench_results *res)
         sc.filter = c->stab_filter;
         b->stab_bad = bench_stability(c->out, b->tail.f, &sc, &b->crashed);
     }
+    bench_full_opts fo = {c->full_rtols, c->full_nr, 1e-10, c->full_repeat, c->ida_klu_tol,
+                          c->ida_scalar_atol, c->ida_newton_diag, c->ida_index2_h};
     if (c->crane_full)
-        b->failures += bench_crane_full(c->out, "crane_wp.csv", b->tail.f, &b->full,
-                                        b->full_name, c->full_rtols, c->full_nr, 1e-10);
+        b->failures +=
+            bench_crane_full(c->out, "crane_wp.csv", b->tail.f, &b->full, b->full_name, &fo);
     if (c->crane_full && b->have_full2)
         b->failures += bench_crane_full(c->out, "crane_wp_paper.csv", b->tail.f, &b->full2,
-                                        "paper.ini", c->full_rtols, c->full_nr, 1e-10);
+                                        "paper.ini", &fo);
     if (b->n > 0) bench_report_steps_vs_tol(c->out, b->mid.f, res);
     if (b->nc > 0)
         b->failures += bench_mebdfi_compare(c->out, b->mid.f, b->cases, b->nc, c->rtols, c->nr);

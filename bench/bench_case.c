@@ -220,6 +220,9 @@ static void clear_counts(run_out *o)
     o->msg[0] = '\0';
     o->steps = o->rejected = o->newton = o->conv_fail = o->res = o->jac = o->fact = o->solves = 0;
     o->ls_fallback = 0;
+    o->nd_solves = o->nd_i2_dominant = o->nd_pass_without_i2 = 0;
+    o->nd_max[0] = o->nd_max[1] = o->nd_max[2] = o->nd_norm_max = o->h_last = 0;
+    o->nd_argmax = o->order_last = 0;
     o->max_order = 0;
     o->cpu = o->wall = o->t_res = o->t_jac = o->t_lin = o->drift = 0;
 }
@@ -388,6 +391,7 @@ static void run_ida(const bench_case *bc, const solver_def *sd, const run_opts *
     bench_ida_ctx c;
     int ci = bench_ida_ctx_init(&c, &bc->dp);
     c.profile = ro->profile;
+    c.klu_tol = ro->ida_klu_tol;
     N_Vector yy = N_VNew_Serial(n, ctx), yp = N_VNew_Serial(n, ctx), id = N_VNew_Serial(n, ctx);
     N_Vector av = N_VNew_Serial(n, ctx);
     SUNMatrix A = NULL;
@@ -414,15 +418,30 @@ static void run_ida(const bench_case *bc, const solver_def *sd, const run_opts *
         goto done;
     }
     if (ro->profile) bench_ida_profile_ls(LS, &c);
+    c.mem = mem;
+    if (ro->ida_newton_diag && sd->ls == LS_KLU) {
+        c.newton_diag = 1;
+        c.ewt = N_VNew_Serial(n, ctx);
+    }
     double atol, *avp = N_VGetArrayPointer(av);
     int vec = bench_case_atol(bc, ro->rtol, &atol, avp);
+    if (!vec && bc->dp.nominal && !ro->ida_scalar_atol) { /* ours: atol * nominal_i */
+        for (int i = 0; i < n; i++)
+            avp[i] = atol * bc->dp.nominal[i];
+        vec = 1;
+    }
+    c.ewt_rtol = ro->rtol;
+    c.ewt_atol = atol;
+    c.ewt_atolv = vec ? avp : NULL;
     for (int i = 0; i < n; i++) {
         NV_Ith_S(yy, i) = y0[i];
         NV_Ith_S(yp, i) = yp0[i];
         NV_Ith_S(id, i) = bc->dp.kind[i] == DAE_DIFF ? 1.0 : 0.0;
     }
     if (IDAInit(mem, bench_ida_res, bc->t0, yy, yp) ||
-        (vec ? IDASVtolerances(mem, ro->rtol, av) : IDASStolerances(mem, ro->rtol, atol)) ||
+        (ro->ida_index2_h ? IDAWFtolerances(mem, bench_ida_ewt)
+         : vec            ? IDASVtolerances(mem, ro->rtol, av)
+                          : IDASStolerances(mem, ro->rtol, atol)) ||
         IDASetUserData(mem, &c) || IDASetLinearSolver(mem, LS, A) ||
         IDASetJacFn(mem, bench_ida_jac) || IDASetId(mem, id) || IDASetSuppressAlg(mem, SUNTRUE) ||
         IDASetMaxNumSteps(mem, ro->max_steps > 0 ? ro->max_steps : 1000000) ||
@@ -495,6 +514,22 @@ done:
     out->fact = acc[6];
     out->solves = acc[2];
     out->ls_fallback = c.klu_fallback;
+    out->nd_solves = c.nd_solves;
+    out->nd_i2_dominant = c.nd_i2_dominant;
+    out->nd_pass_without_i2 = c.nd_pass_without_i2;
+    for (int k = 0; k < 3; k++)
+        out->nd_max[k] = c.nd_max[k];
+    out->nd_norm_max = c.nd_norm_max;
+    out->nd_argmax = c.nd_argmax;
+    if (mem) {
+        realtype h = 0;
+        int q = 0;
+        IDAGetLastStep(mem, &h);
+        IDAGetLastOrder(mem, &q);
+        out->h_last = h;
+        out->order_last = q;
+    }
+    if (c.ewt) N_VDestroy(c.ewt);
     if (ro->profile) {
         out->t_res = c.t_res;
         out->t_jac = c.t_jac;

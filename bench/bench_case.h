@@ -5,7 +5,9 @@
  *
  * IDA is configured as its guide recommends for index 2: the id vector marks the differential
  * unknowns, the algebraic ones are suppressed from the error test (IDASetSuppressAlg), the
- * analytic Jacobian dF/dy + cj dF/dy' comes from the problem's callbacks; breakpoints are
+ * analytic Jacobian dF/dy + cj dF/dy' comes from the problem's callbacks, the absolute
+ * tolerances are ours (atol times the problem's nominal magnitudes where it declares them,
+ * IDASVtolerances), KLU factors with partial pivoting (bench_ida_klu); breakpoints are
  * crossed by stopping there and re-initialising (IDAReInit; the counters are summed). Ours gets
  * the breakpoints as options and, where the case asks (the crane, as crane/crane.c does),
  * exclude_alg: index-1 algebraic unknowns out of the error test, which is what IDA's
@@ -101,6 +103,17 @@ typedef struct run_opts {
     int ida_consistent_restart;
     /* IDA: IDASetMaxNonlinIters, the Newton iterations per attempt (0: IDA's default, 4) */
     int ida_max_newton;
+    /* IDA: the scalar atol for every unknown even where the problem declares nominal
+       magnitudes (dae_problem.nominal), as the bench gave IDA before; default 0: IDA gets
+       ours' absolute tolerances atol * nominal_i (IDASVtolerances) */
+    int ida_scalar_atol;
+    /* IDA-KLU: where its Newton corrections' weight sits, by kind of unknown (run_out.nd_*) */
+    int ida_newton_diag;
+    /* IDA-KLU: KLU's pivot tolerance (bench_ida_klu); 0: BENCH_IDA_KLU_TOL (1, true partial
+       pivoting); 0.001 is KLU's default, the bench's setting before */
+    double ida_klu_tol;
+    /* IDA: its index-2 unknowns' weights times |h| (bench_ida_ewt, IDAWFtolerances) */
+    int ida_index2_h;
     int max_order; /* ours: options.max_order (0: the default) */
     int guard;     /* ours: 0 the case's stability guard setting, 1 on, -1 off */
     int reduce;    /* ours: options.index2 = DAE_I2_REDUCE (the case's position constraints
@@ -114,6 +127,14 @@ typedef struct run_out {
     double *y, *yp; /* n values at t (allocated by bench_run_alloc) */
     long steps, rejected, newton, conv_fail, res, jac, fact, solves;
     long ls_fallback; /* IDA-KLU: refactorizations redone with fresh pivots (bench_ida_klu) */
+    /* IDA with run_opts.ida_newton_diag (bench_ida_ctx in bench_util.h): the corrections seen,
+     * those whose weighted norm^2 the index-2 unknowns hold more than half of, those that the
+     * test ||x|| < 0.33 fails only because of the index-2 part; the largest WRMS norm of the
+     * differential, index-1 and index-2 parts and of the whole, and the unknown with the largest
+     * weighted entry there; IDA's last step and order */
+    long nd_solves, nd_i2_dominant, nd_pass_without_i2;
+    double nd_max[3], nd_norm_max, h_last;
+    int nd_argmax, order_last;
     int max_order;
     double cpu;                 /* CPU seconds of the integration (creation to end) */
     double wall;                /* wall seconds, same span */

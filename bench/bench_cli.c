@@ -85,6 +85,24 @@ static const pu_cli_option options[] = {
     {.name = "--crane-full-rtols", .kind = PU_CLI_STRING, .arg = "LIST",
      .at = AT(full_rtols_text), .seen = AT(crane_full),
      .help = "the tolerances of --crane-full, numbers in (0, 1) (implies it)"},
+    {.name = "--crane-full-repeat", .kind = PU_CLI_INT, .arg = "K", .at = AT(full_repeat),
+     .min = 1, .max = 99, .bad = "%s takes a whole number from 1 to 99, not '%s'",
+     .help = "runs of each solver and tolerance in --crane-full, the CPU time their median "
+             "(default 1); takes a whole number from 1 to 99"},
+    {.name = "--ida-klu-pivot-tol", .kind = PU_CLI_DOUBLE, .arg = "T", .at = AT(ida_klu_tol),
+     .min = 1e-6, .max = 1, .bad = "%s takes a number in [1e-6, 1], not '%s'",
+     .help = "KLU's pivot tolerance in IDA-KLU (default 1: partial pivoting; 0.001, KLU's "
+             "default, was the bench's setting before); takes a number in [1e-6, 1]"},
+    {.name = "--ida-scalar-atol", .kind = PU_CLI_FLAG, .at = AT(ida_scalar_atol),
+     .help = "IDA gets the scalar atol also where the problem declares nominal magnitudes (the "
+             "bench's setting before; default: atol times each unknown's nominal magnitude, as "
+             "ours)"},
+    {.name = "--ida-index2-h", .kind = PU_CLI_FLAG, .at = AT(ida_index2_h),
+     .help = "IDA's weights of the index-2 unknowns times |h| (IDAWFtolerances; ours' "
+             "newton_index2_scale_h)"},
+    {.name = "--ida-newton-diag", .kind = PU_CLI_FLAG, .at = AT(ida_newton_diag),
+     .help = "--crane-full: each IDA run's Newton corrections weighed by kind of unknown, in the "
+             "report (slows IDA: not for timing)"},
     {.name = "--newton-dgmax", .kind = PU_CLI_DOUBLE, .arg = "G", .at = AT(newton_dgmax),
      .min = 0, .max = 0.999, .bad = "%s takes a number in [0, 1), not '%s'",
      .help = "options.newton_dgmax of ours on the collection (default 0; the crane runs as its "
@@ -357,6 +375,7 @@ int bench_cli_resolve(bench_cli *c)
             c->rtols[c->nr++] = pow(10.0, -e);
     /* the defaults that depend on --quick */
     if (c->repeat == 0) c->repeat = c->quick ? 1 : 3;
+    if (c->full_repeat == 0) c->full_repeat = 1;
     if (c->horizon <= 0) c->horizon = c->quick ? 0.1 : 1.0;
     c->realtime_asked = c->realtime_runs > 0;
     if (c->realtime_runs < 0) c->realtime_runs = c->quick ? 0 : 5;

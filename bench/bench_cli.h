@@ -37,6 +37,11 @@ typedef struct bench_cli {
     double horizon;      /* --crane-horizon T; 0: not given */
     double newton_dgmax; /* --newton-dgmax G: the collection's problems (the crane: its scene) */
     int stability, quick, strict, crane_full, errest;
+    double ida_klu_tol;  /* --ida-klu-pivot-tol T; 0: BENCH_IDA_KLU_TOL (bench_util.h) */
+    int ida_scalar_atol; /* --ida-scalar-atol: IDA without the problems' nominal magnitudes */
+    int ida_index2_h;    /* --ida-index2-h: IDA's index-2 weights times |h| (bench_ida_ewt) */
+    int full_repeat;     /* --crane-full-repeat K: runs of each solver in the series (default 1) */
+    int ida_newton_diag; /* --ida-newton-diag: where IDA's Newton corrections sit (--crane-full) */
     int child; /* --realtime-child: internal, one real-time run (bench_realtime.h) */
 
     /* resolved by bench_cli_resolve: the lists, the defaults */

@@ -59,14 +59,28 @@ int bench_crane_scaling(const char *dir, FILE *rep, const int *elems, int nel, i
 /* IDA's Newton iterations per attempt in the full-horizon series (IDASetMaxNonlinIters; IDA's
  * default is 4): the most ours takes (solver/dae_nls.c: options.max_newton, 4, and up to twice
  * that on a matrix of the step itself while the rate, 0.5 or better, says it converges; IDA
- * has no such extension). With 4, IDA on the damped paper scene cut its step to 3e-6 s after a
- * first correction of 1e13 tolerances at 0.57 ms and stayed there with a Newton failure every
- * second step (14 000 steps in the first 0.066 s at rtol 1e-4); with 8 it takes 1 682 steps
- * over the 20 s. */
+ * has no such extension). On the damped paper scene over 20 s (KLU with partial pivoting,
+ * bench_ida_klu) 4 takes as many or more steps and CPU: 2 388 steps against 1 862 with 8 at
+ * rtol 1e-4, 13 719 against 13 538 at 1e-8. (With KLU's default pivot tolerance and 4, IDA was
+ * held at h = 3e-6 s there from rtol 1e-4 on; with 8 from 1e-5 on.) */
 #define BENCH_IDA_MAX_NEWTON 8
 
+/* The series' settings: the tolerances (nr of them), the reference's, the runs of each solver
+ * and tolerance (reps >= 1: the CPU time their median; the counts are those of one run, the
+ * same in each), and IDA's run_opts ida_klu_tol, ida_scalar_atol and ida_newton_diag
+ * (bench_case.h; the diagnosis costs IDA time: not for timing). */
+typedef struct bench_full_opts {
+    const double *rtols;
+    int nr;
+    double rtol_ref;
+    int reps;
+    double ida_klu_tol;
+    int ida_scalar_atol;
+    int ida_newton_diag; /* run_opts.ida_newton_diag: a report line per IDA run */
+    int ida_index2_h;    /* run_opts.ida_index2_h */
+} bench_full_opts;
+
 int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_scene *s,
-                     const char *scene_name,
-                     const double *rtols, int nr, double rtol_ref);
+                     const char *scene_name, const bench_full_opts *fo);
 
 #endif

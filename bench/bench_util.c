@@ -162,11 +162,8 @@ void bench_file_discard(bench_file *bf)
 #ifdef BENCH_HAVE_IDA
 int bench_ida_ctx_init(bench_ida_ctx *c, const dae_problem *dp)
 {
+    memset(c, 0, sizeof *c);
     c->dp = dp;
-    c->jy = c->jyp = NULL;
-    c->u = NULL;
-    c->profile = 0;
-    c->t_res = c->t_jac = c->t_lsetup = c->t_lsolve = 0;
     if (!dp->jac || !dp->jac_y_pattern || !dp->jac_yp_pattern) return BG_ERR_ARGUMENT;
     c->jy = sp_csc_copy(dp->jac_y_pattern);
     c->jyp = sp_csc_copy(dp->jac_yp_pattern);
@@ -193,6 +190,24 @@ int bench_ida_res(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *user)
                        N_VGetArrayPointer(rr));
     if (c->profile) c->t_res += bench_wall_now() - t0;
     return r;
+}
+
+int bench_ida_ewt(N_Vector y, N_Vector ewt, void *user)
+{
+    bench_ida_ctx *c = user;
+    realtype h = 0;
+    if (c->mem) IDAGetCurrentStep(c->mem, &h);
+    double hs = h != 0 ? fabs(h) : 1.0;
+    const double *yv = N_VGetArrayPointer(y);
+    double *w = N_VGetArrayPointer(ewt);
+    for (int i = 0; i < c->dp->n; i++) {
+        double tol = c->ewt_rtol * fabs(yv[i]) + (c->ewt_atolv ? c->ewt_atolv[i] : c->ewt_atol);
+        if (!(tol > 0)) return -1;
+        w[i] = 1.0 / tol;
+        if (c->dp->kind && c->dp->kind[i] == DAE_ALG2) w[i] *= hs;
+        if (!(w[i] > 0) || !isfinite(w[i])) return -1;
+    }
+    return 0;
 }
 
 int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
@@ -234,9 +249,9 @@ int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr
 static int klu_setup_pivoting(SUNLinearSolver S, SUNMatrix A)
 {
     SUNLinearSolverContent_KLU k = S->content;
+    bench_ida_ctx *c = k->common.user_data;
     int r = SUNLinSolSetup_KLU(S, A);
     if (r != SUNLS_PACKAGE_FAIL_REC || !k->symbolic) return r;
-    bench_ida_ctx *c = k->common.user_data;
     if (k->numeric) sun_klu_free_numeric(&k->numeric, &k->common);
     k->numeric = sun_klu_factor((KLU_INDEXTYPE *)SUNSparseMatrix_IndexPointers(A),
                                 (KLU_INDEXTYPE *)SUNSparseMatrix_IndexValues(A),
@@ -246,12 +261,40 @@ static int klu_setup_pivoting(SUNLinearSolver S, SUNMatrix A)
     return k->last_flag;
 }
 
+/* SUNLinSolSolve_KLU, then (c->newton_diag) the correction's weighted parts by kind. */
+static int klu_solve_diag(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol)
+{
+    int r = SUNLinSolSolve_KLU(S, A, x, b, tol);
+    bench_ida_ctx *c = ((SUNLinearSolverContent_KLU)S->content)->common.user_data;
+    if (r != SUNLS_SUCCESS || !c || !c->newton_diag || !c->mem || !c->ewt) return r;
+    if (IDAGetErrWeights(c->mem, c->ewt) != IDA_SUCCESS) return r;
+    const double *xv = N_VGetArrayPointer(x), *w = N_VGetArrayPointer(c->ewt);
+    int n = c->dp->n, arg = 0;
+    double part[3] = {0, 0, 0}, big = -1;
+    for (int i = 0; i < n; i++) {
+        double e = w[i] * xv[i];
+        int k = c->dp->kind ? c->dp->kind[i] : DAE_DIFF;
+        part[k >= 0 && k < 3 ? k : 0] += e * e;
+        if (fabs(e) > big) big = fabs(e), arg = i;
+    }
+    double norm = sqrt((part[0] + part[1] + part[2]) / n);
+    c->nd_solves++;
+    if (part[2] > 0.5 * (part[0] + part[1] + part[2])) c->nd_i2_dominant++;
+    if (norm >= 0.33 && sqrt((part[0] + part[1]) / n) < 0.33) c->nd_pass_without_i2++;
+    for (int k = 0; k < 3; k++)
+        if (sqrt(part[k] / n) > c->nd_max[k]) c->nd_max[k] = sqrt(part[k] / n);
+    if (norm > c->nd_norm_max) c->nd_norm_max = norm, c->nd_argmax = arg;
+    return r;
+}
+
 SUNLinearSolver bench_ida_klu(N_Vector y, SUNMatrix A, SUNContext ctx, bench_ida_ctx *c)
 {
     SUNLinearSolver LS = SUNLinSol_KLU(y, A, ctx);
     if (!LS) return NULL;
     ((SUNLinearSolverContent_KLU)LS->content)->common.user_data = c;
+    SUNLinSol_KLUGetCommon(LS)->tol = c && c->klu_tol > 0 ? c->klu_tol : BENCH_IDA_KLU_TOL;
     LS->ops->setup = klu_setup_pivoting;
+    LS->ops->solve = klu_solve_diag;
     return LS;
 }
 

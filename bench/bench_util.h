@@ -78,6 +78,23 @@ typedef struct bench_ida_ctx {
     int profile;
     double t_res, t_jac, t_lsetup, t_lsolve;
     long klu_fallback; /* refactorizations redone with fresh pivots (bench_ida_klu) */
+    /* Where the Newton corrections' weight sits (bench_ida_klu with newton_diag set and mem the
+     * IDA memory): each correction x that the linear solver returns is weighed with IDA's
+     * current error weights w (IDAGetErrWeights), as IDA's Newton test weighs it
+     * (||x||_WRMS), and its squares are added up by the problem's kinds of unknowns. */
+    double klu_tol; /* bench_ida_klu's pivot tolerance; 0: BENCH_IDA_KLU_TOL */
+    /* bench_ida_ewt: the tolerances (atolv: n values, or NULL for atol) and ida_mem (mem) */
+    double ewt_rtol, ewt_atol;
+    const double *ewt_atolv;
+    int newton_diag;
+    void *mem;
+    N_Vector ewt;            /* scratch for the weights */
+    long nd_solves;          /* corrections seen */
+    long nd_i2_dominant;     /* of which the index-2 unknowns hold more than half the norm^2 */
+    long nd_pass_without_i2; /* of which ||x|| >= 0.33 but < 0.33 without the index-2 part */
+    double nd_max[3];        /* largest WRMS norm of the part of each kind (DAE_DIFF..ALG2) */
+    int nd_argmax;           /* the unknown with the largest |w_i x_i| at the largest norm */
+    double nd_norm_max;      /* the largest ||x||_WRMS */
 } bench_ida_ctx;
 
 /* Copies the patterns and builds their union. 0, or BG_ERR_MEMORY / BG_ERR_ARGUMENT (no analytic
@@ -87,6 +104,14 @@ void bench_ida_ctx_free(bench_ida_ctx *c);
 
 /* IDAResFn: the problem's residual. */
 int bench_ida_res(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *user);
+
+/* IDAEwtFn (IDAWFtolerances; user data the context, c->mem IDA's memory): IDA's weights
+ * W_i = 1 / (rtol |y_i| + atol_i), those of the index-2 unknowns (dae_problem.kind DAE_ALG2)
+ * times |h|, h IDA's current step (1 before the first): our newton_index2_scale_h (bg_dae.h).
+ * With the index-2 unknowns out of the error test (IDASetSuppressAlg) the weights act on IDA's
+ * Newton test alone, where a correction of an index-2 unknown scales as 1/h (its BDF Jacobian's
+ * blocks: cj dF/dy' against dF/dlambda). 0, or -1 for a weight that is not finite and > 0. */
+int bench_ida_ewt(N_Vector y, N_Vector ewt, void *user);
 
 /* IDALsJacFn: the analytic dF/dy + cj dF/dy', into a sparse CSC (KLU) or a dense matrix. */
 int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
@@ -101,6 +126,19 @@ int bench_ida_jac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr
  * stale factorization kept, and every retry at a smaller step refactors on the same pivots: on
  * the damped crane scene IDA stopped so at t = 0.55 ms with h = 3.8e-10 at every tolerance
  * ("the corrector convergence failed repeatedly"). NULL when out of memory. */
+/* Its factorizations pivot by true partial pivoting: KLU's pivot tolerance (klu_common.tol,
+ * set through SUNLinSol_KLUGetCommon) is BENCH_IDA_KLU_TOL = 1, not KLU's default 0.001, with
+ * which a diagonal pivot is kept while it is at least 0.001 of the largest entry of its column
+ * (T. A. Davis and E. Palamadai Natarajan, "Algorithm 907: KLU", ACM TOMS 37 (2010) 36: the
+ * tolerance of threshold partial pivoting), each such pivot allowing a growth of up to 1000.
+ * Measured on the damped crane scene (781 unknowns) at rtol 1e-5: with 0.001 and SUNLinSol_KLU's
+ * default COLAMD ordering IDA's first Newton correction at h = 6.95e-6 s was 1e9 to 1e10
+ * weighted tolerances (3.6e11 N in a boom force) where dense LU on the same matrix and residual
+ * gives 0.03 of the force's nominal magnitude; the iteration diverged, IDA cut h by 4, doubled it
+ * back twice, diverged again: 20 000 steps, 10 001 convergence failures and no error-test
+ * failure by t = 0.052 s. With 1 (or AMD or the natural ordering) IDA-KLU takes the steps of
+ * IDA with dense LU (59 steps to 0.02 s, order 3). c->klu_tol > 0 sets another tolerance. */
+#define BENCH_IDA_KLU_TOL 1.0
 SUNLinearSolver bench_ida_klu(N_Vector y, SUNMatrix A, SUNContext ctx, bench_ida_ctx *c);
 
 /* Times the setup (factorization) and solve operations of LS into c (wraps LS's operation
