@@ -55,6 +55,45 @@
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
 
+/* Loops over the unknowns in pairs, as two-lane vectors: DAEI_VFOR(i, n, body) runs body for i
+ * = 0, 2, 4, ... with V a vector of two doubles, then for the odd last unknown with V a vector
+ * of one; in body, VAT(p, i) is the V at p + i (no alignment assumed) and a scalar operand
+ * stands for a vector of copies of it. GCC at -O2 vectorizes a loop only where it knows the trip
+ * count to be a multiple of the vector length (its "very cheap" cost model), which leaves most of
+ * the integrator's loops over the unknowns scalar; these are vectors regardless. Each lane does
+ * the operations of the scalar loop on its unknown in the same order: the same bits. Not for
+ * running sums (their order would change). Without GCC's vector extension, the plain loop. */
+#if defined(__GNUC__)
+typedef double daei_v2 __attribute__((vector_size(2 * sizeof(double)), aligned(sizeof(double)),
+                                      may_alias));
+typedef double daei_v1 __attribute__((vector_size(sizeof(double)), may_alias));
+#define DAEI_VFOR(i, n, ...)                                                                       \
+    do {                                                                                           \
+        int i = 0;                                                                                 \
+        {                                                                                          \
+            typedef daei_v2 V;                                                                     \
+            for (; i + 2 <= (n); i += 2) {                                                         \
+                __VA_ARGS__                                                                        \
+            }                                                                                      \
+        }                                                                                          \
+        {                                                                                          \
+            typedef daei_v1 V;                                                                     \
+            for (; i < (n); i++) {                                                                 \
+                __VA_ARGS__                                                                        \
+            }                                                                                      \
+        }                                                                                          \
+    } while (0)
+#else
+#define DAEI_VFOR(i, n, ...)                                                                       \
+    do {                                                                                           \
+        typedef double V;                                                                          \
+        for (int i = 0; i < (n); i++) {                                                            \
+            __VA_ARGS__                                                                            \
+        }                                                                                          \
+    } while (0)
+#endif
+#define VAT(p, i) (*(V *)&(p)[i])
+
 typedef struct dae_reduce dae_reduce;
 
 struct dae_solver {

@@ -58,10 +58,10 @@ static void set_coeffs(dae_solver *s)
     s->cj = -s->alphas / s->hh;
     s->ck = fabs(s->alpha[k] + s->alphas - s->alpha0);
     s->ck = fmax(s->ck, s->alpha[k]);
+    int n = s->n;
     for (int j = s->ns; j <= k; j++) {
         double *restrict p = s->phi[j], b = s->beta[j];
-        for (int i = 0; i < s->n; i++)
-            p[i] *= b;
+        DAEI_VFOR(i, n, VAT(p, i) *= b;);
     }
 }
 
@@ -69,10 +69,10 @@ static void restore(dae_solver *s)
 {
     for (int j = 1; j <= s->kk; j++)
         s->psi[j - 1] = s->psi[j] - s->hh;
+    int n = s->n;
     for (int j = s->ns; j <= s->kk; j++) {
         double *restrict p = s->phi[j], b = s->beta[j];
-        for (int i = 0; i < s->n; i++)
-            p[i] /= b;
+        DAEI_VFOR(i, n, VAT(p, i) /= b;);
     }
 }
 
@@ -84,28 +84,21 @@ static void predict(dae_solver *s)
     double *restrict yq = s->ypred, *restrict ypq = s->yppred;
     const double *restrict p0 = s->phi[0], *restrict p1 = s->phi[1];
     double g1 = s->gamma[1];
-    for (int i = 0; i < n; i++) {
-        yq[i] = p0[i] + p1[i];
-        ypq[i] = g1 * p1[i];
-    }
+    DAEI_VFOR(i, n, VAT(yq, i) = VAT(p0, i) + VAT(p1, i); VAT(ypq, i) = g1 * VAT(p1, i););
     /* the remaining differences two at a time: fewer passes over yq and ypq */
     int j = 2;
     for (; j + 1 <= s->kk; j += 2) {
         const double *restrict pa = s->phi[j], *restrict pb = s->phi[j + 1];
         double ga = s->gamma[j], gb = s->gamma[j + 1];
-        for (int i = 0; i < n; i++) {
-            yq[i] += pa[i] + pb[i];
-            ypq[i] += ga * pa[i] + gb * pb[i];
-        }
+        DAEI_VFOR(i, n, VAT(yq, i) += VAT(pa, i) + VAT(pb, i);
+                  VAT(ypq, i) += ga * VAT(pa, i) + gb * VAT(pb, i););
     }
     double *restrict y = s->y, *restrict yp = s->yp;
     if (j == s->kk) {
         const double *restrict pa = s->phi[j];
         double ga = s->gamma[j];
-        for (int i = 0; i < n; i++) {
-            y[i] = yq[i] += pa[i];
-            yp[i] = ypq[i] += ga * pa[i];
-        }
+        DAEI_VFOR(i, n, VAT(y, i) = VAT(yq, i) += VAT(pa, i);
+                  VAT(yp, i) = VAT(ypq, i) += ga * VAT(pa, i););
     } else {
         memcpy(y, yq, (size_t)n * sizeof *y);
         memcpy(yp, ypq, (size_t)n * sizeof *yp);
@@ -116,8 +109,7 @@ static void predict(dae_solver *s)
  * the compiler must assume that every store may change the coefficients it reads). */
 static void vadd(int n, double *restrict x, const double *restrict a) /* x += a */
 {
-    for (int i = 0; i < n; i++)
-        x[i] += a[i];
+    DAEI_VFOR(i, n, VAT(x, i) += VAT(a, i););
 }
 
 /* phi after an accepted step of order k = kused: phi[k+1] = ee, phi[k] += ee, then phi[j] +=
@@ -131,11 +123,7 @@ static void update_history(dae_solver *s)
     int j = k;
     for (; j >= 1; j -= 2) { /* phi[j] += src; phi[j-1] += phi[j] */
         double *restrict a = s->phi[j], *restrict b = s->phi[j - 1];
-        for (int i = 0; i < n; i++) {
-            double c = a[i] + src[i];
-            a[i] = c;
-            b[i] += c;
-        }
+        DAEI_VFOR(i, n, V c = VAT(a, i) + VAT(src, i); VAT(a, i) = c; VAT(b, i) += c;);
         src = s->phi[j - 1];
     }
     if (j == 0) vadd(n, s->phi[0], s->phi[1]);
