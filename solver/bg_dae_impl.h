@@ -62,27 +62,34 @@
  * count to be a multiple of the vector length (its "very cheap" cost model), which leaves most of
  * the integrator's loops over the unknowns scalar; these are vectors regardless. Each lane does
  * the operations of the scalar loop on its unknown in the same order: the same bits. Not for
- * running sums (their order would change). Without GCC's vector extension, the plain loop. */
+ * running sums (their order would change). VABS(x) is |x| (the sign bit cleared, as fabs).
+ * Without GCC's vector extension, the plain loop. */
 #if defined(__GNUC__)
 typedef double daei_v2 __attribute__((vector_size(2 * sizeof(double)), aligned(sizeof(double)),
                                       may_alias));
 typedef double daei_v1 __attribute__((vector_size(sizeof(double)), may_alias));
+typedef long long daei_v2i __attribute__((vector_size(2 * sizeof(long long))));
+typedef long long daei_v1i __attribute__((vector_size(sizeof(long long))));
+#define UNUSED_ __attribute__((unused))
 #define DAEI_VFOR(i, n, ...)                                                                       \
     do {                                                                                           \
         int i = 0;                                                                                 \
         {                                                                                          \
             typedef daei_v2 V;                                                                     \
+            typedef daei_v2i VI UNUSED_;                                                            \
             for (; i + 2 <= (n); i += 2) {                                                         \
                 __VA_ARGS__                                                                        \
             }                                                                                      \
         }                                                                                          \
         {                                                                                          \
             typedef daei_v1 V;                                                                     \
+            typedef daei_v1i VI UNUSED_;                                                            \
             for (; i < (n); i++) {                                                                 \
                 __VA_ARGS__                                                                        \
             }                                                                                      \
         }                                                                                          \
     } while (0)
+#define VABS(x) ((V)((VI)(x) & 0x7fffffffffffffffLL))
 #else
 #define DAEI_VFOR(i, n, ...)                                                                       \
     do {                                                                                           \
@@ -91,6 +98,7 @@ typedef double daei_v1 __attribute__((vector_size(sizeof(double)), may_alias));
             __VA_ARGS__                                                                            \
         }                                                                                          \
     } while (0)
+#define VABS(x) fabs(x)
 #endif
 #define VAT(p, i) (*(V *)&(p)[i])
 

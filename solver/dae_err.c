@@ -34,17 +34,11 @@ void daei_set_weights(dae_solver *s, const double *restrict y)
                      *restrict wn = s->wnewt;
     const double *restrict at = s->atol;
     /* every weight as that of a differential unknown in one branch-free pass, then the
-     * algebraic unknowns through their index lists */
-    for (int i = 0; i < n; i++) {
-        /* TOL_FLOOR added: the weights and their squares in the norms stay finite (atol = 0
-         * with y_i = 0, or a denormal atol) and any other tolerance is unchanged; no branch,
-         * so that the loop vectorizes */
-        double w = 1.0 / (rtol * fabs(y[i]) + at[i] + TOL_FLOOR);
-        ewt[i] = w;
-        wd[i] = w;
-        we[i] = w;
-        wn[i] = w;
-    }
+     * algebraic unknowns through their index lists. TOL_FLOOR added: the weights and their
+     * squares in the norms stay finite (atol = 0 with y_i = 0, or a denormal atol) and any
+     * other tolerance is unchanged; no branch */
+    DAEI_VFOR(i, n, V w = 1.0 / (rtol * VABS(VAT(y, i)) + VAT(at, i) + TOL_FLOOR);
+              VAT(ewt, i) = w; VAT(wd, i) = w; VAT(we, i) = w; VAT(wn, i) = w;);
     if (s->o.exclude_alg)
         for (int k = 0; k < s->na1; k++)
             we[s->a1cols[k]] = 0.0;
