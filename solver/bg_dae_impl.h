@@ -101,6 +101,12 @@ typedef long long daei_v1i __attribute__((vector_size(sizeof(long long))));
 #define VABS(x) fabs(x)
 #endif
 #define VAT(p, i) (*(V *)&(p)[i])
+/* a function inlined wherever it is called (constant arguments then specialize it) */
+#if defined(__GNUC__)
+#define DAEI_INLINE static inline __attribute__((always_inline))
+#else
+#define DAEI_INLINE static inline
+#endif
 
 typedef struct dae_reduce dae_reduce;
 
@@ -170,7 +176,7 @@ struct dae_solver {
     double *ewt, *werr, *wnewt;
     double *wdiff; /* Newton weights without the index-2 unknowns */
     int has_alg2;
-    double *y, *yp, *ypred, *yppred, *ee, *delta, *res, *tmp, *tmp2, *typ;
+    double *y, *yp, *ee, *delta, *res, *tmp, *tmp2, *typ;
     double err_k, err_km1;
     double err_next; /* the error estimate of the order chosen for the next step */
     /* stability guard (dae_stab.c) */

@@ -44,12 +44,7 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
  * the sum started from zero gives). K is a constant where it is inlined: one pass over the
  * unknowns, each difference read once, no sweep of y or y' per order. */
 /* (orders above 5, MEBDF only, take the generic loop of daei_interpolate) */
-#if defined(__GNUC__)
-#define DAE_INLINE static inline __attribute__((always_inline))
-#else
-#define DAE_INLINE static inline
-#endif
-DAE_INLINE void interp_pass(int K, int n, const double *const *phi, const double *cc,
+DAEI_INLINE void interp_pass(int K, int n, const double *const *phi, const double *cc,
                             const double *dd, double *restrict y, double *restrict yp)
 {
     const double *restrict p0 = phi[0], *restrict p1 = phi[1], *restrict p2 = phi[2],
@@ -74,7 +69,7 @@ DAE_INLINE void interp_pass(int K, int n, const double *const *phi, const double
 }
 
 /* interp_pass for y and y' (both given), y alone or y' alone, with K a constant. */
-DAE_INLINE void interp_order(int K, int n, const double *const *phi, const double *cc,
+DAEI_INLINE void interp_order(int K, int n, const double *const *phi, const double *cc,
                              const double *dd, double *y, double *yp)
 {
     if (y && yp)

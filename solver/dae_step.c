@@ -58,11 +58,8 @@ static void set_coeffs(dae_solver *s)
     s->cj = -s->alphas / s->hh;
     s->ck = fabs(s->alpha[k] + s->alphas - s->alpha0);
     s->ck = fmax(s->ck, s->alpha[k]);
-    int n = s->n;
-    for (int j = s->ns; j <= k; j++) {
-        double *restrict p = s->phi[j], b = s->beta[j];
-        DAEI_VFOR(i, n, VAT(p, i) *= b;);
-    }
+    /* phi[j] *= beta[j] for j = ns .. k, the history rescaled to the new step, is done by
+     * predict as it reads phi[j] */
 }
 
 static void restore(dae_solver *s)
@@ -76,32 +73,66 @@ static void restore(dae_solver *s)
     }
 }
 
-/* ypred, yppred from the history; y and yp start there (the Newton iteration's initial
- * values). */
+/* The prediction's passes over the unknowns, with a difference rescaled to the new step as it
+ * is read where sa (sb) is set: phi_j *= beta_j, stored (set_coeffs). Constant flags where
+ * inlined: no branch in the loops. */
+DAEI_INLINE void pred_first(int n, const double *restrict p0, double *restrict p1, double g1,
+                            int sa, double ba, double *restrict y, double *restrict yp)
+{
+    DAEI_VFOR(i, n, V a = VAT(p1, i);
+              if (sa) VAT(p1, i) = a *= ba;
+              VAT(y, i) = VAT(p0, i) + a;
+              VAT(yp, i) = g1 * a;);
+}
+
+DAEI_INLINE void pred_pair(int n, double *restrict pa, double *restrict pb, double ga, double gb,
+                           int sa, int sb, double ba, double bb, double *restrict y,
+                           double *restrict yp)
+{
+    DAEI_VFOR(i, n, V a = VAT(pa, i); V b = VAT(pb, i);
+              if (sa) VAT(pa, i) = a *= ba;
+              if (sb) VAT(pb, i) = b *= bb;
+              VAT(y, i) += a + b;
+              VAT(yp, i) += ga * a + gb * b;);
+}
+
+DAEI_INLINE void pred_one(int n, double *restrict pa, double ga, int sa, double ba,
+                          double *restrict y, double *restrict yp)
+{
+    DAEI_VFOR(i, n, V a = VAT(pa, i);
+              if (sa) VAT(pa, i) = a *= ba;
+              VAT(y, i) += a;
+              VAT(yp, i) += ga * a;);
+}
+
+/* y, yp from the history: the predictor, where the Newton iteration starts; y = phi_0 + phi_1 +
+ * ... + phi_k and y' = gamma_1 phi_1 + ... + gamma_k phi_k, summed in this order (the
+ * differences two at a time: fewer passes over y and y'), with phi_j for j >= ns rescaled to the
+ * new step first (set_coeffs). */
 static void predict(dae_solver *s)
 {
-    int n = s->n;
-    double *restrict yq = s->ypred, *restrict ypq = s->yppred;
-    const double *restrict p0 = s->phi[0], *restrict p1 = s->phi[1];
-    double g1 = s->gamma[1];
-    DAEI_VFOR(i, n, VAT(yq, i) = VAT(p0, i) + VAT(p1, i); VAT(ypq, i) = g1 * VAT(p1, i););
-    /* the remaining differences two at a time: fewer passes over yq and ypq */
+    int n = s->n, k = s->kk, ns = s->ns;
+    double *restrict y = s->y, *restrict yp = s->yp, *const *phi = s->phi;
+    const double *beta = s->beta, *gamma = s->gamma;
+    if (ns <= 1)
+        pred_first(n, phi[0], phi[1], gamma[1], 1, beta[1], y, yp);
+    else
+        pred_first(n, phi[0], phi[1], gamma[1], 0, 1.0, y, yp);
     int j = 2;
-    for (; j + 1 <= s->kk; j += 2) {
-        const double *restrict pa = s->phi[j], *restrict pb = s->phi[j + 1];
-        double ga = s->gamma[j], gb = s->gamma[j + 1];
-        DAEI_VFOR(i, n, VAT(yq, i) += VAT(pa, i) + VAT(pb, i);
-                  VAT(ypq, i) += ga * VAT(pa, i) + gb * VAT(pb, i););
+    for (; j + 1 <= k; j += 2) {
+        double *pa = phi[j], *pb = phi[j + 1], ga = gamma[j], gb = gamma[j + 1];
+        if (j >= ns)
+            pred_pair(n, pa, pb, ga, gb, 1, 1, beta[j], beta[j + 1], y, yp);
+        else if (j + 1 >= ns)
+            pred_pair(n, pa, pb, ga, gb, 0, 1, 1.0, beta[j + 1], y, yp);
+        else
+            pred_pair(n, pa, pb, ga, gb, 0, 0, 1.0, 1.0, y, yp);
     }
-    double *restrict y = s->y, *restrict yp = s->yp;
-    if (j == s->kk) {
-        const double *restrict pa = s->phi[j];
-        double ga = s->gamma[j];
-        DAEI_VFOR(i, n, VAT(y, i) = VAT(yq, i) += VAT(pa, i);
-                  VAT(yp, i) = VAT(ypq, i) += ga * VAT(pa, i););
-    } else {
-        memcpy(y, yq, (size_t)n * sizeof *y);
-        memcpy(yp, ypq, (size_t)n * sizeof *yp);
+    if (j == k) {
+        if (j >= ns)
+            pred_one(n, phi[j], gamma[j], 1, beta[j], y, yp);
+        else
+            pred_one(n, phi[j], gamma[j], 0, 1.0, y, yp);
     }
 }
 
