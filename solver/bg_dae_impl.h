@@ -62,45 +62,51 @@
  * count to be a multiple of the vector length (its "very cheap" cost model), which leaves most of
  * the integrator's loops over the unknowns scalar; these are vectors regardless. Each lane does
  * the operations of the scalar loop on its unknown in the same order: the same bits. Not for
- * running sums (their order would change). VABS(x) is |x| (the sign bit cleared, as fabs).
- * Without GCC's vector extension, the plain loop. */
+ * running sums (their order would change). VABS(x) is |x| (the sign bit cleared, as fabs);
+ * VI, VATI: the same for long long; VMASK(x, m) is x where the mask m has all bits set, +0
+ * where it is 0. Without GCC's vector extension, the plain loop. */
 #if defined(__GNUC__)
 typedef double daei_v2 __attribute__((vector_size(2 * sizeof(double)), aligned(sizeof(double)),
                                       may_alias));
 typedef double daei_v1 __attribute__((vector_size(sizeof(double)), may_alias));
-typedef long long daei_v2i __attribute__((vector_size(2 * sizeof(long long))));
-typedef long long daei_v1i __attribute__((vector_size(sizeof(long long))));
+typedef long long daei_v2i __attribute__((vector_size(2 * sizeof(long long)),
+                                          aligned(sizeof(long long)), may_alias));
+typedef long long daei_v1i __attribute__((vector_size(sizeof(long long)), may_alias));
 #define UNUSED_ __attribute__((unused))
 #define DAEI_VFOR(i, n, ...)                                                                       \
     do {                                                                                           \
         int i = 0;                                                                                 \
         {                                                                                          \
             typedef daei_v2 V;                                                                     \
-            typedef daei_v2i VI UNUSED_;                                                            \
+            typedef daei_v2i VI UNUSED_;                                                           \
             for (; i + 2 <= (n); i += 2) {                                                         \
                 __VA_ARGS__                                                                        \
             }                                                                                      \
         }                                                                                          \
         {                                                                                          \
             typedef daei_v1 V;                                                                     \
-            typedef daei_v1i VI UNUSED_;                                                            \
+            typedef daei_v1i VI UNUSED_;                                                           \
             for (; i < (n); i++) {                                                                 \
                 __VA_ARGS__                                                                        \
             }                                                                                      \
         }                                                                                          \
     } while (0)
 #define VABS(x) ((V)((VI)(x) & 0x7fffffffffffffffLL))
+#define VMASK(x, m) ((V)((VI)(x) & (m)))
 #else
 #define DAEI_VFOR(i, n, ...)                                                                       \
     do {                                                                                           \
         typedef double V;                                                                          \
+        typedef long long VI;                                                                      \
         for (int i = 0; i < (n); i++) {                                                            \
             __VA_ARGS__                                                                            \
         }                                                                                          \
     } while (0)
 #define VABS(x) fabs(x)
+#define VMASK(x, m) ((m) ? (x) : 0.0)
 #endif
 #define VAT(p, i) (*(V *)&(p)[i])
+#define VATI(p, i) (*(VI *)&(p)[i])
 /* a function inlined wherever it is called (constant arguments then specialize it) */
 #if defined(__GNUC__)
 #define DAEI_INLINE static inline __attribute__((always_inline))
@@ -133,6 +139,10 @@ struct dae_solver {
     int *srows, nsrows; /* the scaled rows, listed */
     int *a2cols, na2;   /* the index-2 columns (scaled by alpha/h), listed */
     int *a1cols, na1;   /* the index-1 algebraic unknowns, listed */
+    int *tcols, ntcols; /* the unknowns the error test weighs (werr not always 0), ascending:
+                           all but exclude_alg's index-1 ones and DAE_I2_EXCLUDE's index-2 ones */
+    long long *wmask;   /* per unknown, all bits set, or 0 where daei_set_weights sets werr to 0
+                           (exclude_alg's index-1 unknowns) */
     double cjf;         /* cj the factored matrix was built with */
     long jac_nst;       /* steps taken when the Jacobian was evaluated */
     int *reg_jac;       /* regimes at the last Jacobian evaluation (p.nregimes) */

@@ -45,7 +45,7 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
  * unknowns, each difference read once, no sweep of y or y' per order. */
 /* (orders above 5, MEBDF only, take the generic loop of daei_interpolate) */
 DAEI_INLINE void interp_pass(int K, int n, const double *const *phi, const double *cc,
-                            const double *dd, double *restrict y, double *restrict yp)
+                             const double *dd, double *restrict y, double *restrict yp)
 {
     const double *restrict p0 = phi[0], *restrict p1 = phi[1], *restrict p2 = phi[2],
                            *restrict p3 = phi[3], *restrict p4 = phi[4], *restrict p5 = phi[5];
@@ -70,7 +70,7 @@ DAEI_INLINE void interp_pass(int K, int n, const double *const *phi, const doubl
 
 /* interp_pass for y and y' (both given), y alone or y' alone, with K a constant. */
 DAEI_INLINE void interp_order(int K, int n, const double *const *phi, const double *cc,
-                             const double *dd, double *y, double *yp)
+                              const double *dd, double *y, double *yp)
 {
     if (y && yp)
         interp_pass(K, n, phi, cc, dd, y, yp);
