@@ -183,7 +183,7 @@ struct dae_solver {
         gamma[MAXORD + 1];
     double alphas, alpha0, ck;
     double *phi[NPHI];
-    double *ewt, *werr, *wnewt;
+    double *ewt, *werr, *wnewt; /* wnewt is ewt unless o.newton_index2_scale_h */
     double *wdiff; /* Newton weights without the index-2 unknowns */
     int has_alg2;
     double *y, *yp, *ee, *delta, *res, *tmp, *tmp2, *typ;

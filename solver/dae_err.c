@@ -26,31 +26,44 @@
 
 #define TOL_FLOOR 1e-100
 
-void daei_set_weights(dae_solver *s, const double *restrict y)
+/* The weights' vector pass: w = 1 / (rtol |y| + atol + TOL_FLOOR) into ewt, wd, we (masked by
+ * m: w or +0, when mask) and wn (when own_wn); the flags constant where it is inlined. */
+DAEI_INLINE void weights_pass(int mask, int own_wn, int n, double rtol, const double *restrict y,
+                              const double *restrict at, const long long *restrict m,
+                              double *restrict ewt, double *restrict wd, double *restrict we,
+                              double *restrict wn)
+{
+    DAEI_VFOR(i, n, V w = 1.0 / (rtol * VABS(VAT(y, i)) + VAT(at, i) + TOL_FLOOR);
+              VAT(ewt, i) = w; VAT(wd, i) = w;
+              if (mask) VAT(we, i) = VMASK(w, VATI(m, i));
+              else VAT(we, i) = w;
+              if (own_wn) VAT(wn, i) = w;);
+}
+
+void daei_set_weights(dae_solver *s, const double *y)
 {
     double h = fabs(s->hh), rtol = s->o.rtol;
     int n = s->n;
-    double *restrict ewt = s->ewt, *restrict wd = s->wdiff, *restrict we = s->werr,
-                     *restrict wn = s->wnewt;
-    const double *restrict at = s->atol;
+    double *ewt = s->ewt, *wd = s->wdiff, *we = s->werr, *wn = s->wnewt;
+    const double *at = s->atol;
     /* every weight as that of a differential unknown in one branch-free pass, then the
      * algebraic unknowns through their index lists. TOL_FLOOR added: the weights and their
      * squares in the norms stay finite (atol = 0 with y_i = 0, or a denormal atol) and any
      * other tolerance is unchanged; no branch */
-    const long long *restrict m = s->wmask; /* werr 0 for exclude_alg's index-1 unknowns */
-    if (m)
-        DAEI_VFOR(i, n, V w = 1.0 / (rtol * VABS(VAT(y, i)) + VAT(at, i) + TOL_FLOOR);
-                  VAT(ewt, i) = w; VAT(wd, i) = w; VAT(we, i) = VMASK(w, VATI(m, i));
-                  VAT(wn, i) = w;);
-    else /* no structure yet (no index lists either) */
-        DAEI_VFOR(i, n, V w = 1.0 / (rtol * VABS(VAT(y, i)) + VAT(at, i) + TOL_FLOOR);
-                  VAT(ewt, i) = w; VAT(wd, i) = w; VAT(we, i) = w; VAT(wn, i) = w;);
+    const long long *m = s->wmask; /* werr 0 for exclude_alg's index-1 unknowns */
+    int own_wn = s->wnewt != s->ewt; /* else the Newton weights are ewt itself */
+    switch (2 * (m != NULL) + own_wn) {
+    case 0: weights_pass(0, 0, n, rtol, y, at, NULL, ewt, wd, we, NULL); break;
+    case 1: weights_pass(0, 1, n, rtol, y, at, NULL, ewt, wd, we, s->wnewt); break;
+    case 2: weights_pass(1, 0, n, rtol, y, at, m, ewt, wd, we, NULL); break;
+    default: weights_pass(1, 1, n, rtol, y, at, m, ewt, wd, we, s->wnewt); break;
+    }
     for (int k = 0; k < s->na2; k++) {
         int i = s->a2cols[k];
         double w = ewt[i];
         wd[i] = 0.0;
         we[i] = s->o.index2 == DAE_I2_EXCLUDE ? 0.0 : w * h;
-        wn[i] = s->o.newton_index2_scale_h ? w * h : w;
+        if (s->o.newton_index2_scale_h) wn[i] = w * h; /* (else wn is ewt) */
     }
 }
 
