@@ -134,12 +134,17 @@ void daei_interpolate_some(const dae_solver *s, double t, const int *idx, int m,
 {
     double cc[MAXORD + 1], dd[MAXORD + 1];
     int kord = coefficients(s, t, cc, dd);
+    /* the differences' addresses at hand: stores into y and yp could otherwise change s->phi
+     * for all the compiler knows, and it would read them again for every term */
+    const double *ph[MAXORD + 1];
+    for (int j = 0; j <= kord; j++)
+        ph[j] = s->phi[j];
     for (int k = 0; k < m; k++) { /* each term in interp_pass's order */
         int i = idx[k];
-        double a = s->phi[0][i], b = 0.0;
+        double a = ph[0][i], b = 0.0;
         for (int j = 1; j <= kord; j++) {
-            a += cc[j] * s->phi[j][i];
-            b += dd[j] * s->phi[j][i];
+            a += cc[j] * ph[j][i];
+            b += dd[j] * ph[j][i];
         }
         if (y) y[i] = a;
         if (yp) yp[i] = b;

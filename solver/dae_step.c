@@ -136,28 +136,38 @@ static void predict(dae_solver *s)
     }
 }
 
-/* Vector kernels on distinct arrays (restrict lets them vectorize: through the solver struct
- * the compiler must assume that every store may change the coefficients it reads). */
-static void vadd(int n, double *restrict x, const double *restrict a) /* x += a */
+/* x += a on distinct arrays */
+static void vadd(int n, double *restrict x, const double *restrict a)
 {
     DAEI_VFOR(i, n, VAT(x, i) += VAT(a, i););
 }
 
+/* a += src, b += a (the new a), and with copy, to = src: one level pair of update_history */
+DAEI_INLINE void hist_pair(int copy, int n, double *restrict a, double *restrict b,
+                           const double *restrict src, double *restrict to)
+{
+    DAEI_VFOR(i, n, V e = VAT(src, i);
+              if (copy) VAT(to, i) = e;
+              V c = VAT(a, i) + e;
+              VAT(a, i) = c;
+              VAT(b, i) += c;);
+}
+
 /* phi after an accepted step of order k = kused: phi[k+1] = ee, phi[k] += ee, then phi[j] +=
  * phi[j+1] for j = k-1 .. 0, two levels per pass over the unknowns (the new phi[j+1] is added
- * to phi[j] while it is at hand). */
+ * to phi[j] while it is at hand; ee copied into phi[k+1] in the first pass). */
 static void update_history(dae_solver *s)
 {
     int n = s->n, k = s->kused;
-    if (k < MAXORD) memcpy(s->phi[k + 1], s->ee, (size_t)n * sizeof(double));
-    const double *restrict src = s->ee;
-    int j = k;
-    for (; j >= 1; j -= 2) { /* phi[j] += src; phi[j-1] += phi[j] */
-        double *restrict a = s->phi[j], *restrict b = s->phi[j - 1];
-        DAEI_VFOR(i, n, V c = VAT(a, i) + VAT(src, i); VAT(a, i) = c; VAT(b, i) += c;);
-        src = s->phi[j - 1];
-    }
-    if (j == 0) vadd(n, s->phi[0], s->phi[1]);
+    double *const *phi = s->phi;
+    if (k < MAXORD) /* k >= 1: the first pair is j = k, k - 1 */
+        hist_pair(1, n, phi[k], phi[k - 1], s->ee, phi[k + 1]);
+    else
+        hist_pair(0, n, phi[k], phi[k - 1], s->ee, NULL);
+    int j = k - 2;
+    for (; j >= 1; j -= 2) /* phi[j] += phi[j+1]; phi[j-1] += phi[j] */
+        hist_pair(0, n, phi[j], phi[j - 1], phi[j + 1], NULL);
+    if (j == 0) vadd(n, phi[0], phi[1]);
 }
 
 static void complete_step(dae_solver *s)
