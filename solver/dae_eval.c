@@ -68,21 +68,19 @@ void daei_warn(dae_solver *s, const char *where, const char *fmt, ...)
 int daei_first_nonfinite(const double *v, int n)
 {
     /* One branch-free pass, then the search only when something is not finite. With GCC, two
-     * unknowns at a time as vectors (DAEI_VFOR): x - x is +0 for a finite x and NaN for Inf
-     * or NaN, and a sum of such terms is 0 or NaN in any order. Then in integers: Inf and NaN
-     * have all exponent bits set */
+     * unknowns at a time as vectors (DAEI_VFOR): x - x is +0 (no bit set) for a finite x and
+     * NaN for Inf or NaN, and the bits of all of them or-ed together are 0 or not. Then in
+     * integers: Inf and NaN have all exponent bits set */
     const uint64_t expo = 0x7ff0000000000000u;
     uint64_t bad = 0;
     int i = 0;
 #if defined(__GNUC__)
-    daei_v2 acc = {0, 0}, acc2 = {0, 0};
-    for (; i + 4 <= n; i += 4) {
-        daei_v2 x = *(const daei_v2 *)&v[i], x2 = *(const daei_v2 *)&v[i + 2];
-        acc += x - x;
-        acc2 += x2 - x2;
+    daei_v2i acc = {0, 0};
+    for (; i + 2 <= n; i += 2) {
+        daei_v2 x = *(const daei_v2 *)&v[i];
+        acc |= (daei_v2i)(x - x);
     }
-    acc += acc2;
-    bad = !(acc[0] + acc[1] == 0);
+    bad = (acc[0] | acc[1]) != 0;
 #endif
     for (; i < n; i++) {
         uint64_t b;
