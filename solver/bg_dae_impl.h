@@ -358,8 +358,9 @@ int daei_mebdf_error_test(dae_solver *s);
 void daei_mebdf_choose_next(dae_solver *s, int kdiff);
 
 /* ---- dae_disc.c: discontinuities ---- */
-/* Whether the first Newton correction shows a jump the predictor missed (another iteration). */
-int daei_first_correction_jumps(const dae_solver *s);
+/* Whether the first Newton correction (its weighted RMS norm dn, with the Newton weights) shows
+ * a jump the predictor missed (another iteration). */
+int daei_first_correction_jumps(const dae_solver *s, double dn);
 /* Book-keeping of an accepted step (crawl count, restarts since the last accepted step). */
 void daei_disc_accepted(dae_solver *s);
 /* DAE_STEP_TOO_SMALL with its message when the run crawls, else BG_OK. */

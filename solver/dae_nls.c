@@ -357,7 +357,7 @@ static int newton_iterate(dae_solver *s, double t, int *updated)
          * predictor, out of the error test (exclude_alg), and the run went on silently wrong. */
         if (m == 0) s->dn0 = dn;
         double ssm = m == 0 ? s->ss * fmax(1.0, dn / s->dn0_last) : s->ss;
-        if (ssm * dn <= EPS_NEWT && (m > 0 || !daei_first_correction_jumps(s)))
+        if (ssm * dn <= EPS_NEWT && (m > 0 || !daei_first_correction_jumps(s, dn)))
             return converged(s, t);
         if (m + 1 >= s->o.max_newton && !newton_extends(s, m, dn, rate)) break;
     }
