@@ -55,6 +55,65 @@
 #define CJ_LOW 0.6
 #define CJ_HIGH (1.0 / 0.6)
 
+/* Loops over the unknowns in pairs, as two-lane vectors: DAEI_VFOR(i, n, body) runs body for i
+ * = 0, 2, 4, ... with V a vector of two doubles, then for the odd last unknown with V a vector
+ * of one; in body, VAT(p, i) is the V at p + i (no alignment assumed) and a scalar operand
+ * stands for a vector of copies of it. GCC at -O2 vectorizes a loop only where it knows the trip
+ * count to be a multiple of the vector length (its "very cheap" cost model), which leaves most of
+ * the integrator's loops over the unknowns scalar; these are vectors regardless. Each lane does
+ * the operations of the scalar loop on its unknown in the same order: the same bits. Not for
+ * running sums (their order would change). VABS(x) is |x| (the sign bit cleared, as fabs);
+ * VI, VATI: the same for long long; VMASK(x, m) is x where the mask m has all bits set, +0
+ * where it is 0. Without GCC's vector extension, the plain loop. */
+#if defined(__GNUC__)
+typedef double daei_v2 __attribute__((vector_size(2 * sizeof(double)), aligned(sizeof(double)),
+                                      may_alias));
+typedef double daei_v1 __attribute__((vector_size(sizeof(double)), may_alias));
+typedef long long daei_v2i __attribute__((vector_size(2 * sizeof(long long)),
+                                          aligned(sizeof(long long)), may_alias));
+typedef long long daei_v1i __attribute__((vector_size(sizeof(long long)), may_alias));
+#define UNUSED_ __attribute__((unused))
+#define DAEI_VFOR(i, n, ...)                                                                       \
+    do {                                                                                           \
+        int i = 0;                                                                                 \
+        {                                                                                          \
+            typedef daei_v2 V;                                                                     \
+            typedef daei_v2i VI UNUSED_;                                                           \
+            for (; i + 2 <= (n); i += 2) {                                                         \
+                __VA_ARGS__                                                                        \
+            }                                                                                      \
+        }                                                                                          \
+        {                                                                                          \
+            typedef daei_v1 V;                                                                     \
+            typedef daei_v1i VI UNUSED_;                                                           \
+            for (; i < (n); i++) {                                                                 \
+                __VA_ARGS__                                                                        \
+            }                                                                                      \
+        }                                                                                          \
+    } while (0)
+#define VABS(x) ((V)((VI)(x) & 0x7fffffffffffffffLL))
+#define VMASK(x, m) ((V)((VI)(x) & (m)))
+#else
+#define DAEI_VFOR(i, n, ...)                                                                       \
+    do {                                                                                           \
+        typedef double V;                                                                          \
+        typedef long long VI;                                                                      \
+        for (int i = 0; i < (n); i++) {                                                            \
+            __VA_ARGS__                                                                            \
+        }                                                                                          \
+    } while (0)
+#define VABS(x) fabs(x)
+#define VMASK(x, m) ((m) ? (x) : 0.0)
+#endif
+#define VAT(p, i) (*(V *)&(p)[i])
+#define VATI(p, i) (*(VI *)&(p)[i])
+/* a function inlined wherever it is called (constant arguments then specialize it) */
+#if defined(__GNUC__)
+#define DAEI_INLINE static inline __attribute__((always_inline))
+#else
+#define DAEI_INLINE static inline
+#endif
+
 typedef struct dae_reduce dae_reduce;
 
 struct dae_solver {
@@ -80,6 +139,10 @@ struct dae_solver {
     int *srows, nsrows; /* the scaled rows, listed */
     int *a2cols, na2;   /* the index-2 columns (scaled by alpha/h), listed */
     int *a1cols, na1;   /* the index-1 algebraic unknowns, listed */
+    int *tcols, ntcols; /* the unknowns the error test weighs (werr not always 0), ascending:
+                           all but exclude_alg's index-1 ones and DAE_I2_EXCLUDE's index-2 ones */
+    long long *wmask;   /* per unknown, all bits set, or 0 where daei_set_weights sets werr to 0
+                           (exclude_alg's index-1 unknowns) */
     double cjf;         /* cj the factored matrix was built with */
     long jac_nst;       /* steps taken when the Jacobian was evaluated */
     int *reg_jac;       /* regimes at the last Jacobian evaluation (p.nregimes) */
@@ -120,10 +183,10 @@ struct dae_solver {
         gamma[MAXORD + 1];
     double alphas, alpha0, ck;
     double *phi[NPHI];
-    double *ewt, *werr, *wnewt;
+    double *ewt, *werr, *wnewt; /* wnewt is ewt unless o.newton_index2_scale_h */
     double *wdiff; /* Newton weights without the index-2 unknowns */
     int has_alg2;
-    double *y, *yp, *ypred, *yppred, *ee, *delta, *res, *tmp, *tmp2, *typ;
+    double *y, *yp, *ee, *delta, *res, *tmp, *tmp2, *typ;
     double err_k, err_km1;
     double err_next; /* the error estimate of the order chosen for the next step */
     /* stability guard (dae_stab.c) */
@@ -295,8 +358,9 @@ int daei_mebdf_error_test(dae_solver *s);
 void daei_mebdf_choose_next(dae_solver *s, int kdiff);
 
 /* ---- dae_disc.c: discontinuities ---- */
-/* Whether the first Newton correction shows a jump the predictor missed (another iteration). */
-int daei_first_correction_jumps(const dae_solver *s);
+/* Whether the first Newton correction (its weighted RMS norm dn, with the Newton weights) shows
+ * a jump the predictor missed (another iteration). */
+int daei_first_correction_jumps(const dae_solver *s, double dn);
 /* Book-keeping of an accepted step (crawl count, restarts since the last accepted step). */
 void daei_disc_accepted(dae_solver *s);
 /* DAE_STEP_TOO_SMALL with its message when the run crawls, else BG_OK. */

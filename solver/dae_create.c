@@ -97,14 +97,12 @@ void dae_free(dae_solver **sp)
     free(s->gw);
     for (int j = 0; j < NPHI; j++)
         free(s->phi[j]);
+    if (s->wnewt != s->ewt) free(s->wnewt); /* (else it is ewt) */
     free(s->ewt);
     free(s->werr);
-    free(s->wnewt);
     free(s->wdiff);
     free(s->y);
     free(s->yp);
-    free(s->ypred);
-    free(s->yppred);
     free(s->ee);
     free(s->delta);
     free(s->res);
@@ -410,11 +408,14 @@ dae_solver *dae_create(const dae_problem *p, const dae_options *o, bg_error *err
     }
     for (int j = 0; j < NPHI; j++)
         if (!(s->phi[j] = calloc((size_t)n, sizeof(double)))) goto nomem;
-    double **vecs[] = {&s->ewt,    &s->werr, &s->wnewt, &s->wdiff, &s->y,   &s->yp,   &s->ypred,
-                       &s->yppred, &s->ee,   &s->delta, &s->res,   &s->tmp, &s->tmp2, &s->typ,
+    double **vecs[] = {&s->ewt,    &s->werr, &s->wdiff, &s->y,   &s->yp,
+                       &s->ee,   &s->delta, &s->res,   &s->tmp, &s->tmp2, &s->typ,
                        &s->stab_e[0], &s->stab_e[1], &s->stab_e[2], &s->stab_e[3], &s->stab_e[4]};
     for (size_t v = 0; v < sizeof vecs / sizeof *vecs; v++)
         if (!(*vecs[v] = calloc((size_t)n, sizeof(double)))) goto nomem;
+    /* the Newton weights are the error weights unless the index-2 ones are scaled by |h| */
+    s->wnewt = s->o.newton_index2_scale_h ? calloc((size_t)n, sizeof(double)) : s->ewt;
+    if (!s->wnewt) goto nomem;
     if (s->o.method == DAE_MEBDF && !(s->mb = calloc((size_t)MB_NVEC * n, sizeof(double))))
         goto nomem;
     if (p->nregimes > 0) {

@@ -53,8 +53,15 @@
  * zero that the predictor misses by about their change per step (on long beam chains, without
  * it, the rule fires at a large share of the steps and costs Newton iterations); a source that
  * jumps after constant or slowly varying values has a change per step far below the jump. */
-int daei_first_correction_jumps(const dae_solver *s)
+int daei_first_correction_jumps(const dae_solver *s, double dn)
 {
+    /* The first condition bounded by the correction's norm: dn^2 n is, up to a few roundings,
+     * the sum of the squares of the weighted corrections, those of the index-1 unknowns among
+     * them with the weights ewt used here (the Newton weights differ from ewt on index-2
+     * unknowns only), and a rounded sum of nonnegative terms is at least each of them. Where
+     * dn^2 n is below 0.99 JUMP_TOLS^2, no index-1 unknown passes the first condition: the
+     * answer is 0 without the loop (the margin covers the roundings; a NaN dn takes the loop) */
+    if (dn * dn * (double)s->n < 0.99 * JUMP_TOLS * JUMP_TOLS) return 0;
     const double *restrict y = s->y, *restrict ee = s->ee, *restrict w = s->ewt,
                            *restrict p1 = s->phi[1];
     for (int k = 0; k < s->na1; k++) {

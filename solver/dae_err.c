@@ -26,34 +26,44 @@
 
 #define TOL_FLOOR 1e-100
 
-void daei_set_weights(dae_solver *s, const double *restrict y)
+/* The weights' vector pass: w = 1 / (rtol |y| + atol + TOL_FLOOR) into ewt, wd, we (masked by
+ * m: w or +0, when mask) and wn (when own_wn); the flags constant where it is inlined. */
+DAEI_INLINE void weights_pass(int mask, int own_wn, int n, double rtol, const double *restrict y,
+                              const double *restrict at, const long long *restrict m,
+                              double *restrict ewt, double *restrict wd, double *restrict we,
+                              double *restrict wn)
+{
+    DAEI_VFOR(i, n, V w = 1.0 / (rtol * VABS(VAT(y, i)) + VAT(at, i) + TOL_FLOOR);
+              VAT(ewt, i) = w; VAT(wd, i) = w;
+              if (mask) VAT(we, i) = VMASK(w, VATI(m, i));
+              else VAT(we, i) = w;
+              if (own_wn) VAT(wn, i) = w;);
+}
+
+void daei_set_weights(dae_solver *s, const double *y)
 {
     double h = fabs(s->hh), rtol = s->o.rtol;
     int n = s->n;
-    double *restrict ewt = s->ewt, *restrict wd = s->wdiff, *restrict we = s->werr,
-                     *restrict wn = s->wnewt;
-    const double *restrict at = s->atol;
+    double *ewt = s->ewt, *wd = s->wdiff, *we = s->werr, *wn = s->wnewt;
+    const double *at = s->atol;
     /* every weight as that of a differential unknown in one branch-free pass, then the
-     * algebraic unknowns through their index lists */
-    for (int i = 0; i < n; i++) {
-        /* TOL_FLOOR added: the weights and their squares in the norms stay finite (atol = 0
-         * with y_i = 0, or a denormal atol) and any other tolerance is unchanged; no branch,
-         * so that the loop vectorizes */
-        double w = 1.0 / (rtol * fabs(y[i]) + at[i] + TOL_FLOOR);
-        ewt[i] = w;
-        wd[i] = w;
-        we[i] = w;
-        wn[i] = w;
+     * algebraic unknowns through their index lists. TOL_FLOOR added: the weights and their
+     * squares in the norms stay finite (atol = 0 with y_i = 0, or a denormal atol) and any
+     * other tolerance is unchanged; no branch */
+    const long long *m = s->wmask; /* werr 0 for exclude_alg's index-1 unknowns */
+    int own_wn = s->wnewt != s->ewt; /* else the Newton weights are ewt itself */
+    switch (2 * (m != NULL) + own_wn) {
+    case 0: weights_pass(0, 0, n, rtol, y, at, NULL, ewt, wd, we, NULL); break;
+    case 1: weights_pass(0, 1, n, rtol, y, at, NULL, ewt, wd, we, s->wnewt); break;
+    case 2: weights_pass(1, 0, n, rtol, y, at, m, ewt, wd, we, NULL); break;
+    default: weights_pass(1, 1, n, rtol, y, at, m, ewt, wd, we, s->wnewt); break;
     }
-    if (s->o.exclude_alg)
-        for (int k = 0; k < s->na1; k++)
-            we[s->a1cols[k]] = 0.0;
     for (int k = 0; k < s->na2; k++) {
         int i = s->a2cols[k];
         double w = ewt[i];
         wd[i] = 0.0;
         we[i] = s->o.index2 == DAE_I2_EXCLUDE ? 0.0 : w * h;
-        wn[i] = s->o.newton_index2_scale_h ? w * h : w;
+        if (s->o.newton_index2_scale_h) wn[i] = w * h; /* (else wn is ewt) */
     }
 }
 
@@ -78,23 +88,65 @@ double daei_wrms(const dae_solver *s, const double *v, const double *w)
 }
 
 
-/* The weighted RMS norm of a - b. */
-static double wrms_diff(const dae_solver *s, const double *restrict a, const double *restrict b,
-                        const double *restrict w)
+/* The weighted RMS norm of a - b with the error test's weights werr: the unknowns i = 0, 2, 4,
+ * ... summed in one sum and 1, 3, 5, ... in another (two chains the processor overlaps), over
+ * tcols only where it lists fewer than all (the terms left out are +0: err_sums says why). */
+static double wrms_diff_err(const dae_solver *s, const double *restrict a, const double *restrict b)
 {
     int n = s->n;
+    const double *restrict w = s->werr;
     double q0 = 0, q1 = 0;
-    int i = 0;
-    for (; i + 2 <= n; i += 2) {
-        double d0 = (a[i] - b[i]) * w[i], d1 = (a[i + 1] - b[i + 1]) * w[i + 1];
-        q0 += d0 * d0;
-        q1 += d1 * d1;
-    }
-    for (; i < n; i++) {
-        double d0 = (a[i] - b[i]) * w[i];
-        q0 += d0 * d0;
+    if (s->tcols && s->ntcols < n) {
+        const int *restrict idx = s->tcols;
+        for (int t = 0; t < s->ntcols; t++) {
+            int i = idx[t];
+            double d = (a[i] - b[i]) * w[i];
+            if (i & 1)
+                q1 += d * d;
+            else
+                q0 += d * d;
+        }
+    } else {
+        int i = 0;
+        for (; i + 2 <= n; i += 2) {
+            double d0 = (a[i] - b[i]) * w[i], d1 = (a[i + 1] - b[i + 1]) * w[i + 1];
+            q0 += d0 * d0;
+            q1 += d1 * d1;
+        }
+        for (; i < n; i++) {
+            double d0 = (a[i] - b[i]) * w[i];
+            q0 += d0 * d0;
+        }
     }
     return sqrt((q0 + q1) / (n > 0 ? n : 1));
+}
+
+/* The sums of squares of the weighted ee, ee + phi[k] (lev >= 1) and ee + phi[k] + phi[k-1]
+ * (lev 2) over the unknowns idx[0..m-1] (gather), or 0..m-1, in ascending order. Where werr is
+ * 0 a term is +0 (ee and the history are finite), and adding +0 to a sum of squares leaves it
+ * as it is: over the list of the unknowns the error test weighs (tcols) the sums are the same
+ * bits as over all unknowns. */
+DAEI_INLINE void err_sums(int lev, int gather, const int *restrict idx, int m,
+                          const double *restrict e, const double *restrict w,
+                          const double *restrict pk, const double *restrict pk1, double *q)
+{
+    double q0 = 0, q1 = 0, q2 = 0;
+    for (int t = 0; t < m; t++) {
+        int i = gather ? idx[t] : t;
+        double a = e[i] * w[i];
+        q0 += a * a;
+        if (lev >= 1) {
+            double b = a + pk[i] * w[i];
+            q1 += b * b;
+            if (lev >= 2) {
+                double c = b + pk1[i] * w[i];
+                q2 += c * c;
+            }
+        }
+    }
+    q[0] = q0;
+    q[1] = q1;
+    q[2] = q2;
 }
 
 int daei_error_test(dae_solver *s)
@@ -103,32 +155,22 @@ int daei_error_test(dae_solver *s)
     /* the weighted norms of ee, ee + phi[k] and ee + phi[k] + phi[k-1] in one pass */
     double q[3] = {0, 0, 0};
     {
-        const double *restrict e = s->ee, *restrict w = s->werr;
-        const double *restrict pk = s->phi[k], *restrict pk1 = s->phi[k > 1 ? k - 1 : k];
-        double q0 = 0, q1 = 0, q2 = 0;
-        if (k > 2) {
-            for (int i = 0; i < n; i++) {
-                double a = e[i] * w[i], b = a + pk[i] * w[i], c = b + pk1[i] * w[i];
-                q0 += a * a;
-                q1 += b * b;
-                q2 += c * c;
-            }
-        } else if (k == 2) {
-            for (int i = 0; i < n; i++) {
-                double a = e[i] * w[i], b = a + pk[i] * w[i];
-                q0 += a * a;
-                q1 += b * b;
-            }
-        } else {
-            for (int i = 0; i < n; i++) {
-                double a = e[i] * w[i];
-                q0 += a * a;
-            }
+        const double *e = s->ee, *w = s->werr, *pk = s->phi[k], *pk1 = s->phi[k > 1 ? k - 1 : k];
+        int lev = k > 2 ? 2 : k - 1, gather = s->tcols && s->ntcols < n;
+        const int *idx = s->tcols;
+        int m = gather ? s->ntcols : n;
+        switch (lev + 3 * gather) {
+        case 0: err_sums(0, 0, idx, m, e, w, pk, pk1, q); break;
+        case 1: err_sums(1, 0, idx, m, e, w, pk, pk1, q); break;
+        case 2: err_sums(2, 0, idx, m, e, w, pk, pk1, q); break;
+        case 3: err_sums(0, 1, idx, m, e, w, pk, pk1, q); break;
+        case 4: err_sums(1, 1, idx, m, e, w, pk, pk1, q); break;
+        default: err_sums(2, 1, idx, m, e, w, pk, pk1, q); break;
         }
         double nn = n > 0 ? n : 1;
-        q[0] = sqrt(q0 / nn);
-        q[1] = sqrt(q1 / nn);
-        q[2] = sqrt(q2 / nn);
+        q[0] = sqrt(q[0] / nn);
+        q[1] = sqrt(q[1] / nn);
+        q[2] = sqrt(q[2] / nn);
     }
     double enorm_k = q[0];
     s->err_k = s->sigma[k] * enorm_k;
@@ -172,7 +214,7 @@ void daei_choose_next(dae_solver *s, int kdiff)
         else if (k == s->o.max_order || k + 1 >= s->ns || kdiff == 1)
             action = MAINTAIN;
         else {
-            err_kp1 = wrms_diff(s, s->ee, s->phi[k + 1], s->werr) / (k + 2);
+            err_kp1 = wrms_diff_err(s, s->ee, s->phi[k + 1]) / (k + 2);
             double terr_k = (k + 1) * s->err_k, terr_kp1 = (k + 2) * err_kp1;
             if (k == 1)
                 action = terr_kp1 >= 0.5 * terr_k ? MAINTAIN : RAISE;

@@ -101,6 +101,10 @@ void daei_init_free(dae_solver *s)
         free(*iv[k]);
         *iv[k] = NULL;
     }
+    free(s->tcols);
+    s->tcols = NULL;
+    free(s->wmask);
+    s->wmask = NULL;
     sp_csc_free(&s->K);
     ls_free(&s->kls);
     sp_csc_free(&s->kkt);
@@ -259,9 +263,17 @@ int daei_init_setup(dae_solver *s, bg_error *err)
     s->a1cols = malloc(((size_t)n + 1) * sizeof *s->a1cols);
     if (!s->srows || !s->a2cols || !s->a1cols) goto nomem;
     s->nsrows = s->na2 = s->na1 = 0;
+    s->tcols = malloc(((size_t)n + 1) * sizeof *s->tcols);
+    s->wmask = malloc(((size_t)n + 1) * sizeof *s->wmask);
+    if (!s->tcols || !s->wmask) goto nomem;
+    s->ntcols = 0;
     for (int j = 0; j < n; j++) {
         if (s->kind[j] == DAE_ALG2) s->a2cols[s->na2++] = j;
         if (s->kind[j] == DAE_ALG) s->a1cols[s->na1++] = j;
+        int out1 = s->o.exclude_alg && s->kind[j] == DAE_ALG;
+        s->wmask[j] = out1 ? 0 : ~0LL;
+        if (!out1 && !(s->o.index2 == DAE_I2_EXCLUDE && s->kind[j] == DAE_ALG2))
+            s->tcols[s->ntcols++] = j;
     }
     int cov = s->na1 > 0 ? alg1_covered(s) : 1;
     if (cov < 0) goto nomem;

@@ -191,15 +191,74 @@ static int converged(dae_solver *s, double t)
     return NL_RECOVER;
 }
 
-int daei_newton(dae_solver *s, double t)
+/* The update y -= delta, yp -= cj delta, ee -= delta (ee = 0 - delta on the first iteration,
+ * first: the sum starts there, as from zero) and the weighted norms of the correction (all
+ * unknowns; without the index-2 ones) in one pass; first constant where it is inlined. */
+DAEI_INLINE void update(int first, int n, double cj, const double *restrict d,
+                        const double *restrict w, const double *restrict wd, double *restrict y,
+                        double *restrict yp, double *restrict ee, double *dn, double *dn_diff)
+{
+    double q0 = 0, q1 = 0, r0 = 0, r1 = 0;
+    int i = 0;
+#if defined(__GNUC__)
+    /* the pairs below as two-lane vectors, lane l summing the unknowns i = l (mod 2) as q0/q1
+     * and r0/r1 do: the same operations in the same order, the same bits */
+    typedef double v2 __attribute__((vector_size(2 * sizeof(double))));
+    v2 q = {0, 0}, r = {0, 0}, vcj = {cj, cj}, zero = {0, 0};
+    for (; i + 2 <= n; i += 2) {
+        v2 dv, wv, wdv, yv, ypv, ev;
+        memcpy(&dv, d + i, sizeof dv);
+        memcpy(&wv, w + i, sizeof wv);
+        memcpy(&wdv, wd + i, sizeof wdv);
+        memcpy(&yv, y + i, sizeof yv);
+        memcpy(&ypv, yp + i, sizeof ypv);
+        if (first)
+            ev = zero;
+        else
+            memcpy(&ev, ee + i, sizeof ev);
+        v2 a = dv * wv, b = dv * wdv;
+        q += a * a;
+        r += b * b;
+        yv -= dv;
+        ypv -= vcj * dv;
+        ev -= dv;
+        memcpy(y + i, &yv, sizeof yv);
+        memcpy(yp + i, &ypv, sizeof ypv);
+        memcpy(ee + i, &ev, sizeof ev);
+    }
+    q0 = q[0], q1 = q[1], r0 = r[0], r1 = r[1];
+#endif
+    for (; i + 2 <= n; i += 2) {
+        double a0 = d[i] * w[i], a1 = d[i + 1] * w[i + 1];
+        double b0 = d[i] * wd[i], b1 = d[i + 1] * wd[i + 1];
+        q0 += a0 * a0;
+        q1 += a1 * a1;
+        r0 += b0 * b0;
+        r1 += b1 * b1;
+        y[i] -= d[i];
+        y[i + 1] -= d[i + 1];
+        yp[i] -= cj * d[i];
+        yp[i + 1] -= cj * d[i + 1];
+        ee[i] = (first ? 0.0 : ee[i]) - d[i];
+        ee[i + 1] = (first ? 0.0 : ee[i + 1]) - d[i + 1];
+    }
+    for (; i < n; i++) {
+        double a0 = d[i] * w[i], b0 = d[i] * wd[i];
+        q0 += a0 * a0;
+        r0 += b0 * b0;
+        y[i] -= d[i];
+        yp[i] -= cj * d[i];
+        ee[i] = (first ? 0.0 : ee[i]) - d[i];
+    }
+    double nn = n > 0 ? n : 1;
+    *dn = sqrt((q0 + q1) / nn);
+    *dn_diff = sqrt((r0 + r1) / nn);
+}
+
+/* daei_newton's iteration; *updated is set once the first correction is in y, yp and ee. */
+static int newton_iterate(dae_solver *s, double t, int *updated)
 {
     int n = s->n;
-    /* y and yp start at the predictor (predict); ee accumulates the corrections, which keep
-     * their own digits. Formed as y - ypred after the iteration instead, it carries the
-     * rounding of every update of y (eps |y|) into the history, which on stiff structures is
-     * not small against the corrections: the iteration then stalls at rate 1 on the stiffest
-     * efforts and the steps collapse */
-    memset(s->ee, 0, (size_t)n * sizeof(double));
     double ratio = s->cj / (s->cjj != 0 ? s->cjj : s->cj);
     int old_jac = s->o.newton_jac_age > 0 ? s->st.steps - s->jac_nst >= s->o.newton_jac_age
                                           : ratio < CJ_LOW || ratio > CJ_HIGH;
@@ -244,63 +303,11 @@ int daei_newton(dae_solver *s, double t)
         }
         s->st.newton_iters++;
         double dn, dn_diff;
-        { /* the update and the weighted norms of the correction (all unknowns; without the
-           * index-2 ones) in one pass */
-            double *restrict y = s->y, *restrict yp = s->yp, *restrict ee = s->ee, cj = s->cj;
-            const double *restrict d = s->delta, *restrict w = s->wnewt, *restrict wd = s->wdiff;
-            double q0 = 0, q1 = 0, r0 = 0, r1 = 0;
-            int i = 0;
-#if defined(__GNUC__)
-            /* the pairs below as two-lane vectors, lane l summing the unknowns i = l (mod 2) as
-             * q0/q1 and r0/r1 do: the same operations in the same order, the same bits */
-            typedef double v2 __attribute__((vector_size(2 * sizeof(double))));
-            v2 q = {0, 0}, r = {0, 0}, vcj = {cj, cj};
-            for (; i + 2 <= n; i += 2) {
-                v2 dv, wv, wdv, yv, ypv, ev;
-                memcpy(&dv, d + i, sizeof dv);
-                memcpy(&wv, w + i, sizeof wv);
-                memcpy(&wdv, wd + i, sizeof wdv);
-                memcpy(&yv, y + i, sizeof yv);
-                memcpy(&ypv, yp + i, sizeof ypv);
-                memcpy(&ev, ee + i, sizeof ev);
-                v2 a = dv * wv, b = dv * wdv;
-                q += a * a;
-                r += b * b;
-                yv -= dv;
-                ypv -= vcj * dv;
-                ev -= dv;
-                memcpy(y + i, &yv, sizeof yv);
-                memcpy(yp + i, &ypv, sizeof ypv);
-                memcpy(ee + i, &ev, sizeof ev);
-            }
-            q0 = q[0], q1 = q[1], r0 = r[0], r1 = r[1];
-#endif
-            for (; i + 2 <= n; i += 2) {
-                double a0 = d[i] * w[i], a1 = d[i + 1] * w[i + 1];
-                double b0 = d[i] * wd[i], b1 = d[i + 1] * wd[i + 1];
-                q0 += a0 * a0;
-                q1 += a1 * a1;
-                r0 += b0 * b0;
-                r1 += b1 * b1;
-                y[i] -= d[i];
-                y[i + 1] -= d[i + 1];
-                yp[i] -= cj * d[i];
-                yp[i + 1] -= cj * d[i + 1];
-                ee[i] -= d[i];
-                ee[i + 1] -= d[i + 1];
-            }
-            for (; i < n; i++) {
-                double a0 = d[i] * w[i], b0 = d[i] * wd[i];
-                q0 += a0 * a0;
-                r0 += b0 * b0;
-                y[i] -= d[i];
-                yp[i] -= cj * d[i];
-                ee[i] -= d[i];
-            }
-            double nn = n > 0 ? n : 1;
-            dn = sqrt((q0 + q1) / nn);
-            dn_diff = sqrt((r0 + r1) / nn);
-        }
+        if (m == 0)
+            update(1, n, s->cj, s->delta, s->wnewt, s->wdiff, s->y, s->yp, s->ee, &dn, &dn_diff);
+        else
+            update(0, n, s->cj, s->delta, s->wnewt, s->wdiff, s->y, s->yp, s->ee, &dn, &dn_diff);
+        *updated = 1;
         if (!isfinite(dn)) {
             char nb[32];
             int i = daei_first_nonfinite(s->delta, n);
@@ -350,10 +357,24 @@ int daei_newton(dae_solver *s, double t)
          * predictor, out of the error test (exclude_alg), and the run went on silently wrong. */
         if (m == 0) s->dn0 = dn;
         double ssm = m == 0 ? s->ss * fmax(1.0, dn / s->dn0_last) : s->ss;
-        if (ssm * dn <= EPS_NEWT && (m > 0 || !daei_first_correction_jumps(s)))
+        if (ssm * dn <= EPS_NEWT && (m > 0 || !daei_first_correction_jumps(s, dn)))
             return converged(s, t);
         if (m + 1 >= s->o.max_newton && !newton_extends(s, m, dn, rate)) break;
     }
     note_newton(s, t, rate);
     return NL_RECOVER;
+}
+
+int daei_newton(dae_solver *s, double t)
+{
+    /* y and yp start at the predictor (predict); ee accumulates the corrections, which keep
+     * their own digits. Formed as y - ypred after the iteration instead, it carries the
+     * rounding of every update of y (eps |y|) into the history, which on stiff structures is
+     * not small against the corrections: the iteration then stalls at rate 1 on the stiffest
+     * efforts and the steps collapse. The first update starts ee (update); an iteration that
+     * stops before it leaves ee = 0 */
+    int updated = 0;
+    int r = newton_iterate(s, t, &updated);
+    if (!updated) memset(s->ee, 0, (size_t)s->n * sizeof(double));
+    return r;
 }

@@ -44,13 +44,8 @@ int dae_dense(const dae_solver *s, double t, double *y, double *yp)
  * the sum started from zero gives). K is a constant where it is inlined: one pass over the
  * unknowns, each difference read once, no sweep of y or y' per order. */
 /* (orders above 5, MEBDF only, take the generic loop of daei_interpolate) */
-#if defined(__GNUC__)
-#define DAE_INLINE static inline __attribute__((always_inline))
-#else
-#define DAE_INLINE static inline
-#endif
-DAE_INLINE void interp_pass(int K, int n, const double *const *phi, const double *cc,
-                            const double *dd, double *restrict y, double *restrict yp)
+DAEI_INLINE void interp_pass(int K, int n, const double *const *phi, const double *cc,
+                             const double *dd, double *restrict y, double *restrict yp)
 {
     const double *restrict p0 = phi[0], *restrict p1 = phi[1], *restrict p2 = phi[2],
                            *restrict p3 = phi[3], *restrict p4 = phi[4], *restrict p5 = phi[5];
@@ -74,8 +69,8 @@ DAE_INLINE void interp_pass(int K, int n, const double *const *phi, const double
 }
 
 /* interp_pass for y and y' (both given), y alone or y' alone, with K a constant. */
-DAE_INLINE void interp_order(int K, int n, const double *const *phi, const double *cc,
-                             const double *dd, double *y, double *yp)
+DAEI_INLINE void interp_order(int K, int n, const double *const *phi, const double *cc,
+                              const double *dd, double *y, double *yp)
 {
     if (y && yp)
         interp_pass(K, n, phi, cc, dd, y, yp);
@@ -139,12 +134,17 @@ void daei_interpolate_some(const dae_solver *s, double t, const int *idx, int m,
 {
     double cc[MAXORD + 1], dd[MAXORD + 1];
     int kord = coefficients(s, t, cc, dd);
+    /* the differences' addresses at hand: stores into y and yp could otherwise change s->phi
+     * for all the compiler knows, and it would read them again for every term */
+    const double *ph[MAXORD + 1];
+    for (int j = 0; j <= kord; j++)
+        ph[j] = s->phi[j];
     for (int k = 0; k < m; k++) { /* each term in interp_pass's order */
         int i = idx[k];
-        double a = s->phi[0][i], b = 0.0;
+        double a = ph[0][i], b = 0.0;
         for (int j = 1; j <= kord; j++) {
-            a += cc[j] * s->phi[j][i];
-            b += dd[j] * s->phi[j][i];
+            a += cc[j] * ph[j][i];
+            b += dd[j] * ph[j][i];
         }
         if (y) y[i] = a;
         if (yp) yp[i] = b;

@@ -159,16 +159,17 @@ static void compare(dae_solver *s)
     }
 }
 
-/* Least-squares fit of e_{j} = a e_{j+1} + b e_{j+2} over the unknowns and over the m triples of
- * the window e[0..m+1] (newest first): 1 and theta, r when the roots of xi^2 = a xi + b are
- * complex and the residual is small, else 0. Several triples make the fit overdetermined even
- * when the error lies in few unknowns (two unknowns and one triple fit any a, b exactly). */
-static int fit(int n, double *const *e, int m, double *theta, double *r)
+/* The six sums of products of the fit over the triples (e[j], e[j+1], e[j+2]), j < m, and over
+ * the unknowns idx[0..nt-1] (gather) or 0..nt-1, in ascending order; sum[0..5] = xx, yy, xy, cx,
+ * cy, cc. */
+DAEI_INLINE void fit_sums(int gather, const int *restrict idx, int nt, double *const *e, int m,
+                          double *sum)
 {
     double xx = 0, yy = 0, xy = 0, cx = 0, cy = 0, cc = 0;
     for (int j = 0; j < m; j++) {
         const double *restrict c = e[j], *restrict x = e[j + 1], *restrict y = e[j + 2];
-        for (int i = 0; i < n; i++) {
+        for (int t = 0; t < nt; t++) {
+            int i = gather ? idx[t] : t;
             xx += x[i] * x[i];
             yy += y[i] * y[i];
             xy += x[i] * y[i];
@@ -177,6 +178,29 @@ static int fit(int n, double *const *e, int m, double *theta, double *r)
             cc += c[i] * c[i];
         }
     }
+    sum[0] = xx;
+    sum[1] = yy;
+    sum[2] = xy;
+    sum[3] = cx;
+    sum[4] = cy;
+    sum[5] = cc;
+}
+
+/* Least-squares fit of e_{j} = a e_{j+1} + b e_{j+2} over the unknowns and over the m triples of
+ * the window e[0..m+1] (newest first): 1 and theta, r when the roots of xi^2 = a xi + b are
+ * complex and the residual is small, else 0. Several triples make the fit overdetermined even
+ * when the error lies in few unknowns (two unknowns and one triple fit any a, b exactly). The
+ * estimates are weighted by werr: where it is 0 every product is +-0, which leaves the sums as
+ * they are (they start at +0), so the sums run over the unknowns the error test weighs (tcols)
+ * where those are fewer than all: the same bits. */
+static int fit(const dae_solver *s, double *const *e, int m, double *theta, double *r)
+{
+    double sum[6];
+    if (s->tcols && s->ntcols < s->n)
+        fit_sums(1, s->tcols, s->ntcols, e, m, sum);
+    else
+        fit_sums(0, NULL, s->n, e, m, sum);
+    double xx = sum[0], yy = sum[1], xy = sum[2], cx = sum[3], cy = sum[4], cc = sum[5];
     double det = xx * yy - xy * xy;
     if (!(cc > 0) || !(det > 1e-12 * xx * yy)) return 0;
     double a = (cx * yy - cy * xy) / det, b = (cy * xx - cx * xy) / det;
@@ -193,18 +217,19 @@ void daei_stab_observe(dae_solver *s)
     if (!s->o.stability_guard || s->o.fixed_step) return;
     int n = s->n, k = s->kused;
     double h = s->hused;
-    double *v = s->tmp2; /* the weighted error estimate of this step */
-    for (int i = 0; i < n; i++)
-        v[i] = s->ee[i] * s->werr[i];
     if (h != s->stab_hs || k != s->stab_ks) s->stab_ns = 0;
     double *old = s->stab_e[STAB_WIN - 1]; /* shift the window: e[j+1] <- e[j], e[0] <- v */
     memmove(s->stab_e + 1, s->stab_e, (STAB_WIN - 1) * sizeof *s->stab_e);
     s->stab_e[0] = old;
-    memcpy(s->stab_e[0], v, (size_t)n * sizeof *v);
+    { /* v: the weighted error estimate of this step */
+        double *restrict v = old;
+        const double *restrict e = s->ee, *restrict w = s->werr;
+        DAEI_VFOR(i, n, VAT(v, i) = VAT(e, i) * VAT(w, i););
+    }
     if (s->stab_ns < STAB_WIN) s->stab_ns++;
     if (s->stab_ns >= 3) { /* a triple */
         double theta, r;
-        if (fit(n, s->stab_e, s->stab_ns - 2, &theta, &r) && r >= STAB_R_MIN && r <= STAB_R_MAX &&
+        if (fit(s, s->stab_e, s->stab_ns - 2, &theta, &r) && r >= STAB_R_MIN && r <= STAB_R_MAX &&
             theta >= STAB_THETA_MIN && theta <= STAB_THETA_MAX) {
             if (s->stab_hits > 0 && fabs(theta - s->stab_theta) > 0.25 * theta) s->stab_hits = 0;
             s->stab_hits++;

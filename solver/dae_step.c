@@ -58,87 +58,116 @@ static void set_coeffs(dae_solver *s)
     s->cj = -s->alphas / s->hh;
     s->ck = fabs(s->alpha[k] + s->alphas - s->alpha0);
     s->ck = fmax(s->ck, s->alpha[k]);
-    for (int j = s->ns; j <= k; j++) {
-        double *restrict p = s->phi[j], b = s->beta[j];
-        for (int i = 0; i < s->n; i++)
-            p[i] *= b;
-    }
+    /* phi[j] *= beta[j] for j = ns .. k, the history rescaled to the new step, is done by
+     * predict as it reads phi[j] */
 }
 
 static void restore(dae_solver *s)
 {
     for (int j = 1; j <= s->kk; j++)
         s->psi[j - 1] = s->psi[j] - s->hh;
+    int n = s->n;
     for (int j = s->ns; j <= s->kk; j++) {
         double *restrict p = s->phi[j], b = s->beta[j];
-        for (int i = 0; i < s->n; i++)
-            p[i] /= b;
+        DAEI_VFOR(i, n, VAT(p, i) /= b;);
     }
 }
 
-/* ypred, yppred from the history; y and yp start there (the Newton iteration's initial
- * values). */
+/* The prediction's passes over the unknowns, with a difference rescaled to the new step as it
+ * is read where sa (sb) is set: phi_j *= beta_j, stored (set_coeffs). Constant flags where
+ * inlined: no branch in the loops. */
+DAEI_INLINE void pred_first(int n, const double *restrict p0, double *restrict p1, double g1,
+                            int sa, double ba, double *restrict y, double *restrict yp)
+{
+    DAEI_VFOR(i, n, V a = VAT(p1, i);
+              if (sa) VAT(p1, i) = a *= ba;
+              VAT(y, i) = VAT(p0, i) + a;
+              VAT(yp, i) = g1 * a;);
+}
+
+DAEI_INLINE void pred_pair(int n, double *restrict pa, double *restrict pb, double ga, double gb,
+                           int sa, int sb, double ba, double bb, double *restrict y,
+                           double *restrict yp)
+{
+    DAEI_VFOR(i, n, V a = VAT(pa, i); V b = VAT(pb, i);
+              if (sa) VAT(pa, i) = a *= ba;
+              if (sb) VAT(pb, i) = b *= bb;
+              VAT(y, i) += a + b;
+              VAT(yp, i) += ga * a + gb * b;);
+}
+
+DAEI_INLINE void pred_one(int n, double *restrict pa, double ga, int sa, double ba,
+                          double *restrict y, double *restrict yp)
+{
+    DAEI_VFOR(i, n, V a = VAT(pa, i);
+              if (sa) VAT(pa, i) = a *= ba;
+              VAT(y, i) += a;
+              VAT(yp, i) += ga * a;);
+}
+
+/* y, yp from the history: the predictor, where the Newton iteration starts; y = phi_0 + phi_1 +
+ * ... + phi_k and y' = gamma_1 phi_1 + ... + gamma_k phi_k, summed in this order (the
+ * differences two at a time: fewer passes over y and y'), with phi_j for j >= ns rescaled to the
+ * new step first (set_coeffs). */
 static void predict(dae_solver *s)
 {
-    int n = s->n;
-    double *restrict yq = s->ypred, *restrict ypq = s->yppred;
-    const double *restrict p0 = s->phi[0], *restrict p1 = s->phi[1];
-    double g1 = s->gamma[1];
-    for (int i = 0; i < n; i++) {
-        yq[i] = p0[i] + p1[i];
-        ypq[i] = g1 * p1[i];
-    }
-    /* the remaining differences two at a time: fewer passes over yq and ypq */
+    int n = s->n, k = s->kk, ns = s->ns;
+    double *restrict y = s->y, *restrict yp = s->yp, *const *phi = s->phi;
+    const double *beta = s->beta, *gamma = s->gamma;
+    if (ns <= 1)
+        pred_first(n, phi[0], phi[1], gamma[1], 1, beta[1], y, yp);
+    else
+        pred_first(n, phi[0], phi[1], gamma[1], 0, 1.0, y, yp);
     int j = 2;
-    for (; j + 1 <= s->kk; j += 2) {
-        const double *restrict pa = s->phi[j], *restrict pb = s->phi[j + 1];
-        double ga = s->gamma[j], gb = s->gamma[j + 1];
-        for (int i = 0; i < n; i++) {
-            yq[i] += pa[i] + pb[i];
-            ypq[i] += ga * pa[i] + gb * pb[i];
-        }
+    for (; j + 1 <= k; j += 2) {
+        double *pa = phi[j], *pb = phi[j + 1], ga = gamma[j], gb = gamma[j + 1];
+        if (j >= ns)
+            pred_pair(n, pa, pb, ga, gb, 1, 1, beta[j], beta[j + 1], y, yp);
+        else if (j + 1 >= ns)
+            pred_pair(n, pa, pb, ga, gb, 0, 1, 1.0, beta[j + 1], y, yp);
+        else
+            pred_pair(n, pa, pb, ga, gb, 0, 0, 1.0, 1.0, y, yp);
     }
-    double *restrict y = s->y, *restrict yp = s->yp;
-    if (j == s->kk) {
-        const double *restrict pa = s->phi[j];
-        double ga = s->gamma[j];
-        for (int i = 0; i < n; i++) {
-            y[i] = yq[i] += pa[i];
-            yp[i] = ypq[i] += ga * pa[i];
-        }
-    } else {
-        memcpy(y, yq, (size_t)n * sizeof *y);
-        memcpy(yp, ypq, (size_t)n * sizeof *yp);
+    if (j == k) {
+        if (j >= ns)
+            pred_one(n, phi[j], gamma[j], 1, beta[j], y, yp);
+        else
+            pred_one(n, phi[j], gamma[j], 0, 1.0, y, yp);
     }
 }
 
-/* Vector kernels on distinct arrays (restrict lets them vectorize: through the solver struct
- * the compiler must assume that every store may change the coefficients it reads). */
-static void vadd(int n, double *restrict x, const double *restrict a) /* x += a */
+/* x += a on distinct arrays */
+static void vadd(int n, double *restrict x, const double *restrict a)
 {
-    for (int i = 0; i < n; i++)
-        x[i] += a[i];
+    DAEI_VFOR(i, n, VAT(x, i) += VAT(a, i););
+}
+
+/* a += src, b += a (the new a), and with copy, to = src: one level pair of update_history */
+DAEI_INLINE void hist_pair(int copy, int n, double *restrict a, double *restrict b,
+                           const double *restrict src, double *restrict to)
+{
+    DAEI_VFOR(i, n, V e = VAT(src, i);
+              if (copy) VAT(to, i) = e;
+              V c = VAT(a, i) + e;
+              VAT(a, i) = c;
+              VAT(b, i) += c;);
 }
 
 /* phi after an accepted step of order k = kused: phi[k+1] = ee, phi[k] += ee, then phi[j] +=
  * phi[j+1] for j = k-1 .. 0, two levels per pass over the unknowns (the new phi[j+1] is added
- * to phi[j] while it is at hand). */
+ * to phi[j] while it is at hand; ee copied into phi[k+1] in the first pass). */
 static void update_history(dae_solver *s)
 {
     int n = s->n, k = s->kused;
-    if (k < MAXORD) memcpy(s->phi[k + 1], s->ee, (size_t)n * sizeof(double));
-    const double *restrict src = s->ee;
-    int j = k;
-    for (; j >= 1; j -= 2) { /* phi[j] += src; phi[j-1] += phi[j] */
-        double *restrict a = s->phi[j], *restrict b = s->phi[j - 1];
-        for (int i = 0; i < n; i++) {
-            double c = a[i] + src[i];
-            a[i] = c;
-            b[i] += c;
-        }
-        src = s->phi[j - 1];
-    }
-    if (j == 0) vadd(n, s->phi[0], s->phi[1]);
+    double *const *phi = s->phi;
+    if (k < MAXORD) /* k >= 1: the first pair is j = k, k - 1 */
+        hist_pair(1, n, phi[k], phi[k - 1], s->ee, phi[k + 1]);
+    else
+        hist_pair(0, n, phi[k], phi[k - 1], s->ee, NULL);
+    int j = k - 2;
+    for (; j >= 1; j -= 2) /* phi[j] += phi[j+1]; phi[j-1] += phi[j] */
+        hist_pair(0, n, phi[j], phi[j - 1], phi[j + 1], NULL);
+    if (j == 0) vadd(n, phi[0], phi[1]);
 }
 
 static void complete_step(dae_solver *s)
