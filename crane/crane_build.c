@@ -206,8 +206,9 @@ static int build_boom(build_ctx *b)
                             .J = s->boom_J,
                             .rho = s->boom_rho,
                             .beta = settle ? 0.05 : s->boom_beta,
-                            .element = s->boom_consistent ? MECH_BEAM_CONSISTENT
-                                                          : MECH_BEAM_LUMPED};
+                            .element = s->boom_quartic      ? MECH_BEAM_QUARTIC
+                                       : s->boom_consistent ? MECH_BEAM_CONSISTENT
+                                                            : MECH_BEAM_LUMPED};
         int extra[MAXEL + 1] = {0}, extra3[MAXEL + 1] = {0};
         extra[0] = 1;
         extra3[c->n] = ntip;

@@ -36,6 +36,7 @@ typedef struct crane_scene {
     /* boom */
     int boom_elements;                   /* 0: one rigid body */
     int boom_consistent;                 /* 1: the consistent beam element (mech_beam.h) */
+    int boom_quartic;                    /* 1: the quartic beam element (mech_beam.h) */
     double boom_foot[3];                 /* B in the platform frame */
     double boom_length, boom_tip_radius; /* luffing angle from the tip's distance to the axis */
     double boom_E, boom_G, boom_A, boom_I_luff, boom_I_side, boom_J, boom_rho, boom_beta;

@@ -242,6 +242,15 @@ static int check_scene(const crane_scene *s, const origin_map *om, bg_error *err
                               o ? o : "", o ? ": " : "", KEYS[k].pub.key, s->boom_tip_radius,
                               s->boom_foot[0], s->boom_elements);
     }
+    /* one beam element */
+    if (s->boom_consistent && s->boom_quartic) {
+        int k = blame(om, key_index("boom", "quartic"), key_index("boom", "consistent"), -1);
+        const char *o = origin_of(om, k, ob, sizeof ob);
+        return bg_error_raise(err, BG_ERR_ARGUMENT, "crane_scene_check",
+                              "%s%skey '%s' in [boom]: expected one beam element, got consistent "
+                              "= true and quartic = true; set one of them false",
+                              o ? o : "", o ? ": " : "", KEYS[k].pub.key);
+    }
     /* the reference's times are ordered: 0 < t1 <= t2 < t3 */
     if (!(s->ref_t1 <= s->ref_t2 && s->ref_t2 < s->ref_t3)) {
         int i1 = key_index("reference", "t1"), i2 = key_index("reference", "t2"),

@@ -71,6 +71,11 @@ const key_def crane_scene_keys[] = {
     KBOOL("boom", "consistent", boom_consistent, 0,
           "the consistent beam element instead of the lumped one (mech_beam.h)",
           "3 elements give the boom's first four frequencies within 1e-3 (docs/beam.md)"),
+    KBOOL("boom", "quartic", boom_quartic, 0,
+          "the quartic beam element (a bubble per bending plane) instead of the lumped one "
+          "(mech_beam.h); not with consistent = true",
+          "2 elements give the boom's first four frequencies and peak deflections within 1e-3 "
+          "(docs/beam.md)"),
     KVEC("boom", "foot", boom_foot, R_ANY, 1.5, 0, 2.5, "m", "boom foot (hinge) B, platform frame",
          NULL),
     KNUM("boom", "length", boom_length, R_POS, 76.0, "m", "boom length", NULL),

@@ -27,11 +27,12 @@ static const mdl_param_def chain_params[] = {
     {"J", MDL_NUMBER, 0, "m^4", NULL, 0, INF, MDL_LO_OPEN, NULL, "torsion constant"},
     {"rho", MDL_NUMBER, 0, "kg/m^3", NULL, 0, INF, MDL_LO_OPEN, NULL,
      "density (the masses lumped into the nodes)"},
-    {"element", MDL_CHOICE, 0, "-", "lumped", 0, 0, 0, "lumped|consistent",
-     "the beam element: lumped (masses in the nodes, second order in 1/n) or consistent (the "
+    {"element", MDL_CHOICE, 0, "-", "lumped", 0, 0, 0, "lumped|consistent|quartic",
+     "the beam element: lumped (masses in the nodes, second order in 1/n), consistent (the "
      "elements' distributed inertia with a higher-order bending mass, rotation angles and "
-     "bowing: a cantilever's bending frequencies of eighth order, statics of fourth; "
-     "mech_beam.h)"},
+     "bowing: a cantilever's bending frequencies of eighth order, statics of fourth) or quartic "
+     "(the consistent element's field with a bubble per bending plane, four states of the "
+     "element: accurate at eight elements spinning too; mech_beam.h)"},
     {"kappa", MDL_NUMBER, 0, "1", "0", 0, INF, 0, NULL,
      "shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko"},
     {"beta", MDL_NUMBER, 0, "s", "0", 0, INF, 0, NULL,
@@ -47,6 +48,14 @@ static const mdl_param_def chain_params[] = {
 };
 static const mdl_port_def chain_ports[] = {
     {"*", 0, MDL_MECH6, "one per entry of ports (mechanical 6D, or 3D where it says dim: 3)"}};
+
+/* the element kind of the choice "element" */
+static int element_kind(const char *choice)
+{
+    return !strcmp(choice, "consistent") ? MECH_BEAM_CONSISTENT
+           : !strcmp(choice, "quartic")  ? MECH_BEAM_QUARTIC
+                                         : MECH_BEAM_LUMPED;
+}
 
 static int chain_build(bgr_model *m, bgr_comp c, const char *name, const mdl_args *a,
                        mdl_instance *out, bg_error *err)
@@ -70,8 +79,7 @@ static int chain_build(bgr_model *m, bgr_comp c, const char *name, const mdl_arg
     mech_section sec = {mdl_arg_num(a, "E"),  mdl_arg_num(a, "G"),   mdl_arg_num(a, "A"),
                         mdl_arg_num(a, "Iy"), mdl_arg_num(a, "Iz"),  mdl_arg_num(a, "J"),
                         mdl_arg_num(a, "rho"), mdl_arg_num(a, "kappa"), mdl_arg_num(a, "beta"),
-                        strcmp(mdl_arg_choice(a, "element"), "consistent") ? MECH_BEAM_LUMPED
-                                                                         : MECH_BEAM_CONSISTENT};
+                        element_kind(mdl_arg_choice(a, "element"))};
     int comp = mech_beam_chain(m, c, name, n, mdl_arg_vec(a, "start", NULL), mdl_arg_vec(a, "end", NULL),
                                mdl_arg_vec(a, "up", NULL), &sec, mdl_arg_vec(a, "gravity", NULL), extra,
                                extra3, nodes, elems);

@@ -121,6 +121,9 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
     }
     triad_q(c, y + b->qa, 6, b->E0, k->ta);
     triad_q(c, y + b->qb, 10, b->E0, k->tb);
+    if (mech_beam_quartic_(b))
+        for (int a = 0; a < 2; a++)
+            ad_var(c, y[b->bs + a], 14 + a, &k->bub[a]);
     /* chord */
     for (int i = 0; i < 3; i++)
         ad_axpy(c, &k->X[3 + i], -1.0, &k->X[i], &k->d[i]);
@@ -157,22 +160,29 @@ static void beam_energy(const beam *b, const double *y, const ad_ctx *c, beam_wo
         half_diff_dots(c, k->e3, t + 3, k->e2, t + 6, &k->th[3 * n + 0]);
         half_diff_dots(c, k->e1, t + 6, k->e3, t + 0, &k->th[3 * n + 1]);
         half_diff_dots(c, k->e2, t + 0, k->e1, t + 3, &k->th[3 * n + 2]);
-        if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_angles_(c, k, &k->th[3 * n]);
+        if (mech_beam_inertial_(b)) mech_beam_angles_(c, k, &k->th[3 * n]);
     }
     /* energy W = d^T K d / 2 over the nonzero entries of the local stiffness */
     ad_const(c, -b->L0, &k->t1);
     ad_axpy(c, &k->L, 1.0, &k->t1, &k->u); /* u = L - L0 */
     const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
     ad_const(c, 0.0, &k->W);
-    int cons = b->sec.element == MECH_BEAM_CONSISTENT;
-    if (cons) mech_beam_bow_(c, k, b->sec.E * b->sec.A, b->L0);
+    int cons = mech_beam_inertial_(b);
+    if (cons) mech_beam_bow_(c, k, b->sec.E * b->sec.A, b->L0, mech_beam_quartic_(b));
     for (int r = 0; r < 7; r++)
         for (int q = r; q < 7; q++) {
             if (b->K[r][q] == 0 || (cons && r == 0 && q == 0)) continue;
             ad_mul(c, dl[r], dl[q], &k->t2);
             ad_axpy(c, &k->W, (q == r ? 0.5 : 1.0) * b->K[r][q], &k->t2, &k->W);
         }
-    if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_offsets_(c, k);
+    if (mech_beam_quartic_(b)) { /* the bubbles' bending: EI / (2 L0) int B''^2 b^2, = 4/5 */
+        const double EI[2] = {b->sec.E * b->sec.Iy, b->sec.E * b->sec.Iz};
+        for (int a = 0; a < 2; a++) {
+            ad_mul(c, &k->bub[a], &k->bub[a], &k->t2);
+            ad_axpy(c, &k->W, 0.4 * EI[a] / b->L0, &k->t2, &k->W);
+        }
+    }
+    if (cons) mech_beam_offsets_(c, b, k);
     /* the Hessians read whole (velocity_gradient): W's, and the deformations' for the damping */
     ad_mirror(c, &k->W);
     for (int r = 0; r < 7; r++)
@@ -191,7 +201,11 @@ void mech_beam_quat_J_(const double *q, double J[4][3])
 
 static int config_var(const beam *b, int c)
 {
-    return c < 3 ? b->xa + c : c < 6 ? b->xb + c - 3 : c < 10 ? b->qa + c - 6 : b->qb + c - 10;
+    return c < 3    ? b->xa + c
+           : c < 6  ? b->xb + c - 3
+           : c < 10 ? b->qa + c - 6
+           : c < 14 ? b->qb + c - 10
+                    : b->bs + c - 14;
 }
 
 /* The gradient of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b, phi_b) of the
@@ -213,15 +227,21 @@ static void velocity_gradient_g(const double *ag, const double *qa, const double
     }
 }
 
-void mech_beam_velocity_gradient_(const ad *a, const double *qa, const double *qb, double *gv,
-                                  double (*dgv)[14])
+void mech_beam_velocity_gradient_(const beam *b, const ad *a, const double *y, double *gv,
+                                  double (*dgv)[MB_NC])
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
+    const double *qa = y + b->qa, *qb = y + b->qb;
     velocity_gradient_g(a->g, qa, qb, gv);
+    for (int k = 12; k < b->nv; k++) { /* the bubbles: their rates are their velocities */
+        gv[k] = a->g[k + 2];
+        for (int cc = 0; dgv && cc < b->nc; cc++)
+            dgv[k][cc] = a->h[(k + 2) * AD_N + cc];
+    }
     for (int n = 0; n < 2 && dgv; n++) {
         double J[4][3];
         mech_beam_quat_J_(n ? qb : qa, J);
-        for (int cc = 0; cc < 14; cc++) {
+        for (int cc = 0; cc < b->nc; cc++) {
             for (int i = 0; i < 3; i++) {
                 dgv[6 * n + i][cc] = a->h[(xoff[n] + i) * AD_N + cc];
                 double d = 0;
@@ -455,7 +475,8 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
         for (int s2 = 0; s2 < 7; s2++)
             z[r] += K[r][s2] * v[s2];
     }
-    if (b->sec.element == MECH_BEAM_CONSISTENT) mech_beam_bow_loads_(f.def, b->sec.E * b->sec.A, b->L0, z);
+    if (b->sec.element == MECH_BEAM_CONSISTENT)
+        mech_beam_bow_loads_(f.def, b->sec.E * b->sec.A, b->L0, z);
     beam_reverse(b, &f, z, gc);
     velocity_gradient_g(gc, y + b->qa, y + b->qb, g);
 }
@@ -466,21 +487,20 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
  * the dissipation function D = beta/2 d'^T K d' with d' = Jd w (Jd: the gradients of the local
  * deformations in the velocity coordinates, w: the port flows), i.e. beta Jd^T K Jd w. */
 static void beam_loads(const beam *b, const double *y, int order, const double *dir, double *g,
-                       double (*dg)[14], double (*dgw)[12])
+                       double (*dg)[MB_NC], double (*dgw)[12])
 {
     beam_work *k = b->work;
-    ad_ctx c = {.order = order, .dir = dir};
+    ad_ctx c = {.order = order, .dir = dir, .n = b->nc};
     beam_energy(b, y, &c, k);
-    const double *qa = y + b->qa, *qb = y + b->qb;
-    mech_beam_velocity_gradient_(&k->W, qa, qb, g, dg);
+    mech_beam_velocity_gradient_(b, &k->W, y, g, dg);
     if (dgw) memset(dgw, 0, 144 * sizeof(double));
     double beta = b->sec.beta;
     if (!(beta > 0)) return;
     const ad *dl[7] = {&k->u, &k->th[0], &k->th[1], &k->th[2], &k->th[3], &k->th[4], &k->th[5]};
-    double Jd[7][12], (*dJ)[12][14] = k->dJ, w[12], dd[7] = {0}, z[7] = {0};
+    double Jd[7][MB_NV], (*dJ)[MB_NV][MB_NC] = k->dJ, w[12], dd[7] = {0}, z[7] = {0};
     const double(*K)[7] = b->K;
     for (int r = 0; r < 7; r++)
-        mech_beam_velocity_gradient_(dl[r], qa, qb, Jd[r], dg ? dJ[r] : NULL);
+        mech_beam_velocity_gradient_(b, dl[r], y, Jd[r], dg ? dJ[r] : NULL);
     for (int m = 0; m < 6; m++) {
         w[m] = y[b->f[0] + m];
         w[6 + m] = y[b->f[1] + m];
@@ -514,16 +534,16 @@ static void beam_loads(const beam *b, const double *y, int order, const double *
             dgw[kk][m] = beta * sum;
         }
     /* d dd_s / dc = sum_m dJ[s][m][c] w_m */
-    double ddc[7][14];
+    double ddc[7][MB_NC];
     for (int s2 = 0; s2 < 7; s2++)
-        for (int cc = 0; cc < 14; cc++) {
+        for (int cc = 0; cc < b->nc; cc++) {
             double sum = 0;
             for (int m = 0; m < 12; m++)
                 sum += dJ[s2][m][cc] * w[m];
             ddc[s2][cc] = sum;
         }
     for (int kk = 0; kk < 12; kk++)
-        for (int cc = 0; cc < 14; cc++) {
+        for (int cc = 0; cc < b->nc; cc++) {
             double sum = 0;
             for (int r = 0; r < 7; r++) {
                 double kz = 0;
@@ -535,11 +555,21 @@ static void beam_loads(const beam *b, const double *y, int order, const double *
         }
 }
 
-/* The velocity unknowns of the nodes, in the port order (v_a, w_a, v_b, w_b): p = 0 .. 11. */
+/* The velocity unknowns of the nodes, in the port order (v_a, w_a, v_b, w_b), then the
+ * bubbles' rates c_y, c_z (quartic): p = 0 .. nv - 1. */
 static int node_rate_var(const beam *b, int p)
 {
+    if (p >= 12) return b->bs + 2 + p - 12;
     const int base[4] = {b->va, b->wa, b->vb, b->wb};
     return base[p / 3] + p % 3;
+}
+
+/* The bubbles' damping (quartic, beta > 0): the dissipation function beta/2 (4/5) EI / L0 c^2
+ * of each, the part of beta/2 d'^T K d' the bubble adds (its bending is uncoupled). */
+static double bubble_damping(const beam *b, int a)
+{
+    const double EI = b->sec.E * (a ? b->sec.Iz : b->sec.Iy);
+    return b->sec.beta * 0.8 * EI / b->L0;
 }
 
 static int beam_declare(bgr_element *el, bgr_model *m)
@@ -560,23 +590,36 @@ static int beam_declare(bgr_element *el, bgr_model *m)
     b->wb = b->xb + 6;
     b->qa = b->xa + 9;
     b->qb = b->xb + 9;
+    b->bs = el->state0;
     for (int k = 0; k < 2; k++) {
         b->e[k] = bgr_ev(el, m, k, 0);
         b->f[k] = bgr_fv(el, m, k, 0);
         b->s[k] = el->sign[k];
     }
-    static const char *const lab[12] = {"force_a0",  "force_a1",  "force_a2",  "moment_a0",
-                                        "moment_a1", "moment_a2", "force_b0",  "force_b1",
-                                        "force_b2",  "moment_b0", "moment_b1", "moment_b2"};
-    int st = bgr_declare_equations(el, m, 12, lab);
+    static const char *const lab[16] = {
+        "force_a0",  "force_a1",  "force_a2",  "moment_a0",     "moment_a1",     "moment_a2",
+        "force_b0",  "force_b1",  "force_b2",  "moment_b0",     "moment_b1",     "moment_b2",
+        "bubble_y_rate", "bubble_z_rate", "bubble_y_motion", "bubble_z_motion"};
+    int quartic = mech_beam_quartic_(b), inertial = mech_beam_inertial_(b);
+    int st = bgr_declare_equations(el, m, quartic ? 16 : 12, lab);
     for (int r = 0; st == BG_OK && r < 12; r++) {
         st = bgr_declare_dep(el, m, r, b->e[r / 6] + r % 6, 0);
-        for (int cc = 0; st == BG_OK && cc < 14; cc++)
+        for (int cc = 0; st == BG_OK && cc < b->nc; cc++)
             st = bgr_declare_dep(el, m, r, config_var(b, cc), 0);
         for (int mm = 0; st == BG_OK && b->sec.beta > 0 && mm < 12; mm++)
             st = bgr_declare_dep(el, m, r, b->f[mm / 6] + mm % 6, 0);
-        for (int p = 0; st == BG_OK && b->sec.element == MECH_BEAM_CONSISTENT && p < 24; p++)
-            st = bgr_declare_dep(el, m, r, node_rate_var(b, p % 12), p / 12);
+        for (int p = 0; st == BG_OK && inertial && p < 2 * b->nv; p++)
+            st = bgr_declare_dep(el, m, r, node_rate_var(b, p % b->nv), p / b->nv);
+    }
+    for (int a = 0; st == BG_OK && quartic && a < 2; a++) { /* b' = c */
+        st = bgr_declare_dep(el, m, 12 + a, b->bs + a, 1);
+        if (st == BG_OK) st = bgr_declare_dep(el, m, 12 + a, b->bs + 2 + a, 0);
+    }
+    for (int a = 0; st == BG_OK && quartic && a < 2; a++) { /* the bubble's motion */
+        for (int cc = 0; st == BG_OK && cc < b->nc; cc++)
+            st = bgr_declare_dep(el, m, 14 + a, config_var(b, cc), 0);
+        for (int p = 0; st == BG_OK && p < 2 * b->nv; p++)
+            st = bgr_declare_dep(el, m, 14 + a, node_rate_var(b, p % b->nv), p / b->nv);
     }
     /* Nominal magnitudes of the port loads: the stated force (the chain builder states the
      * chain's weight; a section alone carries no load); moments: the stated moment, else that
@@ -591,22 +634,30 @@ static int beam_declare(bgr_element *el, bgr_model *m)
 static int beam_residual(const bgr_element *el, double t, const double *y, const double *yp,
                          double *F)
 {
-    (void)t, (void)yp;
+    (void)t;
     const beam *b = el->params;
-    double g[12], gi[12];
-    if (b->sec.element == MECH_BEAM_CONSISTENT) { /* the inertia: Hessians along the motion */
-        double Xd[14]; /* the configuration's rate: the accelerations' direction */
+    double g[MB_NV], gi[MB_NV];
+    if (mech_beam_inertial_(b)) { /* the inertia: Hessians along the motion */
+        double Xd[MB_NC]; /* the configuration's rate: the accelerations' direction */
         mech_beam_config_rate_(b, y, Xd);
         beam_loads(b, y, 3, Xd, g, NULL, NULL);
         mech_beam_inertia_(b, y, yp, gi, NULL, NULL, NULL);
-        for (int r = 0; r < 12; r++)
+        for (int r = 0; r < b->nv; r++)
             g[r] += gi[r];
     } else {
         beam_loads_plain(b, y, g);
     }
     for (int r = 0; r < 12; r++)
         F[r] = b->s[r / 6] * y[b->e[r / 6] + r % 6] - g[r];
-    for (int r = 0; r < 12; r++)
+    int neq = 12;
+    if (mech_beam_quartic_(b)) {
+        for (int a = 0; a < 2; a++) {
+            F[12 + a] = yp[b->bs + a] - y[b->bs + 2 + a];
+            F[14 + a] = g[12 + a] + bubble_damping(b, a) * y[b->bs + 2 + a];
+        }
+        neq = 16;
+    }
+    for (int r = 0; r < neq; r++)
         if (!isfinite(F[r])) return 1; /* degenerate configuration: cut the step */
     return 0;
 }
@@ -614,21 +665,34 @@ static int beam_residual(const bgr_element *el, double t, const double *y, const
 static int beam_jacobian(const bgr_element *el, double t, const double *y, const double *yp,
                          double *v)
 {
-    (void)t, (void)yp;
+    (void)t;
     const beam *b = el->params;
-    double g[12], dg[12][14], dgw[12][12], gi[12], dX[12][14], dV[12][12], dA[12][12];
-    int cons = b->sec.element == MECH_BEAM_CONSISTENT;
+    double g[MB_NV], dg[MB_NV][MB_NC], dgw[12][12], gi[MB_NV], dX[MB_NV][MB_NC],
+        dV[MB_NV][MB_NV], dA[MB_NV][MB_NV];
+    int cons = mech_beam_inertial_(b), nv = b->nv, nc = b->nc;
     beam_loads(b, y, 2, NULL, g, dg, dgw);
     if (cons) mech_beam_inertia_(b, y, yp, gi, dX, dV, dA);
     int n = 0;
     for (int r = 0; r < 12; r++) {
         v[n++] = b->s[r / 6];
-        for (int cc = 0; cc < 14; cc++)
+        for (int cc = 0; cc < nc; cc++)
             v[n++] = -dg[r][cc] - (cons ? dX[r][cc] : 0.0);
         for (int mm = 0; b->sec.beta > 0 && mm < 12; mm++)
             v[n++] = -dgw[r][mm];
-        for (int p = 0; cons && p < 24; p++)
-            v[n++] = -(p < 12 ? dV[r][p] : dA[r][p - 12]);
+        for (int p = 0; cons && p < 2 * nv; p++)
+            v[n++] = -(p < nv ? dV[r][p] : dA[r][p - nv]);
+    }
+    if (!mech_beam_quartic_(b)) return 0;
+    for (int a = 0; a < 2; a++) {
+        v[n++] = 1.0;
+        v[n++] = -1.0;
+    }
+    for (int a = 0; a < 2; a++) {
+        int r = 12 + a;
+        for (int cc = 0; cc < nc; cc++)
+            v[n++] = dg[r][cc] + dX[r][cc];
+        for (int p = 0; p < 2 * nv; p++)
+            v[n++] = (p < nv ? dV[r][p] : dA[r][p - nv]) + (p == r ? bubble_damping(b, a) : 0.0);
     }
     return 0;
 }
@@ -678,11 +742,18 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
         mech_beam_bad_stiffness_(m, c, name, w, sec, L0) ||
         bgr_check_values(m, c, name, w, "gravity", gravity, 3, BGR_FINITE))
         return BG_ERR_ARGUMENT;
-    if (sec->element == MECH_BEAM_CONSISTENT && !(sec->rho > 0 && isfinite(sec->rho * sec->A * L0)))
+    if (sec->element != MECH_BEAM_LUMPED && !(sec->rho > 0 && isfinite(sec->rho * sec->A * L0)))
         return bgr_refuse(m, c, name, w,
-                          "section.rho = %g with element = MECH_BEAM_CONSISTENT, expected rho > 0 "
-                          "and a finite element mass rho A L0",
-                          sec->rho);
+                          "section.rho = %g with element = %s, expected rho > 0 and a finite "
+                          "element mass rho A L0",
+                          sec->rho,
+                          sec->element == MECH_BEAM_QUARTIC ? "MECH_BEAM_QUARTIC"
+                                                            : "MECH_BEAM_CONSISTENT");
+    if (sec->element == MECH_BEAM_QUARTIC && sec->kappa > 0)
+        return bgr_refuse(m, c, name, w,
+                          "section.kappa = %g with element = MECH_BEAM_QUARTIC, expected 0 (the "
+                          "quartic element is Euler-Bernoulli)",
+                          sec->kappa);
     if (node_a == node_b)
         return bgr_refuse(m, c, name, w, "node_a = node_b = %d, expected two different bodies",
                           node_a);
@@ -705,8 +776,14 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
     local_stiffness(b, b->K);
     b->node_a = node_a;
     b->node_b = node_b;
+    int quartic = sec->element == MECH_BEAM_QUARTIC;
+    b->nc = quartic ? 16 : 14;
+    b->nv = quartic ? 14 : 12;
     const int dims[2] = {6, 6};
-    return bgr_element_add(m, c, name, &beam_class, b, 2, dims, 0, NULL, 0, NULL);
+    static const char *const states[4] = {"bubble_y", "bubble_z", "bubble_y_rate",
+                                          "bubble_z_rate"};
+    return bgr_element_add(m, c, name, &beam_class, b, 2, dims, quartic ? 4 : 0,
+                           quartic ? states : NULL, 0, NULL);
 }
 
 int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
@@ -720,7 +797,7 @@ double mech_beam_energy(const bgr_model *m, int elem, const double *y)
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);
     if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
     const beam *b = el->params;
-    ad_ctx c = {.order = 1};
+    ad_ctx c = {.order = 1, .n = b->nc};
     beam_energy(b, y, &c, b->work);
     return b->work->W.v;
 }
@@ -742,7 +819,10 @@ double mech_beam_dissipation(const bgr_model *m, int elem, const double *y)
     for (int r = 0; r < 7; r++)
         for (int c = 0; c < 7; c++)
             P += dd[r] * b->K[r][c] * dd[c];
-    return b->sec.beta * P;
+    P *= b->sec.beta;
+    for (int a = 0; mech_beam_quartic_(b) && a < 2; a++)
+        P += bubble_damping(b, a) * y[b->bs + 2 + a] * y[b->bs + 2 + a];
+    return P;
 }
 
 double mech_beam_kinetic(const bgr_model *m, int elem, const double *y)
@@ -750,8 +830,8 @@ double mech_beam_kinetic(const bgr_model *m, int elem, const double *y)
     bgr_element *el = bgr_element_get((bgr_model *)m, elem);
     if (!el || el->cls != &beam_class || !bgr_n(m) || !y) return NAN;
     const beam *b = el->params;
-    if (b->sec.element != MECH_BEAM_CONSISTENT) return 0.0;
-    ad_ctx c = {.order = 1};
+    if (!mech_beam_inertial_(b)) return 0.0;
+    ad_ctx c = {.order = 1, .n = b->nc};
     beam_energy(b, y, &c, b->work);
     return mech_beam_kinetic_(b, y);
 }
@@ -762,9 +842,11 @@ int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, dou
     if (!el || el->cls != &beam_class || !bgr_n(m) || !y || !g || path < 0 || path > 1)
         return BG_ERR_ARGUMENT;
     const beam *b = el->params;
-    if (path == 0)
-        beam_loads_plain(b, y, g);
+    double gl[MB_NV];
+    if (path == 0 && !mech_beam_quartic_(b))
+        beam_loads_plain(b, y, gl);
     else
-        beam_loads(b, y, 1, NULL, g, NULL, NULL);
+        beam_loads(b, y, 1, NULL, gl, NULL, NULL);
+    memcpy(g, gl, 12 * sizeof *g);
     return BG_OK;
 }

@@ -23,7 +23,7 @@
  * Jacobian by second-order automatic differentiation (mech_ad.h). W is invariant under any rigid
  * motion, so a rigidly rotating element has no deformation energy, however large the rotation.
  * Ports 0 (node a) and 1 (node b) are 6D (conventions of mech_body.h).
- * Two elements (section.element).
+ * Three elements (section.element).
  * MECH_BEAM_LUMPED (the default): the energy W above; no mass in the element: the chain builder
  * (mech_beam_chain.h) lumps it into the node bodies. Second order in 1/n: at 8 elements the
  * clamped-free bending frequencies are off by 7e-3, 2.4e-2, 3.9e-2, the tip of the elastica at
@@ -132,6 +132,36 @@
  *      clamped-pinned 6.9e-5, clamped-clamped 2.1e-4, free-free 2.5e-4 (the consistent mass:
  *      1.3e-3 .. 2.4e-3); at 4 elements the free-free third mode is worse (1.5e-2 against
  *      7.9e-3).
+ * MECH_BEAM_QUARTIC: the consistent element's changes 1 to 3 (angles, bowing, inertia) on a
+ * field one degree higher: in each bending plane the cubic field gets a bubble, B(xi) =
+ * xi^2 (1 - xi)^2 (zero, with its slope, at both nodes), whose amplitudes b_y, b_z are unknowns
+ * of the element itself, the hierarchical enrichment of p-version finite elements (Szabo and
+ * Babuska, Finite Element Analysis, 1991, ch. 6; for rotating beams, Hodges and Rutkowski,
+ * AIAA J. 19 (1981) 1459: variable-order elements that reach Southwell's coefficients with a
+ * few elements). The element's states are b_y, b_z and their rates c_y, c_z, its equations
+ * b' = c and the bubbles' equations of motion (d'Alembert's principle over the same points as
+ * the ports' loads, plus the bubble's elastic and damping forces). In the fields above, with
+ * V = b_z e2 - b_y e3 (the bubble in the element frame, in the convention of P and Q):
+ *   r(xi) += L0 B(xi) V,   psi_y += B'(xi) b_y,   psi_z += B'(xi) b_z,
+ * and F(xi) the foreshortening of the whole quartic arc (its integrals of products of H1', H2',
+ * B'); the energy gets, per bending plane with the bending stiffness EI of that plane,
+ *   EI / (2 L0) int B''^2 b^2 = (2/5) EI b^2 / L0   (B'' is orthogonal to the linear
+ *                                                     curvatures of the cubic part: no coupling)
+ * and the bowing term of the axial strain ((ta - tb) b + 2 b^2 / 7) / 30 (int H1' B' = 1/30,
+ * int H2' B' = -1/30, int B'^2 = 2/105), so that the bubble takes the axial force's geometric
+ * stiffness too. The mass is the consistent mass of the quartic field (5 Gauss points, exact
+ * at small deformation), without change 4's template (which was made for the cubic field).
+ * Damping (beta > 0) adds beta (4/5) EI / L0 c per plane to the bubble's equation (its part of
+ * beta d'^T K d'). Euler-Bernoulli only: kappa > 0 is refused. Accuracy (tests/components/
+ * mechanics/test_modes_rotating.c, test_beam_quartic.c): spinning (Southwell's cantilever,
+ * gamma = 0 .. 12) the first three bending frequencies in both planes within 4.7e-6 at 8
+ * elements (the consistent element: 4.4e-4 at gamma = 12); the crane's boom at 2 elements
+ * within 1e-3 (docs/beam.md). The residual costs about 1.4 times the consistent element's per
+ * element (16 AD variables instead of 14, 28 basis vectors, 5 points), fewer elements do the
+ * same work. The bubble's own mode, the element's first clamped-clamped one (omega = 22.4
+ * sqrt(EI / (rho A L0^4))), is among the mesh's highest: an undamped run that excites it
+ * resolves it (a free chain of 4 elements bending and spinning, rtol 1e-6: 3.7 times the
+ * consistent element's steps); stiffness-proportional damping damps it the most.
  * No damping in the element unless beta > 0: stiffness-proportional (Rayleigh) damping,
  * the gradient with respect to the port velocities of D = beta/2 d'^T K d', d' the rates of the
  * local deformations and K the local stiffness, so that it acts on deformation only (a rigid
@@ -148,20 +178,22 @@ extern "C" {
 #endif
 
 /* The element (mech_section.element): see above. */
-enum { MECH_BEAM_LUMPED = 0, MECH_BEAM_CONSISTENT = 1 };
+enum { MECH_BEAM_LUMPED = 0, MECH_BEAM_CONSISTENT = 1, MECH_BEAM_QUARTIC = 2 };
 
 /* Accepted: every field finite; E, G, A, Iy, Iz, J > 0; rho, kappa, beta >= 0 (the chain
- * builder, and element = MECH_BEAM_CONSISTENT, need rho > 0); the stiffnesses they give (EA/L0,
- * GJ/L0, EI/L0, times beta) finite; element one of the two values. */
+ * builder, and element = MECH_BEAM_CONSISTENT or MECH_BEAM_QUARTIC, need rho > 0; the quartic
+ * element kappa = 0); the stiffnesses they give (EA/L0, GJ/L0, EI/L0, times beta) finite;
+ * element one of the three values. */
 typedef struct mech_section {
     double E, G;      /* Young's and shear modulus (Pa), > 0 */
     double A, Iy, Iz; /* area (m^2); second moments about the local y (e2) and z (e3) axes (m^4),
                          > 0 */
     double J;         /* torsion constant (m^4), > 0 */
-    double rho;       /* density (kg/m^3; for the chain builder's lumped masses), >= 0 (chain: > 0) */
-    double kappa;     /* shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko */
-    double beta;      /* stiffness-proportional damping (s), >= 0: modal damping ratio beta w/2 */
-    int element;      /* MECH_BEAM_LUMPED (0, masses in the node bodies) or MECH_BEAM_CONSISTENT */
+    double rho;   /* density (kg/m^3; for the chain builder's lumped masses), >= 0 (chain: > 0) */
+    double kappa; /* shear correction factor: 0 Euler-Bernoulli, > 0 Timoshenko */
+    double beta;  /* stiffness-proportional damping (s), >= 0: modal damping ratio beta w/2 */
+    int element;  /* MECH_BEAM_LUMPED (0, masses in the node bodies), MECH_BEAM_CONSISTENT or
+                     MECH_BEAM_QUARTIC */
 } mech_section;
 
 /* One element between node bodies node_a and node_b (element ids of mech_body instances whose
@@ -170,10 +202,11 @@ typedef struct mech_section {
  * Ports 0 and 1 must be bonded to ports of node_a and node_b at their mass centres.
  * Accepted: sec not NULL and as stated above; E0 not NULL, finite, orthonormal to 1e-9 and
  * right-handed (e3 = e1 x e2); L0 finite and > 0; node_a != node_b, both rigid bodies made
- * before. With element = MECH_BEAM_CONSISTENT the node bodies must carry half of the
- * element's mass rho A L0 and rotary inertia rho (I_y + I_z, I_y, I_z) L0 at their centres, as
- * the chain builder's do; a single element has no gravity of its own (the nodes' weights are
- * lumped).
+ * before. With element = MECH_BEAM_CONSISTENT or MECH_BEAM_QUARTIC the node bodies must carry
+ * half of the element's mass rho A L0 and rotary inertia rho (I_y + I_z, I_y, I_z) L0 at their
+ * centres, as the chain builder's do; a single element has no gravity of its own (the nodes'
+ * weights are lumped). A quartic element has four states of its own (bubble_y, bubble_z and
+ * their rates bubble_y_rate, bubble_z_rate; zero: straight and at rest) and four equations.
  * Anything else gives BG_ERR_ARGUMENT before anything is built, with a message naming
  * the element's path and the parameter (nothing is added to the model). */
 BG_API int mech_beam(bgr_model *m, bgr_comp c, const char *name, int node_a, int node_b,
@@ -187,12 +220,13 @@ BG_API double mech_beam_energy(const bgr_model *m, int elem, const double *y);
  * deformations from the node velocities in y; NaN as for the energy. */
 BG_API double mech_beam_dissipation(const bgr_model *m, int elem, const double *y);
 /* The kinetic energy the element adds to its node bodies' at a state vector y (after
- * bgr_compile): the consistent element's T less the nodes' share (above); 0 for a lumped
- * element; NaN as for the energy. */
+ * bgr_compile): the consistent (or quartic) element's T less the nodes' share (above); 0 for a
+ * lumped element; NaN as for the energy. */
 BG_API double mech_beam_kinetic(const bgr_model *m, int elem, const double *y);
 /* The 12 port loads (F_a, M_a, F_b, M_b) of a beam element at a state vector y, for tests:
- * path 0 as the residual computes them (plain arithmetic, one reverse pass), path 1 by the
- * automatic differentiation the Jacobian uses. BG_OK, or BG_ERR_ARGUMENT (not a beam element of
+ * path 0 as the residual computes them (plain arithmetic, one reverse pass; the quartic
+ * element has no such path and gives path 1's), path 1 by the automatic differentiation the
+ * Jacobian uses. BG_OK, or BG_ERR_ARGUMENT (not a beam element of
  * a compiled model, NULL arrays, another path). */
 BG_API int mech_beam_loads(const bgr_model *m, int elem, const double *y, int path, double g[12]);
 

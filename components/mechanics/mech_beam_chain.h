@@ -5,12 +5,11 @@
  * node bodies (mech_body). The mass is lumped into the nodes: half of each element's mass
  * rho A l to each end node, with the rotary inertia of the section over that length (rho I l;
  * rho Ip l in torsion), so an inner node stands for the length l and an end node for l/2.
- * With section.element = MECH_BEAM_CONSISTENT the elements add the rest of the consistent mass
- * (mech_beam.h: their distributed mass less these point masses) and the chain's gravity as
- * distributed weight; the default lumped masses need no coupling terms between the nodes but
- * converge at second order only. The elements
- * of a chain state the chain's weight rho A L |g| as the nominal magnitude of their port forces
- * (mech_body.h, mech_set_nominal). */
+ * With section.element = MECH_BEAM_CONSISTENT or MECH_BEAM_QUARTIC the elements add the rest of the
+ * consistent mass (mech_beam.h: their distributed mass less these point masses) and the chain's
+ * gravity as distributed weight; the default lumped masses need no coupling terms between the nodes
+ * but converge at second order only. The elements of a chain state the chain's weight rho A L |g|
+ * as the nominal magnitude of their port forces (mech_body.h, mech_set_nominal). */
 #ifndef MECH_BEAM_CHAIN_H
 #define MECH_BEAM_CHAIN_H
 

@@ -21,10 +21,11 @@ int mech_beam_bad_section_(bgr_model *m, bgr_comp c, const char *name, const cha
         bgr_check_value(m, c, name, w, "section.kappa", s->kappa, BGR_NONNEGATIVE) ||
         bgr_check_value(m, c, name, w, "section.beta", s->beta, BGR_NONNEGATIVE))
         return BG_ERR_ARGUMENT;
-    if (s->element != MECH_BEAM_LUMPED && s->element != MECH_BEAM_CONSISTENT)
+    if (s->element != MECH_BEAM_LUMPED && s->element != MECH_BEAM_CONSISTENT &&
+        s->element != MECH_BEAM_QUARTIC)
         return bgr_refuse(m, c, name, w,
-                          "section.element = %d, expected MECH_BEAM_LUMPED (0) or "
-                          "MECH_BEAM_CONSISTENT (1)",
+                          "section.element = %d, expected MECH_BEAM_LUMPED (0), "
+                          "MECH_BEAM_CONSISTENT (1) or MECH_BEAM_QUARTIC (2)",
                           s->element);
     return BG_OK;
 }

@@ -53,7 +53,7 @@ void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th)
 }
 
 /* The bowing term: W += EA L0 eps^2 / 2, eps = u / L0 + bow / 30 (k->u, k->th set). */
-void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0)
+void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0, int quartic)
 {
     ad_const(c, 0.0, &k->bow);
     for (int a = 1; a <= 2; a++) { /* theta_y, theta_z */
@@ -64,6 +64,15 @@ void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0)
         ad_axpy(c, &k->bow, 2.0, &k->t2, &k->bow);
         ad_mul(c, ta, tb, &k->t2);
         ad_axpy(c, &k->bow, -1.0, &k->t2, &k->bow);
+        if (!quartic) continue;
+        /* the bubble: 30 int (H1' ta + H2' tb + B' b)^2 / 2 adds (ta - tb) b + 2 b^2 / 7
+         * (int H1' B' = 1/30, int H2' B' = -1/30, int B'^2 = 2/105) */
+        const ad *bb = &k->bub[a - 1];
+        ad_axpy(c, ta, -1.0, tb, &k->t1);
+        ad_mul(c, &k->t1, bb, &k->t2);
+        ad_axpy(c, &k->bow, 1.0, &k->t2, &k->bow);
+        ad_mul(c, bb, bb, &k->t2);
+        ad_axpy(c, &k->bow, 2.0 / 7, &k->t2, &k->bow);
     }
     ad_scale(c, 1.0 / L0, &k->u, &k->eps);
     ad_axpy(c, &k->eps, 1.0 / 30, &k->bow, &k->eps);
@@ -96,11 +105,19 @@ enum { NV = MECH_BEAM_NBASIS, NB = NV + 2, XA = NV, XB = NV + 1, NP = 21 };
  * 4 th_x,a e3, 5 th_x,b e3, 6 th_z,a e1, 7 th_z,b e1, 8 th_x,a e2, 9 th_x,b e2, 10 th_y,a e1,
  * 11 th_y,b e1, 12 t2 of node a, 13 t2 of node b, 14 t3 of node a, 15 t3 of node b, 16 the chord
  * e1, 17 t1 of node a, 18 t1 of node b, 19 (th_y,a^2 + th_z,a^2) e1, 20 (th_y,a th_y,b + th_z,a
- * th_z,b) e1, 21 (th_y,b^2 + th_z,b^2) e1 (22, 23: the node positions x_a, x_b). */
-void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
+ * th_z,b) e1, 21 (th_y,b^2 + th_z,b^2) e1; the quartic element's bubble: 22 V = b_z e2 - b_y e3,
+ * 23 (th_y,a b_y + th_z,a b_z) e1, 24 (th_y,b b_y + th_z,b b_z) e1, 25 (b_y^2 + b_z^2) e1,
+ * 26 b_z e1, 27 b_y e1 (then NV, NV + 1: the node positions x_a, x_b). */
+static int nbasis(const beam *b)
+{
+    return mech_beam_quartic_(b) ? 28 : 22;
+}
+
+void mech_beam_offsets_(const ad_ctx *c, const beam *b, beam_work *k)
 {
     const ad *th = k->th;
-    for (int j = 0; j < 3; j++)
+    int quartic = mech_beam_quartic_(b);
+    for (int j = 0; j < 6; j++)
         ad_const(c, 0.0, &k->sq[j]);
     for (int a = 1; a <= 2; a++) { /* theta_y, theta_z */
         ad_mul(c, &th[a], &th[a], &k->t1);
@@ -109,6 +126,14 @@ void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
         ad_axpy(c, &k->sq[1], 1.0, &k->t1, &k->sq[1]);
         ad_mul(c, &th[3 + a], &th[3 + a], &k->t1);
         ad_axpy(c, &k->sq[2], 1.0, &k->t1, &k->sq[2]);
+        if (!quartic) continue;
+        const ad *bb = &k->bub[a - 1];
+        ad_mul(c, &th[a], bb, &k->t1);
+        ad_axpy(c, &k->sq[3], 1.0, &k->t1, &k->sq[3]);
+        ad_mul(c, &th[3 + a], bb, &k->t1);
+        ad_axpy(c, &k->sq[4], 1.0, &k->t1, &k->sq[4]);
+        ad_mul(c, bb, bb, &k->t1);
+        ad_axpy(c, &k->sq[5], 1.0, &k->t1, &k->sq[5]);
     }
     for (int i = 0; i < 3; i++) {
         for (int n = 0; n < 2; n++) {
@@ -131,11 +156,19 @@ void mech_beam_offsets_(const ad_ctx *c, beam_work *k)
         k->B[18][i] = k->tb[i];
         for (int j = 0; j < 3; j++)
             ad_mul(c, &k->sq[j], &k->e1[i], &k->B[19 + j][i]);
+        if (!quartic) continue;
+        ad_mul(c, &k->bub[1], &k->e2[i], &k->t1);
+        ad_mul(c, &k->bub[0], &k->e3[i], &k->t2);
+        ad_axpy(c, &k->t1, -1.0, &k->t2, &k->B[22][i]);
+        for (int j = 0; j < 3; j++)
+            ad_mul(c, &k->sq[3 + j], &k->e1[i], &k->B[23 + j][i]);
+        ad_mul(c, &k->bub[1], &k->e1[i], &k->B[26][i]);
+        ad_mul(c, &k->bub[0], &k->e1[i], &k->B[27][i]);
     }
     if (c->order > 1)
-        for (int b = 0; b < NV; b++)
+        for (int bb = 0; bb < nbasis(b); bb++)
             for (int i = 0; i < 3; i++)
-                ad_mirror(c, &k->B[b][i]);
+                ad_mirror(c, &k->B[bb][i]);
 }
 
 /* The inertia points: coefficients over the basis, mass mu, and whether gravity acts on them.
@@ -145,8 +178,68 @@ typedef struct point {
     int weight;
 } point;
 
+/* int_0^x a(t) b(t) dt of two polynomials (coefficients from t^0) */
+static double poly_int_prod(const double *a, int na, const double *b, int nb, double x)
+{
+    double r = 0;
+    for (int i = 0; i < na; i++)
+        for (int j = 0; j < nb; j++)
+            r += a[i] * b[j] * pow(x, i + j + 1) / (i + j + 1);
+    return r;
+}
+
+/* 5-point Gauss-Legendre rule on [0, 1] (the quartic element: |r'|^2 of degree 8) */
+static const double GX5[5] = {0.046910077030668004, 0.23076534494715845, 0.5,
+                              0.76923465505284155, 0.95308992296933200};
+static const double GW5[5] = {0.11846344252809454, 0.23931433524968324, 0.28444444444444444,
+                              0.23931433524968324, 0.11846344252809454};
+
+/* The quartic element's points (mech_beam.h): the cubic field plus the bubble B(xi) = xi^2
+ * (1 - xi)^2 in each bending plane, with the foreshortening of the whole quartic arc; the
+ * consistent mass of the field (no template: the bubble's own mass carries the accuracy). */
+static int quartic_points(const beam *b, point *p)
+{
+    const mech_section *S = &b->sec;
+    double L0 = b->L0, mA = S->rho * S->A * L0, mz = S->rho * S->Iz * L0, my = S->rho * S->Iy * L0;
+    static const double H1d[3] = {1, -4, 3}, H2d[3] = {0, -2, 3}, Bd[4] = {0, 2, -6, 4};
+    const double F11e = poly_int_prod(H1d, 3, H1d, 3, 1), F12e = poly_int_prod(H1d, 3, H2d, 3, 1),
+                 F22e = poly_int_prod(H2d, 3, H2d, 3, 1), F1Be = poly_int_prod(H1d, 3, Bd, 4, 1),
+                 F2Be = poly_int_prod(H2d, 3, Bd, 4, 1), FBBe = poly_int_prod(Bd, 4, Bd, 4, 1);
+    int n = 0;
+    memset(p, 0, NP * sizeof *p);
+    for (int g = 0; g < 5; g++) {
+        double xi = GX5[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
+        double bu = xi * xi * (1 - xi) * (1 - xi), bd = 2 * xi - 6 * xi * xi + 4 * xi * xi * xi;
+        double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi;
+        p[n].c[XA] = 1 - xi, p[n].c[XB] = xi, p[n].c[0] = L0 * h1, p[n].c[1] = L0 * h2;
+        p[n].c[22] = L0 * bu;
+        p[n].c[19] = -0.5 * L0 * (poly_int_prod(H1d, 3, H1d, 3, xi) - xi * F11e);
+        p[n].c[20] = -L0 * (poly_int_prod(H1d, 3, H2d, 3, xi) - xi * F12e);
+        p[n].c[21] = -0.5 * L0 * (poly_int_prod(H2d, 3, H2d, 3, xi) - xi * F22e);
+        p[n].c[23] = -L0 * (poly_int_prod(H1d, 3, Bd, 4, xi) - xi * F1Be);
+        p[n].c[24] = -L0 * (poly_int_prod(H2d, 3, Bd, 4, xi) - xi * F2Be);
+        p[n].c[25] = -0.5 * L0 * (poly_int_prod(Bd, 4, Bd, 4, xi) - xi * FBBe);
+        p[n].mu = mA * GW5[g], p[n++].weight = 1;
+        /* D2 = e2 + psi_x e3 - psi_z e1, D3 = e3 - psi_x e2 + psi_y e1, psi_y,z with B' b_y,z */
+        p[n].c[2] = 1, p[n].c[4] = 1 - xi, p[n].c[5] = xi, p[n].c[6] = -d1, p[n].c[7] = -d2;
+        p[n].c[26] = -bd;
+        p[n++].mu = mz * GW5[g];
+        p[n].c[3] = 1, p[n].c[8] = -(1 - xi), p[n].c[9] = -xi, p[n].c[10] = d1, p[n].c[11] = d2;
+        p[n].c[27] = bd;
+        p[n++].mu = my * GW5[g];
+    }
+    p[n].c[XA] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[XB] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[12] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[13] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[14] = 1, p[n++].mu = -0.5 * my;
+    p[n].c[15] = 1, p[n++].mu = -0.5 * my;
+    return n;
+}
+
 static int inertia_points(const beam *b, point *p)
 {
+    if (mech_beam_quartic_(b)) return quartic_points(b, p);
     const mech_section *S = &b->sec;
     double L0 = b->L0, mA = S->rho * S->A * L0, mz = S->rho * S->Iz * L0, my = S->rho * S->Iy * L0;
     int n = 0;
@@ -191,8 +284,9 @@ static int inertia_points(const beam *b, point *p)
     return n;
 }
 
-/* The node velocities u' in the port coordinates (v_a, omega_a, v_b, omega_b; omega = R w
- * global) from src = y, or their rates u'' = (v_a', R_a w_a', ...) from src = yp. */
+/* The velocities u' in the velocity coordinates (v_a, omega_a, v_b, omega_b; omega = R w
+ * global; the bubbles' rates c) from src = y, or their rates u'' = (v_a', R_a w_a', ..., c')
+ * from src = yp. */
 static void port_rates(const beam *b, const double *y, const double *src, double *u)
 {
     double R[9];
@@ -202,13 +296,15 @@ static void port_rates(const beam *b, const double *y, const double *src, double
         memcpy(u + 6 * n, src + v[n], 3 * sizeof *u);
         mech_mv(R, src + w[n], u + 6 * n + 3);
     }
+    for (int k = 12; k < b->nv; k++)
+        u[k] = src[b->bs + 2 + k - 12];
 }
 
-/* B: the rates of the 14 configuration unknowns from the port velocities, X' = B u' (x' = v,
- * q' = J(q) omega). */
-static void config_rates(const beam *b, const double *y, double B[14][12])
+/* B: the rates of the configuration unknowns from the velocities, X' = B u' (x' = v,
+ * q' = J(q) omega, b' = c). */
+static void config_rates(const beam *b, const double *y, double B[MB_NC][MB_NV])
 {
-    memset(B, 0, 14 * 12 * sizeof(double));
+    memset(B, 0, MB_NC * MB_NV * sizeof(double));
     double J[4][3];
     for (int n = 0; n < 2; n++) {
         for (int i = 0; i < 3; i++)
@@ -218,23 +314,25 @@ static void config_rates(const beam *b, const double *y, double B[14][12])
             for (int i = 0; i < 3; i++)
                 B[6 + 4 * n + j][6 * n + 3 + i] = J[j][i];
     }
+    for (int k = 14; k < b->nc; k++)
+        B[k][k - 2] = 1.0;
 }
 
 void mech_beam_config_rate_(const beam *b, const double *y, double *Xd)
 {
-    double ud[12], B[14][12];
+    double ud[MB_NV], B[MB_NC][MB_NV];
     port_rates(b, y, y, ud);
     config_rates(b, y, B);
-    for (int c = 0; c < 14; c++) {
+    for (int c = 0; c < b->nc; c++) {
         Xd[c] = 0;
-        for (int j = 0; j < 12; j++)
+        for (int j = 0; j < b->nv; j++)
             Xd[c] += B[c][j] * ud[j];
     }
 }
 
 /* Cd = (dgv X') of an AD scalar a of order 3 along X' (h = H X'): the rate of its velocity
- * gradient, from the positions' rows of H X' and, for the rotations, sum_m (H X')_q,m J(q)_m
- * + g_q,m J(q')_m (J is linear in q). */
+ * gradient, from the positions' (and bubbles') rows of H X' and, for the rotations,
+ * sum_m (H X')_q,m J(q)_m + g_q,m J(q')_m (J is linear in q). */
 static void gradient_rate(const ad *a, const double *y, const beam *b, const double *Xd,
                           double *Cd)
 {
@@ -251,60 +349,71 @@ static void gradient_rate(const ad *a, const double *y, const beam *b, const dou
             Cd[6 * n + 3 + i] = r;
         }
     }
+    for (int k = 12; k < b->nv; k++)
+        Cd[k] = a->h[k + 2];
 }
 
 /* The basis' velocity gradients (and their derivatives if dgv is wanted) into the scratch. */
 static void basis_gradients(const beam *b, const double *y, beam_work *k, int with_dgv)
 {
-    for (int bb = 0; bb < NV; bb++)
+    for (int bb = 0; bb < nbasis(b); bb++)
         for (int i = 0; i < 3; i++)
-            mech_beam_velocity_gradient_(&k->B[bb][i], y + b->qa, y + b->qb, k->gv[bb][i],
+            mech_beam_velocity_gradient_(b, &k->B[bb][i], y, k->gv[bb][i],
                                          with_dgv ? k->dgv[bb][i] : NULL);
 }
 
-/* G (12) of component i of a point: sum_b c_b gv_b,i, the node positions' unit gradients. */
-static void point_gradient(const beam_work *k, const point *p, int i, double *G)
+/* G (nv) of component i of a point: sum_b c_b gv_b,i (nbs basis vectors), the node positions'
+ * unit gradients. */
+static inline void point_gradient(const beam_work *k, const point *p, int i, double *G,
+                                  const int nv, const int nbs)
 {
-    memset(G, 0, 12 * sizeof *G);
-    for (int bb = 0; bb < NV; bb++)
+    memset(G, 0, MB_NV * sizeof *G);
+    for (int bb = 0; bb < nbs; bb++)
         if (p->c[bb] != 0)
-            for (int j = 0; j < 12; j++)
+            for (int j = 0; j < nv; j++)
                 G[j] += p->c[bb] * k->gv[bb][i][j];
     G[i] += p->c[XA];
     G[6 + i] += p->c[XB];
 }
 
-void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[12],
-                        double (*dX)[14], double (*dV)[12], double (*dA)[12])
+/* mech_beam_inertia_ for nv velocity coordinates and nc configuration unknowns (compiled for
+ * the two kinds, so that the loops' bounds are constants) */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void
+inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], double (*dX)[MB_NC],
+          double (*dV)[MB_NV], double (*dA)[MB_NV], const int nv, const int nc)
 {
     beam_work *k = b->work;
-    double ud[12], ua[12], B[14][12], Xd[14];
+    const int nbs = nc == MB_NC ? 28 : 22;
+    double ud[MB_NV], ua[MB_NV], B[MB_NC][MB_NV], Xd[MB_NC];
     port_rates(b, y, y, ud);
     port_rates(b, y, yp, ua);
     config_rates(b, y, B);
-    for (int c = 0; c < 14; c++) {
+    for (int c = 0; c < nc; c++) {
         Xd[c] = 0;
-        for (int j = 0; j < 12; j++)
+        for (int j = 0; j < nv; j++)
             Xd[c] += B[c][j] * ud[j];
     }
     /* the basis vectors' accelerations acc = gv . u'' + u' . (dgv X') (the second term: the
      * rate of the gradient along the motion, centrifugal and Coriolis): with the Jacobian from
      * the whole Hessians (order 2), for the residual from the Hessians along X' (order 3) */
     basis_gradients(b, y, k, dX != NULL);
-    double Cd[NV][3][12], acc[NB][3];
-    for (int bb = 0; bb < NV; bb++)
+    double Cd[NV][3][MB_NV], acc[NB][3];
+    for (int bb = 0; bb < nbs; bb++)
         for (int i = 0; i < 3; i++) {
             if (dX)
-                for (int j = 0; j < 12; j++) {
+                for (int j = 0; j < nv; j++) {
                     double cd = 0;
-                    for (int c = 0; c < 14; c++)
+                    for (int c = 0; c < nc; c++)
                         cd += k->dgv[bb][i][j][c] * Xd[c];
                     Cd[bb][i][j] = cd;
                 }
             else
                 gradient_rate(&k->B[bb][i], y, b, Xd, Cd[bb][i]);
             double s = 0;
-            for (int j = 0; j < 12; j++)
+            for (int j = 0; j < nv; j++)
                 s += k->gv[bb][i][j] * ua[j] + ud[j] * Cd[bb][i][j];
             acc[bb][i] = s;
         }
@@ -321,75 +430,79 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
     for (int p = 0; p < np; p++)
         for (int i = 0; i < 3; i++) {
             double rdd = 0;
-            for (int bb = 0; bb < NB; bb++)
+            for (int bb = 0; bb < nbs; bb++)
                 rdd += P[p].c[bb] * acc[bb][i];
+            rdd += P[p].c[XA] * acc[XA][i];
+            rdd += P[p].c[XB] * acc[XB][i];
             a[p][i] = P[p].mu * (rdd - (P[p].weight ? b->grav[i] : 0.0));
-            for (int bb = 0; bb < NB; bb++)
+            for (int bb = 0; bb < nbs; bb++)
                 S[bb][i] += P[p].c[bb] * a[p][i];
+            S[XA][i] += P[p].c[XA] * a[p][i];
+            S[XB][i] += P[p].c[XB] * a[p][i];
         }
-    memset(g, 0, 12 * sizeof *g);
+    memset(g, 0, MB_NV * sizeof *g);
     for (int i = 0; i < 3; i++) {
         g[i] += S[XA][i];
         g[6 + i] += S[XB][i];
     }
-    for (int bb = 0; bb < NV; bb++)
+    for (int bb = 0; bb < nbs; bb++)
         for (int i = 0; i < 3; i++)
             if (S[bb][i] != 0)
-                for (int j = 0; j < 12; j++)
+                for (int j = 0; j < nv; j++)
                     g[j] += S[bb][i] * k->gv[bb][i][j];
     if (!dX) return;
     /* d acc / d u' = Cd + (dgv B)^T u';  d acc / dX ~ u''^T dgv (the configuration derivative
      * of the rate term left out: see mech_beam.h) */
-    double dacc_u[NV][3][12], dacc_X[NV][3][14];
-    for (int bb = 0; bb < NV; bb++)
+    double dacc_u[NV][3][MB_NV], dacc_X[NV][3][MB_NC];
+    for (int bb = 0; bb < nbs; bb++)
         for (int i = 0; i < 3; i++) {
-            const double(*D)[14] = (const double(*)[14])k->dgv[bb][i];
-            for (int j = 0; j < 12; j++) {
+            const double(*D)[MB_NC] = (const double(*)[MB_NC])k->dgv[bb][i];
+            for (int j = 0; j < nv; j++) {
                 double sum = Cd[bb][i][j];
-                for (int l = 0; l < 12; l++) {
+                for (int l = 0; l < nv; l++) {
                     if (ud[l] == 0) continue;
                     double dB = 0;
-                    for (int c = 0; c < 14; c++)
+                    for (int c = 0; c < nc; c++)
                         dB += D[l][c] * B[c][j];
                     sum += ud[l] * dB;
                 }
                 dacc_u[bb][i][j] = sum;
             }
-            for (int c = 0; c < 14; c++) {
+            for (int c = 0; c < nc; c++) {
                 double sum = 0;
-                for (int l = 0; l < 12; l++)
+                for (int l = 0; l < nv; l++)
                     sum += ua[l] * D[l][c];
                 dacc_X[bb][i][c] = sum;
             }
         }
-    memset(dX, 0, 12 * 14 * sizeof(double));
-    memset(dV, 0, 144 * sizeof(double));
-    memset(dA, 0, 144 * sizeof(double));
-    for (int bb = 0; bb < NV; bb++) /* the rate of G^T along X */
+    memset(dX, 0, MB_NV * MB_NC * sizeof(double));
+    memset(dV, 0, MB_NV * MB_NV * sizeof(double));
+    memset(dA, 0, MB_NV * MB_NV * sizeof(double));
+    for (int bb = 0; bb < nbs; bb++) /* the rate of G^T along X */
         for (int i = 0; i < 3; i++)
             if (S[bb][i] != 0)
-                for (int j = 0; j < 12; j++)
-                    for (int c = 0; c < 14; c++)
+                for (int j = 0; j < nv; j++)
+                    for (int c = 0; c < nc; c++)
                         dX[j][c] += S[bb][i] * k->dgv[bb][i][j][c];
     for (int p = 0; p < np; p++)
         for (int i = 0; i < 3; i++) {
-            double G[12], du[12] = {0}, dx[14] = {0};
-            point_gradient(k, &P[p], i, G);
-            for (int bb = 0; bb < NV; bb++) {
+            double G[MB_NV], du[MB_NV] = {0}, dx[MB_NC] = {0};
+            point_gradient(k, &P[p], i, G, nv, nbs);
+            for (int bb = 0; bb < nbs; bb++) {
                 double cb = P[p].c[bb];
                 if (cb == 0) continue;
-                for (int j = 0; j < 12; j++)
+                for (int j = 0; j < nv; j++)
                     du[j] += cb * dacc_u[bb][i][j];
-                for (int c = 0; c < 14; c++)
+                for (int c = 0; c < nc; c++)
                     dx[c] += cb * dacc_X[bb][i][c];
             }
-            for (int j = 0; j < 12; j++) {
+            for (int j = 0; j < nv; j++) {
                 double mg = P[p].mu * G[j];
-                for (int l = 0; l < 12; l++) {
+                for (int l = 0; l < nv; l++) {
                     dA[j][l] += mg * G[l];
                     dV[j][l] += mg * du[l];
                 }
-                for (int c = 0; c < 14; c++)
+                for (int c = 0; c < nc; c++)
                     dX[j][c] += mg * dx[c];
             }
         }
@@ -397,7 +510,7 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
     for (int n = 0; n < 2; n++) {
         double R[9];
         mech_quat_R(y + (n ? b->qb : b->qa), R, NULL);
-        for (int j = 0; j < 12; j++) {
+        for (int j = 0; j < nv; j++) {
             double tv[3], ta[3];
             for (int i = 0; i < 3; i++) {
                 tv[i] = ta[i] = 0;
@@ -412,19 +525,28 @@ void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double
     }
 }
 
+void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[MB_NV],
+                        double (*dX)[MB_NC], double (*dV)[MB_NV], double (*dA)[MB_NV])
+{
+    if (mech_beam_quartic_(b))
+        inertia_k(b, y, yp, g, dX, dV, dA, 14, 16);
+    else
+        inertia_k(b, y, yp, g, dX, dV, dA, 12, 14);
+}
+
 double mech_beam_kinetic_(const beam *b, const double *y)
 {
     beam_work *k = b->work;
-    double ud[12], T = 0;
+    double ud[MB_NV], T = 0;
     port_rates(b, y, y, ud);
     basis_gradients(b, y, k, 0);
     point P[NP];
     int np = inertia_points(b, P);
     for (int p = 0; p < np; p++)
         for (int i = 0; i < 3; i++) {
-            double G[12], v = 0;
-            point_gradient(k, &P[p], i, G);
-            for (int j = 0; j < 12; j++)
+            double G[MB_NV], v = 0;
+            point_gradient(k, &P[p], i, G, b->nv, nbasis(b));
+            for (int j = 0; j < b->nv; j++)
                 v += G[j] * ud[j];
             T += 0.5 * P[p].mu * v * v;
         }

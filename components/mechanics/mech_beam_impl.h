@@ -10,8 +10,14 @@
 #include "mech_beam.h"
 #include "mech_util.h"
 
-/* The consistent inertia's basis vectors made on AD numbers (mech_beam_consistent.c). */
-#define MECH_BEAM_NBASIS 22
+/* The consistent inertia's basis vectors made on AD numbers (mech_beam_consistent.c): 22 for
+ * the consistent element, 28 with the quartic element's bubble. */
+#define MECH_BEAM_NBASIS 28
+/* The configuration unknowns (the AD variables), at most: x_a, x_b, q_a, q_b (14) and the
+ * quartic element's bubble amplitudes b_y, b_z; and the velocity coordinates, at most: v_a,
+ * omega_a, v_b, omega_b (12, the ports' flows) and the bubbles' rates. */
+#define MB_NC 16
+#define MB_NV 14
 
 /* AD scratch of one energy evaluation (about 130 kB with Hessians), allocated with the element
  * so that residual and Jacobian evaluations allocate nothing. The elements of a chain share one
@@ -22,12 +28,13 @@ typedef struct beam_work {
     ad X[6], ta[9], tb[9], d[3], e1[3], e2[3], e3[3], th[6]; /* X: the nodes' positions */
     ad L, iL, s, p[3], w[3], nw, inw, u, t1, t2, W;
     ad bow, eps;               /* consistent element: the bowing term and the axial strain */
-    ad sq[3];                  /* consistent inertia: the foreshortening's quadratic forms */
+    ad sq[6];                  /* consistent inertia: the foreshortening's quadratic forms */
+    ad bub[2];                 /* quartic element: the bubble amplitudes b_y, b_z */
     ad B[MECH_BEAM_NBASIS][3]; /* consistent inertia: the basis vectors of the fields (see
                                   mech_beam_consistent.c) */
-    double gv[MECH_BEAM_NBASIS][3][12], dgv[MECH_BEAM_NBASIS][3][12][14]; /* their velocity
-                                  gradients and derivatives */
-    double dJ[7][12][14]; /* damping: derivatives of the deformation gradients */
+    double gv[MECH_BEAM_NBASIS][3][MB_NV], dgv[MECH_BEAM_NBASIS][3][MB_NV][MB_NC]; /* their
+                                  velocity gradients and derivatives */
+    double dJ[7][MB_NV][MB_NC]; /* damping: derivatives of the deformation gradients */
     int refs;             /* elements sharing it */
 } beam_work;
 
@@ -38,6 +45,9 @@ typedef struct beam {
     int node_a, node_b;
     int xa, qa, xb, qb; /* configuration variable ids */
     int va, wa, vb, wb; /* velocity ids of the nodes (consistent inertia) */
+    int bs;             /* quartic: the element's states b_y, b_z, c_y, c_z (c = b') from bs */
+    int nc, nv;         /* configuration unknowns (14, 16 quartic), velocity coordinates (12,
+                           14 quartic) */
     int e[2], s[2];     /* first effort id and orientation of each port */
     int f[2];           /* first flow id of each port (damping) */
     double grav[3];     /* gravity (consistent inertia: the distributed weight) */
@@ -71,35 +81,47 @@ int mech_beam_bad_node_(bgr_model *m, bgr_comp c, const char *name, const char *
 int mech_beam_bad_stiffness_(bgr_model *m, bgr_comp c, const char *name, const char *w,
                              const mech_section *sec, double L0);
 
+/* The element has distributed inertia (consistent or quartic), a bubble (quartic). */
+static inline int mech_beam_inertial_(const beam *b)
+{
+    return b->sec.element != MECH_BEAM_LUMPED;
+}
+static inline int mech_beam_quartic_(const beam *b)
+{
+    return b->sec.element == MECH_BEAM_QUARTIC;
+}
+
 /* J(q): dq = J(q) dphi for a global rotation increment dphi (rows: q, columns: dphi). */
 void mech_beam_quat_J_(const double *q, double J[4][3]);
-/* The gradient gv (12) of an AD scalar a in the port velocity coordinates (x_a, phi_a, x_b,
- * phi_b) and, if dgv != NULL, its derivatives with respect to the 14 configuration unknowns. */
-void mech_beam_velocity_gradient_(const ad *a, const double *qa, const double *qb, double *gv,
-                                  double (*dgv)[14]);
+/* The gradient gv (b->nv) of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b,
+ * phi_b, and the bubbles' b) and, if dgv != NULL, its derivatives with respect to the b->nc
+ * configuration unknowns. */
+void mech_beam_velocity_gradient_(const beam *b, const ad *a, const double *y, double *gv,
+                                  double (*dgv)[MB_NC]);
 
 /* The consistent element (mech_beam_consistent.c). The rotation measure: the node angles th
  * (3) of one node turned from the skew part into the rotation vector, in place. */
 void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th);
 /* The bowing term: k->W += EA L0 eps^2 / 2, eps = u / L0 + (2 ta^2 - ta tb + 2 tb^2) / 30 over
- * both bending planes (k->u, k->th set). */
-void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0);
+ * both bending planes (k->u, k->th set), and with a bubble (quartic, k->bub set) + ((ta - tb) b
+ * + 2 b^2 / 7) / 30. */
+void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0, int quartic);
 /* The same on plain numbers: to z = dW/dd (7: u, theta_a, theta_b) of the quadratic energy
  * without its EA u^2 / (2 L0), the rest of the axial energy's gradient at the deformations d. */
 void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z);
-/* X' (14) = B u': the configuration's rate from the nodes' velocities in y. */
+/* X' (b->nc) = B u': the configuration's rate from the nodes' (and bubbles') velocities in y. */
 void mech_beam_config_rate_(const beam *b, const double *y, double *Xd);
 /* Inertia. After the element frame (e1, e2, e3), the node
  * triads and the node angles th are in the scratch: the basis vectors of the displacement and
  * director fields into k->B (Hessians mirrored at order 2). */
-void mech_beam_offsets_(const ad_ctx *c, beam_work *k);
-/* The inertial port loads g (12) of the element at (y, yp), after beam_energy at order 3 along
- * X' (mech_beam_config_rate_; dX NULL) or at order 2 (the whole Hessians), and, if dX != NULL,
- * their Jacobian: dX (12 x 14,
- * configuration unknowns), dV (12 x 12: the node velocities v, w, body-frame w), dA (12 x 12:
- * their rates v', w'). */
-void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[12],
-                        double (*dX)[14], double (*dV)[12], double (*dA)[12]);
+void mech_beam_offsets_(const ad_ctx *c, const beam *b, beam_work *k);
+/* The inertial loads g (b->nv: the ports', then the bubbles') of the element at (y, yp), after
+ * beam_energy at order 3 along X' (mech_beam_config_rate_; dX NULL) or at order 2 (the whole
+ * Hessians), and, if dX != NULL, their Jacobian: dX (nv x nc, configuration unknowns), dV
+ * (nv x nv: the node velocities v, w, body-frame w, and the bubbles' rates c), dA (nv x nv:
+ * their rates). */
+void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[MB_NV],
+                        double (*dX)[MB_NC], double (*dV)[MB_NV], double (*dA)[MB_NV]);
 /* The kinetic energy the element adds to its node bodies' (consistent minus lumped). */
 double mech_beam_kinetic_(const beam *b, const double *y);
 

@@ -339,13 +339,13 @@ static void test_southwell(void)
            "reference at gamma = 0: %.10f, (beta_1 L)^2 = %.10f (beta_1 L = %.6f)", ref[0][0][0],
            b1 * b1, b1);
     const int ns[2] = {8, 16};
-    const int els[2] = {MECH_BEAM_CONSISTENT, MECH_BEAM_LUMPED};
-    const char *elname[2] = {"consistent", "lumped"};
+    const int els[3] = {MECH_BEAM_CONSISTENT, MECH_BEAM_LUMPED, MECH_BEAM_QUARTIC};
+    const char *elname[3] = {"consistent", "lumped", "quartic"};
     /* [element][n]: the largest errors, at gamma = 12: the consistent element's first lead-lag
      * mode, 4.4e-4 and 2.8e-5 (the cubic field's, below), the lumped one's third modes, 5.6e-2
      * and 1.5e-2 */
-    const double tol[2][2] = {{5e-4, 3e-5}, {7e-2, 2e-2}};
-    for (int e = 0; e < 2; e++)
+    const double tol[3][2] = {{5e-4, 3e-5}, {7e-2, 2e-2}, {1e-4, 1e-5}};
+    for (int e = 0; e < 3; e++)
         for (int i = 0; i < 2; i++)
             for (int g = 0; g < 4; g++) {
                 double f[2][3], root = NAN;
