@@ -582,11 +582,13 @@ static void test_elastica(void)
            omin);
 }
 
-/* ---- the model file's key: element: consistent ----
+/* ---- the model file's key: element: consistent | quartic ----
  * A clamped-free chain of 4 elements read from a model file with each value of the key: the
  * first bending frequency (I_z = I_y: the lowest elastic mode) against the closed form, whose
- * error is 3.6e-9 with the consistent element and 2.8e-2 with the lumped one. */
-static double model_file_first(const char *element)
+ * error is 3.6e-9 with the consistent element, 6.9e-8 with the quartic one and 2.8e-2 with the
+ * lumped one; the quartic chain has the bubbles' four unknowns per element more (*n: the
+ * model's unknowns). */
+static double model_file_first(const char *element, int *n)
 {
     char text[1024];
     snprintf(text, sizeof text,
@@ -606,6 +608,7 @@ static double model_file_first(const char *element)
     }
     dae_modes *M = NULL;
     double f = NAN;
+    *n = bgr_n(mdl_bgr(mm));
     if (bgr_modes(mdl_bgr(mm), 0.0, NULL, NULL, NULL, &M, &e) == BG_OK)
         for (int k = 0; k < dae_modes_count(M); k++)
             if (dae_modes_get(M, k)->kind == DAE_MODE_ELASTIC) {
@@ -622,11 +625,17 @@ static void test_model_file(void)
     double b = clamped_free_root(0), EI = slender.E * 1e-12;
     double w = b * b * sqrt(EI / (slender.rho * slender.A));
     w *= 1 - 0.5 * 1e-12 / slender.A * slope_ratio(b);
-    double fc = model_file_first("consistent"), fl = model_file_first("lumped");
+    int nc = 0, nl = 0, nq = 0;
+    double fc = model_file_first("consistent", &nc), fl = model_file_first("lumped", &nl);
+    double fq = model_file_first("quartic", &nq);
     tap_ok(fabs(fc - w) / w < 1e-6 && fabs(fl - w) / w > 1e-2,
            "model file, 4 elements: first bending frequency %.6f rad/s with element: consistent "
            "(closed form %.6f, error %.1e), %.6f with element: lumped (error %.1e)",
            fc, w, fabs(fc - w) / w, fl, fabs(fl - w) / w);
+    tap_ok(fabs(fq - w) / w < 1e-6 && nq == nc + 16 && nc == nl,
+           "model file, 4 elements, element: quartic: first bending frequency %.6f rad/s (error "
+           "%.1e), %d unknowns against the consistent chain's %d (4 bubble states per element)",
+           fq, fabs(fq - w) / w, nq, nc);
 }
 
 int main(void)
