@@ -1,13 +1,14 @@
 /* The co-rotational beam element (equations in mech_beam.h; the chain builder that lumps the
  * mass into node bodies is mech_beam_chain.c, what it takes from here mech_beam_impl.h). The
  * energy W is written once on second-order automatic-differentiation numbers in the 14
- * configuration unknowns (x_a, x_b, q_a, q_b): its gradient gives the port loads, its Hessian
- * their Jacobian. The residual, evaluated a hundred times as often as the Jacobian, computes
+ * configuration unknowns (x_a, x_b, q_a, q_b; 16 with the quartic element's bubbles b_y, b_z):
+ * its gradient gives the port loads (and the bubbles' elastic forces), its Hessian their
+ * Jacobian. The residual, evaluated a hundred times as often as the Jacobian, computes
  * the same loads in plain arithmetic with one reverse (adjoint) pass through the deformations
  * instead (beam_loads_plain); the tests hold the two to each other. The consistent element's
  * residual takes the AD path at order 3 (its inertia needs the second derivatives along the
- * motion; its own parts are in mech_beam_consistent.c); the argument checks are in
- * mech_beam_check.c. */
+ * motion; its own parts, and the quartic element's, are in mech_beam_consistent.c); the
+ * argument checks are in mech_beam_check.c. */
 #include "mech_beam.h"
 
 #include <stdio.h>
@@ -209,8 +210,8 @@ static int config_var(const beam *b, int c)
 }
 
 /* The gradient of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b, phi_b) of the
- * ports (phi: global rotation increments, through dq = J(q) dphi), and, if dgv != NULL, its
- * derivatives with respect to the 14 configuration unknowns. */
+ * ports (phi: global rotation increments, through dq = J(q) dphi); mech_beam_velocity_gradient_
+ * adds the bubbles' and the derivatives. */
 static void velocity_gradient_g(const double *ag, const double *qa, const double *qb, double *gv)
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
@@ -481,8 +482,9 @@ static void beam_loads_plain(const beam *b, const double *y, double *g)
     velocity_gradient_g(gc, y + b->qa, y + b->qb, g);
 }
 
-/* Port loads g (12: F_a, M_a, F_b, M_b) and, if dg != NULL, dg[r][c] = d g_r / d X_c (14
- * configuration unknowns) and dgw[r][m] = d g_r / d w_m (12 port flows, damping only).
+/* Port loads g (12: F_a, M_a, F_b, M_b; then the quartic element's bubble forces dW/db) and, if
+ * dg != NULL, dg[r][c] = d g_r / d X_c (b->nc configuration unknowns) and dgw[r][m] =
+ * d g_r / d w_m (12 port flows, damping only).
  * Elastic loads: the gradient of W. Stiffness-proportional damping (beta > 0): the gradient of
  * the dissipation function D = beta/2 d'^T K d' with d' = Jd w (Jd: the gradients of the local
  * deformations in the velocity coordinates, w: the port flows), i.e. beta Jd^T K Jd w. */
