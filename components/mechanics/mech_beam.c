@@ -34,7 +34,10 @@ void mech_beam_work_release_(beam_work *w)
 static void beam_free(void *p)
 {
     beam *b = p;
-    if (b) mech_beam_work_release_(b->work);
+    if (b) {
+        mech_beam_work_release_(b->work);
+        free(b->pts);
+    }
     free(b);
 }
 
@@ -599,8 +602,9 @@ static int beam_declare(bgr_element *el, bgr_model *m)
         b->s[k] = el->sign[k];
     }
     static const char *const lab[16] = {
-        "force_a0",  "force_a1",  "force_a2",  "moment_a0",     "moment_a1",     "moment_a2",
-        "force_b0",  "force_b1",  "force_b2",  "moment_b0",     "moment_b1",     "moment_b2",
+        "force_a0",      "force_a1",      "force_a2",        "moment_a0",
+        "moment_a1",     "moment_a2",     "force_b0",        "force_b1",
+        "force_b2",      "moment_b0",     "moment_b1",       "moment_b2",
         "bubble_y_rate", "bubble_z_rate", "bubble_y_motion", "bubble_z_motion"};
     int quartic = mech_beam_quartic_(b), inertial = mech_beam_inertial_(b);
     int st = bgr_declare_equations(el, m, quartic ? 16 : 12, lab);
@@ -640,7 +644,7 @@ static int beam_residual(const bgr_element *el, double t, const double *y, const
     const beam *b = el->params;
     double g[MB_NV], gi[MB_NV];
     if (mech_beam_inertial_(b)) { /* the inertia: Hessians along the motion */
-        double Xd[MB_NC]; /* the configuration's rate: the accelerations' direction */
+        double Xd[MB_NC];         /* the configuration's rate: the accelerations' direction */
         mech_beam_config_rate_(b, y, Xd);
         beam_loads(b, y, 3, Xd, g, NULL, NULL);
         mech_beam_inertia_(b, y, yp, gi, NULL, NULL, NULL);
@@ -669,8 +673,8 @@ static int beam_jacobian(const bgr_element *el, double t, const double *y, const
 {
     (void)t;
     const beam *b = el->params;
-    double g[MB_NV], dg[MB_NV][MB_NC], dgw[12][12], gi[MB_NV], dX[MB_NV][MB_NC],
-        dV[MB_NV][MB_NV], dA[MB_NV][MB_NV];
+    double g[MB_NV], dg[MB_NV][MB_NC], dgw[12][12], gi[MB_NV], dX[MB_NV][MB_NC], dV[MB_NV][MB_NV],
+        dA[MB_NV][MB_NV];
     int cons = mech_beam_inertial_(b), nv = b->nv, nc = b->nc;
     beam_loads(b, y, 2, NULL, g, dg, dgw);
     if (cons) mech_beam_inertia_(b, y, yp, gi, dX, dV, dA);
@@ -781,9 +785,16 @@ int mech_beam_add_(bgr_model *m, bgr_comp c, const char *name, int node_a, int n
     int quartic = sec->element == MECH_BEAM_QUARTIC;
     b->nc = quartic ? 16 : 14;
     b->nv = quartic ? 14 : 12;
+    if (mech_beam_inertial_(b)) {
+        if (!(b->pts = calloc(MECH_BEAM_NPOINTS, sizeof *b->pts))) {
+            beam_free(b);
+            return bg_error_raise(bgr_model_error_mut(m), BG_ERR_MEMORY, "mech_beam",
+                                  "out of memory");
+        }
+        b->npts = mech_beam_points_(b, b->pts);
+    }
     const int dims[2] = {6, 6};
-    static const char *const states[4] = {"bubble_y", "bubble_z", "bubble_y_rate",
-                                          "bubble_z_rate"};
+    static const char *const states[4] = {"bubble_y", "bubble_z", "bubble_y_rate", "bubble_z_rate"};
     return bgr_element_add(m, c, name, &beam_class, b, 2, dims, quartic ? 4 : 0,
                            quartic ? states : NULL, 0, NULL);
 }

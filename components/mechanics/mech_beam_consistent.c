@@ -31,7 +31,7 @@ void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th)
     }
     double x = k->t1.v, f, fp, fpp;
     if (x < 0.04) {
-        static const double cj[7] = {1.0,         1.0 / 6,      3.0 / 40,      5.0 / 112,
+        static const double cj[7] = {1.0,         1.0 / 6,     3.0 / 40,     5.0 / 112,
                                      35.0 / 1152, 63.0 / 2816, 231.0 / 13312};
         f = fp = fpp = 0;
         for (int j = 6; j >= 0; j--) {
@@ -99,7 +99,7 @@ static const double GX[4] = {0.069431844202973712, 0.33000947820757187, 0.669990
 static const double GW[4] = {0.17392742256872693, 0.32607257743127307, 0.32607257743127307,
                              0.17392742256872693};
 
-enum { NV = MECH_BEAM_NBASIS, NB = NV + 2, XA = NV, XB = NV + 1, NP = 21 };
+enum { NV = MECH_BEAM_NBASIS, NB = NV + 2, XA = NV, XB = NV + 1, NP = MECH_BEAM_NPOINTS };
 
 /* The basis: 0 P = th_z,a e2 - th_y,a e3, 1 Q = th_z,b e2 - th_y,b e3, 2 e2, 3 e3,
  * 4 th_x,a e3, 5 th_x,b e3, 6 th_z,a e1, 7 th_z,b e1, 8 th_x,a e2, 9 th_x,b e2, 10 th_y,a e1,
@@ -171,12 +171,7 @@ void mech_beam_offsets_(const ad_ctx *c, const beam *b, beam_work *k)
                 ad_mirror(c, &k->B[bb][i]);
 }
 
-/* The inertia points: coefficients over the basis, mass mu, and whether gravity acts on them.
- * Returns the number of points (at most NP). */
-typedef struct point {
-    double c[NB], mu;
-    int weight;
-} point;
+typedef mech_beam_point point;
 
 /* int_0^x a(t) b(t) dt of two polynomials (coefficients from t^0) */
 static double poly_int_prod(const double *a, int na, const double *b, int nb, double x)
@@ -189,10 +184,39 @@ static double poly_int_prod(const double *a, int na, const double *b, int nb, do
 }
 
 /* 5-point Gauss-Legendre rule on [0, 1] (the quartic element: |r'|^2 of degree 8) */
-static const double GX5[5] = {0.046910077030668004, 0.23076534494715845, 0.5,
-                              0.76923465505284155, 0.95308992296933200};
+static const double GX5[5] = {0.046910077030668004, 0.23076534494715845, 0.5, 0.76923465505284155,
+                              0.95308992296933200};
 static const double GW5[5] = {0.11846344252809454, 0.23931433524968324, 0.28444444444444444,
                               0.23931433524968324, 0.11846344252809454};
+
+/* The section's directors at xi (weight w of the rule): D2 = e2 + psi_x e3 - psi_z e1 and
+ * D3 = e3 - psi_x e2 + psi_y e1, psi_x = (1 - xi) th_x,a + xi th_x,b, psi_y,z = H1' th_y,z,a +
+ * H2' th_y,z,b (+ B' b_y,z: bd = B'(xi), 0 without a bubble): the directors e2, e3 turned by
+ * the section's small rotation. Returns the next free point. */
+static int director_points(point *p, int n, double xi, double bd, double mz, double my, double w)
+{
+    double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi; /* H1', H2' */
+    p[n].c[2] = 1, p[n].c[4] = 1 - xi, p[n].c[5] = xi, p[n].c[6] = -d1, p[n].c[7] = -d2;
+    if (bd != 0) p[n].c[26] = -bd;
+    p[n++].mu = mz * w;
+    p[n].c[3] = 1, p[n].c[8] = -(1 - xi), p[n].c[9] = -xi, p[n].c[10] = d1, p[n].c[11] = d2;
+    if (bd != 0) p[n].c[27] = bd;
+    p[n++].mu = my * w;
+    return n;
+}
+
+/* Less the nodes' lumped masses and rotary inertias (half of the element's at each). Returns
+ * the next free point. */
+static int node_points(point *p, int n, double mA, double mz, double my)
+{
+    p[n].c[XA] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[XB] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
+    p[n].c[12] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[13] = 1, p[n++].mu = -0.5 * mz;
+    p[n].c[14] = 1, p[n++].mu = -0.5 * my;
+    p[n].c[15] = 1, p[n++].mu = -0.5 * my;
+    return n;
+}
 
 /* The quartic element's points (mech_beam.h): the cubic field plus the bubble B(xi) = xi^2
  * (1 - xi)^2 in each bending plane, with the foreshortening of the whole quartic arc; the
@@ -210,7 +234,6 @@ static int quartic_points(const beam *b, point *p)
     for (int g = 0; g < 5; g++) {
         double xi = GX5[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
         double bu = xi * xi * (1 - xi) * (1 - xi), bd = 2 * xi - 6 * xi * xi + 4 * xi * xi * xi;
-        double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi;
         p[n].c[XA] = 1 - xi, p[n].c[XB] = xi, p[n].c[0] = L0 * h1, p[n].c[1] = L0 * h2;
         p[n].c[22] = L0 * bu;
         p[n].c[19] = -0.5 * L0 * (poly_int_prod(H1d, 3, H1d, 3, xi) - xi * F11e);
@@ -220,24 +243,12 @@ static int quartic_points(const beam *b, point *p)
         p[n].c[24] = -L0 * (poly_int_prod(H2d, 3, Bd, 4, xi) - xi * F2Be);
         p[n].c[25] = -0.5 * L0 * (poly_int_prod(Bd, 4, Bd, 4, xi) - xi * FBBe);
         p[n].mu = mA * GW5[g], p[n++].weight = 1;
-        /* D2 = e2 + psi_x e3 - psi_z e1, D3 = e3 - psi_x e2 + psi_y e1, psi_y,z with B' b_y,z */
-        p[n].c[2] = 1, p[n].c[4] = 1 - xi, p[n].c[5] = xi, p[n].c[6] = -d1, p[n].c[7] = -d2;
-        p[n].c[26] = -bd;
-        p[n++].mu = mz * GW5[g];
-        p[n].c[3] = 1, p[n].c[8] = -(1 - xi), p[n].c[9] = -xi, p[n].c[10] = d1, p[n].c[11] = d2;
-        p[n].c[27] = bd;
-        p[n++].mu = my * GW5[g];
+        n = director_points(p, n, xi, bd, mz, my, GW5[g]);
     }
-    p[n].c[XA] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
-    p[n].c[XB] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
-    p[n].c[12] = 1, p[n++].mu = -0.5 * mz;
-    p[n].c[13] = 1, p[n++].mu = -0.5 * mz;
-    p[n].c[14] = 1, p[n++].mu = -0.5 * my;
-    p[n].c[15] = 1, p[n++].mu = -0.5 * my;
-    return n;
+    return node_points(p, n, mA, mz, my);
 }
 
-static int inertia_points(const beam *b, point *p)
+int mech_beam_points_(const beam *b, point *p)
 {
     if (mech_beam_quartic_(b)) return quartic_points(b, p);
     const mech_section *S = &b->sec;
@@ -246,7 +257,6 @@ static int inertia_points(const beam *b, point *p)
     memset(p, 0, NP * sizeof *p);
     for (int g = 0; g < 4; g++) {
         double xi = GX[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
-        double d1 = 1 - 4 * xi + 3 * xi * xi, d2 = -2 * xi + 3 * xi * xi; /* H1', H2' */
         /* r = (1 - xi) x_a + xi x_b + L0 (H1 P + H2 Q) - L0 (F(xi) - xi F(1)) e1, the
          * foreshortening F(xi) = int_0^xi (psi_y^2 + psi_z^2) / 2 of the cubic field's slopes
          * psi = H1' th_a + H2' th_b: with F_ij = int_0^xi Hi' Hj' (F_11(1) = F_22(1) = 2/15,
@@ -260,21 +270,9 @@ static int inertia_points(const beam *b, point *p)
         p[n].c[20] = -L0 * (F12 + xi / 30);
         p[n].c[21] = -0.5 * L0 * (F22 - 2.0 / 15 * xi);
         p[n].mu = mA * GW[g], p[n++].weight = 1;
-        /* D2 = e2 + psi_1 e3 - psi_3 e1, psi_1 = (1 - xi) th_x,a + xi th_x,b,
-         * psi_3 = H1' th_z,a + H2' th_z,b: the section's director e2 turned by its rotation */
-        p[n].c[2] = 1, p[n].c[4] = 1 - xi, p[n].c[5] = xi, p[n].c[6] = -d1, p[n].c[7] = -d2;
-        p[n++].mu = mz * GW[g];
-        /* D3 = e3 - psi_1 e2 + psi_2 e1, psi_2 = H1' th_y,a + H2' th_y,b */
-        p[n].c[3] = 1, p[n].c[8] = -(1 - xi), p[n].c[9] = -xi, p[n].c[10] = d1, p[n].c[11] = d2;
-        p[n++].mu = my * GW[g];
+        n = director_points(p, n, xi, 0.0, mz, my, GW[g]);
     }
-    /* less the nodes' lumped masses and rotary inertias (half of the element's at each) */
-    p[n].c[XA] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
-    p[n].c[XB] = 1, p[n].mu = -0.5 * mA, p[n++].weight = 1;
-    p[n].c[12] = 1, p[n++].mu = -0.5 * mz;
-    p[n].c[13] = 1, p[n++].mu = -0.5 * mz;
-    p[n].c[14] = 1, p[n++].mu = -0.5 * my;
-    p[n].c[15] = 1, p[n++].mu = -0.5 * my;
+    n = node_points(p, n, mA, mz, my);
     /* the bending correction (mech_beam.h): mu0 L0^2 Q with E = e1', A = t1_a', B = t1_b',
      * Q = 54 |E - 23/18 (A + B)|^2 - 98/3 |A + B|^2 + 77/2 |A - B|^2 */
     double m0 = mA / 17640, l = L0;
@@ -333,8 +331,7 @@ void mech_beam_config_rate_(const beam *b, const double *y, double *Xd)
 /* Cd = (dgv X') of an AD scalar a of order 3 along X' (h = H X'): the rate of its velocity
  * gradient, from the positions' (and bubbles') rows of H X' and, for the rotations,
  * sum_m (H X')_q,m J(q)_m + g_q,m J(q')_m (J is linear in q). */
-static void gradient_rate(const ad *a, const double *y, const beam *b, const double *Xd,
-                          double *Cd)
+static void gradient_rate(const ad *a, const double *y, const beam *b, const double *Xd, double *Cd)
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
@@ -421,8 +418,8 @@ inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], dou
         acc[XA][i] = ua[i];
         acc[XB][i] = ua[6 + i];
     }
-    point P[NP];
-    int np = inertia_points(b, P);
+    const point *P = b->pts;
+    int np = b->npts;
     /* a_p = mu_p (r_p'' - g); f = sum_p G_p^T a_p = sum_b sum_i S_b,i gv_b,i (+ the x's) */
     double S[NB][3];
     memset(S, 0, sizeof S);
@@ -540,8 +537,8 @@ double mech_beam_kinetic_(const beam *b, const double *y)
     double ud[MB_NV], T = 0;
     port_rates(b, y, y, ud);
     basis_gradients(b, y, k, 0);
-    point P[NP];
-    int np = inertia_points(b, P);
+    const point *P = b->pts;
+    int np = b->npts;
     for (int p = 0; p < np; p++)
         for (int i = 0; i < 3; i++) {
             double G[MB_NV], v = 0;

@@ -35,8 +35,17 @@ typedef struct beam_work {
     double gv[MECH_BEAM_NBASIS][3][MB_NV], dgv[MECH_BEAM_NBASIS][3][MB_NV][MB_NC]; /* their
                                   velocity gradients and derivatives */
     double dJ[7][MB_NV][MB_NC]; /* damping: derivatives of the deformation gradients */
-    int refs;             /* elements sharing it */
+    int refs;                   /* elements sharing it */
 } beam_work;
+
+/* An inertia point of the consistent and quartic elements (mech_beam_consistent.c): its field
+ * as coefficients over the basis vectors and the two node positions, its mass mu, and whether
+ * gravity acts on it. They depend on the element's length and section only: made once. */
+#define MECH_BEAM_NPOINTS 21
+typedef struct mech_beam_point {
+    double c[MECH_BEAM_NBASIS + 2], mu;
+    int weight;
+} mech_beam_point;
 
 typedef struct beam {
     mech_section sec;
@@ -52,6 +61,8 @@ typedef struct beam {
     int f[2];           /* first flow id of each port (damping) */
     double grav[3];     /* gravity (consistent inertia: the distributed weight) */
     beam_work *work;
+    mech_beam_point *pts; /* the inertia points (consistent, quartic; NULL: lumped) */
+    int npts;
     mech_scales sc; /* stated nominal scales (the chain builder states its weight) */
 } beam;
 
@@ -122,6 +133,9 @@ void mech_beam_offsets_(const ad_ctx *c, const beam *b, beam_work *k);
  * their rates). */
 void mech_beam_inertia_(const beam *b, const double *y, const double *yp, double g[MB_NV],
                         double (*dX)[MB_NC], double (*dV)[MB_NV], double (*dA)[MB_NV]);
+/* The inertia points of an element with distributed inertia into p (MECH_BEAM_NPOINTS): their
+ * number. */
+int mech_beam_points_(const beam *b, mech_beam_point *p);
 /* The kinetic energy the element adds to its node bodies' (consistent minus lumped). */
 double mech_beam_kinetic_(const beam *b, const double *y);
 
