@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "beam_testlib.h"
 #include "bgr_analysis.h"
 #include "bgr_elements.h"
 #include "mech_beam.h"
@@ -33,78 +34,15 @@
 static const double PI = 3.14159265358979323846;
 /* slender: r^2 = I/A = 1e-8, 2e-8 m^2 on L = 1 m (the rotary inertia moves the third frequency
  * by about 1e-6, which the reference includes) */
-static const mech_section slender = {.E = 2.1e11,
-                                     .G = 8.1e10,
-                                     .A = 1e-4,
-                                     .Iy = 2e-12,
-                                     .Iz = 1e-12,
-                                     .J = 1.5e-12,
-                                     .rho = 7850};
-
-/* A cantilever of n elements along x, clamped at node 0; compiled and set straight. */
-static bgr_model *cantilever(const mech_section *section, int n, double L, int mass,
-                             const double *g, double P, int *nodes, int *elems)
-{
-    const double p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0}, up[3] = {0, 0, 1};
-    int extra[65];
-    for (int k = 0; k <= n; k++)
-        extra[k] = k == 0 || k == n;
-    mech_section sec = *section;
-    sec.element = mass;
-    bgr_model *m = bgr_model_create("cant");
-    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, g, extra, NULL, nodes, elems);
-    int clamp = mech_support(m, 0, "clamp", 6);
-    bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
-             mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);
-    double load[6] = {0, 0, -P, 0, 0, 0};
-    int src = bgr_Se(m, 0, "tip_load", 6, load);
-    bgr_bond(m, 0, "b_load", 6, bgr_port_of(m, src, 0),
-             mech_beam_chain_port(m, nodes, n, extra, n, 0), NULL, NULL);
-    if (bgr_compile(m) != BG_OK) {
-        tap_diag("cantilever: %s", bgr_model_error(m)->message);
-        bgr_model_free(&m);
-        return NULL;
-    }
-    mech_beam_chain_set(m, nodes, n, p0, p1);
-    return m;
-}
-
-/* The n-th root of cos b cosh b + 1 = 0 (n = 0, 1, 2), by bisection near (n + 1/2) pi. */
-static double clamped_free_root(int n)
-{
-    double lo = (n + 0.5) * PI - 1.2, hi = (n + 0.5) * PI + 0.6;
-    if (n == 0) lo = 1.0, hi = 2.5;
-    for (int it = 0; it < 200; it++) {
-        double mid = 0.5 * (lo + hi), f = cos(mid) * cosh(mid) + 1, flo = cos(lo) * cosh(lo) + 1;
-        if ((f > 0) == (flo > 0))
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-/* int phi'^2 / int phi^2 over [0, 1] for the clamped-free mode with root b (Simpson). */
-static double slope_ratio(double b)
-{
-    double s = (cosh(b) + cos(b)) / (sinh(b) + sin(b)), num = 0, den = 0;
-    const int N = 4000;
-    for (int i = 0; i <= N; i++) {
-        double x = b * i / N, w = (i == 0 || i == N) ? 1 : (i % 2 ? 4 : 2);
-        double ph = cosh(x) - cos(x) - s * (sinh(x) - sin(x));
-        double dp = b * (sinh(x) + sin(x) - s * (cosh(x) - cos(x)));
-        num += w * dp * dp;
-        den += w * ph * ph;
-    }
-    return num / den;
-}
+static const mech_section slender = {
+    .E = 2.1e11, .G = 8.1e10, .A = 1e-4, .Iy = 2e-12, .Iz = 1e-12, .J = 1.5e-12, .rho = 7850};
 
 /* The first three bending frequencies (rad/s) in each plane (0: I_z, 1: I_y; a mode's plane is
  * that of its largest nodal motion) of an n-element cantilever; 0 on failure. */
 static int bending_frequencies(int n, int mass, double f[2][3])
 {
     int nodes[65], elems[64];
-    bgr_model *m = cantilever(&slender, n, 1.0, mass, NULL, 0, nodes, elems);
+    bgr_model *m = bt_cantilever(&slender, mass, n, 1.0, NULL, 0, 0, nodes, elems);
     if (!m) return 0;
     dae_modes *M = NULL;
     bg_error e = {0};
@@ -145,15 +83,16 @@ static void test_frequencies(void)
     double want[2][3];
     for (int a = 0; a < 2; a++)
         for (int k = 0; k < 3; k++) {
-            double b = clamped_free_root(k);
+            double b = bt_clamped_free_root(k);
             double w = b * b * sqrt(slender.E * I2[a] / (slender.rho * slender.A));
             /* Rayleigh quotient with the rotary inertia rho I phi'^2: first order in I/A */
-            want[a][k] = w * (1 - 0.5 * I2[a] / slender.A * slope_ratio(b));
+            want[a][k] = w * (1 - 0.5 * I2[a] / slender.A * bt_slope_ratio(b));
         }
-    tap_ok(fabs(clamped_free_root(0) - 1.8751) < 1e-4 && fabs(clamped_free_root(1) - 4.6941) < 1e-4 &&
-               fabs(clamped_free_root(2) - 7.8548) < 1e-4,
-           "clamped-free roots %.10f %.10f %.10f (1.8751, 4.6941, 7.8548)", clamped_free_root(0),
-           clamped_free_root(1), clamped_free_root(2));
+    tap_ok(fabs(bt_clamped_free_root(0) - 1.8751) < 1e-4 &&
+               fabs(bt_clamped_free_root(1) - 4.6941) < 1e-4 &&
+               fabs(bt_clamped_free_root(2) - 7.8548) < 1e-4,
+           "clamped-free roots %.10f %.10f %.10f (1.8751, 4.6941, 7.8548)", bt_clamped_free_root(0),
+           bt_clamped_free_root(1), bt_clamped_free_root(2));
     double err[2][5][6]; /* [mass][n][plane * 3 + mode] */
     int ok[2] = {1, 1};
     for (int mass = 0; mass < 2; mass++)
@@ -260,34 +199,20 @@ static void test_kinetic(void)
     bgr_model_free(&m);
 }
 
-/* ---- energy of a free chain spinning end over end while it bends ----
- * No supports, no gravity: the chain turns about z at W (rigid rotation: v = W z x (x - xc),
- * w = W z) with a bending velocity on top (the nodes' z velocities of a free-free pattern that
- * carries no momentum). The total energy, node bodies' kinetic plus the elements' strain and
- * kinetic energy, is a constant of the motion; the integrator's error and numerical damping
- * aside it stays. */
-static double total_energy(const bgr_model *m, const int *nodes, const int *elems, int n,
-                           const double *y)
-{
-    double E = 0;
-    for (int k = 0; k <= n; k++) {
-        double T, V;
-        mech_body_energy(m, nodes[k], y, &T, &V);
-        E += T;
-    }
-    for (int k = 0; k < n; k++)
-        E += mech_beam_energy(m, elems[k], y) + mech_beam_kinetic(m, elems[k], y);
-    return E;
-}
-
 static void test_energy(void)
 {
     const int n = 4;
     const double L = 1.0, W = 20.0, up[3] = {0, 0, 1}, p0[3] = {0, 0, 0}, p1[3] = {L, 0, 0};
     int nodes[8], elems[8];
     /* a stocky polymer rod: first free-free bending frequency 37 rad/s, axial 3 100 */
-    const mech_section sec = {.E = 2.1e9, .G = 8.1e8, .A = 1e-4, .Iy = 1e-9, .Iz = 1e-9,
-                              .J = 1.5e-9, .rho = 1000, .element = MECH_BEAM_CONSISTENT};
+    const mech_section sec = {.E = 2.1e9,
+                              .G = 8.1e8,
+                              .A = 1e-4,
+                              .Iy = 1e-9,
+                              .Iz = 1e-9,
+                              .J = 1.5e-9,
+                              .rho = 1000,
+                              .element = MECH_BEAM_CONSISTENT};
     bgr_model *m = bgr_model_create("free");
     mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, NULL, NULL, NULL, nodes, elems);
     if (bgr_compile(m) != BG_OK) {
@@ -315,11 +240,11 @@ static void test_energy(void)
     if (r == 0) r = dae_consistent_init(s);
     double *y = malloc((size_t)N * sizeof *y), *yp = malloc((size_t)N * sizeof *yp), t = 0;
     memcpy(y, bgr_y0(m), (size_t)N * sizeof *y);
-    double E0 = total_energy(m, nodes, elems, n, y), drift = 0, Tel = 0, Wmax = 0;
+    double E0 = bt_total_energy(m, nodes, elems, n, y), drift = 0, Tel = 0, Wmax = 0;
     double T = 2 * 2 * PI / W; /* two revolutions */
     for (int j = 1; j <= 40 && r == 0; j++) {
         r = dae_solve_to(s, T * j / 40, &t, y, yp);
-        double E = total_energy(m, nodes, elems, n, y);
+        double E = bt_total_energy(m, nodes, elems, n, y);
         drift = fmax(drift, fabs(E - E0) / E0);
         for (int k = 0; k < n; k++) {
             Tel = fmax(Tel, fabs(mech_beam_kinetic(m, elems[k], y)));
@@ -333,11 +258,12 @@ static void test_energy(void)
                  ds->newton_iters, ds->jac_evals);
     /* at rtol 1e-6: 7e-6 (1e-8: 4e-8); without the rate term G' u' of the accelerations the
      * energy drifts by 2.4e-4 */
-    tap_ok(r == 0 && drift < 3e-5,
-           "free chain (consistent element) spinning at %g rad/s while it bends: total energy %.6e J "
-           "kept within %.1e over two revolutions (elements' kinetic share up to %.2e J, strain "
-           "up to %.2e J)",
-           W, E0, drift, Tel, Wmax);
+    tap_ok(
+        r == 0 && drift < 3e-5,
+        "free chain (consistent element) spinning at %g rad/s while it bends: total energy %.6e J "
+        "kept within %.1e over two revolutions (elements' kinetic share up to %.2e J, strain "
+        "up to %.2e J)",
+        W, E0, drift, Tel, Wmax);
     dae_free(&s);
     free(y);
     free(yp);
@@ -357,9 +283,9 @@ static void test_vibration(void)
     const int n = 4;
     int nodes[8], elems[8];
     /* a polymer rod, r^2 / L^2 = 1e-5: its axial frequency 23 times the bending one */
-    const mech_section rod = {.E = 2.1e9, .G = 8.1e8, .A = 1e-4, .Iy = 2e-9, .Iz = 1e-9,
-                              .J = 1.5e-9, .rho = 1000};
-    bgr_model *m = cantilever(&rod, n, 1.0, MECH_BEAM_CONSISTENT, NULL, 0, nodes, elems);
+    const mech_section rod = {
+        .E = 2.1e9, .G = 8.1e8, .A = 1e-4, .Iy = 2e-9, .Iz = 1e-9, .J = 1.5e-9, .rho = 1000};
+    bgr_model *m = bt_cantilever(&rod, MECH_BEAM_CONSISTENT, n, 1.0, NULL, 0, 0, nodes, elems);
     dae_modes *M = NULL;
     bg_error e = {0};
     if (!m || bgr_modes(m, 0.0, NULL, NULL, NULL, &M, &e) != BG_OK) {
@@ -383,9 +309,9 @@ static void test_vibration(void)
     /* the velocity shape: the mode's velocities turned real (the phase of the tip's) */
     int vt = mech_body_var(m, nodes[n], 'v') + 2;
     double ph = atan2(im[vt], re[vt]), c0 = cos(ph), s0 = sin(ph), scale = 0;
-    double want = clamped_free_root(1) * clamped_free_root(1) *
+    double want = bt_clamped_free_root(1) * bt_clamped_free_root(1) *
                   sqrt(rod.E * rod.Iz / (rod.rho * rod.A));
-    want *= 1 - 0.5 * rod.Iz / rod.A * slope_ratio(clamped_free_root(1));
+    want *= 1 - 0.5 * rod.Iz / rod.A * bt_slope_ratio(bt_clamped_free_root(1));
     double wmode = found >= 0 ? dae_modes_get(M, found)->freq_hz * 2 * PI : NAN;
     if (found >= 0) scale = 1e-4 * want / hypot(re[vt], im[vt]);
     for (int j = 1; j <= n; j++) {
@@ -413,7 +339,7 @@ static void test_vibration(void)
     double *y = malloc((size_t)N * sizeof *y), *yp = malloc((size_t)N * sizeof *yp), t = 0;
     memcpy(y, bgr_y0(m), (size_t)N * sizeof *y);
     int iz = mech_body_var(m, nodes[n], 'x') + 2;
-    double E0 = total_energy(m, nodes, elems, n, y), drift = 0, T = 2 * PI / want;
+    double E0 = bt_total_energy(m, nodes, elems, n, y), drift = 0, T = 2 * PI / want;
     double z0 = y[iz], first = NAN, last = NAN, tprev = 0;
     int crossings = 0;
     for (int j = 1; j <= 6 * 200 && r == 0; j++) {
@@ -424,7 +350,7 @@ static void test_vibration(void)
             if (crossings++ == 0) first = tc;
             last = tc;
         }
-        drift = fmax(drift, fabs(total_energy(m, nodes, elems, n, y) - E0) / E0);
+        drift = fmax(drift, fabs(bt_total_energy(m, nodes, elems, n, y) - E0) / E0);
         z0 = z, tprev = t;
     }
     if (r < 0) tap_diag("vibrating cantilever: %s", s ? dae_get_error(s)->message : e.message);
@@ -455,7 +381,7 @@ static int sag(int n, int mass, double *tip)
 {
     int nodes[65], elems[64];
     const double g[3] = {0, 0, -9.81e-5}; /* small: sag 4.6e-5 L, linear to 1e-9 */
-    bgr_model *m = cantilever(&slender, n, 1.0, mass, g, 0, nodes, elems);
+    bgr_model *m = bt_cantilever(&slender, mass, n, 1.0, g, 0, 0, nodes, elems);
     if (!m) return -1;
     dae_static_result r;
     bg_error err = {0};
@@ -481,20 +407,20 @@ static void test_sag(void)
            "own weight, consistent: tip q L^4/(8 E I) = %.6e m within %.1e, %.1e, %.1e at 2, 4, "
            "8 elements (lumped: %.1e, %.1e, %.1e)",
            want, e[1][0], e[1][1], e[1][2], e[0][0], e[0][1], e[0][2]);
-    const mech_section stocky = {.E = 2.1e9, .G = 8.1e8, .A = 1e-4, .Iy = 1e-9, .Iz = 2e-9,
-                                 .J = 1.5e-9, .rho = 1000};
+    const mech_section stocky = {
+        .E = 2.1e9, .G = 8.1e8, .A = 1e-4, .Iy = 1e-9, .Iz = 2e-9, .J = 1.5e-9, .rho = 1000};
     const double g[3] = {0, 3.0, -9.81};
     int nodes[4], elems[3];
-    bgr_model *m = cantilever(&stocky, 3, 1.0, MECH_BEAM_CONSISTENT, g, 0, nodes, elems);
+    bgr_model *m = bt_cantilever(&stocky, MECH_BEAM_CONSISTENT, 3, 1.0, g, 0, 0, nodes, elems);
     dae_static_result r;
     bg_error err = {0};
     int st = m ? bgr_static(m, NULL, 0.0, &r, &err) : -1;
     char rep[512] = "";
-    int bad = st == BG_OK ? bgr_check_jacobian(m, 0.0, bgr_y0(m), bgr_yp0(m), 1e-6, rep,
-                                                sizeof rep)
-                          : -1;
-    tap_ok(bad == 0, "consistent element's Jacobian at rest under gravity against central "
-                     "differences (%d mismatches%s%s)",
+    int bad =
+        st == BG_OK ? bgr_check_jacobian(m, 0.0, bgr_y0(m), bgr_yp0(m), 1e-6, rep, sizeof rep) : -1;
+    tap_ok(bad == 0,
+           "consistent element's Jacobian at rest under gravity against central "
+           "differences (%d mismatches%s%s)",
            bad, bad ? ": " : "", bad ? rep : "");
     bgr_model_free(&m);
 }
@@ -537,8 +463,13 @@ static void elastica(double k, double c, double *xt, double *zt)
 static void test_elastica(void)
 {
     /* steel, r / L = 2.9e-3 */
-    const mech_section steel = {.E = 2.1e11, .G = 8.1e10, .A = 1e-4, .Iy = 1.6e-9, .Iz = 8.33e-10,
-                                .J = 1.4e-9, .rho = 7850};
+    const mech_section steel = {.E = 2.1e11,
+                                .G = 8.1e10,
+                                .A = 1e-4,
+                                .Iy = 1.6e-9,
+                                .Iz = 8.33e-10,
+                                .J = 1.4e-9,
+                                .rho = 7850};
     const double ks[4] = {1, 3, 5, 10}, EI = steel.E * steel.Iz;
     const int ns[4] = {4, 8, 16, 32};
     double err[2][4][4]; /* [element][k][n] */
@@ -549,8 +480,8 @@ static void test_elastica(void)
         for (int mass = 0; mass < 2; mass++)
             for (int in = 0; in < 4; in++) {
                 int nodes[65], elems[64];
-                bgr_model *m = cantilever(&steel, ns[in], 1.0, mass, NULL, ks[ik] * EI, nodes,
-                                          elems);
+                bgr_model *m =
+                    bt_cantilever(&steel, mass, ns[in], 1.0, NULL, 0, ks[ik] * EI, nodes, elems);
                 dae_static_options o;
                 dae_static_options_default(&o);
                 o.max_steps = 5000;
@@ -577,8 +508,9 @@ static void test_elastica(void)
            "elastica, consistent element: tip within %.2e L at 16 elements for k = 1, 3, 5, 10 "
            "(target 1e-4; lumped: %.2e at k = 10)",
            w16, err[0][3][2]);
-    tap_ok(ok && omin > 3.7, "elastica, consistent element: fourth order (smallest order 8 -> 16 "
-                             "elements %.2f)",
+    tap_ok(ok && omin > 3.7,
+           "elastica, consistent element: fourth order (smallest order 8 -> 16 "
+           "elements %.2f)",
            omin);
 }
 
@@ -622,9 +554,9 @@ static double model_file_first(const char *element, int *n)
 
 static void test_model_file(void)
 {
-    double b = clamped_free_root(0), EI = slender.E * 1e-12;
+    double b = bt_clamped_free_root(0), EI = slender.E * 1e-12;
     double w = b * b * sqrt(EI / (slender.rho * slender.A));
-    w *= 1 - 0.5 * 1e-12 / slender.A * slope_ratio(b);
+    w *= 1 - 0.5 * 1e-12 / slender.A * bt_slope_ratio(b);
     int nc = 0, nl = 0, nq = 0;
     double fc = model_file_first("consistent", &nc), fl = model_file_first("lumped", &nl);
     double fq = model_file_first("quartic", &nq);

@@ -25,6 +25,7 @@
 
 #include "bg_sparse.h"
 #include "bgr_analysis.h"
+#include "beam_testlib.h"
 #include "bgr_elements.h"
 #include "mech_beam.h"
 #include "mech_body.h"
@@ -40,72 +41,17 @@ static const mech_section slender = {2.1e11,  8.1e10, 1e-4, 2e-12, 1e-12,
 static const mech_section rod = {2.1e9,  8.1e8, 1e-4, 2e-9, 1e-9,
                                  1.5e-9, 1000,  0,    0,    MECH_BEAM_QUARTIC};
 
-/* A cantilever of n elements of kind element along x, clamped at node 0, gravity g (NULL:
- * none), a dead load (Px, 0, -P) at the tip; compiled and set straight. */
-static bgr_model *cantilever(const mech_section *section, int element, int n, const double *g,
-                             double Px, double P, int *nodes, int *elems)
-{
-    const double p0[3] = {0, 0, 0}, p1[3] = {1, 0, 0}, up[3] = {0, 0, 1};
-    int extra[65];
-    for (int k = 0; k <= n; k++)
-        extra[k] = k == 0 || k == n;
-    mech_section sec = *section;
-    sec.element = element;
-    bgr_model *m = bgr_model_create("cant");
-    mech_beam_chain(m, 0, "beam", n, p0, p1, up, &sec, g, extra, NULL, nodes, elems);
-    int clamp = mech_support(m, 0, "clamp", 6);
-    bgr_bond(m, 0, "b_clamp", 6, bgr_port_of(m, clamp, 0),
-             mech_beam_chain_port(m, nodes, n, extra, 0, 0), NULL, NULL);
-    double load[6] = {Px, 0, -P, 0, 0, 0};
-    int src = bgr_Se(m, 0, "tip_load", 6, load);
-    bgr_bond(m, 0, "b_load", 6, bgr_port_of(m, src, 0),
-             mech_beam_chain_port(m, nodes, n, extra, n, 0), NULL, NULL);
-    if (bgr_compile(m) != BG_OK) {
-        tap_diag("cantilever: %s", bgr_model_error(m)->message);
-        bgr_model_free(&m);
-        return NULL;
-    }
-    mech_beam_chain_set(m, nodes, n, p0, p1);
-    return m;
-}
-
 /* The unknown of state i of element el (quartic: 0 b_y, 1 b_z, 2 c_y, 3 c_z). */
 static int state_var(const bgr_model *m, int el, int i)
 {
     return bgr_ref_var(m, (bgr_ref){.type = BGR_STATE, .id = el, .i = i});
 }
 
-/* Root n (0, 1, 2) of cos b cosh b + 1 = 0, by Newton from its asymptote (n + 1/2) pi. */
-static double clamped_free_root(int n)
-{
-    double b = n == 0 ? 1.9 : (n + 0.5) * PI;
-    for (int it = 0; it < 50; it++)
-        b -= (cos(b) * cosh(b) + 1) / (cos(b) * sinh(b) - sin(b) * cosh(b));
-    return b;
-}
-
-/* int phi'^2 / int phi^2 on [0, 1] for the clamped-free mode of root b (x in units of L),
- * 3-point Gauss-Legendre on 400 panels. */
-static double slope_ratio(double b)
-{
-    const double gx[3] = {-sqrt(0.6), 0, sqrt(0.6)}, gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-    double s = (cosh(b) + cos(b)) / (sinh(b) + sin(b)), num = 0, den = 0;
-    for (int p = 0; p < 400; p++)
-        for (int g = 0; g < 3; g++) {
-            double x = b * (p + 0.5 + 0.5 * gx[g]) / 400;
-            double ph = cosh(x) - cos(x) - s * (sinh(x) - sin(x));
-            double dp = b * (sinh(x) + sin(x) - s * (cosh(x) - cos(x)));
-            num += gw[g] * dp * dp;
-            den += gw[g] * ph * ph;
-        }
-    return num / den;
-}
-
 /* The closed-form clamped-free bending frequency k (rad/s) with second moment I, L = 1. */
 static double cantilever_frequency(const mech_section *s, double I, int k)
 {
-    double b = clamped_free_root(k);
-    return b * b * sqrt(s->E * I / (s->rho * s->A)) * (1 - 0.5 * I / s->A * slope_ratio(b));
+    double b = bt_clamped_free_root(k);
+    return b * b * sqrt(s->E * I / (s->rho * s->A)) * (1 - 0.5 * I / s->A * bt_slope_ratio(b));
 }
 
 /* Plane of a mode from its node velocities (local e1 = x, e2 = z, e3 = -y): 0 along z (I_z),
@@ -128,7 +74,7 @@ static int bending_frequencies(const mech_section *sec, int n, int element, doub
                                double f[2][3])
 {
     int nodes[65], elems[64];
-    bgr_model *m = cantilever(sec, element, n, NULL, Px, 0, nodes, elems);
+    bgr_model *m = bt_cantilever(sec, element, n, 1.0, NULL, Px, 0, nodes, elems);
     dae_modes *M = NULL;
     bg_error e = {0};
     dae_static_result sr;
@@ -158,11 +104,11 @@ static void test_frequencies(void)
     enum { NN = 4 };
     const int ns[NN] = {2, 4, 8, 16};
     const double I2[2] = {slender.Iz, slender.Iy};
-    tap_ok(fabs(clamped_free_root(0) - 1.8751) < 1e-4 &&
-               fabs(clamped_free_root(1) - 4.6941) < 1e-4 &&
-               fabs(clamped_free_root(2) - 7.8548) < 1e-4,
-           "clamped-free roots %.10f %.10f %.10f (1.8751, 4.6941, 7.8548)", clamped_free_root(0),
-           clamped_free_root(1), clamped_free_root(2));
+    tap_ok(fabs(bt_clamped_free_root(0) - 1.8751) < 1e-4 &&
+               fabs(bt_clamped_free_root(1) - 4.6941) < 1e-4 &&
+               fabs(bt_clamped_free_root(2) - 7.8548) < 1e-4,
+           "clamped-free roots %.10f %.10f %.10f (1.8751, 4.6941, 7.8548)", bt_clamped_free_root(0),
+           bt_clamped_free_root(1), bt_clamped_free_root(2));
     double err[NN][6]; /* [n][plane * 3 + mode] */
     int ok = 1;
     for (int i = 0; i < NN; i++) {
@@ -252,7 +198,7 @@ static void test_tension(void)
                  EI[2] = {slender.E * slender.Iz, slender.E * slender.Iy},
                  rI[2] = {slender.rho * slender.Iz, slender.rho * slender.Iy};
     const double N = 50 * EI[0]; /* N L^2 / (E I) = 50 and 25 in the two planes */
-    double b0 = clamped_free_root(2);
+    double b0 = bt_clamped_free_root(2);
     double chk = tension_frequency(EI[0], rA, 0, 0, 2) / (b0 * b0 * sqrt(EI[0] / rA)) - 1;
     double chr =
         tension_frequency(EI[0], rA, rI[0], 0, 2) / cantilever_frequency(&slender, slender.Iz, 2) -
@@ -404,28 +350,6 @@ static void test_kinetic(void)
            tg, tfg, fabs(tg - tfg) / m, tc0);
 }
 
-/* ---- energy of a free chain spinning end over end while it bends ----
- * As for the consistent element (test_beam_consistent.c): no supports, no gravity, turning
- * about z at W with the bending velocity z' = 2 (6 s^2 - 1/2) (s = x - 1/2) and its slope rate
- * at the nodes, over one revolution at rtol 1e-6; the bubbles start at rest and bend with the
- * motion. The total energy (node bodies' kinetic, elements' strain and kinetic) is a constant
- * of the motion. Two elements: the excited high modes set the step (the bubbles' own, about
- * 1.1e4 rad/s at 4 elements, where the consistent element's highest are 1e4 and 2e4): at 4
- * elements over two revolutions 79 000 steps, the consistent element 21 000. */
-static double total_energy(const bgr_model *m, const int *nodes, const int *elems, int n,
-                           const double *y)
-{
-    double E = 0;
-    for (int k = 0; k <= n; k++) {
-        double T, V;
-        mech_body_energy(m, nodes[k], y, &T, &V);
-        E += T;
-    }
-    for (int k = 0; k < n; k++)
-        E += mech_beam_energy(m, elems[k], y) + mech_beam_kinetic(m, elems[k], y);
-    return E;
-}
-
 /* Integrates m from its initial values (consistent ones computed) to T at nout output points:
  * the largest relative change of the total energy, the largest |kinetic energy| of an element
  * and |bubble amplitude|, and, if iz >= 0, the mean period between upward zero crossings of
@@ -451,12 +375,12 @@ static int run(bgr_model *m, const int *nodes, const int *elems, int n, double r
     if (r == 0) r = dae_consistent_init(s);
     double *y = malloc((size_t)N * sizeof *y), *yp = malloc((size_t)N * sizeof *yp), t = 0;
     memcpy(y, bgr_y0(m), (size_t)N * sizeof *y);
-    double E0 = total_energy(m, nodes, elems, n, y), z0 = iz >= 0 ? y[iz] : 0, tprev = 0;
+    double E0 = bt_total_energy(m, nodes, elems, n, y), z0 = iz >= 0 ? y[iz] : 0, tprev = 0;
     double first = NAN, last = NAN;
     *o = (run_out){.period = NAN};
     for (int j = 1; j <= nout && r == 0; j++) {
         r = dae_solve_to(s, T * j / nout, &t, y, yp);
-        o->drift = fmax(o->drift, fabs(total_energy(m, nodes, elems, n, y) - E0) / E0);
+        o->drift = fmax(o->drift, fabs(bt_total_energy(m, nodes, elems, n, y) - E0) / E0);
         for (int k = 0; k < n; k++) {
             o->Tel = fmax(o->Tel, fabs(mech_beam_kinetic(m, elems[k], y)));
             for (int a = 0; a < 2; a++)
@@ -521,7 +445,7 @@ static void test_vibration(void)
 {
     const int n = 4;
     int nodes[8], elems[8];
-    bgr_model *m = cantilever(&rod, MECH_BEAM_QUARTIC, n, NULL, 0, 0, nodes, elems);
+    bgr_model *m = bt_cantilever(&rod, MECH_BEAM_QUARTIC, n, 1.0, NULL, 0, 0, nodes, elems);
     dae_modes *M = NULL;
     bg_error e = {0};
     if (!m || bgr_modes(m, 0.0, NULL, NULL, NULL, &M, &e) != BG_OK) {
@@ -585,7 +509,7 @@ static int sag(int n, int element, double *tip, double *slope, double *mid, doub
 {
     int nodes[65], elems[64];
     const double g[3] = {0, 0, -9.81e-5};
-    bgr_model *m = cantilever(&slender, element, n, g, 0, 0, nodes, elems);
+    bgr_model *m = bt_cantilever(&slender, element, n, 1.0, g, 0, 0, nodes, elems);
     if (!m) return -1;
     dae_static_result r;
     bg_error err = {0};
@@ -724,7 +648,7 @@ static void test_jacobian(void)
     const mech_section stocky = {2.1e9, 8.1e8, 1e-4, 1e-9, 2e-9, 1.5e-9, 1000, 0, 0, 0};
     const double g[3] = {0, 3.0, -9.81};
     int nodes[4], elems[3];
-    bgr_model *m = cantilever(&stocky, MECH_BEAM_QUARTIC, 3, g, 0, 0, nodes, elems);
+    bgr_model *m = bt_cantilever(&stocky, MECH_BEAM_QUARTIC, 3, 1.0, g, 0, 0, nodes, elems);
     dae_static_result r;
     bg_error err = {0};
     int st = m ? bgr_static(m, NULL, 0.0, &r, &err) : -1;
@@ -866,8 +790,8 @@ static void test_elastica(void)
         elastica(ks[ik], steel.Iz / steel.A, &xt, &zt);
         for (int in = 0; in < NN; in++) {
             int nodes[65], elems[64];
-            bgr_model *m =
-                cantilever(&steel, MECH_BEAM_QUARTIC, ns[in], NULL, 0, ks[ik] * EI, nodes, elems);
+            bgr_model *m = bt_cantilever(&steel, MECH_BEAM_QUARTIC, ns[in], 1.0, NULL, 0,
+                                         ks[ik] * EI, nodes, elems);
             dae_static_result r;
             bg_error e = {0};
             int st = m ? bgr_static(m, NULL, 0.0, &r, &e) : -1;
