@@ -104,11 +104,27 @@ static inline int mech_beam_quartic_(const beam *b)
 
 /* J(q): dq = J(q) dphi for a global rotation increment dphi (rows: q, columns: dphi). */
 void mech_beam_quat_J_(const double *q, double J[4][3]);
+/* R(q) = N(q) / (q.q) (column-major), its gradient dR[k][m] = dR_k / dq_m and, if d2R != NULL,
+ * its Hessian. */
+void mech_beam_quat_rot_(const double *q, double R[9], double dR[9][4], double (*d2R)[4][4]);
+/* gv (12) = the gradient ag (14 configuration unknowns x_a, x_b, q_a, q_b) in the ports'
+ * velocity coordinates (x_a, phi_a, x_b, phi_b), through dq = J(q) dphi. */
+void mech_beam_velocity_gradient_g_(const double *ag, const double *qa, const double *qb,
+                                    double *gv);
 /* The gradient gv (b->nv) of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b,
  * phi_b, and the bubbles' b) and, if dgv != NULL, its derivatives with respect to the b->nc
  * configuration unknowns. */
 void mech_beam_velocity_gradient_(const beam *b, const ad *a, const double *y, double *gv,
                                   double (*dgv)[MB_NC]);
+
+/* The plain path (mech_beam_plain.c). The local stiffness K (7 x 7) of the deformations
+ * (u, theta_a, theta_b), W = d^T K d / 2 (made once, with the element). */
+void mech_beam_stiffness_(const beam *b, double K[7][7]);
+/* The port loads g (12) of the lumped and consistent elements' residual at y: elastic, bowing
+ * (consistent) and damping, by one forward, one tangent (damped only) and one reverse pass. */
+void mech_beam_loads_plain_(const beam *b, const double *y, double *g);
+/* beta d'^T K d': the power the section's damping dissipates at y (the bubbles' apart). */
+double mech_beam_strain_power_(const beam *b, const double *y);
 
 /* The consistent element (mech_beam_consistent.c). The rotation measure: the node angles th
  * (3) of one node turned from the skew part into the rotation vector, in place. */
