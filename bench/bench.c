@@ -6,7 +6,7 @@
  *         [--quick] [--out DIR] [--crane-horizon T] [--crane-realtime K] [--scaling LIST|none]
  *         [--crane-scene FILE] [--stability-filter TEXT] [--strict] [--crane-full]
  *         [--crane-full-scene FILE] [--crane-full-rtols LIST] [--error-estimate] [--help]
- *         [--newton-dgmax G]
+ *         [--newton-dgmax G] [--crane-full-max-order K]
  *
  * Problems (default: all): ap102, pendulum2, robertson, vdp_scaled, hires, lin2, smooth_ode,
  * kinks, the IVP Test Set's crank, pump, transamp, chemakzo, nand, the undamped oscillatory
@@ -49,7 +49,8 @@
  * of crane --error-estimate against the true error on the problems and tolerances of the run,
  * bench_errest.h). --newton-dgmax G runs ours on the collection with options.newton_dgmax = G
  * (the crane keeps its scene's setting), for comparing the Newton matrix refresh.
- * --crane-full-repeat K: the series' CPU times as medians of K runs. IDA's settings (bench_case.h
+ * --crane-full-repeat K: the series' CPU times as medians of K runs; --crane-full-max-order K:
+ * bgdae-klu's largest order there (the reference's stays 5). IDA's settings (bench_case.h
  * run_opts, docs/bench.md): --ida-klu-pivot-tol T (KLU's pivot tolerance in ida-klu, default 1),
  * --ida-scalar-atol (no nominal magnitudes in IDA's atol), --ida-index2-h (IDA's index-2
  * weights times |h|), --ida-newton-diag (the series' report: IDA's Newton corrections by kind).
@@ -353,7 +354,8 @@ static void more_series(harness *b, const bench_results *res)
         b->stab_bad = bench_stability(c->out, b->tail.f, &sc, &b->crashed);
     }
     bench_full_opts fo = {c->full_rtols, c->full_nr, 1e-10, c->full_repeat, c->ida_klu_tol,
-                          c->ida_scalar_atol, c->ida_newton_diag, c->ida_index2_h};
+                          c->ida_scalar_atol, c->ida_newton_diag, c->ida_index2_h,
+                          c->full_max_order};
     if (c->crane_full)
         b->failures +=
             bench_crane_full(c->out, "crane_wp.csv", b->tail.f, &b->full, b->full_name, &fo);

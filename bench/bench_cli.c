@@ -89,6 +89,11 @@ static const pu_cli_option options[] = {
      .min = 1, .max = 99, .bad = "%s takes a whole number from 1 to 99, not '%s'",
      .help = "runs of each solver and tolerance in --crane-full, the CPU time their median "
              "(default 1); takes a whole number from 1 to 99"},
+    {.name = "--crane-full-max-order", .kind = PU_CLI_INT, .arg = "K", .at = AT(full_max_order),
+     .min = 1, .max = 5, .bad = "%s takes a whole number from 1 to 5, not '%s'",
+     .seen = AT(crane_full),
+     .help = "the largest BDF order of bgdae-klu's runs in --crane-full (implies it; the "
+             "reference's stays 5, MEBDF's its own); takes a whole number from 1 to 5"},
     {.name = "--ida-klu-pivot-tol", .kind = PU_CLI_DOUBLE, .arg = "T", .at = AT(ida_klu_tol),
      .min = 1e-6, .max = 1, .bad = "%s takes a number in [1e-6, 1], not '%s'",
      .help = "KLU's pivot tolerance in IDA-KLU (default 1: partial pivoting; 0.001, KLU's "

@@ -41,6 +41,7 @@ typedef struct bench_cli {
     int ida_scalar_atol; /* --ida-scalar-atol: IDA without the problems' nominal magnitudes */
     int ida_index2_h;    /* --ida-index2-h: IDA's index-2 weights times |h| (bench_ida_ewt) */
     int full_repeat;     /* --crane-full-repeat K: runs of each solver in the series (default 1) */
+    int full_max_order;  /* --crane-full-max-order K: our BDF runs' largest order (0: 5) */
     int ida_newton_diag; /* --ida-newton-diag: where IDA's Newton corrections sit (--crane-full) */
     int child; /* --realtime-child: internal, one real-time run (bench_realtime.h) */
 

@@ -78,6 +78,7 @@ typedef struct bench_full_opts {
     int ida_scalar_atol;
     int ida_newton_diag; /* run_opts.ida_newton_diag: a report line per IDA run */
     int ida_index2_h;    /* run_opts.ida_index2_h */
+    int max_order;       /* run_opts.max_order of bgdae-klu's runs (0: the default) */
 } bench_full_opts;
 
 int bench_crane_full(const char *dir, const char *csv, FILE *rep, const crane_scene *s,

@@ -57,6 +57,38 @@ static int count_lines(const char *path, const char *a, const char *b)
     return n;
 }
 
+/* The max_order column of crane_wp.csv over the rows that begin with prefix: their smallest
+ * (largest = 0) or largest (largest = 1); -1 if there is none or the file cannot be read. */
+static int max_order_of(const char *path, const char *prefix, int largest)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    char line[8192];
+    int col = -1, best = -1;
+    while (fgets(line, sizeof line, f)) {
+        if (col < 0) { /* the header: the column's place */
+            int c = 0;
+            for (char *p = line; *p; p++) {
+                if (!strncmp(p, "max_order,", 10) && (p == line || p[-1] == ',')) col = c;
+                if (*p == ',') c++;
+            }
+            if (col < 0) break;
+            continue;
+        }
+        if (strncmp(line, prefix, strlen(prefix))) continue;
+        char *p = line;
+        for (int c = 0; c < col && p; c++) {
+            p = strchr(p, ',');
+            if (p) p++;
+        }
+        if (!p || *p == ',') continue;
+        int k = atoi(p);
+        if (best < 0 || (largest ? k > best : k < best)) best = k;
+    }
+    fclose(f);
+    return best;
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 3) {
@@ -81,6 +113,8 @@ int main(int argc, char **argv)
         {"--crane-full-rtols", "0", NULL},
         {"--crane-full-scene", "/no/such/scene.ini", NULL},
         {"--newton-dgmax", "1", NULL},
+        {"--crane-full-max-order", "6", NULL},
+        {"--crane-full-max-order", "0", NULL},
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         int r = run(bad[i]);
@@ -147,6 +181,32 @@ int main(int argc, char **argv)
     snprintf(path, sizeof path, "%s/report.md", out);
     tap_ok(count_lines(path, "## Stability suite", NULL) == 1,
            "report.md has the stability section");
+
+    /* the crane-full series with bgdae-klu's orders capped (a 0.3 s paper scene): its rows
+     * take orders up to the cap, the reference's (rtol 1e-10) beyond it */
+    char scene[4200];
+    snprintf(out, sizeof out, "%s/full", dir);
+    snprintf(scene, sizeof scene, "%s/short.ini", dir);
+    FILE *sf = fopen(scene, "w");
+    if (sf) {
+        fputs("[solver]\nt_end = 0.3\n", sf);
+        fclose(sf);
+    }
+    const char *full[] = {"--problems", "none", "--crane-full-scene", scene, "--crane-full-rtols",
+                          "1e-4,1e-6", "--crane-full-max-order", "2", "--scaling", "none",
+                          "--crane-realtime", "0", "--out", out, NULL};
+    r = run(full);
+    tap_ok(sf && r == 0, "crane-full series with --crane-full-max-order 2: exit status %d", r);
+    snprintf(path, sizeof path, "%s/crane_wp.csv", out);
+    int ref_k = max_order_of(path, "bgdae-klu (reference),", 0),
+        lo_k = max_order_of(path, "bgdae-klu,", 0), hi_k = max_order_of(path, "bgdae-klu,", 1);
+    tap_ok(count_lines(path, "bgdae-klu,", NULL) == 2 && lo_k >= 1 && hi_k <= 2 && ref_k > 2,
+           "crane_wp.csv: bgdae-klu's two runs at orders 1 .. 2 (took %d .. %d), the reference "
+           "beyond 2 (%d)",
+           lo_k, hi_k, ref_k);
+    snprintf(path, sizeof path, "%s/report.md", out);
+    tap_ok(count_lines(path, "at orders up to 2 (--crane-full-max-order", NULL) == 1,
+           "report.md names the cap");
 
     const char *unwritable[] = {"--problems", "pendulum2",          "--rtols", "1e-4",
                                 "--out",      "/proc/bench-test/x", NULL};
