@@ -89,6 +89,9 @@ typedef struct crane_scene {
                           * boom's and the lines' undamped fast modes hold BDF orders 3..5 at
                           * their stability limit (numerical dissipation of those modes); 0: the
                           * order follows the error estimates alone */
+    int max_order;       /* dae_options.max_order: the highest BDF order, 1..5 (orders 3..5 are
+                          * not A-stable: lightly damped modes can hold them at their stability
+                          * limits at tight tolerances) */
     double newton_dgmax; /* dae_options.newton_dgmax: the Newton matrix refactored from the
                           * saved Jacobian when 1/cj moved by more than this (0: off) */
     int newton_jac_age;  /* dae_options.newton_jac_age: the Jacobian evaluated again after this

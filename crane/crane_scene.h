@@ -11,8 +11,8 @@
  * prints it; tests/crane/test_crane_scene_keys.c fails when the two disagree). The sections and
  * keys mirror the fields of crane_scene (crane_model.h). Units are SI: m, kg, s, N, Pa, rad.
  *
- * [solver] stability_guard, newton_dgmax, newton_jac_age and newton_index2_scale_h set the
- * solver's options of the same names (bg_dae.h). newton_dgmax and newton_jac_age are on in the
+ * [solver] stability_guard, max_order, newton_dgmax, newton_jac_age and newton_index2_scale_h
+ * set the solver's options of the same names (bg_dae.h). newton_dgmax and newton_jac_age are on in the
  * shipped scenes since the Jacobian follows the switching elements' regimes
  * (bg_dae.h, dae_problem.regimes): before, at rtol 1e-4, a Jacobian from an open check valve
  * used after it closed left phantom flows in the lines, and these settings, which keep a

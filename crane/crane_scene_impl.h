@@ -31,7 +31,7 @@ typedef struct key_def {
 } key_def;
 
 /* The table (crane_scene_keys.c), one entry per key in the order of the sections. */
-#define CRANE_SCENE_NKEYS 71
+#define CRANE_SCENE_NKEYS 72
 extern const key_def crane_scene_keys[];
 #define KEYS crane_scene_keys
 #define NKEYS CRANE_SCENE_NKEYS

@@ -6,6 +6,7 @@
 void crane_solver_settings(const crane_scene *s, dae_options *o)
 {
     o->stability_guard = s->stability_guard;
+    o->max_order = s->max_order;
     o->newton_dgmax = s->newton_dgmax;
     o->newton_jac_age = s->newton_dgmax > 0 ? s->newton_jac_age : 0; /* needs newton_dgmax */
     o->newton_index2_scale_h = s->newton_index2_scale_h;

@@ -12,8 +12,9 @@
  *                        none when c or breakpoints_owned is NULL
  *   exclude_alg          1: forces follow the states they are functions of; the index-2 policy
  *                        stays the default (DAE_I2_EXCLUDE)
- *   the scene's settings stability_guard, newton_dgmax, newton_jac_age (only with newton_dgmax >
- *                        0, which it needs), newton_index2_scale_h (crane_solver_settings)
+ *   the scene's settings stability_guard, max_order, newton_dgmax, newton_jac_age (only with
+ *                        newton_dgmax > 0, which it needs), newton_index2_scale_h
+ *                        (crane_solver_settings)
  * A caller changes what it runs otherwise (t_stop of a shorter run, its own tolerances,
  * max_steps) afterwards; the breakpoints beyond its t_stop are then never reached. */
 #ifndef CRANE_SETUP_H

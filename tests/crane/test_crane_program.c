@@ -228,6 +228,40 @@ static void test_interrupt(void)
            "solver_stats.txt is written after an interruption");
 }
 
+/* The steps at orders 1..5 from solver_stats.txt of the run in dir ("orders=a/b/c/d/e"); 0 if
+ * they are not there. */
+static int orders_of(const char *dir, long k[5])
+{
+    char p[4300], buf[8192];
+    snprintf(p, sizeof p, "%s/solver_stats.txt", dir);
+    slurp(p, buf, sizeof buf);
+    const char *o = strstr(buf, " orders=");
+    return o && sscanf(o, " orders=%ld/%ld/%ld/%ld/%ld", &k[0], &k[1], &k[2], &k[3], &k[4]) == 5;
+}
+
+/* [solver] max_order reaches the integrator: the paper scene's 0.2 s, which takes orders 3 to
+ * 5 (the run of test_scene_runs), with max_order = 2 takes none of them. */
+static void test_max_order(void)
+{
+    char scene[4200], out[4200], def[4200];
+    snprintf(scene, sizeof scene, "%s/paper.ini", scenes);
+    snprintf(out, sizeof out, "%s/run-paper-k2", tmp);
+    snprintf(def, sizeof def, "%s/run-paper", tmp);
+    const char *args[] = {scene,   "--out",   out, "--t-end", "0.2", "--quiet", "--no-plots",
+                          "--set", "solver.max_order=2", NULL};
+    result r;
+    run(NULL, args, "max_order", 100, &r);
+    long k2[5], k5[5];
+    int ok2 = r.exited && r.code == 0 && orders_of(out, k2),
+        ok5 = orders_of(def, k5);
+    tap_ok(ok2 && ok5 && k5[2] + k5[3] + k5[4] > 0 && k2[2] + k2[3] + k2[4] == 0 && k2[1] > 0,
+           "[solver] max_order = 2: steps at orders 1..5 %ld/%ld/%ld/%ld/%ld (max_order = 5: "
+           "%ld/%ld/%ld/%ld/%ld)",
+           ok2 ? k2[0] : -1, ok2 ? k2[1] : -1, ok2 ? k2[2] : -1, ok2 ? k2[3] : -1,
+           ok2 ? k2[4] : -1, ok5 ? k5[0] : -1, ok5 ? k5[1] : -1, ok5 ? k5[2] : -1,
+           ok5 ? k5[3] : -1, ok5 ? k5[4] : -1);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -241,6 +275,7 @@ int main(int argc, char **argv)
     test_help_and_bad_command_lines();
     test_malformed_files();
     test_scene_runs(gnuplot);
+    test_max_order();
     test_failure();
     test_interrupt();
 
