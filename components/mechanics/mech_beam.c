@@ -212,53 +212,55 @@ static int config_var(const beam *b, int c)
                     : b->bs + c - 14;
 }
 
+void mech_beam_node_J_(const beam *b, const double *y, double J[2][4][3])
+{
+    mech_beam_quat_J_(y + b->qa, J[0]);
+    mech_beam_quat_J_(y + b->qb, J[1]);
+}
+
 /* The gradient of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b, phi_b) of the
  * ports (phi: global rotation increments, through dq = J(q) dphi); mech_beam_velocity_gradient_
  * adds the bubbles' and the derivatives. */
-void mech_beam_velocity_gradient_g_(const double *ag, const double *qa, const double *qb,
-                                    double *gv)
+void mech_beam_velocity_gradient_g_(const double *ag, const double (*J)[4][3], double *gv)
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
-        double J[4][3];
-        mech_beam_quat_J_(n ? qb : qa, J);
         for (int i = 0; i < 3; i++) {
             gv[6 * n + i] = ag[xoff[n] + i];
             double mk = 0;
             for (int j = 0; j < 4; j++)
-                mk += ag[qoff[n] + j] * J[j][i];
+                mk += ag[qoff[n] + j] * J[n][j][i];
             gv[6 * n + 3 + i] = mk;
         }
     }
 }
 
-void mech_beam_velocity_gradient_(const beam *b, const ad *a, const double *y, double *gv,
-                                  double (*dgv)[MB_NC])
+void mech_beam_velocity_gradient_(const beam *b, const ad *a, const double (*J)[4][3],
+                                  double *gv, double (*dgv)[MB_NC])
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
-    const double *qa = y + b->qa, *qb = y + b->qb;
-    mech_beam_velocity_gradient_g_(a->g, qa, qb, gv);
+    mech_beam_velocity_gradient_g_(a->g, J, gv);
     for (int k = 12; k < b->nv; k++) { /* the bubbles: their rates are their velocities */
         gv[k] = a->g[k + 2];
         for (int cc = 0; dgv && cc < b->nc; cc++)
             dgv[k][cc] = a->h[(k + 2) * AD_N + cc];
     }
+    double dJ[4][4][3]; /* dJ/dq_m: J is linear in q, J(e_m) */
+    for (int m = 0; m < 4 && dgv; m++) {
+        double e[4] = {0, 0, 0, 0};
+        e[m] = 1.0;
+        mech_beam_quat_J_(e, dJ[m]);
+    }
     for (int n = 0; n < 2 && dgv; n++) {
-        double J[4][3];
-        mech_beam_quat_J_(n ? qb : qa, J);
         for (int cc = 0; cc < b->nc; cc++) {
             for (int i = 0; i < 3; i++) {
                 dgv[6 * n + i][cc] = a->h[(xoff[n] + i) * AD_N + cc];
                 double d = 0;
                 for (int j = 0; j < 4; j++)
-                    d += a->h[(qoff[n] + j) * AD_N + cc] * J[j][i];
-                if (cc >= qoff[n] && cc < qoff[n] + 4) { /* J is linear in q */
-                    double e[4] = {0, 0, 0, 0}, Jl[4][3];
-                    e[cc - qoff[n]] = 1.0;
-                    mech_beam_quat_J_(e, Jl);
+                    d += a->h[(qoff[n] + j) * AD_N + cc] * J[n][j][i];
+                if (cc >= qoff[n] && cc < qoff[n] + 4)
                     for (int j = 0; j < 4; j++)
-                        d += a->g[qoff[n] + j] * Jl[j][i];
-                }
+                        d += a->g[qoff[n] + j] * dJ[cc - qoff[n]][j][i];
                 dgv[6 * n + 3 + i][cc] = d;
             }
         }
@@ -277,7 +279,9 @@ static void beam_loads(const beam *b, const double *y, int order, const double *
     beam_work *k = b->work;
     ad_ctx c = {.order = order, .dir = dir, .n = b->nc};
     beam_energy(b, y, &c, k);
-    mech_beam_velocity_gradient_(b, &k->W, y, g, dg);
+    double J[2][4][3];
+    mech_beam_node_J_(b, y, J);
+    mech_beam_velocity_gradient_(b, &k->W, (const double(*)[4][3])J, g, dg);
     if (dgw) memset(dgw, 0, 144 * sizeof(double));
     double beta = b->sec.beta;
     if (!(beta > 0)) return;
@@ -285,7 +289,8 @@ static void beam_loads(const beam *b, const double *y, int order, const double *
     double Jd[7][MB_NV], (*dJ)[MB_NV][MB_NC] = k->dJ, w[12], dd[7] = {0}, z[7] = {0};
     const double(*K)[7] = b->K;
     for (int r = 0; r < 7; r++)
-        mech_beam_velocity_gradient_(b, dl[r], y, Jd[r], dg ? dJ[r] : NULL);
+        mech_beam_velocity_gradient_(b, dl[r], (const double(*)[4][3])J, Jd[r],
+                                     dg ? dJ[r] : NULL);
     for (int m = 0; m < 6; m++) {
         w[m] = y[b->f[0] + m];
         w[6 + m] = y[b->f[1] + m];

@@ -331,18 +331,16 @@ void mech_beam_config_rate_(const beam *b, const double *y, double *Xd)
 /* Cd = (dgv X') of an AD scalar a of order 3 along X' (h = H X'): the rate of its velocity
  * gradient, from the positions' (and bubbles') rows of H X' and, for the rotations,
  * sum_m (H X')_q,m J(q)_m + g_q,m J(q')_m (J is linear in q). */
-static void gradient_rate(const ad *a, const double *y, const beam *b, const double *Xd, double *Cd)
+static void gradient_rate(const ad *a, const beam *b, const double (*J)[4][3],
+                          const double (*Jd)[4][3], double *Cd)
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
-        double J[4][3], Jd[4][3];
-        mech_beam_quat_J_(y + (n ? b->qb : b->qa), J);
-        mech_beam_quat_J_(Xd + qoff[n], Jd);
         for (int i = 0; i < 3; i++) {
             Cd[6 * n + i] = a->h[xoff[n] + i];
             double r = 0;
             for (int m = 0; m < 4; m++)
-                r += a->h[qoff[n] + m] * J[m][i] + a->g[qoff[n] + m] * Jd[m][i];
+                r += a->h[qoff[n] + m] * J[n][m][i] + a->g[qoff[n] + m] * Jd[n][m][i];
             Cd[6 * n + 3 + i] = r;
         }
     }
@@ -351,11 +349,11 @@ static void gradient_rate(const ad *a, const double *y, const beam *b, const dou
 }
 
 /* The basis' velocity gradients (and their derivatives if dgv is wanted) into the scratch. */
-static void basis_gradients(const beam *b, const double *y, beam_work *k, int with_dgv)
+static void basis_gradients(const beam *b, const double (*J)[4][3], beam_work *k, int with_dgv)
 {
     for (int bb = 0; bb < nbasis(b); bb++)
         for (int i = 0; i < 3; i++)
-            mech_beam_velocity_gradient_(b, &k->B[bb][i], y, k->gv[bb][i],
+            mech_beam_velocity_gradient_(b, &k->B[bb][i], J, k->gv[bb][i],
                                          with_dgv ? k->dgv[bb][i] : NULL);
 }
 
@@ -396,7 +394,11 @@ inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], dou
     /* the basis vectors' accelerations acc = gv . u'' + u' . (dgv X') (the second term: the
      * rate of the gradient along the motion, centrifugal and Coriolis): with the Jacobian from
      * the whole Hessians (order 2), for the residual from the Hessians along X' (order 3) */
-    basis_gradients(b, y, k, dX != NULL);
+    double J[2][4][3], Jd[2][4][3]; /* the nodes' J(q), and J(q') (J is linear in q) */
+    mech_beam_node_J_(b, y, J);
+    mech_beam_quat_J_(Xd + 6, Jd[0]);
+    mech_beam_quat_J_(Xd + 10, Jd[1]);
+    basis_gradients(b, (const double(*)[4][3])J, k, dX != NULL);
     double Cd[NV][3][MB_NV], acc[NB][3];
     for (int bb = 0; bb < nbs; bb++)
         for (int i = 0; i < 3; i++) {
@@ -408,7 +410,8 @@ inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], dou
                     Cd[bb][i][j] = cd;
                 }
             else
-                gradient_rate(&k->B[bb][i], y, b, Xd, Cd[bb][i]);
+                gradient_rate(&k->B[bb][i], b, (const double(*)[4][3])J,
+                              (const double(*)[4][3])Jd, Cd[bb][i]);
             double s = 0;
             for (int j = 0; j < nv; j++)
                 s += k->gv[bb][i][j] * ua[j] + ud[j] * Cd[bb][i][j];
@@ -536,7 +539,9 @@ double mech_beam_kinetic_(const beam *b, const double *y)
     beam_work *k = b->work;
     double ud[MB_NV], T = 0;
     port_rates(b, y, y, ud);
-    basis_gradients(b, y, k, 0);
+    double J[2][4][3];
+    mech_beam_node_J_(b, y, J);
+    basis_gradients(b, (const double(*)[4][3])J, k, 0);
     const point *P = b->pts;
     int np = b->npts;
     for (int p = 0; p < np; p++)

@@ -224,7 +224,9 @@ void mech_beam_loads_plain_(const beam *b, const double *y, double *g)
     if (b->sec.element == MECH_BEAM_CONSISTENT)
         mech_beam_bow_loads_(f.def, b->sec.E * b->sec.A, b->L0, z);
     beam_reverse(b, &f, z, gc);
-    mech_beam_velocity_gradient_g_(gc, y + b->qa, y + b->qb, g);
+    double J[2][4][3];
+    mech_beam_node_J_(b, y, J);
+    mech_beam_velocity_gradient_g_(gc, (const double(*)[4][3])J, g);
 }
 
 double mech_beam_strain_power_(const beam *b, const double *y)
