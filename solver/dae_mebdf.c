@@ -26,6 +26,27 @@
  *   stage 3  y_pred = ybar_{n+1},
  *            yp_pred = cj (ybar_{n+1} + sum ah_j y_{n+1-j}) - ((b1 - beta) ybar'_{n+1}
  *                      + b2 ybar'_{n+2}) / beta.
+ * Round-off: the sums in cj (..) are O(h y') while their terms are O(y), so formed from the values
+ * they carry a rounding of eps |y| that cj = 1/(h beta) turns into eps |y| / (h beta) in yp_pred.
+ * The Newton iteration answers that residual with corrections of eps |y| in y (below the resolution
+ * of the larger unknowns) and, through an index-2 constraint, of cj eps |y| in its multiplier. They
+ * are therefore formed in differences to y_n, whose rounding is relative to the differences
+ * themselves: each formula's weights sum to 0 (the extrapolation's to 1), so y_n drops out; the
+ * past values enter as P(t_{n+1} - j h) - y_n = sum_{i>=1} c_i phi_i (the history's differences),
+ * and ybar_{n+1} - y_n = phi_1 + .. + phi_k + ee_1 (the predictor's differences and stage 1's
+ * accumulated corrections, never y - y_n). This is the rule of the codes the method comes from:
+ * BDF's corrector on y - y_pred with y' = y'_pred + cj (y - y_pred) (DASSL, IDA; Brenan, Campbell
+ * and Petzold 1996, sec. 5.2), Cash's MEBDF code (ACM TOMS algorithm 703), which keeps backward
+ * differences and sums its corrections apart from y (STIFF, ITRAT2), and Hairer and Wanner's
+ * implicit Runge-Kutta stages solved for the smaller z_i = Y_i - y_0 against round-off (Solving
+ * ODEs II, 2nd ed., sec. IV.8). Measured on lin2 (bench/problems.c, x1 = sin t, x2 = cos 2t, lam =
+ * e^-t, atol = 1e-2 rtol): its first step is 8.7e-12 at rtol 1e-9 (IDA's rule, sized by x1(0) = 0
+ * against atol 1e-11), where the old sums left stage 3 a residual whose corrections were 7e-17 in
+ * x1, as much in x2 (below half the ulp of x2 = 1: lost) and 3.9e-6 (4e3 tolerances) in lam, so the
+ * constraint could not be met: the iteration cycled between two iterates at rate 1, the step was
+ * cut to 1.7e-17 and the run failed; at rtol 3e-9 .. 1e-11 runs finished with lam off by 1.7e5 ..
+ * 2.7e9 tolerance units at their start (rtol 1e-11: 38 980 steps). In differences: every one
+ * completes, lam within 1e3 tolerance units (tests/solver/test_dae_mebdf.c, 6).
  * Coefficients (k = 1..7, options.max_order; mebdf_coeffs solves the order conditions, constant
  * step):
  *   k  beta        b1          b2           order  stability angle
@@ -44,10 +65,11 @@
  * h lambda = -r exp(+-i alpha), 1e-3 <= r <= 1e6, and on the imaginary axis for k <= 3) and
  * agree with Cash's table (1983, 2000); BDF of orders 2..6: 90, 86.03, 73.35, 51.84, 17.84.
  * The orders up to 8 serve tight tolerances on problems without undamped fast modes: on
- * transamp (max_order 7) 1.13, 1.14, 1.17, 1.24 times MEBDFI's published steps at rtol 1e-4,
- * 1e-6, 1e-8, 1e-10 with 4.63, 6.44, 9.38, 10.33 correct digits (k <= 5: 1.07, 1.18, 1.37, 1.76;
- * orders 7 and 8 take 57 % of the steps at 1e-10); on undamped oscillations their stability
- * angles make them worse than orders up to 4.
+ * transamp (max_order 7) 1.13, 1.14, 1.19, 1.25 times MEBDFI's published steps at rtol 1e-4,
+ * 1e-6, 1e-8, 1e-10 with 4.63, 5.49, 8.49, 10.57 correct digits (medians over 0.8 .. 1.25 times
+ * each rtol 3.82, 6.59, 9.46, 10.79: one run's digits scatter by about one either way; k <= 5:
+ * 1.07, 1.18, 1.37, 1.76 times the steps; orders 7 and 8 take 85 % of the steps at 1e-10); on
+ * undamped oscillations their stability angles make them worse than orders up to 4.
  * tests/solver/test_dae_mebdf.c measures the amplification on the imaginary axis.
  * Variable step: as in BDF's fixed-leading-coefficient form (dae_step.c), the past values are
  * those of the history's predictor polynomial of degree k at t_{n+1} - j h (j = 1..k): the
@@ -169,9 +191,10 @@ static void mebdf_coeffs(int k, double *a, double *beta, double *ah, double *b1,
     *b2 = r[k + 1];
 }
 
-/* out = sum_{j=1..k} w[j] P(t_{n+1} - j h), P the history's predictor polynomial of degree k
- * (Newton form on the divided differences phi before set_coeffs scaled them: phi_i = phi*_i /
- * beta_i for i >= ns, and the nodes psi_old[i] = psi[i+1] - h, as restore in dae_step.c). */
+/* out = sum_{j=1..k} w[j] (P(t_{n+1} - j h) - y_n), P the history's predictor polynomial of
+ * degree k (Newton form on the divided differences phi before set_coeffs scaled them: phi_i =
+ * phi*_i / beta_i for i >= ns, and the nodes psi_old[i] = psi[i+1] - h, as restore in
+ * dae_step.c): the differences phi_1 .. phi_k alone, y_n = phi_0 left out. */
 static void combine_past(const dae_solver *s, const double *w, double *restrict out)
 {
     int k = s->kk, n = s->n;
@@ -181,16 +204,15 @@ static void combine_past(const dae_solver *s, const double *w, double *restrict 
     for (int m = 1; m <= k; m++) {
         if (w[m] == 0) continue;
         double delt = (1 - m) * h, c = 1; /* t - t_n */
-        cw[0] += w[m];
         for (int i = 1; i <= k; i++) {
             c *= (delt + (i >= 2 ? psio[i - 2] : 0.0)) / psio[i - 1];
             cw[i] += w[m] * c;
         }
     }
-    for (int i = 0; i <= k; i++)
+    for (int i = 1; i <= k; i++)
         if (i >= s->ns) cw[i] /= s->beta[i];
     memset(out, 0, (size_t)n * sizeof *out);
-    for (int i = 0; i <= k; i++) {
+    for (int i = 1; i <= k; i++) {
         const double *restrict p = s->phi[i];
         double c = cw[i];
         if (c != 0)
@@ -289,13 +311,31 @@ int daei_mebdf_correct(dae_solver *s, double t, double teval, int bdf_only)
     combine_past(s, we, v[V_SE]);
     combine_past(s, w2, v[V_S2]);
     combine_past(s, w3, v[V_S3]);
+    /* the stages' predictions in differences from y_n (the weights of each formula sum to 0,
+     * those of the extrapolation to 1), with ybar_{n+1} - y_n = phi_1 + .. + phi_k + ee_1 (the
+     * predictor's differences and stage 1's corrections): se = y_pred(t_{n+2}) - y_n, s2 =
+     * ybar_{n+2} + a_1 ybar_{n+1} + sum_{j>=2} a_j y_{n+2-j} at y_pred, s3 = ybar_{n+1} + sum ah_j
+     * y_{n+1-j} */
+    {
+        double *restrict se = v[V_SE], *restrict s2 = v[V_S2], *restrict s3 = v[V_S3];
+        const double *restrict e1 = v[V_EE1];
+        for (int i = 0; i < n; i++) {
+            double db = 0;
+            for (int j = 1; j <= k; j++)
+                db += s->phi[j][i];
+            db += e1[i];
+            se[i] += e0 * db;
+            s2[i] += se[i] + a[1] * db;
+            s3[i] += db;
+        }
+    }
     /* stage 2: BDF at t + h */
     {
         double *restrict y = s->y, *restrict yp = s->yp;
-        const double *restrict yb = v[V_YB1], *restrict se = v[V_SE], *restrict s2 = v[V_S2];
+        const double *restrict y0 = s->phi[0], *restrict se = v[V_SE], *restrict s2 = v[V_S2];
         for (int i = 0; i < n; i++) {
-            y[i] = e0 * yb[i] + se[i];
-            yp[i] = cj * (y[i] + a[1] * yb[i] + s2[i]);
+            y[i] = y0[i] + se[i];
+            yp[i] = cj * s2[i];
         }
     }
     s->cjold = s->cj; /* the same matrix: the rate of stage 1 holds */
@@ -314,7 +354,7 @@ int daei_mebdf_correct(dae_solver *s, double t, double teval, int bdf_only)
         double c1 = (b1 - beta) / beta, c2 = b2 / beta;
         for (int i = 0; i < n; i++) {
             y[i] = yb[i];
-            yp[i] = cj * (yb[i] + s3[i]) - c1 * ypb1[i] - c2 * ypb2[i];
+            yp[i] = cj * s3[i] - c1 * ypb1[i] - c2 * ypb2[i];
         }
     }
     nl = daei_newton(s, teval);
