@@ -457,16 +457,16 @@ inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], dou
     for (int bb = 0; bb < nbs; bb++)
         for (int i = 0; i < 3; i++) {
             const double(*D)[MB_NC] = (const double(*)[MB_NC])k->dgv[bb][i];
-            for (int j = 0; j < nv; j++) {
-                double sum = Cd[bb][i][j];
-                for (int l = 0; l < nv; l++) {
-                    if (ud[l] == 0) continue;
-                    double dB = 0;
+            double uD[MB_NC] = {0}; /* u'^T dgv, then (u'^T dgv) B: one product each */
+            for (int l = 0; l < nv; l++)
+                if (ud[l] != 0)
                     for (int c = 0; c < nc; c++)
-                        dB += D[l][c] * B[c][j];
-                    sum += ud[l] * dB;
-                }
-                dacc_u[bb][i][j] = sum;
+                        uD[c] += ud[l] * D[l][c];
+            for (int j = 0; j < nv; j++) {
+                double dB = 0;
+                for (int c = 0; c < nc; c++)
+                    dB += uD[c] * B[c][j];
+                dacc_u[bb][i][j] = Cd[bb][i][j] + dB;
             }
             for (int c = 0; c < nc; c++) {
                 double sum = 0;
