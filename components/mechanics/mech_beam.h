@@ -30,7 +30,7 @@
  * P L^2 / (E I) = 10 by 8e-3 L (2e-3 L at 16).
  * MECH_BEAM_CONSISTENT: at 8 elements the clamped-free bending frequencies off by 1.4e-11,
  * 2.1e-8, 1.3e-6 (eighth order in 1/n, pinned-pinned too; sixth with other supports), the
- * elastica's tip at k = 10 by 3.4e-5 L, 2.2e-6 L at 16 (fourth order: the cubic field); the
+ * elastica's tip at k = 10 by 2.1e-5 L, 1.5e-6 L at 16 (fourth order: the cubic field); the
  * tables are in docs/beam.md and tests/components/mechanics/test_beam_consistent.c. Spinning
  * (Southwell's cantilever, gamma = 12; tests/components/mechanics/test_modes_rotating.c) its
  * frequencies are those of the cubic Hermite model with the exact centrifugal tension and the
@@ -45,18 +45,20 @@
  *   1. Angles: theta of a node is the rotation vector of its triad relative to the element frame
  *      (the logarithm phi n of E^T T, from its skew part sin(phi) n: theta = s asin|s| / |s|)
  *      instead of the skew part itself, which is short by phi^3 / 6.
- *   2. Bowing: the axial strain is that of the cubic field's arc, eps = u / L0 + (2 theta_a^2 -
- *      theta_a theta_b + 2 theta_b^2) / 30 summed over both bending planes, in the energy
+ *   2. Bowing: the axial strain is that of the cubic field's arc, L (1 + bow / 30) over the
+ *      current chord L = |x_b - x_a| (change 3), eps = u / L0 + (L / L0) bow / 30, bow = 2
+ *      theta_a^2 - theta_a theta_b + 2 theta_b^2 summed over both bending planes, in the energy
  *      EA L0 eps^2 / 2 (the shallow-arch local element of Crisfield, Non-linear Finite Element
  *      Analysis of Solids and Structures vol. 1, 1991; it gives the axial force its
- *      consistent geometric stiffness 6 N / (5 L0) across, where the chord alone gives N / L0).
+ *      consistent geometric stiffness 6 N / (5 L0) across (times L / L0), where the chord alone
+ *      gives N / L0).
  *   3. Inertia: the node bodies keep the lumped masses and rotary inertias, and the element adds
  *      the kinetic energy of its distributed mass over the co-rotational field, less those
  *      (Crisfield, Galvanetto and Jelenic, "Dynamics of 3-D co-rotational beams", Comput. Mech. 20
  *      (1997); Le, Battini and Hjiaj, "A consistent 3D corotational beam element for nonlinear
  *      dynamic analysis of flexible structures", CMAME 269 (2014): cubic local interpolation).
  *      The fields, xi = s/L0 in [0, 1], H1 = xi (1 - xi)^2, H2 = -xi^2 (1 - xi):
- *        r(xi)  = x_a + xi (x_b - x_a) + L0 [H1 P + H2 Q] - L0 [F(xi) - xi F(1)] e1,
+ *        r(xi)  = x_a + xi (x_b - x_a) + L [H1 P + H2 Q] - L [F(xi) - xi F(1)] e1,
  *                 P = theta_z,a e2 - theta_y,a e3,  Q = theta_z,b e2 - theta_y,b e3,
  *                 F(xi) = int_0^xi (psi_y^2 + psi_z^2) / 2 dxi (psi_y,z below; F(1) = the
  *                 bowing term / 30),
@@ -69,7 +71,13 @@
  *      loads on the points, centrifugal or weight, do their work on the arc's shortening, the
  *      geometric stiffness of their variation along the element, int (N(x) - N) w'^2 / 2 dx,
  *      which the element's constant axial force N misses; spinning at gamma = 12 it moves the
- *      frequencies by up to 3.3e-4 at 4 elements, 9e-6 at 8); the kinetic
+ *      frequencies by up to 3.3e-4 at 4 elements, 9e-6 at 8). The field across the chord is
+ *      scaled by the current chord L, not L0, so that its slopes at the nodes are the node
+ *      rotations theta however the element is stretched (with L0 they were short by the axial
+ *      strain u / L0: the fields of neighbouring elements then disagreed with the nodes by that
+ *      strain times their local rotations, and the frequencies of an axially loaded chain kept
+ *      an error eps (k h)^2, second order in the element size: 5e-7 on the crane boom's second
+ *      bending frequency at 16 quartic elements, against 2e-9 with L; docs/beam.md); the kinetic
  *      energy T = sum_g w_g L0 [rho A |r_g'|^2 + rho I_z |D2_g'|^2 + rho I_y |D3_g'|^2] / 2
  *      at the 4 Gauss points xi_g (exact for the cubic field at small deformation; a section
  *      with directors e2, e3 of "masses" I_z, I_y has the rotary inertia I_y + I_z, I_y, I_z
@@ -108,7 +116,7 @@
  *      both positive definite, the smallest eigenvalue 5.2e-3 and 4.9e-4 of rho A L0, so that
  *      T stays a positive definite form in the velocities). T_4 is taken as three more points
  *      of the kind above, 54 |E - 23/18 (A + B)|^2 - 98/3 |A + B|^2 + 77/2 |A - B|^2 for the
- *      bracket (the vectors times L0, the "masses" times rho A L0 / 17640), with their inertia
+ *      bracket (the vectors times L, the "masses" times rho A L0 / 17640), with their inertia
  *      loads by d'Alembert's principle as the others'.
  *      Derivation: a symmetric element mass [a b c d; b e -d f; c -d a -b; d f -b e] in units
  *      of rho A h, with a + c = 1/2 (the mass), has five free entries. On the uniform infinite
@@ -142,7 +150,7 @@
  * b' = c and the bubbles' equations of motion (d'Alembert's principle over the same points as
  * the ports' loads, plus the bubble's elastic and damping forces). In the fields above, with
  * V = b_z e2 - b_y e3 (the bubble in the element frame, in the convention of P and Q):
- *   r(xi) += L0 B(xi) V,   psi_y += B'(xi) b_y,   psi_z += B'(xi) b_z,
+ *   r(xi) += L B(xi) V,   psi_y += B'(xi) b_y,   psi_z += B'(xi) b_z,
  * and F(xi) the foreshortening of the whole quartic arc (its integrals of products of H1', H2',
  * B'); the energy gets, per bending plane with the bending stiffness EI of that plane,
  *   EI / (2 L0) int B''^2 b^2 = (2/5) EI b^2 / L0   (B'' is orthogonal to the linear

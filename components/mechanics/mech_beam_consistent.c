@@ -52,7 +52,8 @@ void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th)
     }
 }
 
-/* The bowing term: W += EA L0 eps^2 / 2, eps = u / L0 + bow / 30 (k->u, k->th set). */
+/* The bowing term: W += EA L0 eps^2 / 2, eps = u / L0 + (L / L0) bow / 30 (k->L, k->u, k->th
+ * set). */
 void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0, int quartic)
 {
     ad_const(c, 0.0, &k->bow);
@@ -74,22 +75,26 @@ void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0, int qua
         ad_mul(c, bb, bb, &k->t2);
         ad_axpy(c, &k->bow, 2.0 / 7, &k->t2, &k->bow);
     }
+    /* the arc L (1 + bow / 30) of the field over the current chord L (mech_beam.h): eps = u / L0
+     * + (L / L0) bow / 30 */
+    ad_scale(c, 1.0 / L0, &k->L, &k->t1);
+    ad_mul(c, &k->t1, &k->bow, &k->t2);
     ad_scale(c, 1.0 / L0, &k->u, &k->eps);
-    ad_axpy(c, &k->eps, 1.0 / 30, &k->bow, &k->eps);
+    ad_axpy(c, &k->eps, 1.0 / 30, &k->t2, &k->eps);
     ad_mul(c, &k->eps, &k->eps, &k->t2);
     ad_axpy(c, &k->W, 0.5 * EA * L0, &k->t2, &k->W);
 }
 
 void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z)
 {
-    double bow = 0;
+    double bow = 0, s = 1 + d[0] / L0; /* s = L / L0 */
     for (int a = 2; a <= 3; a++)
         bow += 2 * d[a] * d[a] - d[a] * d[a + 3] + 2 * d[a + 3] * d[a + 3];
-    double N = EA * (d[0] / L0 + bow / 30); /* the axial force EA eps */
-    z[0] += EA * bow / 30;
+    double N = EA * (d[0] / L0 + s * bow / 30); /* the axial force EA eps */
+    z[0] += (EA * s + N) * bow / 30;           /* dW/du = N (1 + bow / 30) */
     for (int a = 2; a <= 3; a++) {
-        z[a] += N * L0 * (4 * d[a] - d[a + 3]) / 30;
-        z[a + 3] += N * L0 * (4 * d[a + 3] - d[a]) / 30;
+        z[a] += N * L0 * s * (4 * d[a] - d[a + 3]) / 30;
+        z[a + 3] += N * L0 * s * (4 * d[a + 3] - d[a]) / 30;
     }
 }
 
@@ -107,7 +112,8 @@ enum { NV = MECH_BEAM_NBASIS, NB = NV + 2, XA = NV, XB = NV + 1, NP = MECH_BEAM_
  * e1, 17 t1 of node a, 18 t1 of node b, 19 (th_y,a^2 + th_z,a^2) e1, 20 (th_y,a th_y,b + th_z,a
  * th_z,b) e1, 21 (th_y,b^2 + th_z,b^2) e1; the quartic element's bubble: 22 V = b_z e2 - b_y e3,
  * 23 (th_y,a b_y + th_z,a b_z) e1, 24 (th_y,b b_y + th_z,b b_z) e1, 25 (b_y^2 + b_z^2) e1,
- * 26 b_z e1, 27 b_y e1 (then NV, NV + 1: the node positions x_a, x_b). */
+ * 26 b_z e1, 27 b_y e1 (then NV, NV + 1: the node positions x_a, x_b). The field's vectors (0, 1,
+ * 16 to 25) are multiplied by L / L0 (the field over the current chord, mech_beam.h). */
 static int nbasis(const beam *b)
 {
     return mech_beam_quartic_(b) ? 28 : 22;
@@ -165,6 +171,16 @@ void mech_beam_offsets_(const ad_ctx *c, const beam *b, beam_work *k)
         ad_mul(c, &k->bub[1], &k->e1[i], &k->B[26][i]);
         ad_mul(c, &k->bub[0], &k->e1[i], &k->B[27][i]);
     }
+    /* the field relative to the chord is written over the current chord L = L0 s (its slopes
+     * at the nodes the node rotations): its displacements (P, Q, the bubble's V), their
+     * foreshortening and the template's vectors scaled by s */
+    static const int field[] = {0, 1, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25};
+    ad_scale(c, 1.0 / b->L0, &k->L, &k->t1);
+    for (int j = 0; j < (quartic ? 12 : 8); j++)
+        for (int i = 0; i < 3; i++) {
+            ad_mul(c, &k->t1, &k->B[field[j]][i], &k->t2);
+            k->B[field[j]][i] = k->t2;
+        }
     if (c->order > 1)
         for (int bb = 0; bb < nbasis(b); bb++)
             for (int i = 0; i < 3; i++)
@@ -257,7 +273,8 @@ int mech_beam_points_(const beam *b, point *p)
     memset(p, 0, NP * sizeof *p);
     for (int g = 0; g < 4; g++) {
         double xi = GX[g], h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
-        /* r = (1 - xi) x_a + xi x_b + L0 (H1 P + H2 Q) - L0 (F(xi) - xi F(1)) e1, the
+        /* r = (1 - xi) x_a + xi x_b + L (H1 P + H2 Q) - L (F(xi) - xi F(1)) e1 (L0 here, the
+         * basis vectors carry L / L0: mech_beam_offsets_), the
          * foreshortening F(xi) = int_0^xi (psi_y^2 + psi_z^2) / 2 of the cubic field's slopes
          * psi = H1' th_a + H2' th_b: with F_ij = int_0^xi Hi' Hj' (F_11(1) = F_22(1) = 2/15,
          * F_12(1) = -1/30) the coefficients of the basis' quadratic forms 19, 20, 21 */

@@ -131,9 +131,9 @@ double mech_beam_strain_power_(const beam *b, const double *y);
 /* The consistent element (mech_beam_consistent.c). The rotation measure: the node angles th
  * (3) of one node turned from the skew part into the rotation vector, in place. */
 void mech_beam_angles_(const ad_ctx *c, beam_work *k, ad *th);
-/* The bowing term: k->W += EA L0 eps^2 / 2, eps = u / L0 + (2 ta^2 - ta tb + 2 tb^2) / 30 over
- * both bending planes (k->u, k->th set), and with a bubble (quartic, k->bub set) + ((ta - tb) b
- * + 2 b^2 / 7) / 30. */
+/* The bowing term: k->W += EA L0 eps^2 / 2, eps = u / L0 + (L / L0) bow / 30, bow = 2 ta^2 -
+ * ta tb + 2 tb^2 over both bending planes (k->L, k->u, k->th set), and with a bubble (quartic,
+ * k->bub set) + (ta - tb) b + 2 b^2 / 7. */
 void mech_beam_bow_(const ad_ctx *c, beam_work *k, double EA, double L0, int quartic);
 /* The same on plain numbers: to z = dW/dd (7: u, theta_a, theta_b) of the quadratic energy
  * without its EA u^2 / (2 L0), the rest of the axial energy's gradient at the deformations d. */

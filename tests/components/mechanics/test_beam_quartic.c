@@ -635,11 +635,12 @@ static void test_elastica(void)
            "elastica, quartic element: tip within %.2e L at 16 elements for k = 1, 3, 5, 10 "
            "(target 1e-4)",
            w16);
-    /* fourth order, as the consistent element (5.2e-4, 3.4e-5, 2.2e-6 at k = 10): the bubble
+    /* fourth order, as the consistent element (2.6e-4, 2.1e-5, 1.5e-6 at k = 10): the bubble
      * does not raise it; the limit lies in the co-rotational local kinematics, not in the
-     * field's degree (the shallow-arch arc length of the bowing term, int (1 + psi^2 / 2) for
-     * int sqrt(1 + psi^2), is a third of it: with - int psi^4 / 8 added the error at k = 10
-     * and 16 elements goes from 1.9e-6 to 1.3e-6, the order stays 3.8 .. 3.9) */
+     * field's degree (measured with the field over L0, 1.9e-6 at k = 10 and 16 elements: the
+     * shallow-arch arc length of the bowing term, int (1 + psi^2 / 2) for int sqrt(1 + psi^2),
+     * was a third of it, - int psi^4 / 8 added gave 1.3e-6, the order stayed 3.8 .. 3.9; the
+     * field over the current chord gives 1.3e-6, orders 3.8 .. 3.9) */
     tap_ok(ok && omin > 3.7,
            "elastica, quartic element: fourth order (smallest order 8 -> 16 elements %.2f)", omin);
 }
