@@ -160,16 +160,13 @@ static void compare(dae_solver *s)
 }
 
 /* The six sums of products of the fit over the triples (e[j], e[j+1], e[j+2]), j < m, and over
- * the unknowns idx[0..nt-1] (gather) or 0..nt-1, in ascending order; sum[0..5] = xx, yy, xy, cx,
- * cy, cc. */
-DAEI_INLINE void fit_sums(int gather, const int *restrict idx, int nt, double *const *e, int m,
-                          double *sum)
+ * the nt packed unknowns, in ascending order; sum[0..5] = xx, yy, xy, cx, cy, cc. */
+static void fit_sums(int nt, double *const *e, int m, double *sum)
 {
     double xx = 0, yy = 0, xy = 0, cx = 0, cy = 0, cc = 0;
     for (int j = 0; j < m; j++) {
         const double *restrict c = e[j], *restrict x = e[j + 1], *restrict y = e[j + 2];
-        for (int t = 0; t < nt; t++) {
-            int i = gather ? idx[t] : t;
+        for (int i = 0; i < nt; i++) {
             xx += x[i] * x[i];
             yy += y[i] * y[i];
             xy += x[i] * y[i];
@@ -191,15 +188,12 @@ DAEI_INLINE void fit_sums(int gather, const int *restrict idx, int nt, double *c
  * complex and the residual is small, else 0. Several triples make the fit overdetermined even
  * when the error lies in few unknowns (two unknowns and one triple fit any a, b exactly). The
  * estimates are weighted by werr: where it is 0 every product is +-0, which leaves the sums as
- * they are (they start at +0), so the sums run over the unknowns the error test weighs (tcols)
- * where those are fewer than all: the same bits. */
+ * they are (they start at +0), so the window holds the unknowns the error test weighs (tcols)
+ * alone, packed, where those are fewer than all: the same bits. */
 static int fit(const dae_solver *s, double *const *e, int m, double *theta, double *r)
 {
     double sum[6];
-    if (s->tcols && s->ntcols < s->n)
-        fit_sums(1, s->tcols, s->ntcols, e, m, sum);
-    else
-        fit_sums(0, NULL, s->n, e, m, sum);
+    fit_sums(s->stab_nt, e, m, sum);
     double xx = sum[0], yy = sum[1], xy = sum[2], cx = sum[3], cy = sum[4], cc = sum[5];
     double det = xx * yy - xy * xy;
     if (!(cc > 0) || !(det > 1e-12 * xx * yy)) return 0;
@@ -217,14 +211,24 @@ void daei_stab_observe(dae_solver *s)
     if (!s->o.stability_guard || s->o.fixed_step) return;
     int n = s->n, k = s->kused;
     double h = s->hused;
-    if (h != s->stab_hs || k != s->stab_ks) s->stab_ns = 0;
+    int gather = s->tcols && s->ntcols < n, nt = gather ? s->ntcols : n;
+    if (h != s->stab_hs || k != s->stab_ks || s->stab_tc != s->tcols || s->stab_nt != nt)
+        s->stab_ns = 0;
+    s->stab_tc = s->tcols;
+    s->stab_nt = nt;
     double *old = s->stab_e[STAB_WIN - 1]; /* shift the window: e[j+1] <- e[j], e[0] <- v */
     memmove(s->stab_e + 1, s->stab_e, (STAB_WIN - 1) * sizeof *s->stab_e);
     s->stab_e[0] = old;
-    { /* v: the weighted error estimate of this step */
+    { /* v: the weighted error estimate of this step, packed */
         double *restrict v = old;
         const double *restrict e = s->ee, *restrict w = s->werr;
-        DAEI_VFOR(i, n, VAT(v, i) = VAT(e, i) * VAT(w, i););
+        if (gather) {
+            const int *restrict idx = s->tcols;
+            for (int t = 0; t < nt; t++)
+                v[t] = e[idx[t]] * w[idx[t]];
+        } else {
+            DAEI_VFOR(i, n, VAT(v, i) = VAT(e, i) * VAT(w, i););
+        }
     }
     if (s->stab_ns < STAB_WIN) s->stab_ns++;
     if (s->stab_ns >= 3) { /* a triple */
