@@ -191,9 +191,8 @@ struct dae_solver {
     double err_next; /* the error estimate of the order chosen for the next step */
     /* stability guard (dae_stab.c) */
     double *stab_e[STAB_WIN]; /* weighted local error estimates of the last steps, newest first,
-                                 of the unknowns the error test weighs (tcols) only, packed */
-    const int *stab_tc; /* the tcols they were packed by (a new structure empties the window) */
-    int stab_nt;        /* and their number */
+                                 of the unknowns the error test weighs (tcols) only, packed;
+                                 emptied where tcols is made (daei_init_setup) */
     int stab_ns;        /* of them, how many were taken at the current h and order */
     double stab_hs;     /* the step they were taken with */
     int stab_ks;        /* and the order */

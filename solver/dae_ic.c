@@ -267,6 +267,7 @@ int daei_init_setup(dae_solver *s, bg_error *err)
     s->wmask = malloc(((size_t)n + 1) * sizeof *s->wmask);
     if (!s->tcols || !s->wmask) goto nomem;
     s->ntcols = 0;
+    s->stab_ns = 0; /* the guard's window is packed by tcols */
     for (int j = 0; j < n; j++) {
         if (s->kind[j] == DAE_ALG2) s->a2cols[s->na2++] = j;
         if (s->kind[j] == DAE_ALG) s->a1cols[s->na1++] = j;

@@ -190,10 +190,15 @@ static void fit_sums(int nt, double *const *e, int m, double *sum)
  * estimates are weighted by werr: where it is 0 every product is +-0, which leaves the sums as
  * they are (they start at +0), so the window holds the unknowns the error test weighs (tcols)
  * alone, packed, where those are fewer than all: the same bits. */
+static int packed(const dae_solver *s)
+{
+    return s->tcols && s->ntcols < s->n;
+}
+
 static int fit(const dae_solver *s, double *const *e, int m, double *theta, double *r)
 {
     double sum[6];
-    fit_sums(s->stab_nt, e, m, sum);
+    fit_sums(packed(s) ? s->ntcols : s->n, e, m, sum);
     double xx = sum[0], yy = sum[1], xy = sum[2], cx = sum[3], cy = sum[4], cc = sum[5];
     double det = xx * yy - xy * xy;
     if (!(cc > 0) || !(det > 1e-12 * xx * yy)) return 0;
@@ -211,20 +216,16 @@ void daei_stab_observe(dae_solver *s)
     if (!s->o.stability_guard || s->o.fixed_step) return;
     int n = s->n, k = s->kused;
     double h = s->hused;
-    int gather = s->tcols && s->ntcols < n, nt = gather ? s->ntcols : n;
-    if (h != s->stab_hs || k != s->stab_ks || s->stab_tc != s->tcols || s->stab_nt != nt)
-        s->stab_ns = 0;
-    s->stab_tc = s->tcols;
-    s->stab_nt = nt;
+    if (h != s->stab_hs || k != s->stab_ks) s->stab_ns = 0;
     double *old = s->stab_e[STAB_WIN - 1]; /* shift the window: e[j+1] <- e[j], e[0] <- v */
     memmove(s->stab_e + 1, s->stab_e, (STAB_WIN - 1) * sizeof *s->stab_e);
     s->stab_e[0] = old;
     { /* v: the weighted error estimate of this step, packed */
         double *restrict v = old;
         const double *restrict e = s->ee, *restrict w = s->werr;
-        if (gather) {
+        if (packed(s)) {
             const int *restrict idx = s->tcols;
-            for (int t = 0; t < nt; t++)
+            for (int t = 0; t < s->ntcols; t++)
                 v[t] = e[idx[t]] * w[idx[t]];
         } else {
             DAEI_VFOR(i, n, VAT(v, i) = VAT(e, i) * VAT(w, i););
