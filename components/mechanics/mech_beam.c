@@ -212,17 +212,18 @@ static int config_var(const beam *b, int c)
                     : b->bs + c - 14;
 }
 
-void mech_beam_node_J_(const beam *b, const double *y, double J[2][4][3])
+void mech_beam_node_J_(const beam *b, const double *y, mech_beam_nodej *nj)
 {
-    mech_beam_quat_J_(y + b->qa, J[0]);
-    mech_beam_quat_J_(y + b->qb, J[1]);
+    mech_beam_quat_J_(y + b->qa, nj->J[0]);
+    mech_beam_quat_J_(y + b->qb, nj->J[1]);
 }
 
 /* The gradient of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b, phi_b) of the
  * ports (phi: global rotation increments, through dq = J(q) dphi); mech_beam_velocity_gradient_
  * adds the bubbles' and the derivatives. */
-void mech_beam_velocity_gradient_g_(const double *ag, const double (*J)[4][3], double *gv)
+void mech_beam_velocity_gradient_g_(const double *ag, const mech_beam_nodej *nj, double *gv)
 {
+    const double(*J)[4][3] = nj->J;
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
         for (int i = 0; i < 3; i++) {
@@ -235,11 +236,12 @@ void mech_beam_velocity_gradient_g_(const double *ag, const double (*J)[4][3], d
     }
 }
 
-void mech_beam_velocity_gradient_(const beam *b, const ad *a, const double (*J)[4][3],
-                                  double *gv, double (*dgv)[MB_NC])
+void mech_beam_velocity_gradient_(const beam *b, const ad *a, const mech_beam_nodej *nj, double *gv,
+                                  double (*dgv)[MB_NC])
 {
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
-    mech_beam_velocity_gradient_g_(a->g, J, gv);
+    const double(*J)[4][3] = nj->J;
+    mech_beam_velocity_gradient_g_(a->g, nj, gv);
     for (int k = 12; k < b->nv; k++) { /* the bubbles: their rates are their velocities */
         gv[k] = a->g[k + 2];
         for (int cc = 0; dgv && cc < b->nc; cc++)
@@ -279,9 +281,9 @@ static void beam_loads(const beam *b, const double *y, int order, const double *
     beam_work *k = b->work;
     ad_ctx c = {.order = order, .dir = dir, .n = b->nc};
     beam_energy(b, y, &c, k);
-    double J[2][4][3];
-    mech_beam_node_J_(b, y, J);
-    mech_beam_velocity_gradient_(b, &k->W, (const double(*)[4][3])J, g, dg);
+    mech_beam_nodej nj;
+    mech_beam_node_J_(b, y, &nj);
+    mech_beam_velocity_gradient_(b, &k->W, &nj, g, dg);
     if (dgw) memset(dgw, 0, 144 * sizeof(double));
     double beta = b->sec.beta;
     if (!(beta > 0)) return;
@@ -289,8 +291,7 @@ static void beam_loads(const beam *b, const double *y, int order, const double *
     double Jd[7][MB_NV], (*dJ)[MB_NV][MB_NC] = k->dJ, w[12], dd[7] = {0}, z[7] = {0};
     const double(*K)[7] = b->K;
     for (int r = 0; r < 7; r++)
-        mech_beam_velocity_gradient_(b, dl[r], (const double(*)[4][3])J, Jd[r],
-                                     dg ? dJ[r] : NULL);
+        mech_beam_velocity_gradient_(b, dl[r], &nj, Jd[r], dg ? dJ[r] : NULL);
     for (int m = 0; m < 6; m++) {
         w[m] = y[b->f[0] + m];
         w[6 + m] = y[b->f[1] + m];

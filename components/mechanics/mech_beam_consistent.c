@@ -91,7 +91,7 @@ void mech_beam_bow_loads_(const double *d, double EA, double L0, double *z)
     for (int a = 2; a <= 3; a++)
         bow += 2 * d[a] * d[a] - d[a] * d[a + 3] + 2 * d[a + 3] * d[a + 3];
     double N = EA * (d[0] / L0 + s * bow / 30); /* the axial force EA eps */
-    z[0] += (EA * s + N) * bow / 30;           /* dW/du = N (1 + bow / 30) */
+    z[0] += (EA * s + N) * bow / 30;            /* dW/du = N (1 + bow / 30) */
     for (int a = 2; a <= 3; a++) {
         z[a] += N * L0 * s * (4 * d[a] - d[a + 3]) / 30;
         z[a + 3] += N * L0 * s * (4 * d[a + 3] - d[a]) / 30;
@@ -317,17 +317,15 @@ static void port_rates(const beam *b, const double *y, const double *src, double
 
 /* B: the rates of the configuration unknowns from the velocities, X' = B u' (x' = v,
  * q' = J(q) omega, b' = c). */
-static void config_rates(const beam *b, const double *y, double B[MB_NC][MB_NV])
+static void config_rates(const beam *b, const mech_beam_nodej *nj, double B[MB_NC][MB_NV])
 {
     memset(B, 0, MB_NC * MB_NV * sizeof(double));
-    double J[4][3];
     for (int n = 0; n < 2; n++) {
         for (int i = 0; i < 3; i++)
             B[3 * n + i][6 * n + i] = 1.0;
-        mech_beam_quat_J_(y + (n ? b->qb : b->qa), J);
         for (int j = 0; j < 4; j++)
             for (int i = 0; i < 3; i++)
-                B[6 + 4 * n + j][6 * n + 3 + i] = J[j][i];
+                B[6 + 4 * n + j][6 * n + 3 + i] = nj->J[n][j][i];
     }
     for (int k = 14; k < b->nc; k++)
         B[k][k - 2] = 1.0;
@@ -336,8 +334,10 @@ static void config_rates(const beam *b, const double *y, double B[MB_NC][MB_NV])
 void mech_beam_config_rate_(const beam *b, const double *y, double *Xd)
 {
     double ud[MB_NV], B[MB_NC][MB_NV];
+    mech_beam_nodej nj;
+    mech_beam_node_J_(b, y, &nj);
     port_rates(b, y, y, ud);
-    config_rates(b, y, B);
+    config_rates(b, &nj, B);
     for (int c = 0; c < b->nc; c++) {
         Xd[c] = 0;
         for (int j = 0; j < b->nv; j++)
@@ -348,9 +348,10 @@ void mech_beam_config_rate_(const beam *b, const double *y, double *Xd)
 /* Cd = (dgv X') of an AD scalar a of order 3 along X' (h = H X'): the rate of its velocity
  * gradient, from the positions' (and bubbles') rows of H X' and, for the rotations,
  * sum_m (H X')_q,m J(q)_m + g_q,m J(q')_m (J is linear in q). */
-static void gradient_rate(const ad *a, const beam *b, const double (*J)[4][3],
-                          const double (*Jd)[4][3], double *Cd)
+static void gradient_rate(const ad *a, const beam *b, const mech_beam_nodej *nj,
+                          const mech_beam_nodej *njd, double *Cd)
 {
+    const double(*J)[4][3] = nj->J, (*Jd)[4][3] = njd->J;
     const int qoff[2] = {6, 10}, xoff[2] = {0, 3};
     for (int n = 0; n < 2; n++) {
         for (int i = 0; i < 3; i++) {
@@ -366,11 +367,11 @@ static void gradient_rate(const ad *a, const beam *b, const double (*J)[4][3],
 }
 
 /* The basis' velocity gradients (and their derivatives if dgv is wanted) into the scratch. */
-static void basis_gradients(const beam *b, const double (*J)[4][3], beam_work *k, int with_dgv)
+static void basis_gradients(const beam *b, const mech_beam_nodej *nj, beam_work *k, int with_dgv)
 {
     for (int bb = 0; bb < nbasis(b); bb++)
         for (int i = 0; i < 3; i++)
-            mech_beam_velocity_gradient_(b, &k->B[bb][i], J, k->gv[bb][i],
+            mech_beam_velocity_gradient_(b, &k->B[bb][i], nj, k->gv[bb][i],
                                          with_dgv ? k->dgv[bb][i] : NULL);
 }
 
@@ -400,9 +401,11 @@ inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], dou
     beam_work *k = b->work;
     const int nbs = nc == MB_NC ? 28 : 22;
     double ud[MB_NV], ua[MB_NV], B[MB_NC][MB_NV], Xd[MB_NC];
+    mech_beam_nodej nj, njd; /* the nodes' J(q), and J(q') (J is linear in q) */
+    mech_beam_node_J_(b, y, &nj);
     port_rates(b, y, y, ud);
     port_rates(b, y, yp, ua);
-    config_rates(b, y, B);
+    config_rates(b, &nj, B);
     for (int c = 0; c < nc; c++) {
         Xd[c] = 0;
         for (int j = 0; j < nv; j++)
@@ -411,11 +414,9 @@ inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], dou
     /* the basis vectors' accelerations acc = gv . u'' + u' . (dgv X') (the second term: the
      * rate of the gradient along the motion, centrifugal and Coriolis): with the Jacobian from
      * the whole Hessians (order 2), for the residual from the Hessians along X' (order 3) */
-    double J[2][4][3], Jd[2][4][3]; /* the nodes' J(q), and J(q') (J is linear in q) */
-    mech_beam_node_J_(b, y, J);
-    mech_beam_quat_J_(Xd + 6, Jd[0]);
-    mech_beam_quat_J_(Xd + 10, Jd[1]);
-    basis_gradients(b, (const double(*)[4][3])J, k, dX != NULL);
+    mech_beam_quat_J_(Xd + 6, njd.J[0]);
+    mech_beam_quat_J_(Xd + 10, njd.J[1]);
+    basis_gradients(b, &nj, k, dX != NULL);
     double Cd[NV][3][MB_NV], acc[NB][3];
     for (int bb = 0; bb < nbs; bb++)
         for (int i = 0; i < 3; i++) {
@@ -427,8 +428,7 @@ inertia_k(const beam *b, const double *y, const double *yp, double g[MB_NV], dou
                     Cd[bb][i][j] = cd;
                 }
             else
-                gradient_rate(&k->B[bb][i], b, (const double(*)[4][3])J,
-                              (const double(*)[4][3])Jd, Cd[bb][i]);
+                gradient_rate(&k->B[bb][i], b, &nj, &njd, Cd[bb][i]);
             double s = 0;
             for (int j = 0; j < nv; j++)
                 s += k->gv[bb][i][j] * ua[j] + ud[j] * Cd[bb][i][j];
@@ -556,9 +556,9 @@ double mech_beam_kinetic_(const beam *b, const double *y)
     beam_work *k = b->work;
     double ud[MB_NV], T = 0;
     port_rates(b, y, y, ud);
-    double J[2][4][3];
-    mech_beam_node_J_(b, y, J);
-    basis_gradients(b, (const double(*)[4][3])J, k, 0);
+    mech_beam_nodej nj;
+    mech_beam_node_J_(b, y, &nj);
+    basis_gradients(b, &nj, k, 0);
     const point *P = b->pts;
     int np = b->npts;
     for (int p = 0; p < np; p++)

@@ -107,17 +107,20 @@ void mech_beam_quat_J_(const double *q, double J[4][3]);
 /* R(q) = N(q) / (q.q) (column-major), its gradient dR[k][m] = dR_k / dq_m and, if d2R != NULL,
  * its Hessian. */
 void mech_beam_quat_rot_(const double *q, double R[9], double dR[9][4], double (*d2R)[4][4]);
-/* J (J[0] = J(q_a), J[1] = J(q_b)) of the element's nodes at y. */
-void mech_beam_node_J_(const beam *b, const double *y, double J[2][4][3]);
+/* J(q) of the element's two nodes (J[0]: node a, J[1]: node b), made once per evaluation. */
+typedef struct mech_beam_nodej {
+    double J[2][4][3];
+} mech_beam_nodej;
+/* The nodes' J at y. */
+void mech_beam_node_J_(const beam *b, const double *y, mech_beam_nodej *nj);
 /* gv (12) = the gradient ag (14 configuration unknowns x_a, x_b, q_a, q_b) in the ports'
- * velocity coordinates (x_a, phi_a, x_b, phi_b), through dq = J(q) dphi (J: the nodes',
- * mech_beam_node_J_). */
-void mech_beam_velocity_gradient_g_(const double *ag, const double (*J)[4][3], double *gv);
+ * velocity coordinates (x_a, phi_a, x_b, phi_b), through dq = J(q) dphi. */
+void mech_beam_velocity_gradient_g_(const double *ag, const mech_beam_nodej *nj, double *gv);
 /* The gradient gv (b->nv) of an AD scalar a in the velocity coordinates (x_a, phi_a, x_b,
  * phi_b, and the bubbles' b) and, if dgv != NULL, its derivatives with respect to the b->nc
- * configuration unknowns; J: the nodes' (mech_beam_node_J_), made once per evaluation. */
-void mech_beam_velocity_gradient_(const beam *b, const ad *a, const double (*J)[4][3],
-                                  double *gv, double (*dgv)[MB_NC]);
+ * configuration unknowns; nj: the nodes' J (mech_beam_node_J_). */
+void mech_beam_velocity_gradient_(const beam *b, const ad *a, const mech_beam_nodej *nj, double *gv,
+                                  double (*dgv)[MB_NC]);
 
 /* The plain path (mech_beam_plain.c). The local stiffness K (7 x 7) of the deformations
  * (u, theta_a, theta_b), W = d^T K d / 2 (made once, with the element). */

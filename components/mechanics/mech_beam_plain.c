@@ -31,11 +31,12 @@ void mech_beam_stiffness_(const beam *b, double K[7][7])
 }
 
 /* The residual's loads in plain arithmetic (order 1 only; the Jacobian keeps the AD path of
- * mech_beam.c, which the tests hold this one to). The loads are the velocity gradient of sum_r z_r d_r over
- * the seven deformations d = (u, theta_a, theta_b) with z = K (d + beta d'), d' = Jd w: the
- * elastic part is grad W = Jd^T K d, the damping part beta Jd^T K Jd w. So one forward pass
- * for d, one tangent pass for d' (damped elements only), and one reverse pass for the
- * gradient: about a third of the work of carrying 14-wide gradients through every operation. */
+ * mech_beam.c, which the tests hold this one to). The loads are the velocity gradient of
+ * sum_r z_r d_r over the seven deformations d = (u, theta_a, theta_b) with z = K (d + beta d'),
+ * d' = Jd w: the elastic part is grad W = Jd^T K d, the damping part beta Jd^T K Jd w. So one
+ * forward pass for d, one tangent pass for d' (damped elements only), and one reverse pass for
+ * the gradient: about a third of the work of carrying 14-wide gradients through every
+ * operation. */
 typedef struct beam_fwd {
     double R[2][9], dR[2][9][4]; /* rotation of each node and its gradient in q */
     double t[2][3][3];           /* triads: t[n][i] = R(q_n) E0_i */
@@ -99,14 +100,13 @@ static void beam_forward(const beam *b, const double *y, beam_fwd *f)
 }
 
 /* d' = the derivative of the deformations along the port flows w (velocity coordinates). */
-static void beam_tangent(const beam *b, const double *y, const beam_fwd *f, const double *w,
-                         double *dd)
+static void beam_tangent(const beam *b, const beam_fwd *f, const mech_beam_nodej *nj,
+                         const double *w, double *dd)
 {
-    const int qo[2] = {b->qa, b->qb};
     double tt[2][3][3];
     for (int n = 0; n < 2; n++) {
-        double J[4][3], qd[4], Rd[9];
-        mech_beam_quat_J_(y + qo[n], J);
+        const double(*J)[3] = nj->J[n];
+        double qd[4], Rd[9];
         for (int m = 0; m < 4; m++)
             qd[m] = J[m][0] * w[6 * n + 3] + J[m][1] * w[6 * n + 4] + J[m][2] * w[6 * n + 5];
         for (int k = 0; k < 9; k++)
@@ -202,6 +202,8 @@ void mech_beam_loads_plain_(const beam *b, const double *y, double *g)
 {
     beam_fwd f;
     beam_forward(b, y, &f);
+    mech_beam_nodej nj;
+    mech_beam_node_J_(b, y, &nj);
     const double(*K)[7] = b->K;
     double v[7], z[7], gc[14];
     for (int r = 0; r < 7; r++)
@@ -212,7 +214,7 @@ void mech_beam_loads_plain_(const beam *b, const double *y, double *g)
             w[m] = y[b->f[0] + m];
             w[6 + m] = y[b->f[1] + m];
         }
-        beam_tangent(b, y, &f, w, dd);
+        beam_tangent(b, &f, &nj, w, dd);
         for (int r = 0; r < 7; r++)
             v[r] += b->sec.beta * dd[r];
     }
@@ -224,21 +226,21 @@ void mech_beam_loads_plain_(const beam *b, const double *y, double *g)
     if (b->sec.element == MECH_BEAM_CONSISTENT)
         mech_beam_bow_loads_(f.def, b->sec.E * b->sec.A, b->L0, z);
     beam_reverse(b, &f, z, gc);
-    double J[2][4][3];
-    mech_beam_node_J_(b, y, J);
-    mech_beam_velocity_gradient_g_(gc, (const double(*)[4][3])J, g);
+    mech_beam_velocity_gradient_g_(gc, &nj, g);
 }
 
 double mech_beam_strain_power_(const beam *b, const double *y)
 {
     beam_fwd f;
     beam_forward(b, y, &f);
+    mech_beam_nodej nj;
+    mech_beam_node_J_(b, y, &nj);
     double w[12], dd[7], P = 0;
     for (int k = 0; k < 6; k++) {
         w[k] = y[b->f[0] + k];
         w[6 + k] = y[b->f[1] + k];
     }
-    beam_tangent(b, y, &f, w, dd);
+    beam_tangent(b, &f, &nj, w, dd);
     for (int r = 0; r < 7; r++)
         for (int c = 0; c < 7; c++)
             P += dd[r] * b->K[r][c] * dd[c];
