@@ -39,14 +39,10 @@
  * and Petzold 1996, sec. 5.2), Cash's MEBDF code (ACM TOMS algorithm 703), which keeps backward
  * differences and sums its corrections apart from y (STIFF, ITRAT2), and Hairer and Wanner's
  * implicit Runge-Kutta stages solved for the smaller z_i = Y_i - y_0 against round-off (Solving
- * ODEs II, 2nd ed., sec. IV.8). Measured on lin2 (bench/problems.c, x1 = sin t, x2 = cos 2t, lam =
- * e^-t, atol = 1e-2 rtol): its first step is 8.7e-12 at rtol 1e-9 (IDA's rule, sized by x1(0) = 0
- * against atol 1e-11), where the old sums left stage 3 a residual whose corrections were 7e-17 in
- * x1, as much in x2 (below half the ulp of x2 = 1: lost) and 3.9e-6 (4e3 tolerances) in lam, so the
- * constraint could not be met: the iteration cycled between two iterates at rate 1, the step was
- * cut to 1.7e-17 and the run failed; at rtol 3e-9 .. 1e-11 runs finished with lam off by 1.7e5 ..
- * 2.7e9 tolerance units at their start (rtol 1e-11: 38 980 steps). In differences: every one
- * completes, lam within 1e3 tolerance units (tests/solver/test_dae_mebdf.c, 6).
+ * ODEs II, 2nd ed., sec. IV.8). Formed from the values, an index-2 problem started at a tiny
+ * step (lin2 at rtol 1e-9: 8.7e-12) asks corrections below the ulp of the other unknowns, its
+ * constraint cannot be met and the iteration cycles at rate 1 (tests/solver/test_dae_mebdf.c,
+ * 6).
  * Coefficients (k = 1..7, options.max_order; mebdf_coeffs solves the order conditions, constant
  * step):
  *   k  beta        b1          b2           order  stability angle
